@@ -1,0 +1,14 @@
+# delmesh_module(NAME): one static library per top-level module folder.
+# Every .cpp file in NAME/ and NAME/detail/ belongs to the library delmesh_NAME, so adding a
+# concept to a module means adding a .h/.cpp pair, never editing CMake.
+function(delmesh_module name)
+  file(GLOB sources CONFIGURE_DEPENDS
+       ${PROJECT_SOURCE_DIR}/${name}/*.cpp ${PROJECT_SOURCE_DIR}/${name}/detail/*.cpp)
+  if(sources)
+    add_library(delmesh_${name} STATIC ${sources})
+    target_include_directories(delmesh_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  else()
+    add_library(delmesh_${name} INTERFACE)
+    target_include_directories(delmesh_${name} INTERFACE ${PROJECT_SOURCE_DIR})
+  endif()
+endfunction()

@@ -1,0 +1,51 @@
+#pragma once
+//! \file del_mesh.h
+//! DelMesh (§6.2): SampleTopology, then Quality and Smooth with Topology re-run locally after
+//! every insertion, until nothing changes.  Theorem 6.1: for 0 < λ ≤ 0.06 the output Tri S|Σ is
+//! homeomorphic to Σ, every triangle has radius-edge ratio ≤ 1+λ and every edge roughness ≤ 2β(λ).
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <ostream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "meshing/surface_mesh.h"
+#include "symbolic/surface.h"
+
+namespace delmesh {
+
+enum class MeshPhase { topology, all };
+std::ostream& operator<<(std::ostream& out, MeshPhase phase);
+
+enum class SolverBackend { subdivision, homotopy };
+std::ostream& operator<<(std::ostream& out, SolverBackend backend);
+
+enum class MeshStatus { complete, point_limit, time_limit };
+std::ostream& operator<<(std::ostream& out, MeshStatus status);
+
+struct DelMeshOptions {
+  double lambda = 0.06;                  //!< 0 < λ < 1/3; Theorem 6.1 covers λ ≤ 0.06
+  MeshPhase phase = MeshPhase::all;
+  SolverBackend solver = SolverBackend::subdivision;
+  std::optional<double> size_bound;      //!< H: also refine triangles with Delaunay-ball radius > H
+  std::size_t max_points = 200000;
+  double time_limit_seconds = 0;         //!< 0: none
+  std::uint64_t seed = 1;                //!< generic directions; same seed → same mesh
+  //! Progress callback (phase, points, queue sizes), called periodically; may be empty.
+  std::function<void(const std::string&)> progress;
+};
+
+struct [[nodiscard]] DelMeshResult {
+  MeshStatus status = MeshStatus::complete;
+  SurfaceMesh mesh;              //!< Tri S|Σ, consistently outward oriented
+  nlohmann::json statistics;     //!< the statistics record of the design contract
+};
+
+//! Meshes Σ = {E = 0} ⊂ interior(box).  Throws InvalidInput if Σ is empty in the box, meets the
+//! box boundary, or is singular (∇E = 0 somewhere on Σ), or if options are out of range.
+DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOptions& options);
+
+}  // namespace delmesh

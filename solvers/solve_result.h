@@ -1,0 +1,73 @@
+#pragma once
+//! \file solve_result.h
+//! The result of a certified solve.  "Certified" means: every root of the system in the domain
+//! lies in exactly one returned certified box or in one returned undecided box, and every
+//! certified box provably contains exactly one root (Krawczyk / Hansen–Sengupta test, or an
+//! exact sign change with a non-vanishing derivative in 1-D).  Regions that can be neither
+//! excluded nor certified are returned as undecided, with a reason.  Nothing is dropped.
+
+#include <array>
+#include <cstddef>
+#include <ostream>
+#include <vector>
+
+namespace delmesh {
+
+//! Overall outcome of a solve.
+enum class SolveStatus {
+  complete,      //!< every root is in a certified box; no undecided region
+  undecided,     //!< some regions could not be decided (see UndecidedBox::reason)
+  non_isolated,  //!< evidence of a curve or surface of solutions (non-isolated roots)
+  box_limit,     //!< the box budget ran out; unexplored boxes are returned as undecided
+  time_limit     //!< the time budget ran out; unexplored boxes are returned as undecided
+};
+std::ostream& operator<<(std::ostream& out, SolveStatus status);
+
+//! Why a region is undecided.
+enum class UndecidedReason {
+  singular_root,     //!< a multiple root / tangency: Jacobian singular near a zero
+  boundary_root,     //!< a zero lies on (or too near) the boundary of the domain
+  cluster,           //!< several roots closer than the minimal box width
+  non_isolated,      //!< a curve of solutions passes through the region
+  precision,         //!< even the highest MPFI precision could not decide
+  budget             //!< not examined: a box or time budget ran out
+};
+std::ostream& operator<<(std::ostream& out, UndecidedReason reason);
+
+//! An axis-aligned box in the solver's unknowns (n ≤ 3 entries used).
+struct SolverBox {
+  std::vector<std::array<double, 2>> bounds;  //!< [lo, hi] per unknown
+};
+
+struct CertifiedRoot {
+  SolverBox box;                    //!< contains exactly one root
+  std::vector<double> midpoint;     //!< a point of the box (the refined estimate), unknowns
+  std::array<double, 3> world{};    //!< the midpoint mapped to world coordinates
+  bool inside_domain = true;        //!< classification against the polytope (always decided)
+};
+
+struct UndecidedBox {
+  SolverBox box;
+  UndecidedReason reason = UndecidedReason::precision;
+  std::array<double, 3> world{};    //!< world point of the box centre (a candidate witness)
+};
+
+struct SolverCounters {
+  std::size_t boxes = 0;                 //!< boxes visited
+  std::size_t exclusions = 0;            //!< boxes excluded by interval evaluation
+  std::size_t krawczyk_successes = 0;    //!< uniqueness proofs
+  std::size_t precision_escalations = 0; //!< boxes re-examined with MPFI
+  std::size_t paths = 0;                 //!< homotopy paths tracked
+  double seconds = 0;
+  SolverCounters& operator+=(const SolverCounters& other);
+};
+
+struct [[nodiscard]] SolveResult {
+  SolveStatus status = SolveStatus::complete;
+  std::vector<CertifiedRoot> roots;      //!< only roots inside the domain
+  std::vector<UndecidedBox> undecided;
+  SolverCounters counters;
+  bool is_complete() const { return status == SolveStatus::complete; }
+};
+
+}  // namespace delmesh

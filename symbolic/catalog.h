@@ -1,0 +1,33 @@
+#pragma once
+//! \file catalog.h
+//! The catalog of named test surfaces: equation, a box containing Σ strictly inside, the number of
+//! components and the genus of each, and (where known in closed form) the local feature size.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "symbolic/surface.h"
+
+namespace delmesh {
+
+struct CatalogEntry {
+  std::string name;
+  std::string equation;                 //!< E(x, y, z) as text, parsed by Surface::parse
+  Box3 box;                             //!< Σ ⊂ interior(box)
+  int components = 1;
+  std::vector<int> genus_per_component; //!< sorted ascending
+  std::string description;
+  //! lfs(p) for p ∈ Σ when known analytically (sphere, torus, ellipsoid bound), else empty.
+  std::function<double(const std::array<double, 3>&)> local_feature_size;
+
+  Surface surface() const { return Surface::parse(equation); }
+};
+
+//! All catalog entries, in a fixed order.
+const std::vector<CatalogEntry>& catalog();
+//! The entry called name; throws InvalidInput listing the known names if there is none.
+const CatalogEntry& catalog_entry(const std::string& name);
+
+}  // namespace delmesh

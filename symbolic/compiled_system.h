@@ -1,0 +1,83 @@
+#pragma once
+//! \file compiled_system.h
+//! A system of expressions compiled once into straight-line programs (common subexpressions
+//! shared) and evaluated many times over double, Interval, MpfrReal, MpfiInterval and Complex.
+//! The solvers' inner loops call only this; they never call GiNaC.
+//!
+//! Interval evaluation is an enclosure: for every point of the input boxes the exact value of each
+//! output lies in the returned interval (requires a live RoundingGuard).  Rational constants are
+//! enclosed exactly; exp, log, sin, cos, sqrt are enclosed as documented in scalar_traits.h.
+//! Thread safety: evaluate() uses thread-local scratch space; distinct threads may evaluate the
+//! same CompiledSystem concurrently.
+
+#include <memory>
+#include <vector>
+
+#include <ginac/ginac.h>
+
+#include "symbolic/primitive_system.h"
+#include "symbolic/scalar_types.h"
+
+namespace delmesh {
+
+namespace detail {
+class StraightLineProgram;
+}
+
+class CompiledSystem {
+ public:
+  //! Compiles the equations, the Jacobian (and, if with_hessians, the Hessians of every equation
+  //! with respect to the unknowns) and the world point of a primitive system.
+  explicit CompiledSystem(const PrimitiveSystem& system, bool with_hessians = false);
+
+  //! Compiles arbitrary expressions `equations` in `unknowns` and `parameters`; the Jacobian is
+  //! derived here.  world_point() is then the identity on the first three unknowns when n ≥ 3.
+  CompiledSystem(const std::vector<GiNaC::ex>& equations, const std::vector<GiNaC::symbol>& unknowns,
+                 const std::vector<GiNaC::symbol>& parameters, bool with_hessians = false);
+
+  ~CompiledSystem();
+  CompiledSystem(CompiledSystem&&) noexcept;
+  CompiledSystem& operator=(CompiledSystem&&) noexcept;
+
+  std::size_t n_unknowns() const { return n_unknowns_; }
+  std::size_t n_parameters() const { return n_parameters_; }
+  std::size_t n_equations() const { return n_equations_; }
+  bool has_hessians() const { return static_cast<bool>(hessians_); }
+  //! Number of instructions of the values+Jacobian program (a size measure for reports).
+  std::size_t instruction_count() const;
+
+  //! values[i] = f_i(unknowns; parameters), i < m.
+  template <class T>
+  void values(const T* unknowns, const T* parameters, T* values) const;
+  //! values as above and jacobian[i*n + j] = ∂f_i/∂u_j (row-major m × n).
+  template <class T>
+  void values_and_jacobian(const T* unknowns, const T* parameters, T* values, T* jacobian) const;
+  //! hessians[(i*n + j)*n + k] = ∂²f_i/∂u_j∂u_k.  Precondition: has_hessians().
+  template <class T>
+  void hessians(const T* unknowns, const T* parameters, T* hessians) const;
+  //! The world point (x, y, z) of the unknowns (e.g. o + u a + v b for a plane system).
+  template <class T>
+  void world_point(const T* unknowns, const T* parameters, T* xyz) const;
+
+ private:
+  std::size_t n_unknowns_ = 0, n_parameters_ = 0, n_equations_ = 0;
+  std::unique_ptr<detail::StraightLineProgram> values_;
+  std::unique_ptr<detail::StraightLineProgram> values_and_jacobian_;
+  std::unique_ptr<detail::StraightLineProgram> hessians_;
+  std::unique_ptr<detail::StraightLineProgram> world_point_;
+};
+
+// Explicitly instantiated in compiled_system.cpp for double, Interval, MpfrReal, MpfiInterval, Complex.
+#define DELMESH_DECLARE_COMPILED_SYSTEM(T)                                                        \
+  extern template void CompiledSystem::values<T>(const T*, const T*, T*) const;                  \
+  extern template void CompiledSystem::values_and_jacobian<T>(const T*, const T*, T*, T*) const; \
+  extern template void CompiledSystem::hessians<T>(const T*, const T*, T*) const;                \
+  extern template void CompiledSystem::world_point<T>(const T*, const T*, T*) const;
+DELMESH_DECLARE_COMPILED_SYSTEM(double)
+DELMESH_DECLARE_COMPILED_SYSTEM(Interval)
+DELMESH_DECLARE_COMPILED_SYSTEM(MpfrReal)
+DELMESH_DECLARE_COMPILED_SYSTEM(MpfiInterval)
+DELMESH_DECLARE_COMPILED_SYSTEM(Complex)
+#undef DELMESH_DECLARE_COMPILED_SYSTEM
+
+}  // namespace delmesh

@@ -1,0 +1,54 @@
+#pragma once
+//! \file primitives.h
+//! The six numerical primitives of §5.2, each derived once per surface as a PrimitiveSystem.
+//! Parameter conventions (all in world coordinates, doubles supplied per query):
+//!
+//! | primitive              | unknowns | parameters                         | equations |
+//! |------------------------|----------|------------------------------------|-----------|
+//! | surface_critical       | x, y, z  | a(3), b(3): orthonormal, ⟂ d       | E, ⟨∇E,a⟩, ⟨∇E,b⟩ (∇E ∥ d) |
+//! | surface_line           | t        | p(3), v(3): x = p + t v            | E(p + t v) |
+//! | surface_plane_contact  | u, v     | o(3), a(3), b(3): x = o + u a + v b| E, ∂uE, ∂vE (over-determined) |
+//! | curve_critical         | u, v     | o, a, b; direction d = a           | E, ∂vE = ⟨∇E, b⟩ |
+//! | silhouette_plane       | u, v     | o, a, b, d(3)                      | E, ⟨∇E, d⟩ |
+//! | silhouette_critical    | x, y, z  | d(3), d'(3)                        | E, G = ⟨∇E,d⟩, ⟨∇G × ∇E, d'⟩ |
+//!
+//! Plane frames (a, b) are orthonormal.  Adding a primitive means adding one builder function and
+//! its row in the registry, both in primitives.cpp.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "symbolic/primitive_system.h"
+#include "symbolic/surface.h"
+
+namespace delmesh {
+
+//! SurfaceCritical(Σ, d): critical points of Σ in direction d (∇E ∥ d), written as E = 0,
+//! ⟨∇E, a⟩ = 0, ⟨∇E, b⟩ = 0 with (a, b) an orthonormal basis of d⟂.  §5.2.
+PrimitiveSystem surface_critical_system(const Surface& surface);
+//! SurfaceLine(Σ, ℓ): E(p + t v) = 0 in the single unknown t.  §5.2.
+PrimitiveSystem surface_line_system(const Surface& surface);
+//! SurfacePlaneContact(Σ, Π): tangential contacts of Σ with Π = {o + u a + v b}:
+//! E = ⟨∇E, a⟩ = ⟨∇E, b⟩ = 0 (3 equations, 2 unknowns).  §5.2, Lemma 4.8.
+PrimitiveSystem surface_plane_contact_system(const Surface& surface);
+//! CurveCritical(Σ, Π, d = a): critical points of Σ ∩ Π in the in-plane direction a, and the
+//! tangential contacts: E = 0, ⟨∇E, b⟩ = 0.  §5.2, Lemma 4.9.
+PrimitiveSystem curve_critical_system(const Surface& surface);
+//! SilhouettePlane(Σ, Π, d): J_d ∩ Π: E = 0, ⟨∇E, d⟩ = 0 in (u, v).  §5.2, Lemma 4.14.
+PrimitiveSystem silhouette_plane_system(const Surface& surface);
+//! SilhouetteCritical(Σ, d, d'): critical points of J_d in direction d'.  §5.2, Lemma 4.14.
+PrimitiveSystem silhouette_critical_system(const Surface& surface);
+
+using PrimitiveBuilder = std::function<PrimitiveSystem(const Surface&)>;
+struct PrimitiveInfo {
+  std::string name;
+  PrimitiveBuilder build;
+  std::string summary;
+};
+//! The registry of primitives, in the order of §5.2.
+const std::vector<PrimitiveInfo>& primitive_registry();
+//! Builds the primitive called name; throws InvalidInput listing the known names otherwise.
+PrimitiveSystem build_primitive(const std::string& name, const Surface& surface);
+
+}  // namespace delmesh

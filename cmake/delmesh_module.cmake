@@ -1,4 +1,4 @@
-# delmesh_module(NAME): one static library per top-level module folder.
+# delmesh_module(NAME DEPENDENCIES...): one static library per top-level module folder.
 # Every .cpp file in NAME/ and NAME/detail/ belongs to the library delmesh_NAME, so adding a
 # concept to a module means adding a .h/.cpp pair, never editing CMake.
 function(delmesh_module name)
@@ -7,8 +7,10 @@ function(delmesh_module name)
   if(sources)
     add_library(delmesh_${name} STATIC ${sources})
     target_include_directories(delmesh_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+    target_link_libraries(delmesh_${name} PUBLIC ${ARGN})
   else()
     add_library(delmesh_${name} INTERFACE)
     target_include_directories(delmesh_${name} INTERFACE ${PROJECT_SOURCE_DIR})
+    target_link_libraries(delmesh_${name} INTERFACE ${ARGN})
   endif()
 endfunction()

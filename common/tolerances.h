@@ -34,4 +34,49 @@ inline constexpr double homotopy_real_candidate = 1e-6;
 //! non-isolated solutions for it.
 inline constexpr double generic_direction_perturbation = 1e-3;
 
+
+// ---- homotopy continuation (solvers/homotopy_solver.cpp; owner s2) ----
+
+//! Homotopy: first step in the path parameter s ∈ [0, 1], and the largest step allowed.
+inline constexpr double homotopy_initial_step = 1e-2;
+inline constexpr double homotopy_max_step = 5e-2;
+
+//! Homotopy corrector: Newton corrections must fall below this (relative to 1 + ‖u‖∞) within
+//! homotopy_corrector_iterations iterations, else the step is rejected and halved.
+inline constexpr double homotopy_corrector_tolerance = 1e-10;
+inline constexpr int homotopy_corrector_iterations = 3;
+//! Homotopy corrector: the first Newton correction after a predictor step may not exceed this
+//! (relative to 1 + ‖u‖∞); a larger one means the step was too long (guards against path jumping).
+inline constexpr double homotopy_corrector_trust = 1e-3;
+
+//! Homotopy endgame: a path whose ‖u‖∞ exceeds this once s ≥ homotopy_endgame_start goes to a
+//! solution at infinity (diverging); a path whose step underflows before homotopy_endgame_start
+//! has failed (and makes the solve undecided).
+inline constexpr double homotopy_divergence_norm = 1e8;
+inline constexpr double homotopy_endgame_start = 0.9;
+
+//! Homotopy endpoint: a finite endpoint whose Jacobian condition number (2-norm) exceeds this is
+//! singular; it comes back undecided (singular_root) when it lies in the domain.
+inline constexpr double homotopy_singular_condition = 1e10;
+//! Half-width (relative to 1 + ‖u‖∞) of the undecided box reported around a singular endpoint.
+inline constexpr double homotopy_singular_box_radius = 1e-5;
+
+//! Homotopy: two regular endpoints closer than this (relative to 1 + ‖u‖∞) mean that a path
+//! jumped; the paths are re-tracked with smaller steps.
+inline constexpr double homotopy_duplicate_endpoint = 1e-8;
+
+//! Homotopy certification: Krawczyk boxes around a polished real endpoint start at this
+//! half-width (relative to 1 + ‖u‖∞) and grow by homotopy_certify_growth, at most
+//! homotopy_certify_attempts times.
+inline constexpr double homotopy_certify_radius = 1e-10;
+inline constexpr double homotopy_certify_growth = 100;
+inline constexpr int homotopy_certify_attempts = 4;
+
+//! Homotopy: real endpoints within this margin (relative to the domain's widest side) outside the
+//! domain box are still certified and classified (they may straddle a face).
+inline constexpr double homotopy_domain_margin = 1e-6;
+
+//! Homotopy: the most predictor–corrector steps one path may take before it is declared failed.
+inline constexpr std::size_t homotopy_max_steps_per_path = 20000;
+
 }  // namespace delmesh::tolerances

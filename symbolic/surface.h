@@ -30,12 +30,23 @@ struct Box3 {
 class Surface {
  public:
   //! Parses E(x, y, z) with GiNaC's parser.  Decimal literals become exact rationals
-  //! (0.16 → 4/25).  Allowed: + - * / ^ with integer exponents, parentheses, exp sqrt sin cos log,
-  //! the named constant Pi.  Throws InvalidInput (message says what and where) on a syntax error,
-  //! an unknown symbol, a non-integer power, an empty or constant expression.
+  //! (0.16 → 4/25, 1.5e-3 → 3/2000).  Allowed: + - * / ^ with integer exponents, parentheses,
+  //! exp sqrt sin cos log (one argument each), the named constant Pi (also spelled pi).
+  //! Grammar (a sign is allowed only at the start of an expression or parenthesis, because GiNaC
+  //! reads "2*-x+y" as 2*(-x+y); write 2*(-x)+y):
+  //!   expression := [+|-] factor ((+|-|*|/) factor)*
+  //!   factor     := primary [^ exponent]     exponent := integer | '(' [+|-] exponent ')'
+  //!   primary    := number | x | y | z | Pi | pi | f '(' expression ')' | '(' expression ')'
+  //! Throws InvalidInput (message quotes the offending token and its 1-based position) on a
+  //! syntax error, an unknown symbol or function, a non-integer power (x^0.5, x^y, a^b^c), an
+  //! empty or constant expression (3, x-x), or an expression with complex constants (sqrt(-1)).
   static Surface parse(const std::string& text);
 
-  //! Wraps an already built expression in x, y, z; the same validation as parse().
+  //! Wraps an already built expression in x, y, z; the same validation as parse() on the
+  //! expression: symbols ⊂ {x, y, z}, constant Pi, functions exp sin cos log, powers with integer
+  //! or half-integer (square root) exponents, real constants, not constant.  Floating-point
+  //! numerics become the rational of the shortest decimal that reads back as the same double
+  //! (numeric(0.1) → 1/10).
   explicit Surface(GiNaC::ex E, std::string text = {});
 
   const GiNaC::ex& E() const { return E_; }
@@ -43,7 +54,7 @@ class Surface {
   const std::array<GiNaC::ex, 3>& gradient() const { return gradient_; }
   //! The Hessian (∂²E/∂xi∂xj), exact, symmetric 3 × 3.
   const GiNaC::matrix& hessian() const { return hessian_; }
-  //! True iff E is a polynomial in x, y, z with rational coefficients.
+  //! True iff E is a polynomial in x, y, z with rational coefficients (no Pi, no sqrt(2)).
   bool is_polynomial() const { return polynomial_; }
   //! Total degree of E when is_polynomial(), else -1.
   int degree() const { return degree_; }
@@ -51,6 +62,7 @@ class Surface {
   const std::string& text() const { return text_; }
 
   //! E at a point, in double (GiNaC evalf; for tests and diagnostics only, not inner loops).
+  //! NaN where E is not real (e.g. sqrt or log of a negative number).
   double evaluate(const std::array<double, 3>& p) const;
 
  private:

@@ -1,0 +1,466 @@
+#include "symbolic/surface.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <vector>
+
+#include "common/errors.h"
+
+namespace delmesh {
+
+const GiNaC::symbol& coordinate_x() {
+  static const GiNaC::symbol x("x");
+  return x;
+}
+const GiNaC::symbol& coordinate_y() {
+  static const GiNaC::symbol y("y");
+  return y;
+}
+const GiNaC::symbol& coordinate_z() {
+  static const GiNaC::symbol z("z");
+  return z;
+}
+GiNaC::lst coordinates() { return GiNaC::lst{coordinate_x(), coordinate_y(), coordinate_z()}; }
+
+// ---------------------------------------------------------------------------------------------
+// Box3
+// ---------------------------------------------------------------------------------------------
+
+Box3 Box3::parse(const std::string& text) {
+  std::vector<std::string> fields;
+  std::string field;
+  std::istringstream in(text);
+  while (std::getline(in, field, ',')) fields.push_back(field);
+  if (!text.empty() && text.back() == ',') fields.emplace_back();
+  if (fields.size() != 6)
+    throw InvalidInput("box \"" + text + "\": expected 6 comma-separated numbers x0,x1,y0,y1,z0,z1, got " +
+                       std::to_string(fields.size()));
+  double values[6];
+  for (int i = 0; i < 6; ++i) {
+    const std::string& f = fields[i];
+    std::size_t used = 0;
+    bool ok = true;
+    try {
+      values[i] = std::stod(f, &used);
+    } catch (const std::exception&) {
+      ok = false;
+    }
+    if (ok)
+      for (std::size_t k = used; k < f.size(); ++k)
+        if (!std::isspace(static_cast<unsigned char>(f[k]))) ok = false;
+    if (!ok || !std::isfinite(values[i]))
+      throw InvalidInput("box \"" + text + "\": field " + std::to_string(i + 1) + " \"" + f +
+                         "\" is not a finite number");
+  }
+  Box3 box;
+  static const char* names = "xyz";
+  for (int i = 0; i < 3; ++i) {
+    box.lo[i] = values[2 * i];
+    box.hi[i] = values[2 * i + 1];
+    if (!(box.lo[i] < box.hi[i]))
+      throw InvalidInput("box \"" + text + "\": empty range for " + names[i] + " (need " + names[i] +
+                         "0 < " + names[i] + "1)");
+  }
+  return box;
+}
+
+bool Box3::contains(const std::array<double, 3>& p) const {
+  for (int i = 0; i < 3; ++i)
+    if (!(lo[i] <= p[i] && p[i] <= hi[i])) return false;
+  return true;
+}
+
+double Box3::diagonal() const {
+  double s = 0;
+  for (int i = 0; i < 3; ++i) s += (hi[i] - lo[i]) * (hi[i] - lo[i]);
+  return std::sqrt(s);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Parsing
+// ---------------------------------------------------------------------------------------------
+
+namespace {
+
+//! The exact rational value of a decimal literal "123", "0.16", ".5", "1.5e-3", "2E4".
+GiNaC::numeric decimal_to_rational(const std::string& literal) {
+  std::string digits;
+  long scale = 0;  // value = digits * 10^scale
+  std::size_t i = 0;
+  bool seen_point = false;
+  for (; i < literal.size(); ++i) {
+    char c = literal[i];
+    if (std::isdigit(static_cast<unsigned char>(c))) {
+      digits += c;
+      if (seen_point) --scale;
+    } else if (c == '.' && !seen_point) {
+      seen_point = true;
+    } else {
+      break;
+    }
+  }
+  if (i < literal.size()) {
+    if (literal[i] != 'e' && literal[i] != 'E')
+      throw InvalidInput("malformed number \"" + literal + "\"");
+    ++i;
+    std::string exponent;
+    if (i < literal.size() && (literal[i] == '+' || literal[i] == '-')) exponent += literal[i++];
+    for (; i < literal.size() && std::isdigit(static_cast<unsigned char>(literal[i])); ++i) exponent += literal[i];
+    if (i != literal.size() || exponent.empty() || exponent == "+" || exponent == "-")
+      throw InvalidInput("malformed number \"" + literal + "\"");
+    if (exponent.size() > 6) throw InvalidInput("number \"" + literal + "\": exponent out of range");
+    scale += std::stol(exponent);
+  }
+  if (digits.empty()) throw InvalidInput("malformed number \"" + literal + "\"");
+  GiNaC::numeric value(digits.c_str());  // an exact integer
+  GiNaC::numeric ten(10);
+  return scale >= 0 ? value * ten.power(GiNaC::numeric(scale)) : value / ten.power(GiNaC::numeric(-scale));
+}
+
+const char* const kAllowedFunctions[] = {"exp", "sqrt", "sin", "cos", "log"};
+const char* const kAllowedSymbols = "x, y, z, Pi (alias pi)";
+
+bool is_allowed_function(const std::string& name) {
+  for (const char* f : kAllowedFunctions)
+    if (name == f) return true;
+  return false;
+}
+
+enum class TokenKind { number, identifier, op, lparen, rparen, end };
+struct Token {
+  TokenKind kind;
+  std::string text;
+  std::size_t position;  // 1-based column in the original text
+};
+
+std::string where(const std::string& text, std::size_t position) {
+  return "at position " + std::to_string(position) + " of \"" + text + "\"";
+}
+
+std::vector<Token> tokenize(const std::string& text) {
+  std::vector<Token> tokens;
+  std::size_t i = 0;
+  const std::size_t n = text.size();
+  auto is_digit = [&](std::size_t k) { return k < n && std::isdigit(static_cast<unsigned char>(text[k])); };
+  while (i < n) {
+    const char c = text[i];
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+      continue;
+    }
+    const std::size_t start = i;
+    if (is_digit(i) || (c == '.' && is_digit(i + 1))) {
+      while (is_digit(i)) ++i;
+      if (i < n && text[i] == '.') {
+        ++i;
+        while (is_digit(i)) ++i;
+      }
+      if (i < n && (text[i] == 'e' || text[i] == 'E')) {
+        std::size_t k = i + 1;
+        if (k < n && (text[k] == '+' || text[k] == '-')) ++k;
+        if (!is_digit(k))
+          throw InvalidInput("malformed number \"" + text.substr(start, k - start + (k < n ? 1 : 0)) + "\" " +
+                             where(text, start + 1));
+        i = k;
+        while (is_digit(i)) ++i;
+      }
+      tokens.push_back({TokenKind::number, text.substr(start, i - start), start + 1});
+    } else if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
+      while (i < n && (std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '_')) ++i;
+      tokens.push_back({TokenKind::identifier, text.substr(start, i - start), start + 1});
+    } else if (c == '+' || c == '-' || c == '*' || c == '/' || c == '^') {
+      tokens.push_back({TokenKind::op, std::string(1, c), start + 1});
+      ++i;
+    } else if (c == '(') {
+      tokens.push_back({TokenKind::lparen, "(", start + 1});
+      ++i;
+    } else if (c == ')') {
+      tokens.push_back({TokenKind::rparen, ")", start + 1});
+      ++i;
+    } else {
+      throw InvalidInput(std::string("unexpected character '") + c + "' " + where(text, start + 1) +
+                         "; allowed: numbers, x y z, Pi, exp sqrt sin cos log, + - * / ^ and parentheses");
+    }
+  }
+  tokens.push_back({TokenKind::end, "", n + 1});
+  return tokens;
+}
+
+//! A recognizer of the accepted grammar over the token list.  GiNaC's parser builds the
+//! expression; this pass only exists to give errors with positions (GiNaC reports none) and to
+//! reject constructs GiNaC accepts with surprising meaning:
+//!   expression := unary (binop unary)*        binop ∈ { + - * / }
+//!   unary      := [+|-] factor                only at the start of an expression
+//!   factor     := primary [ '^' exponent ]    (a^b^c is rejected as ambiguous)
+//!   exponent   := number | '(' [+|-] exponent ')'    an integer
+//!   primary    := number | x | y | z | Pi | pi | f '(' expression ')' | '(' expression ')'
+//! GiNaC parses a sign after a binary operator as applying to the rest of the expression
+//! ("2*-x+y" becomes 2*(-x+y)), so a sign directly after an operator is rejected.
+class Recognizer {
+ public:
+  Recognizer(const std::string& text, const std::vector<Token>& tokens) : text_(text), tokens_(tokens) {}
+
+  void run() {
+    if (tokens_.front().kind == TokenKind::end) throw InvalidInput("empty expression");
+    expression();
+    if (peek().kind != TokenKind::end) fail("unexpected '" + peek().text + "'", peek());
+  }
+
+ private:
+  const Token& peek() const { return tokens_[at_]; }
+  const Token& next() { return tokens_[at_++]; }
+  [[noreturn]] void fail(const std::string& what, const Token& token) const {
+    if (token.kind == TokenKind::end)
+      throw InvalidInput("syntax error: " + what + " at the end of \"" + text_ + "\"");
+    throw InvalidInput("syntax error: " + what + " " + where(text_, token.position));
+  }
+  static std::string describe(const Token& t) { return t.kind == TokenKind::end ? "end of input" : "'" + t.text + "'"; }
+
+  void expression() {
+    if (peek().kind == TokenKind::op && (peek().text == "+" || peek().text == "-")) next();
+    factor();
+    while (peek().kind == TokenKind::op) {
+      const Token& op = next();
+      if (op.text == "^") fail("a^b^c is ambiguous, use parentheses; '^'", op);
+      if (peek().kind == TokenKind::op && (peek().text == "+" || peek().text == "-"))
+        fail("sign '" + peek().text + "' directly after operator '" + op.text +
+                 "' (write it in parentheses, e.g. x*(-y))",
+             peek());
+      factor();
+    }
+  }
+
+  void factor() {
+    primary();
+    if (peek().kind == TokenKind::op && peek().text == "^") {
+      next();
+      exponent(0);
+    }
+  }
+
+  void exponent(int depth) {
+    const Token& t = next();
+    if (t.kind == TokenKind::lparen) {
+      if (peek().kind == TokenKind::op && (peek().text == "+" || peek().text == "-")) next();
+      exponent(depth + 1);
+      const Token& close = next();
+      if (close.kind != TokenKind::rparen) fail("non-integer power: expected ')' after the exponent, got " + describe(close), close);
+      return;
+    }
+    if (t.kind == TokenKind::number) {
+      GiNaC::numeric value = decimal_to_rational(t.text);
+      if (!value.is_integer()) fail("non-integer power '^" + t.text + "'", t);
+      return;
+    }
+    if (t.kind == TokenKind::op && (t.text == "+" || t.text == "-"))
+      fail("sign after '^' must be in parentheses, e.g. x^(-2); got '" + t.text + "'", t);
+    fail("non-integer power: the exponent must be an integer literal, got " + describe(t), t);
+  }
+
+  void primary() {
+    const Token& t = next();
+    switch (t.kind) {
+      case TokenKind::number:
+        return;
+      case TokenKind::identifier:
+        if (t.text == "x" || t.text == "y" || t.text == "z" || t.text == "Pi" || t.text == "pi") {
+          if (peek().kind == TokenKind::lparen) fail("'" + t.text + "' is not a function", t);
+          return;
+        }
+        if (is_allowed_function(t.text)) {
+          const Token& open = next();
+          if (open.kind != TokenKind::lparen) fail("expected '(' after function '" + t.text + "'", open);
+          expression();
+          const Token& close = next();
+          if (close.kind != TokenKind::rparen)
+            fail("expected ')' closing '" + t.text + "(' (one argument), got " + describe(close), close);
+          return;
+        }
+        if (peek().kind == TokenKind::lparen)
+          throw InvalidInput("unknown function '" + t.text + "' " + where(text_, t.position) +
+                             "; allowed: exp, sqrt, sin, cos, log");
+        throw InvalidInput("unknown symbol '" + t.text + "' " + where(text_, t.position) + "; allowed: " +
+                           kAllowedSymbols);
+      case TokenKind::lparen: {
+        expression();
+        const Token& close = next();
+        if (close.kind != TokenKind::rparen) fail("expected ')', got " + describe(close), close);
+        return;
+      }
+      default:
+        fail("unexpected " + describe(t), t);
+    }
+  }
+
+  const std::string& text_;
+  const std::vector<Token>& tokens_;
+  std::size_t at_ = 0;
+};
+
+std::string print(const GiNaC::ex& e) {
+  std::ostringstream out;
+  out << e;
+  return out.str();
+}
+
+//! Replaces every floating-point numeric by the exact rational of the shortest decimal text that
+//! reads back as the same double (numeric(0.1) becomes 1/10).
+GiNaC::ex rationalize_floats(const GiNaC::ex& e) {
+  if (GiNaC::is_a<GiNaC::numeric>(e)) {
+    const auto& n = GiNaC::ex_to<GiNaC::numeric>(e);
+    if (!n.is_real()) return e;  // rejected by validate()
+    if (n.is_rational()) return e;
+    // The shortest decimal text that reads back as the same double: numeric(0.1) becomes 1/10.
+    const double value = n.to_double();
+    if (!std::isfinite(value)) throw InvalidInput("non-finite constant " + print(e));
+    char text[64];
+    for (int digits = 1; digits <= 17; ++digits) {
+      std::snprintf(text, sizeof text, "%.*e", digits - 1, std::fabs(value));
+      if (std::strtod(text, nullptr) == std::fabs(value)) break;
+    }
+    GiNaC::numeric r = decimal_to_rational(text);
+    return value < 0 ? GiNaC::ex(-r) : GiNaC::ex(r);
+  }
+  if (e.nops() == 0) return e;
+  return e.map([](const GiNaC::ex& sub) { return rationalize_floats(sub); });
+}
+
+//! Throws InvalidInput unless e is a real-valued expression in x, y, z built from rationals, Pi,
+//! + - * /, integer powers, square roots and exp sin cos log.
+void validate(const GiNaC::ex& e, const std::string& text) {
+  using namespace GiNaC;
+  const std::string in = " in \"" + text + "\"";
+  if (is_a<numeric>(e)) {
+    const auto& n = ex_to<numeric>(e);
+    if (!n.is_real()) throw InvalidInput("complex value " + print(e) + in + " (E must be real)");
+    if (!n.is_rational()) throw InvalidInput("non-rational constant " + print(e) + in);
+    return;
+  }
+  if (is_a<symbol>(e)) {
+    if (e.is_equal(coordinate_x()) || e.is_equal(coordinate_y()) || e.is_equal(coordinate_z())) return;
+    throw InvalidInput("unknown symbol '" + print(e) + "'" + in + "; allowed: " + kAllowedSymbols);
+  }
+  if (is_a<constant>(e)) {
+    if (e.is_equal(Pi)) return;
+    throw InvalidInput("unknown constant '" + print(e) + "'" + in + "; allowed: Pi");
+  }
+  if (is_a<power>(e)) {
+    const ex exponent = e.op(1);
+    bool ok = is_a<numeric>(exponent) && ex_to<numeric>(exponent).is_rational() &&
+              (ex_to<numeric>(exponent) * 2).is_integer();  // integer, or half-integer from sqrt
+    if (!ok) throw InvalidInput("non-integer power '" + print(e) + "'" + in);
+    validate(e.op(0), text);
+    return;
+  }
+  if (is_a<function>(e)) {
+    const std::string name = ex_to<function>(e).get_name();
+    if (name != "exp" && name != "sin" && name != "cos" && name != "log")
+      throw InvalidInput("unknown function '" + name + "'" + in + "; allowed: exp, sqrt, sin, cos, log");
+    validate(e.op(0), text);
+    return;
+  }
+  if (is_a<add>(e) || is_a<mul>(e)) {
+    for (std::size_t i = 0; i < e.nops(); ++i) validate(e.op(i), text);
+    return;
+  }
+  throw InvalidInput("unsupported expression '" + print(e) + "'" + in);
+}
+
+//! True iff every numeric in e is rational and e uses no constants, functions or non-integer powers.
+bool has_only_rational_polynomial_parts(const GiNaC::ex& e) {
+  using namespace GiNaC;
+  if (is_a<numeric>(e)) return ex_to<numeric>(e).is_rational();
+  if (is_a<symbol>(e)) return true;
+  if (is_a<constant>(e) || is_a<function>(e)) return false;
+  if (is_a<power>(e)) {
+    const ex exponent = e.op(1);
+    if (!is_a<numeric>(exponent) || !ex_to<numeric>(exponent).is_nonneg_integer()) return false;
+    return has_only_rational_polynomial_parts(e.op(0));
+  }
+  for (std::size_t i = 0; i < e.nops(); ++i)
+    if (!has_only_rational_polynomial_parts(e.op(i))) return false;
+  return true;
+}
+
+GiNaC::ex parse_text(const std::string& text) {
+  const std::vector<Token> tokens = tokenize(text);
+  Recognizer(text, tokens).run();
+
+  // Rebuild the text with every decimal literal replaced by its exact rational "(n/d)", so that
+  // GiNaC never sees a floating-point number.
+  std::string exact;
+  for (const Token& t : tokens) {
+    if (t.kind == TokenKind::end) break;
+    if (t.kind == TokenKind::number) {
+      exact += "(" + print(decimal_to_rational(t.text)) + ")";
+    } else {
+      exact += t.text;
+    }
+    exact += ' ';
+  }
+
+  GiNaC::symtab table;
+  table["x"] = coordinate_x();
+  table["y"] = coordinate_y();
+  table["z"] = coordinate_z();
+  table["Pi"] = GiNaC::Pi;
+  table["pi"] = GiNaC::Pi;
+  GiNaC::parser reader(table, /*strict=*/true);
+  try {
+    return reader(exact);
+  } catch (const GiNaC::parse_error& error) {
+    std::string message = error.what();
+    const std::size_t colon = message.find(": ", message.find("column"));
+    if (colon != std::string::npos) message = message.substr(colon + 2);
+    const std::size_t newline = message.find('\n');
+    if (newline != std::string::npos) message.resize(newline);
+    throw InvalidInput("syntax error in \"" + text + "\": " + message);
+  } catch (const std::exception& error) {
+    throw InvalidInput("cannot parse \"" + text + "\": " + error.what());
+  }
+}
+
+}  // namespace
+
+Surface Surface::parse(const std::string& text) { return Surface(parse_text(text), text); }
+
+Surface::Surface(GiNaC::ex E, std::string text) {
+  E_ = rationalize_floats(E);
+  text_ = text.empty() ? print(E_) : std::move(text);
+  validate(E_, text_);
+  const GiNaC::symbol& x = coordinate_x();
+  const GiNaC::symbol& y = coordinate_y();
+  const GiNaC::symbol& z = coordinate_z();
+  if (!E_.has(x) && !E_.has(y) && !E_.has(z))
+    throw InvalidInput("constant expression \"" + text_ + "\" (= " + print(E_) +
+                       ") does not define a surface; E must depend on x, y or z");
+
+  const GiNaC::symbol* xyz[3] = {&x, &y, &z};
+  for (int i = 0; i < 3; ++i) gradient_[i] = E_.diff(*xyz[i]);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) hessian_(i, j) = (j < i) ? hessian_(j, i) : gradient_[i].diff(*xyz[j]);
+
+  polynomial_ = E_.is_polynomial(coordinates()) && has_only_rational_polynomial_parts(E_.expand());
+  if (polynomial_) {
+    // Total degree: the degree in s of E(s x, s y, s z).
+    GiNaC::symbol s("s");
+    GiNaC::ex scaled = E_.subs(GiNaC::lst{x == s * x, y == s * y, z == s * z}).expand();
+    degree_ = scaled.degree(s);
+  }
+}
+
+double Surface::evaluate(const std::array<double, 3>& p) const {
+  GiNaC::ex value =
+      E_.subs(GiNaC::lst{coordinate_x() == GiNaC::numeric(p[0]), coordinate_y() == GiNaC::numeric(p[1]),
+                         coordinate_z() == GiNaC::numeric(p[2])})
+          .evalf();
+  if (!GiNaC::is_a<GiNaC::numeric>(value)) return std::nan("");
+  const auto& n = GiNaC::ex_to<GiNaC::numeric>(value);
+  if (!n.is_real()) return std::nan("");
+  return n.to_double();
+}
+
+}  // namespace delmesh

@@ -79,4 +79,50 @@ inline constexpr double homotopy_domain_margin = 1e-6;
 //! Homotopy: the most predictor–corrector steps one path may take before it is declared failed.
 inline constexpr std::size_t homotopy_max_steps_per_path = 20000;
 
+//! Outward widening, in ulps, of each endpoint of an Interval exp, log, sin or cos (see
+//! symbolic/scalar_traits.h).  glibc's libm test suite fails any of these functions whose error
+//! exceeds 9 ulp in any of the four rounding modes, so 10 ulps outward covers glibc's error
+//! whatever rounding mode is active (Interval evaluation runs with upward rounding).
+inline constexpr int libm_ulp_margin = 10;
+
+//! Interval sin and cos treat an extremum x* = c + 2πk as possibly inside [lo, hi] when
+//! (lo − c)/2π − m ≤ k ≤ (hi − c)/2π + m with m = this · (1 + |k|).  Only the inclusion side
+//! matters for rigour (it replaces an endpoint value by ±1), and it covers the rounding error of
+//! those quotients (≈ 4e-16 · (1 + |k|)) many times over.
+inline constexpr double trig_extremum_margin = 1e-10;
+
 }  // namespace delmesh::tolerances
+
+// ---- certified subdivision and univariate isolation (solvers/{krawczyk,univariate_isolator,
+// ---- subdivision_solver}.cpp; owner s1) ----
+
+//! Below this width (relative to the domain's widest side, or to t1 − t0 for the univariate
+//! isolator) a region that can be neither excluded nor certified and on which the derivative
+//! (the interval Jacobian determinant) is not excludable from 0 is not bisected further: it is
+//! escalated to MPFI once and then reported undecided (singular_root / boundary_root).  A double
+//! root's undecidable zone has width ~ sqrt(unit roundoff) ≈ 1e-8, so it ends here in a handful of
+//! boxes instead of millions; two simple roots closer than this are reported undecided, never
+//! certified as one.
+inline constexpr double singular_box_relative_width = 1e-6;
+
+//! When more than this many boxes of one solve end undecided at singular_box_relative_width, the
+//! solutions are taken to form a curve (non-isolated, e.g. the critical circle of a torus whose
+//! axis is the direction): the solve stops with status non_isolated and returns every remaining
+//! region as undecided.
+inline constexpr std::size_t non_isolated_box_count = 64;
+
+//! Krawczyk is applied to the box X inflated by this fraction of its width on every side
+//! (ε-inflation), so that a root lying on a bisection face is certified from either side.
+inline constexpr double krawczyk_inflation = 0.0625;
+
+//! A Krawczyk step that shrinks the widest side of the box below this fraction is repeated on
+//! the contracted box instead of bisecting.
+inline constexpr double krawczyk_contraction_ratio = 0.5;
+
+//! Most Krawczyk iterations used to shrink a certified root's box (to classify it against the
+//! polytope); the iteration also stops when the box stops shrinking.
+inline constexpr int root_refinement_iterations = 12;
+
+//! Univariate isolator: half-width of the tight interval around a Newton-refined root that is
+//! certified by a sign change and a non-vanishing derivative (relative to max(|t|, t1 − t0)).
+inline constexpr double univariate_root_relative_radius = 4e-15;

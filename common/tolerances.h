@@ -91,7 +91,6 @@ inline constexpr int libm_ulp_margin = 10;
 //! those quotients (≈ 4e-16 · (1 + |k|)) many times over.
 inline constexpr double trig_extremum_margin = 1e-10;
 
-}  // namespace delmesh::tolerances
 
 // ---- certified subdivision and univariate isolation (solvers/{krawczyk,univariate_isolator,
 // ---- subdivision_solver}.cpp; owner s1) ----
@@ -126,3 +125,5 @@ inline constexpr int root_refinement_iterations = 12;
 //! Univariate isolator: half-width of the tight interval around a Newton-refined root that is
 //! certified by a sign change and a non-vanishing derivative (relative to max(|t|, t1 − t0)).
 inline constexpr double univariate_root_relative_radius = 4e-15;
+
+}  // namespace delmesh::tolerances

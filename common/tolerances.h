@@ -126,4 +126,39 @@ inline constexpr int root_refinement_iterations = 12;
 //! certified by a sign change and a non-vanishing derivative (relative to max(|t|, t1 − t0)).
 inline constexpr double univariate_root_relative_radius = 4e-15;
 
+
+//! Homotopy: two endpoints that coincide (homotopy_duplicate_endpoint) and whose Jacobian
+//! condition number exceeds this are a cluster of paths converging to one multiple root; they
+//! are treated as singular rather than as a path jump.
+inline constexpr double homotopy_cluster_condition = 1e6;
+
+// ---- meshing (m1): the mesher's budgets and geometric tolerances ----
+
+//! Box budget of one 2-D solve of the mesher (a Voronoi facet: FacetContact, FacetCycle,
+//! SilhouettePlane).  A solve that runs out returns its unexplored boxes as undecided, which the
+//! mesher treats as candidate witnesses.
+inline constexpr std::size_t mesher_box_budget_2d = 4000;
+//! Box budget of one 3-D solve of the mesher over a Voronoi cell (SilhouetteCritical).
+inline constexpr std::size_t mesher_box_budget_3d = 20000;
+//! Box budget of the seed solve (SurfaceCritical over the whole box) and of the input checks.
+inline constexpr std::size_t mesher_box_budget_global = 400000;
+//! Box budget of one univariate isolation on a Voronoi edge or a FacetCycle line.
+inline constexpr std::size_t mesher_box_budget_1d = 20000;
+//! Different generic height directions tried for the seeds before giving up with InvalidInput.
+inline constexpr int mesher_height_direction_retries = 6;
+//! Newton projection of a candidate witness onto Σ: iterations, and convergence |E|/|∇E| below
+//! this fraction of the box diagonal.
+inline constexpr int projection_iterations = 30;
+inline constexpr double projection_relative_tolerance = 1e-13;
+//! A candidate point is accepted as lying in a Voronoi face's polytope if it violates no
+//! half-space by more than this fraction of the box diagonal.
+inline constexpr double face_membership_relative_tolerance = 1e-7;
+//! A witness closer than this fraction of the box diagonal to an existing sample is a duplicate
+//! and is not inserted (it is counted as rejected).
+inline constexpr double duplicate_sample_relative_distance = 1e-9;
+//! Interval subdivision of a box face to certify E ≠ 0 on it: maximal depth of the quadtree.
+inline constexpr int box_face_max_depth = 14;
+//! The mesher reports progress at most this often (seconds).
+inline constexpr double progress_interval_seconds = 0.5;
+
 }  // namespace delmesh::tolerances

@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "symbolic/scalar_types.h"
+
 #include "solvers/domain.h"
 #include "solvers/solve_result.h"
 #include "symbolic/compiled_system.h"
@@ -27,7 +29,34 @@ struct HomotopyOptions {
 //! Throws InvalidInput if an equation is not polynomial in the unknowns.
 std::vector<int> equation_degrees(const PrimitiveSystem& system);
 
-//! Precondition: square system, polynomial in the unknowns, degrees from equation_degrees().
+//! The Bézout number ∏ d_i: the number of paths of the total-degree homotopy.
+//! Throws InvalidInput if degrees is empty or some d_i < 1.
+std::size_t bezout_number(const std::vector<int>& degrees);
+
+//! The ∏ d_i solutions of the start system g_i(u) = u_i^{d_i} − 1 = 0 (tuples of roots of unity),
+//! in a fixed order.  Throws InvalidInput like bezout_number().
+std::vector<std::vector<Complex>> total_degree_start_solutions(const std::vector<int>& degrees);
+
+//! All roots of the square polynomial system f(u; parameters) = 0 inside the domain, by the
+//! total-degree homotopy.  Every path is tracked; endpoints are classified as finite, singular,
+//! diverging (at infinity) or failed.  Each finite endpoint that is real (max |Im u_i| below
+//! tolerances::homotopy_real_candidate) and in (or within a margin of) the domain box is
+//! Newton-polished over the reals and certified by the Krawczyk test (krawczyk.h) on a small box
+//! around it; the certified box is contracted by Krawczyk iteration and classified against the
+//! box and the half-spaces of the domain.  Returned:
+//!  - roots: certified roots inside the domain (one per root; inside_domain = true), sorted;
+//!  - undecided: real singular endpoints in the domain (singular_root), real endpoints that could
+//!    not be certified (precision), certified roots whose box straddles a face (boundary_root),
+//!    and, when a path failed or two paths reached the same regular root even after re-tracking
+//!    with smaller steps (a root may have been missed), the whole domain box (precision);
+//!    when the time limit stops the solve, the whole domain box (budget) and status time_limit;
+//!  - counters.paths (paths tracked, re-tracks included) and counters.seconds.
+//! Status complete iff nothing is undecided.  Fixed options.seed → identical output.
+//! Not a proof of completeness: path tracking itself is not certified (a path jump that lands on
+//! a different root is detected only when two paths end at the same regular root).
+//! Preconditions (InvalidInput otherwise): system square with n = domain.dimension() unknowns,
+//! degrees.size() == n with d_i ≥ 1 the total degree of equation i (equation_degrees()),
+//! parameters.size() == system.n_parameters().
 SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>& degrees,
                            const std::vector<double>& parameters, const Domain& domain,
                            const HomotopyOptions& options = {});

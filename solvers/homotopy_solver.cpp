@@ -1,0 +1,414 @@
+#include "solvers/homotopy_solver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "common/errors.h"
+#include "common/tolerances.h"
+#include "solvers/detail/homotopy_tracker.h"
+#include "solvers/kostlan_system.h"
+#include "solvers/krawczyk.h"
+
+namespace delmesh {
+
+namespace tol = tolerances;
+using detail::PathEndpoint;
+using detail::PathOutcome;
+
+std::vector<int> equation_degrees(const PrimitiveSystem& system) {
+  GiNaC::lst unknowns;
+  GiNaC::exmap scaled;
+  const GiNaC::symbol s("homotopy_scale");
+  for (const auto& u : system.unknowns) {
+    unknowns.append(u);
+    scaled[u] = s * u;
+  }
+  std::vector<int> degrees;
+  for (std::size_t i = 0; i < system.equations.size(); ++i) {
+    const GiNaC::ex& equation = system.equations[i];
+    if (!equation.is_polynomial(unknowns))
+      throw InvalidInput("equation_degrees: equation " + std::to_string(i) + " of " + system.name +
+                         " is not polynomial in the unknowns");
+    degrees.push_back(equation.subs(scaled).expand().degree(s));
+  }
+  return degrees;
+}
+
+std::size_t bezout_number(const std::vector<int>& degrees) {
+  if (degrees.empty()) throw InvalidInput("bezout_number: no equations");
+  std::size_t product = 1;
+  for (int d : degrees) {
+    if (d < 1) throw InvalidInput("homotopy: every equation needs degree ≥ 1, got " + std::to_string(d));
+    product *= static_cast<std::size_t>(d);
+  }
+  return product;
+}
+
+std::vector<std::vector<Complex>> total_degree_start_solutions(const std::vector<int>& degrees) {
+  const std::size_t count = bezout_number(degrees), n = degrees.size();
+  std::vector<std::vector<Complex>> starts(count, std::vector<Complex>(n));
+  for (std::size_t k = 0; k < count; ++k) {
+    std::size_t index = k;  // mixed-radix digits of k, the last unknown varying fastest
+    for (std::size_t i = n; i-- > 0;) {
+      const auto d = static_cast<std::size_t>(degrees[i]);
+      const std::size_t j = index % d;
+      index /= d;
+      starts[k][i] = std::polar(1.0, 2.0 * M_PI * static_cast<double>(j) / static_cast<double>(d));
+    }
+  }
+  return starts;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double max_abs(const std::vector<Complex>& u) {
+  double m = 0;
+  for (const auto& c : u) m = std::max(m, std::abs(c));
+  return m;
+}
+double max_imag(const std::vector<Complex>& u) {
+  double m = 0;
+  for (const auto& c : u) m = std::max(m, std::abs(c.imag()));
+  return m;
+}
+double distance(const std::vector<Complex>& a, const std::vector<Complex>& b) {
+  double m = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
+  return m;
+}
+
+bool boxes_intersect(const std::vector<Interval>& a, const std::vector<Interval>& b) {
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].sup() < b[i].inf() || b[i].sup() < a[i].inf()) return false;
+  return true;
+}
+std::vector<Interval> hull(const std::vector<Interval>& a, const std::vector<Interval>& b) {
+  std::vector<Interval> h;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    h.emplace_back(std::min(a[i].inf(), b[i].inf()), std::max(a[i].sup(), b[i].sup()));
+  return h;
+}
+double width(const std::vector<Interval>& box) {
+  double w = 0;
+  for (const auto& x : box) w = std::max(w, x.sup() - x.inf());
+  return w;
+}
+SolverBox to_solver_box(const std::vector<Interval>& box) {
+  SolverBox b;
+  for (const auto& x : box) b.bounds.push_back({x.inf(), x.sup()});
+  return b;
+}
+
+//! Where the (unique) root in `box` lies relative to the domain (s1's rigorous classifier).
+DomainSide place(const std::vector<Interval>& box, const Domain& domain) {
+  RoundingGuard guard;
+  return classify(domain, box.data());
+}
+
+struct Certified {
+  std::vector<Interval> box;
+  std::vector<double> midpoint;
+};
+
+//! Newton polish over the reals and Krawczyk certification of real endpoints.
+class EndpointCertifier {
+ public:
+  EndpointCertifier(const CompiledSystem& system, const std::vector<double>& parameters)
+      : system_(system), parameters_(parameters), n_(system.n_unknowns()) {}
+
+  //! Newton in double from x; returns the size of the last correction (∞ if it broke down).
+  double polish(std::vector<double>& x) const {
+    constexpr int iterations = 12;
+    constexpr double eps = std::numeric_limits<double>::epsilon();
+    std::vector<double> f(n_), J(n_ * n_);
+    Eigen::MatrixXd A(n_, n_);
+    Eigen::VectorXd b(n_);
+    double last = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < iterations; ++k) {
+      system_.values_and_jacobian<double>(x.data(), parameters_.data(), f.data(), J.data());
+      for (std::size_t i = 0; i < n_; ++i) {
+        b[i] = -f[i];
+        for (std::size_t j = 0; j < n_; ++j) A(i, j) = J[i * n_ + j];
+      }
+      const Eigen::VectorXd delta = A.partialPivLu().solve(b);
+      if (!delta.allFinite()) return std::numeric_limits<double>::infinity();
+      double scale = 0;
+      for (std::size_t i = 0; i < n_; ++i) {
+        x[i] += delta[i];
+        scale = std::max(scale, std::abs(x[i]));
+      }
+      const double size = delta.cwiseAbs().maxCoeff();
+      if (size > last && k > 2) break;  // round-off level reached
+      last = size;
+      if (size <= 4 * eps * (1 + scale)) break;
+    }
+    return last;
+  }
+
+  //! Krawczyk iteration from a box known to hold a unique root: shrink while it keeps proving.
+  std::vector<Interval> contract(std::vector<Interval> box) const {
+    constexpr int iterations = 8;
+    RoundingGuard guard;
+    for (int k = 0; k < iterations; ++k) {
+      const KrawczykResult r = krawczyk_test(system_, parameters_, box);
+      if (r.outcome != KrawczykOutcome::unique_root || !(width(r.contracted) < width(box))) break;
+      box = r.contracted;
+    }
+    return box;
+  }
+
+  bool unique(const std::vector<Interval>& box) const {
+    RoundingGuard guard;
+    return krawczyk_test(system_, parameters_, box).outcome == KrawczykOutcome::unique_root;
+  }
+
+  //! Certifies a root near x (real part of an endpoint).  On failure `tried` is the largest box.
+  bool certify(std::vector<double> x, Certified& out, std::vector<Interval>& tried) const {
+    const double correction = polish(x);
+    double scale = 0;
+    for (double c : x) scale = std::max(scale, std::abs(c));
+    double radius = tol::homotopy_certify_radius * (1 + scale);
+    if (std::isfinite(correction)) radius = std::max(radius, 16 * correction);
+    for (int attempt = 0; attempt < tol::homotopy_certify_attempts; ++attempt, radius *= tol::homotopy_certify_growth) {
+      std::vector<Interval> box;
+      for (double c : x) box.emplace_back(c - radius, c + radius);
+      tried = box;
+      if (!std::isfinite(radius) || !std::isfinite(scale)) return false;
+      KrawczykResult r;
+      {
+        RoundingGuard guard;
+        r = krawczyk_test(system_, parameters_, box);
+      }
+      if (r.outcome != KrawczykOutcome::unique_root) continue;
+      out.box = contract(r.contracted);
+      out.midpoint.resize(n_);
+      for (std::size_t i = 0; i < n_; ++i) {
+        // the polished point when it lies in the certified box, else the box centre
+        const double c = x[i];
+        out.midpoint[i] = (c >= out.box[i].inf() && c <= out.box[i].sup()) ? c
+                                                                              : 0.5 * (out.box[i].inf() + out.box[i].sup());
+      }
+      return true;
+    }
+    return false;
+  }
+
+  std::array<double, 3> world(const std::vector<double>& u) const {
+    std::array<double, 3> xyz{};
+    system_.world_point<double>(u.data(), parameters_.data(), xyz.data());
+    return xyz;
+  }
+
+ private:
+  const CompiledSystem& system_;
+  const std::vector<double>& parameters_;
+  std::size_t n_;
+};
+
+void validate(const CompiledSystem& system, const std::vector<int>& degrees, const std::vector<double>& parameters,
+              const Domain& domain) {
+  const std::size_t n = system.n_unknowns();
+  if (n == 0 || system.n_equations() != n)
+    throw InvalidInput("solve_homotopy: the system must be square, got " + std::to_string(system.n_equations()) +
+                       " equations in " + std::to_string(n) + " unknowns");
+  if (degrees.size() != n)
+    throw InvalidInput("solve_homotopy: " + std::to_string(degrees.size()) + " degrees for " + std::to_string(n) +
+                       " equations");
+  bezout_number(degrees);  // throws on a degree < 1
+  if (parameters.size() != system.n_parameters())
+    throw InvalidInput("solve_homotopy: " + std::to_string(parameters.size()) + " parameters given, the system has " +
+                       std::to_string(system.n_parameters()));
+  if (domain.dimension() != n)
+    throw InvalidInput("solve_homotopy: the domain has dimension " + std::to_string(domain.dimension()) +
+                       ", the system " + std::to_string(n) + " unknowns");
+  domain.validate();
+}
+
+//! Adds `box` to `undecided`, merging it with an overlapping box of the same reason.
+void add_undecided(std::vector<UndecidedBox>& undecided, std::vector<Interval> box, UndecidedReason reason,
+                   const EndpointCertifier& certifier) {
+  for (auto it = undecided.begin(); it != undecided.end(); ++it) {
+    if (it->reason != reason) continue;
+    std::vector<Interval> other;
+    for (const auto& [lo, hi] : it->box.bounds) other.emplace_back(lo, hi);
+    if (boxes_intersect(other, box)) {
+      box = hull(other, box);
+      undecided.erase(it);
+      add_undecided(undecided, std::move(box), reason, certifier);
+      return;
+    }
+  }
+  UndecidedBox u;
+  u.box = to_solver_box(box);
+  u.reason = reason;
+  std::vector<double> centre;
+  for (const auto& x : box) centre.push_back(0.5 * (x.inf() + x.sup()));
+  u.world = certifier.world(centre);
+  undecided.push_back(std::move(u));
+}
+
+std::vector<Interval> domain_box(const Domain& domain) {
+  std::vector<Interval> box;
+  for (const auto& [lo, hi] : domain.box.bounds) box.emplace_back(lo, hi);
+  return box;
+}
+
+}  // namespace
+
+SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>& degrees,
+                           const std::vector<double>& parameters, const Domain& domain,
+                           const HomotopyOptions& options) {
+  validate(system, degrees, parameters, domain);
+  const auto started = Clock::now();
+  const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - started).count(); };
+  const std::size_t n = system.n_unknowns();
+
+  // γ: a unit complex number drawn from the seed (the gamma trick).
+  KostlanRng rng(options.seed);
+  const Complex gamma = std::polar(1.0, 2.0 * M_PI * rng.uniform());
+  const std::vector<Complex> complex_parameters(parameters.begin(), parameters.end());
+  const detail::HomotopyTracker tracker(system, degrees, complex_parameters, gamma);
+  const auto settings = detail::TrackerSettings::defaults();
+
+  SolveResult result;
+  const auto starts = total_degree_start_solutions(degrees);
+  std::vector<PathEndpoint> ends;
+  ends.reserve(starts.size());
+  bool out_of_time = false;
+  for (const auto& start : starts) {
+    if (options.time_limit_seconds > 0 && elapsed() > options.time_limit_seconds) {
+      out_of_time = true;
+      break;
+    }
+    ends.push_back(tracker.track(start, settings));
+    ++result.counters.paths;
+  }
+
+  // Two paths at the same regular root: one of them jumped (a regular root is the end of exactly
+  // one path).  Near-singular coincidences are a multiple root instead.  Re-track jumpers once.
+  const auto coincide = [&](const PathEndpoint& a, const PathEndpoint& b) {
+    return a.outcome == PathOutcome::finite && b.outcome == PathOutcome::finite &&
+           distance(a.point, b.point) <= tol::homotopy_duplicate_endpoint * (1 + max_abs(a.point));
+  };
+  const auto find_coincidences = [&](bool retrack) {
+    bool jumped = false;
+    for (std::size_t i = 0; i < ends.size(); ++i)
+      for (std::size_t j = i + 1; j < ends.size(); ++j) {
+        if (!coincide(ends[i], ends[j])) continue;
+        if (std::max(ends[i].condition, ends[j].condition) > tol::homotopy_cluster_condition) {
+          ends[i].outcome = ends[j].outcome = PathOutcome::singular;
+        } else if (retrack) {
+          for (std::size_t k : {i, j}) {
+            ends[k] = tracker.track(starts[k], settings.stricter());
+            ++result.counters.paths;
+          }
+        } else {
+          jumped = true;
+        }
+      }
+    return jumped;
+  };
+  find_coincidences(true);
+  const bool jumped = find_coincidences(false);
+
+  const EndpointCertifier certifier(system, parameters);
+  const double margin = tol::homotopy_domain_margin * domain.scale();
+  const auto near_domain = [&](const std::vector<double>& x, double extra) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (x[i] < domain.box.bounds[i][0] - margin - extra || x[i] > domain.box.bounds[i][1] + margin + extra)
+        return false;
+    return true;
+  };
+
+  std::size_t failed = 0;
+  std::vector<Certified> certified;
+  for (const auto& end : ends) {
+    if (end.outcome == PathOutcome::failed) {
+      ++failed;
+      continue;
+    }
+    if (end.outcome == PathOutcome::diverging) continue;
+    const double scale = 1 + max_abs(end.point);
+    std::vector<double> x(n);
+    for (std::size_t i = 0; i < n; ++i) x[i] = end.point[i].real();
+    if (end.outcome == PathOutcome::singular) {
+      const double radius =
+          std::max(tol::homotopy_singular_box_radius * scale, 16 * (std::isfinite(end.last_correction) ? end.last_correction : 0));
+      if (max_imag(end.point) > std::max(radius, tol::homotopy_real_candidate * scale)) continue;
+      if (!near_domain(x, radius)) continue;
+      std::vector<Interval> box;
+      for (double c : x) box.emplace_back(c - radius, c + radius);
+      add_undecided(result.undecided, box, UndecidedReason::singular_root, certifier);
+      continue;
+    }
+    // finite, regular endpoint
+    if (max_imag(end.point) > tol::homotopy_real_candidate * scale) continue;
+    if (!near_domain(x, 0)) continue;
+    Certified root;
+    std::vector<Interval> tried;
+    if (certifier.certify(x, root, tried)) {
+      certified.push_back(std::move(root));
+    } else if (place(tried, domain) != DomainSide::outside) {
+      add_undecided(result.undecided, tried, UndecidedReason::precision, certifier);
+    }
+  }
+
+  // De-duplicate certified roots: intersecting uniqueness boxes whose hull still holds a unique
+  // root are the same root.
+  std::sort(certified.begin(), certified.end(),
+            [](const Certified& a, const Certified& b) { return a.midpoint < b.midpoint; });
+  std::vector<Certified> distinct;
+  for (auto& root : certified) {
+    bool merged = false;
+    for (auto& kept : distinct) {
+      if (!boxes_intersect(kept.box, root.box)) continue;
+      if (certifier.unique(hull(kept.box, root.box))) {
+        if (width(root.box) < width(kept.box)) kept = root;
+      } else {
+        add_undecided(result.undecided, hull(kept.box, root.box), UndecidedReason::cluster, certifier);
+      }
+      merged = true;
+      break;
+    }
+    if (!merged) distinct.push_back(std::move(root));
+  }
+
+  for (auto& root : distinct) {
+    switch (place(root.box, domain)) {
+      case DomainSide::outside: ++result.counters.roots_outside; break;
+      case DomainSide::boundary:
+        add_undecided(result.undecided, root.box, UndecidedReason::boundary_root, certifier);
+        break;
+      case DomainSide::inside: {
+        CertifiedRoot r;
+        r.box = to_solver_box(root.box);
+        r.midpoint = root.midpoint;
+        r.world = certifier.world(root.midpoint);
+        r.inside_domain = true;
+        result.roots.push_back(std::move(r));
+        ++result.counters.krawczyk_successes;
+        break;
+      }
+    }
+  }
+
+  if (out_of_time) {
+    add_undecided(result.undecided, domain_box(domain), UndecidedReason::budget, certifier);
+    result.status = SolveStatus::time_limit;
+  } else if (failed > 0 || jumped) {
+    add_undecided(result.undecided, domain_box(domain), UndecidedReason::precision, certifier);
+    result.status = SolveStatus::undecided;
+  } else {
+    result.status = result.undecided.empty() ? SolveStatus::complete : SolveStatus::undecided;
+  }
+  result.counters.seconds = elapsed();
+  return result;
+}
+
+}  // namespace delmesh

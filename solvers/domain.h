@@ -3,9 +3,11 @@
 //! Solver domains: an axis-aligned box in the unknowns intersected with half-spaces, i.e. a convex
 //! polytope (a Voronoi facet polygon in plane coordinates (u, v); a clipped Voronoi cell in x, y, z).
 
+#include <ostream>
 #include <vector>
 
 #include "solvers/solve_result.h"
+#include "symbolic/scalar_types.h"
 
 namespace delmesh {
 
@@ -15,14 +17,34 @@ struct HalfSpace {
   double offset = 0;
 };
 
-//! box ∩ ⋂ half_spaces.  Roots are searched in the (slightly enlarged) box and then classified
-//! as inside or outside the polytope; classification is decided exactly or the box is refined.
+//! box ∩ ⋂ half_spaces.  Roots are searched in the box and then classified as inside or outside
+//! the polytope (box faces included); classification is decided exactly or the root's box is
+//! refined, and a root that cannot be separated from a face is reported as boundary_root.
 struct Domain {
   SolverBox box;
   std::vector<HalfSpace> half_spaces;
   std::size_t dimension() const { return box.bounds.size(); }
   //! The box [lo0,hi0]×…; no half-spaces.
   static Domain from_box(std::vector<std::array<double, 2>> bounds);
+  //! Throws InvalidInput unless dimension() ≥ 1, every side satisfies −∞ < lo < hi < ∞, and every
+  //! half-space has dimension() finite normal entries, not all zero, and a finite offset.
+  void validate() const;
+  //! The widest side of the box, max_i (hi_i − lo_i): the scale of relative widths.
+  double scale() const;
 };
+
+//! Where a box of the unknowns lies relative to the closed polytope P = box ∩ half-spaces.
+enum class DomainSide {
+  inside,   //!< every point of the box is strictly inside every face of P
+  outside,  //!< every point of the box is strictly outside one face of P (box ∩ P = ∅)
+  boundary  //!< neither could be proved (the box meets or nearly meets a face)
+};
+std::ostream& operator<<(std::ostream& out, DomainSide side);
+
+//! Classifies the interval box `box` (domain.dimension() entries) against the faces of the domain:
+//! the 2n box faces u_i = lo_i, u_i = hi_i and the hyperplanes ⟨normal, u⟩ = offset, each side
+//! evaluated in interval arithmetic.  Precondition: a RoundingGuard is alive.  Rigorous: inside
+//! and outside are proofs; boundary means undecided.
+DomainSide classify(const Domain& domain, const Interval* box);
 
 }  // namespace delmesh

@@ -18,13 +18,21 @@ struct KrawczykResult {
   std::vector<Interval> contracted;  //!< K(X) ∩ X (valid when not no_root)
 };
 
-//! Precondition: system is square (n equations, n unknowns), box.size() == n, parameters has
-//! system.n_parameters() entries, a RoundingGuard is alive.
+//! One Krawczyk step on the box X = `box`: m = midpoint of X, Y = (midpoint of the enclosure of
+//! J(m))⁻¹ in double, K = m − Y f(m) + (I − Y J(X))(X − m) in Interval arithmetic.
+//! unique_root: K ⊂ int X, so X (and K ∩ X) contains exactly one zero of f; no_root: some
+//! f_i(X) excludes 0 or K ∩ X = ∅; inconclusive otherwise, and whenever J(m) is singular (Y does
+//! not exist) or an enclosure has NaN bounds.  `contracted` = K ∩ X contains every zero of f in X.
+//! Precondition: system is square (n equations, n unknowns), box.size() == n with finite
+//! bounds, parameters has system.n_parameters() entries, a RoundingGuard is alive.  Violations
+//! throw InvalidInput.
 KrawczykResult krawczyk_test(const CompiledSystem& system, const std::vector<double>& parameters,
                              const std::vector<Interval>& box);
 
-//! The same test in MPFI arithmetic at `precision_bits`; returns the contracted box rounded
-//! outward to double intervals.
+//! The same test in MPFI arithmetic at `precision_bits` (≥ 53; the MPFI default precision is set
+//! for the duration of the call, so it is not safe to call concurrently with other MPFI code);
+//! Y is still a double matrix.  Returns the contracted box rounded outward to double intervals.
+//! Does not require a RoundingGuard.
 KrawczykResult krawczyk_test_mpfi(const CompiledSystem& system, const std::vector<double>& parameters,
                                   const std::vector<Interval>& box, int precision_bits);
 

@@ -1,10 +1,24 @@
 #pragma once
 //! \file solve_result.h
-//! The result of a certified solve.  "Certified" means: every root of the system in the domain
-//! lies in exactly one returned certified box or in one returned undecided box, and every
-//! certified box provably contains exactly one root (Krawczyk / Hansen–Sengupta test, or an
-//! exact sign change with a non-vanishing derivative in 1-D).  Regions that can be neither
-//! excluded nor certified are returned as undecided, with a reason.  Nothing is dropped.
+//! The result of a certified solve.  "Certified" means:
+//!  1. every root of the system in the (closed) domain lies in a returned certified box or in a
+//!     returned undecided box; the certified boxes are pairwise distinct roots (de-duplicated
+//!     through their uniqueness boxes), so no root is counted twice;
+//!  2. every certified box provably contains exactly one root of the system, and that root is
+//!     provably inside the domain (strictly inside every face: CertifiedRoot::inside_domain);
+//!     the proof is Krawczyk's theorem (K(X) ⊂ int X, interval arithmetic under a
+//!     RoundingGuard or MPFI) in n ≥ 2 unknowns, and in one unknown either a Bernstein
+//!     coefficient sequence with exactly one sign variation, all signs certain, or an exact
+//!     sign change at the ends of the interval with a derivative enclosure excluding 0;
+//!  3. every region that could be neither excluded (interval evaluation proving no root) nor
+//!     certified is returned as an UndecidedBox with the best reason: a tangency / double root
+//!     (singular_root: the derivative, resp. the interval Jacobian determinant, cannot be
+//!     excluded from 0 on a tiny box where the values cannot be excluded either), a root on or
+//!     within rounding of the domain boundary (boundary_root), a curve of solutions
+//!     (non_isolated), precision exhausted after MPFI escalation (precision), or a budget
+//!     (budget).  Nothing is ever silently dropped: complete ⇔ no undecided box.
+//! Certified roots that lie outside the polytope are not returned; they are counted in
+//! SolverCounters::roots_outside.
 
 #include <array>
 #include <cstddef>
@@ -58,6 +72,7 @@ struct SolverCounters {
   std::size_t krawczyk_successes = 0;    //!< uniqueness proofs
   std::size_t precision_escalations = 0; //!< boxes re-examined with MPFI
   std::size_t paths = 0;                 //!< homotopy paths tracked
+  std::size_t roots_outside = 0;         //!< certified roots found outside the polytope (not returned)
   double seconds = 0;
   SolverCounters& operator+=(const SolverCounters& other);
 };

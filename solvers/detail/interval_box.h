@@ -1,0 +1,72 @@
+#pragma once
+//! \file interval_box.h
+//! Small helpers on interval boxes shared by the certified solvers (internal).  Every function on
+//! Interval values requires a live RoundingGuard unless it only reads bounds.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include "symbolic/scalar_types.h"
+
+namespace delmesh::detail {
+
+//! A point of [a.inf(), a.sup()] near its centre (exact for finite bounds: the sum is rounded,
+//! then clamped back into the interval).
+inline double midpoint(const Interval& a) {
+  const double m = 0.5 * a.inf() + 0.5 * a.sup();
+  return std::min(std::max(m, a.inf()), a.sup());
+}
+//! sup − inf rounded upward (requires the guard) or to nearest (an estimate otherwise).
+inline double width(const Interval& a) { return a.sup() - a.inf(); }
+
+//! True iff both bounds are finite numbers.
+inline bool is_finite(const Interval& a) { return std::isfinite(a.inf()) && std::isfinite(a.sup()); }
+
+//! a ⊂ interior(b).
+inline bool strictly_inside(const Interval& a, const Interval& b) {
+  return a.inf() > b.inf() && a.sup() < b.sup();
+}
+//! a ⊂ b.
+inline bool inside(const Interval& a, const Interval& b) { return a.inf() >= b.inf() && a.sup() <= b.sup(); }
+//! a ∩ b = ∅ (false when a bound is NaN: no information).
+inline bool disjoint(const Interval& a, const Interval& b) { return a.inf() > b.sup() || a.sup() < b.inf(); }
+//! a ∩ b, precondition: !disjoint(a, b) and finite bounds.
+inline Interval intersection(const Interval& a, const Interval& b) {
+  return Interval(std::max(a.inf(), b.inf()), std::min(a.sup(), b.sup()));
+}
+//! [a.inf() − r, a.sup() + r] for r ≥ 0 (outward under the guard).
+inline Interval inflate(const Interval& a, double r) { return Interval(-(r - a.inf()), a.sup() + r); }
+
+//! The widest side of a box of n intervals, and its index.
+inline std::size_t widest_side(const Interval* box, std::size_t n, double* w = nullptr) {
+  std::size_t best = 0;
+  double wb = -1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double wi = width(box[i]);
+    if (wi > wb) wb = wi, best = i;
+  }
+  if (w) *w = wb;
+  return best;
+}
+
+//! The MPFI default precision (Boost's default_precision(), a process-wide setting that the
+//! compiled programs use for their temporaries) set to `bits` for the lifetime of the scope.
+class MpfiPrecisionScope {
+ public:
+  explicit MpfiPrecisionScope(int bits);
+  ~MpfiPrecisionScope();
+  MpfiPrecisionScope(const MpfiPrecisionScope&) = delete;
+  MpfiPrecisionScope& operator=(const MpfiPrecisionScope&) = delete;
+
+ private:
+  unsigned old_interval_digits_, old_real_digits_;
+};
+
+//! The MPFI interval [lo, hi] (exact: doubles are representable at every precision ≥ 53 bits).
+MpfiInterval to_mpfi(const Interval& a);
+MpfiInterval to_mpfi(double lo, double hi);
+//! The smallest double interval containing a (bounds rounded outward).
+Interval to_interval(const MpfiInterval& a);
+
+}  // namespace delmesh::detail

@@ -1,0 +1,73 @@
+#include "solvers/domain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "common/errors.h"
+
+namespace delmesh {
+
+Domain Domain::from_box(std::vector<std::array<double, 2>> bounds) {
+  Domain domain;
+  domain.box.bounds = std::move(bounds);
+  domain.validate();
+  return domain;
+}
+
+void Domain::validate() const {
+  if (box.bounds.empty()) throw InvalidInput("solver domain: the box has no sides");
+  for (std::size_t i = 0; i < box.bounds.size(); ++i) {
+    const auto& side = box.bounds[i];
+    if (!std::isfinite(side[0]) || !std::isfinite(side[1]) || !(side[0] < side[1]))
+      throw InvalidInput("solver domain: side " + std::to_string(i) + " is not a finite interval lo < hi");
+  }
+  for (std::size_t k = 0; k < half_spaces.size(); ++k) {
+    const HalfSpace& h = half_spaces[k];
+    if (h.normal.size() != box.bounds.size())
+      throw InvalidInput("solver domain: half-space " + std::to_string(k) + " has a normal of dimension " +
+                         std::to_string(h.normal.size()) + ", the box has " +
+                         std::to_string(box.bounds.size()));
+    bool nonzero = false;
+    for (double c : h.normal) {
+      if (!std::isfinite(c)) throw InvalidInput("solver domain: half-space " + std::to_string(k) + " is not finite");
+      nonzero = nonzero || c != 0;
+    }
+    if (!nonzero || !std::isfinite(h.offset))
+      throw InvalidInput("solver domain: half-space " + std::to_string(k) + " has a zero normal or infinite offset");
+  }
+}
+
+double Domain::scale() const {
+  double s = 0;
+  for (const auto& side : box.bounds) s = std::max(s, side[1] - side[0]);
+  return s;
+}
+
+std::ostream& operator<<(std::ostream& out, DomainSide side) {
+  switch (side) {
+    case DomainSide::inside: return out << "inside";
+    case DomainSide::outside: return out << "outside";
+    case DomainSide::boundary: return out << "boundary";
+  }
+  return out << "DomainSide(" << static_cast<int>(side) << ")";
+}
+
+DomainSide classify(const Domain& domain, const Interval* box) {
+  const std::size_t n = domain.dimension();
+  bool inside = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double lo = domain.box.bounds[i][0], hi = domain.box.bounds[i][1];
+    if (box[i].inf() > hi || box[i].sup() < lo) return DomainSide::outside;
+    if (!(box[i].inf() > lo && box[i].sup() < hi)) inside = false;
+  }
+  for (const HalfSpace& h : domain.half_spaces) {
+    Interval s(-h.offset);
+    for (std::size_t i = 0; i < n; ++i) s += Interval(h.normal[i]) * box[i];
+    if (s.inf() > 0) return DomainSide::outside;
+    if (!(s.sup() < 0)) inside = false;
+  }
+  return inside ? DomainSide::inside : DomainSide::boundary;
+}
+
+}  // namespace delmesh

@@ -1,0 +1,127 @@
+#include "symbolic/compiled_system.h"
+
+#include <string>
+
+#include "common/errors.h"
+#include "symbolic/detail/straight_line_program.h"
+
+namespace delmesh {
+
+namespace {
+
+std::vector<GiNaC::symbol> concatenate(const std::vector<GiNaC::symbol>& a, const std::vector<GiNaC::symbol>& b) {
+  std::vector<GiNaC::symbol> all(a);
+  all.insert(all.end(), b.begin(), b.end());
+  return all;
+}
+
+//! Equations followed by the row-major m × n Jacobian.
+std::vector<GiNaC::ex> values_and_jacobian_outputs(const std::vector<GiNaC::ex>& equations,
+                                                   const GiNaC::matrix& jacobian, std::size_t n) {
+  std::vector<GiNaC::ex> out(equations);
+  for (std::size_t i = 0; i < equations.size(); ++i)
+    for (std::size_t j = 0; j < n; ++j) out.push_back(jacobian(i, j));
+  return out;
+}
+
+//! ∂²f_i/∂u_j∂u_k, in the order (i, j, k), derived from the Jacobian.
+std::vector<GiNaC::ex> hessian_outputs(const GiNaC::matrix& jacobian, const std::vector<GiNaC::symbol>& unknowns,
+                                       std::size_t m) {
+  const std::size_t n = unknowns.size();
+  std::vector<GiNaC::ex> out;
+  out.reserve(m * n * n);
+  for (std::size_t i = 0; i < m; ++i)
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t k = 0; k < n; ++k) out.push_back(jacobian(i, j).diff(unknowns[k]));
+  return out;
+}
+
+GiNaC::matrix derive_jacobian(const std::vector<GiNaC::ex>& equations, const std::vector<GiNaC::symbol>& unknowns) {
+  GiNaC::matrix jacobian(static_cast<unsigned>(std::max<std::size_t>(equations.size(), 1)),
+                         static_cast<unsigned>(std::max<std::size_t>(unknowns.size(), 1)));
+  for (std::size_t i = 0; i < equations.size(); ++i)
+    for (std::size_t j = 0; j < unknowns.size(); ++j)
+      jacobian(i, j) = equations[i].diff(unknowns[j]);
+  return jacobian;
+}
+
+}  // namespace
+
+CompiledSystem::CompiledSystem(const PrimitiveSystem& system, bool with_hessians)
+    : n_unknowns_(system.n_unknowns()), n_parameters_(system.n_parameters()), n_equations_(system.n_equations()) {
+  if (n_equations_ > 0 && n_unknowns_ > 0 &&
+      (system.jacobian.rows() != n_equations_ || system.jacobian.cols() != n_unknowns_))
+    throw PreconditionViolation("CompiledSystem: the Jacobian of primitive '" + system.name + "' is " +
+                                std::to_string(system.jacobian.rows()) + " x " +
+                                std::to_string(system.jacobian.cols()) + ", expected " +
+                                std::to_string(n_equations_) + " x " + std::to_string(n_unknowns_));
+  const std::vector<GiNaC::symbol> inputs = concatenate(system.unknowns, system.parameters);
+  values_ = std::make_unique<detail::StraightLineProgram>(system.equations, inputs);
+  values_and_jacobian_ = std::make_unique<detail::StraightLineProgram>(
+      values_and_jacobian_outputs(system.equations, system.jacobian, n_unknowns_), inputs);
+  if (with_hessians)
+    hessians_ = std::make_unique<detail::StraightLineProgram>(
+        hessian_outputs(system.jacobian, system.unknowns, n_equations_), inputs);
+  world_point_ = std::make_unique<detail::StraightLineProgram>(
+      std::vector<GiNaC::ex>(system.world_point.begin(), system.world_point.end()), inputs);
+}
+
+CompiledSystem::CompiledSystem(const std::vector<GiNaC::ex>& equations, const std::vector<GiNaC::symbol>& unknowns,
+                               const std::vector<GiNaC::symbol>& parameters, bool with_hessians)
+    : n_unknowns_(unknowns.size()), n_parameters_(parameters.size()), n_equations_(equations.size()) {
+  const std::vector<GiNaC::symbol> inputs = concatenate(unknowns, parameters);
+  const GiNaC::matrix jacobian = derive_jacobian(equations, unknowns);
+  values_ = std::make_unique<detail::StraightLineProgram>(equations, inputs);
+  values_and_jacobian_ = std::make_unique<detail::StraightLineProgram>(
+      values_and_jacobian_outputs(equations, jacobian, n_unknowns_), inputs);
+  if (with_hessians)
+    hessians_ = std::make_unique<detail::StraightLineProgram>(hessian_outputs(jacobian, unknowns, n_equations_),
+                                                              inputs);
+  if (n_unknowns_ >= 3)
+    world_point_ = std::make_unique<detail::StraightLineProgram>(
+        std::vector<GiNaC::ex>{unknowns[0], unknowns[1], unknowns[2]}, inputs);
+}
+
+CompiledSystem::~CompiledSystem() = default;
+CompiledSystem::CompiledSystem(CompiledSystem&&) noexcept = default;
+CompiledSystem& CompiledSystem::operator=(CompiledSystem&&) noexcept = default;
+
+std::size_t CompiledSystem::instruction_count() const { return values_and_jacobian_->instruction_count(); }
+
+template <class T>
+void CompiledSystem::values(const T* unknowns, const T* parameters, T* values) const {
+  values_->evaluate(unknowns, n_unknowns_, parameters, values, n_equations_, static_cast<T*>(nullptr));
+}
+
+template <class T>
+void CompiledSystem::values_and_jacobian(const T* unknowns, const T* parameters, T* values, T* jacobian) const {
+  values_and_jacobian_->evaluate(unknowns, n_unknowns_, parameters, values, n_equations_, jacobian);
+}
+
+template <class T>
+void CompiledSystem::hessians(const T* unknowns, const T* parameters, T* hessians) const {
+  if (!hessians_) throw PreconditionViolation("CompiledSystem::hessians: compiled without Hessians");
+  hessians_->evaluate(unknowns, n_unknowns_, parameters, hessians, hessians_->n_outputs(),
+                      static_cast<T*>(nullptr));
+}
+
+template <class T>
+void CompiledSystem::world_point(const T* unknowns, const T* parameters, T* xyz) const {
+  if (!world_point_)
+    throw PreconditionViolation("CompiledSystem::world_point: no world point (fewer than 3 unknowns)");
+  world_point_->evaluate(unknowns, n_unknowns_, parameters, xyz, 3, static_cast<T*>(nullptr));
+}
+
+#define DELMESH_DEFINE_COMPILED_SYSTEM(T)                                                  \
+  template void CompiledSystem::values<T>(const T*, const T*, T*) const;                  \
+  template void CompiledSystem::values_and_jacobian<T>(const T*, const T*, T*, T*) const; \
+  template void CompiledSystem::hessians<T>(const T*, const T*, T*) const;                \
+  template void CompiledSystem::world_point<T>(const T*, const T*, T*) const;
+DELMESH_DEFINE_COMPILED_SYSTEM(double)
+DELMESH_DEFINE_COMPILED_SYSTEM(Interval)
+DELMESH_DEFINE_COMPILED_SYSTEM(MpfrReal)
+DELMESH_DEFINE_COMPILED_SYSTEM(MpfiInterval)
+DELMESH_DEFINE_COMPILED_SYSTEM(Complex)
+#undef DELMESH_DEFINE_COMPILED_SYSTEM
+
+}  // namespace delmesh

@@ -1,0 +1,100 @@
+#pragma once
+//! \file straight_line_program.h
+//! Internal: a vector of GiNaC expressions compiled once into a straight-line program (SLP) and
+//! evaluated without GiNaC over the five scalar types of scalar_types.h (via ScalarTraits).
+//!
+//! Compilation walks each expression tree as given (nothing is expanded).  With sharing on (the
+//! default), equal sub-expressions (GiNaC structural equality) and equal instructions (same
+//! opcode and operands) are computed once, across all outputs.  Supported: the input symbols,
+//! exact rational constants and π, sums (n-ary → binary chain, negative terms as subtractions),
+//! products (with negative powers collected into one division), integer powers (x² as square),
+//! half-integer powers (via sqrt), exp, log, sin, cos.  Anything else — a symbol that is not an
+//! input, a floating-point or complex number, another constant or function, another exponent —
+//! throws PreconditionViolation.
+//!
+//! Register layout of an evaluation: [inputs | constants | one register per instruction].
+
+#include <cstddef>
+#include <cstdint>
+#include <iosfwd>
+#include <vector>
+
+#include <ginac/ginac.h>
+
+#include "symbolic/scalar_traits.h"
+#include "symbolic/scalar_types.h"
+
+namespace delmesh::detail {
+
+enum class OpCode : std::uint8_t { add, sub, mul, div, neg, inv, square, pow, exp, log, sqrt, sin, cos };
+std::ostream& operator<<(std::ostream& os, OpCode op);
+
+//! register[result] = op(register[a], register[b]); for pow, b is the integer exponent.
+struct Instruction {
+  OpCode op;
+  std::int32_t a;
+  std::int32_t b;
+};
+
+class StraightLineProgram {
+ public:
+  //! Compiles outputs in the given input symbols (distinct; may be empty).  Throws
+  //! PreconditionViolation on an unsupported expression or a duplicated input symbol.
+  //! share_subexpressions = false compiles every occurrence separately (for comparisons only).
+  StraightLineProgram(const std::vector<GiNaC::ex>& outputs, const std::vector<GiNaC::symbol>& inputs,
+                      bool share_subexpressions = true);
+
+  std::size_t n_inputs() const { return n_inputs_; }
+  std::size_t n_outputs() const { return outputs_.size(); }
+  std::size_t n_constants() const { return constants_.size(); }
+  //! Number of arithmetic instructions (inputs and constants not counted).
+  std::size_t instruction_count() const { return code_.size(); }
+  const std::vector<Instruction>& code() const { return code_; }
+
+  //! outputs[i] = value of output i at the inputs.  Inputs are read from in_first[0, n_first)
+  //! followed by in_rest[0, n_inputs − n_first); outputs are written to out_first[0, n_out_first)
+  //! followed by out_rest[0, n_outputs − n_out_first).  Pointers to empty ranges may be null.
+  //! Interval requires a live RoundingGuard; MpfrReal and MpfiInterval compute at the type's
+  //! current default precision.  Uses thread-local scratch registers.
+  template <class T>
+  void evaluate(const T* in_first, std::size_t n_first, const T* in_rest, T* out_first,
+                std::size_t n_out_first, T* out_rest) const;
+  //! All inputs contiguous, all outputs contiguous.
+  template <class T>
+  void evaluate(const T* inputs, T* outputs) const {
+    evaluate(inputs, n_inputs_, static_cast<const T*>(nullptr), outputs, outputs_.size(),
+             static_cast<T*>(nullptr));
+  }
+
+ private:
+  class Compiler;
+  struct Constant {
+    Rational value;
+    bool is_pi = false;
+  };
+
+  std::size_t n_inputs_ = 0;
+  std::vector<Constant> constants_;
+  std::vector<Instruction> code_;
+  std::vector<std::int32_t> outputs_;  // register of each output
+  std::uint64_t serial_ = 0;           // unique per program: keys the per-thread constant cache
+  // Constants pre-converted for the fixed-precision types.
+  std::vector<double> constants_double_;
+  std::vector<Interval> constants_interval_;
+  std::vector<Complex> constants_complex_;
+
+  template <class T>
+  void load_constants(T* registers) const;
+};
+
+#define DELMESH_DECLARE_SLP_EVALUATE(T)                                                         \
+  extern template void StraightLineProgram::evaluate<T>(const T*, std::size_t, const T*, T*, \
+                                                        std::size_t, T*) const;
+DELMESH_DECLARE_SLP_EVALUATE(double)
+DELMESH_DECLARE_SLP_EVALUATE(Interval)
+DELMESH_DECLARE_SLP_EVALUATE(MpfrReal)
+DELMESH_DECLARE_SLP_EVALUATE(MpfiInterval)
+DELMESH_DECLARE_SLP_EVALUATE(Complex)
+#undef DELMESH_DECLARE_SLP_EVALUATE
+
+}  // namespace delmesh::detail

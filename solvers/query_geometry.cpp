@@ -67,9 +67,14 @@ std::optional<std::array<double, 2>> clip_line_to_box(const Vec3& p, const Vec3&
 }
 
 std::optional<PlaneSection> plane_box_section(const Vec3& origin, const Vec3& normal, const Box3& box) {
+  return plane_box_section(origin, orthonormal_frame(normal), box);
+}
+
+std::optional<PlaneSection> plane_box_section(const Vec3& origin, const OrthonormalFrame& frame,
+                                              const Box3& box) {
   PlaneSection section;
   section.origin = origin;
-  section.frame = orthonormal_frame(normal);
+  section.frame = frame;
   const Vec3& n = section.frame.d;
   const double offset = dot(n, origin);
 

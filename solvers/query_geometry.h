@@ -48,6 +48,10 @@ struct PlaneSection {
 //! orthonormal_frame(normal).  Nothing if the plane misses the box or meets it in less than a
 //! polygon of positive area (an edge or a corner).  Throws InvalidInput if normal is zero.
 std::optional<PlaneSection> plane_box_section(const Vec3& origin, const Vec3& normal, const Box3& box);
+//! The same with a given frame: the plane through origin spanned by frame.a, frame.b (normal
+//! frame.d), the polygon in the coordinates (u, v) of that frame.  Precondition: frame orthonormal.
+std::optional<PlaneSection> plane_box_section(const Vec3& origin, const OrthonormalFrame& frame,
+                                              const Box3& box);
 
 //! The solver domain of a convex polygon given counter-clockwise in (u, v): the bounding box of
 //! the vertices and one half-space ⟨n_e, w⟩ ≤ ⟨n_e, w_e⟩ per edge e (n_e its outward normal).

@@ -1,0 +1,106 @@
+//! \file check_command.cpp
+//! `delmesh check MESH [--lambda L] [--json]`: the independent checker (meshing/mesh_checker.h)
+//! on a mesh file, optionally compared with the bounds of Theorem 6.1 for λ.
+
+#include <iostream>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/command_line.h"
+#include "common/errors.h"
+#include "meshing/mesh_checker.h"
+#include "meshing/mesh_io.h"
+#include "meshing/theorem_bounds.h"
+
+namespace delmesh::app {
+
+namespace {
+
+struct CheckOptions {
+  std::string mesh;
+  double lambda = 0;
+  bool json = false;
+  CLI::Option* lambda_option = nullptr;
+};
+
+const char* yes_no(bool b) { return b ? "yes" : "no"; }
+const char* pass_fail(bool b) { return b ? "pass" : "FAIL"; }
+
+ExitCode run_check(const CheckOptions& o) {
+  const bool with_bounds = o.lambda_option->count() > 0;
+  if (with_bounds && !(o.lambda > 0 && o.lambda < 1.0 / 6.0)) {
+    throw InvalidInput("--lambda must lie in (0, 1/6) for the bounds of Theorem 6.1, got " +
+                       format_number(o.lambda));
+  }
+  const MeshReport report = check_mesh(read_mesh(o.mesh));
+
+  bool all_pass = true;
+  nlohmann::json out = to_json(report);
+  TheoremBounds bounds{};
+  bool angle_ok = true, ratio_ok = true, roughness_ok = true;
+  if (with_bounds) {
+    if (o.lambda > 0.06) print_warning("Theorem 6.1 covers 0 < lambda <= 0.06 only; the bounds are computed anyway");
+    bounds = theorem_bounds(o.lambda);
+    angle_ok = report.triangles > 0 && report.min_angle_deg >= bounds.min_angle_deg;
+    ratio_ok = report.triangles > 0 && report.max_radius_edge_ratio <= bounds.max_radius_edge_ratio;
+    roughness_ok = report.triangles > 0 && report.max_roughness_rad <= bounds.max_roughness_rad;
+    all_pass = angle_ok && ratio_ok && roughness_ok;
+    out["lambda"] = o.lambda;
+    out["bounds"] = {{"min_angle_deg", bounds.min_angle_deg},
+                     {"max_radius_edge_ratio", bounds.max_radius_edge_ratio},
+                     {"max_roughness_rad", bounds.max_roughness_rad}};
+    out["pass"] = {{"min_angle_deg", angle_ok},
+                   {"max_radius_edge_ratio", ratio_ok},
+                   {"max_roughness_rad", roughness_ok},
+                   {"all", all_pass}};
+  }
+
+  if (o.json) {
+    std::cout << out.dump(2) << std::endl;
+  } else {
+    std::cout << "mesh:                  " << o.mesh << "\n";
+    std::cout << "vertices:              " << report.vertices << "\n";
+    std::cout << "edges:                 " << report.edges << "\n";
+    std::cout << "triangles:             " << report.triangles << "\n";
+    std::cout << "components:            " << report.components << "\n";
+    std::cout << "euler characteristic:  " << report.euler_characteristic << "\n";
+    std::cout << "genus per component:  ";
+    for (int g : report.genus_per_component) std::cout << " " << g;
+    std::cout << "\n";
+    std::cout << "closed:                " << yes_no(report.closed) << "\n";
+    std::cout << "manifold:              " << yes_no(report.manifold) << "\n";
+    std::cout << "orientable:            " << yes_no(report.orientable) << "\n";
+    std::cout << "min angle (deg):       " << report.min_angle_deg << "\n";
+    std::cout << "max radius-edge ratio: " << report.max_radius_edge_ratio << "\n";
+    std::cout << "max roughness (rad):   " << report.max_roughness_rad << "\n";
+    if (with_bounds) {
+      std::cout << "Theorem 6.1 bounds for lambda = " << format_number(o.lambda) << ":\n";
+      std::cout << "  min angle >= " << bounds.min_angle_deg << " deg: " << pass_fail(angle_ok) << "\n";
+      std::cout << "  radius-edge ratio <= " << bounds.max_radius_edge_ratio << ": " << pass_fail(ratio_ok) << "\n";
+      std::cout << "  roughness <= " << bounds.max_roughness_rad << " rad: " << pass_fail(roughness_ok) << "\n";
+    }
+    std::cout.flush();
+  }
+  return all_pass ? ExitCode::complete : ExitCode::check_failed;
+}
+
+}  // namespace
+
+Command add_check_command(CLI::App& parent) {
+  auto o = std::make_shared<CheckOptions>();
+  CLI::App* sub = parent.add_subcommand(
+      "check",
+      "Check a triangle mesh file (OFF, PLY or OBJ) from the file alone: components, Euler characteristic, "
+      "genus per component, closed / manifold / orientable, minimum angle, maximum radius-edge ratio, "
+      "maximum roughness. With --lambda, compare with the bounds of Theorem 6.1 (exit code 1 if one fails).");
+  sub->add_option("MESH", o->mesh, "The mesh file (.off, .ply or .obj)")->required();
+  o->lambda_option = sub->add_option("--lambda", o->lambda,
+                                     "lambda in (0, 1/6): compare with min angle >= asin(1/(2+2 lambda)), "
+                                     "radius-edge ratio <= 1+lambda, roughness <= 2 beta(lambda)");
+  sub->add_flag("--json", o->json,
+                "Print the report as JSON (with --lambda also \"lambda\", \"bounds\" and \"pass\")");
+  return {sub, [o]() { return run_check(*o); }};
+}
+
+}  // namespace delmesh::app

@@ -1,0 +1,197 @@
+#include "apps/command_line.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "common/errors.h"
+#include "symbolic/catalog.h"
+
+namespace delmesh::app {
+
+std::ostream& operator<<(std::ostream& out, ExitCode code) {
+  switch (code) {
+    case ExitCode::complete: return out << "complete";
+    case ExitCode::check_failed: return out << "check_failed";
+    case ExitCode::invalid_input: return out << "invalid_input";
+    case ExitCode::limit_reached: return out << "limit_reached";
+    case ExitCode::internal_error: return out << "internal_error";
+  }
+  return out << "ExitCode(" << static_cast<int>(code) << ")";
+}
+
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t");
+  if (first == std::string::npos) return {};
+  const auto last = s.find_last_not_of(" \t");
+  return s.substr(first, last - first + 1);
+}
+
+std::string one_line(std::string message) {
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  std::replace(message.begin(), message.end(), '\r', ' ');
+  while (!message.empty() && message.back() == ' ') message.pop_back();
+  return message;
+}
+
+}  // namespace
+
+std::array<double, 3> parse_vector3(const std::string& text, const std::string& option) {
+  std::array<double, 3> v{};
+  std::stringstream stream(text);
+  std::string item;
+  std::size_t count = 0;
+  auto bad = [&]() {
+    return InvalidInput(option + ": expected three numbers \"a,b,c\", got \"" + text + "\"");
+  };
+  while (std::getline(stream, item, ',')) {
+    item = trim(item);
+    if (count == 3 || item.empty()) throw bad();
+    std::size_t used = 0;
+    double value = 0;
+    try {
+      value = std::stod(item, &used);
+    } catch (const std::exception&) {
+      throw bad();
+    }
+    if (used != item.size()) throw bad();
+    if (!std::isfinite(value)) throw InvalidInput(option + ": \"" + item + "\" is not a finite number");
+    v[count++] = value;
+  }
+  if (count != 3 || (!text.empty() && text.back() == ',')) throw bad();
+  return v;
+}
+
+void SurfaceOptions::add_to(CLI::App& app) {
+  surface_option = app.add_option("--surface", surface,
+                                  "A catalog surface (list: `delmesh surfaces`), e.g. torus");
+  expr_option = app.add_option("--expr", expr,
+                               "An expression E(x,y,z); the surface is E = 0. Operators + - * / ^ "
+                               "(integer powers), exp sqrt sin cos log, Pi. Needs --box");
+  box_option = app.add_option("--box", box,
+                              "x0,x1,y0,y1,z0,z1: the box Sigma must lie strictly inside "
+                              "(required with --expr; replaces the catalog box with --surface)");
+  surface_option->excludes(expr_option);
+  expr_option->excludes(surface_option);
+}
+
+bool SurfaceOptions::given() const {
+  return (surface_option && surface_option->count() > 0) || (expr_option && expr_option->count() > 0);
+}
+
+SurfaceInput SurfaceOptions::resolve() const {
+  const bool has_surface = surface_option && surface_option->count() > 0;
+  const bool has_expr = expr_option && expr_option->count() > 0;
+  const bool has_box = box_option && box_option->count() > 0;
+  if (has_surface == has_expr) throw InvalidInput("give exactly one of --surface NAME and --expr E");
+  if (has_surface) {
+    const CatalogEntry& entry = catalog_entry(surface);
+    return SurfaceInput{entry.name, entry.surface(), has_box ? Box3::parse(box) : entry.box};
+  }
+  if (!has_box) throw InvalidInput("--expr needs --box x0,x1,y0,y1,z0,z1");
+  const Box3 parsed_box = Box3::parse(box);
+  return SurfaceInput{"surface", Surface::parse(expr), parsed_box};
+}
+
+std::string format_number(double x) {
+  if (!std::isfinite(x)) return std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf");
+  for (int digits = 1; digits <= 17; ++digits) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
+    if (std::strtod(buffer, nullptr) == x) return buffer;
+  }
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x);
+  return buffer;
+}
+
+std::string format_box(const Box3& box) {
+  std::string text;
+  for (int i = 0; i < 3; ++i) {
+    if (i > 0) text += ",";
+    text += format_number(box.lo[i]) + "," + format_number(box.hi[i]);
+  }
+  return text;
+}
+
+std::string extension_of(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+void require_writable_location(const std::string& path, const std::string& option) {
+  if (path == "-") return;
+  if (path.empty()) throw InvalidInput(option + ": empty file name");
+  const std::filesystem::path p(path);
+  std::error_code ec;
+  if (std::filesystem::is_directory(p, ec)) throw InvalidInput(option + ": " + path + " is a directory");
+  const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(dir, ec)) {
+    throw InvalidInput(option + ": directory " + dir.string() + " does not exist");
+  }
+  if (::access(dir.c_str(), W_OK) != 0) {
+    throw InvalidInput(option + ": directory " + dir.string() + " is not writable");
+  }
+}
+
+void write_text_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  if (path == "-") {
+    write(std::cout);
+    std::cout.flush();
+    return;
+  }
+  const std::filesystem::path target(path);
+  const std::filesystem::path temporary =
+      (target.has_parent_path() ? target.parent_path() : std::filesystem::path(".")) /
+      ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) throw InvalidInput("cannot write " + path + ": " + std::strerror(errno));
+    try {
+      write(out);
+    } catch (...) {
+      out.close();
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      throw;
+    }
+    out.flush();
+    if (!out) {
+      out.close();
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      throw InvalidInput("cannot write " + path + ": write failed");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, target, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw InvalidInput("cannot write " + path + ": " + ec.message());
+  }
+}
+
+void print_error(const std::string& message) {
+  std::cout.flush();
+  std::cerr << "error: " << one_line(message) << std::endl;
+}
+
+void print_warning(const std::string& message) {
+  std::cerr << "warning: " << one_line(message) << std::endl;
+}
+
+}  // namespace delmesh::app

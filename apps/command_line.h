@@ -1,0 +1,99 @@
+#pragma once
+//! \file command_line.h
+//! What the subcommands of `delmesh` share: the exit-code policy, the surface options
+//! (--surface | --expr with --box), parsing of vectors, and atomic output files.
+//!
+//! Exit codes (the contract of design.md, plus two of this program):
+//!   0  complete;
+//!   1  `delmesh check --lambda L` ran and some bound of Theorem 6.1 failed;
+//!   2  invalid input or usage: exactly one line on stderr, beginning `error:`;
+//!   3  stopped by a limit (--max-points, --time-limit): the partial mesh and statistics are written;
+//!   4  internal error (an unexpected exception): one line `error: internal: …` on stderr.
+
+#include <array>
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "symbolic/surface.h"
+
+namespace delmesh::app {
+
+enum class ExitCode : int {
+  complete = 0,
+  check_failed = 1,
+  invalid_input = 2,
+  limit_reached = 3,
+  internal_error = 4
+};
+std::ostream& operator<<(std::ostream& out, ExitCode code);
+
+//! The action of a subcommand, run after parsing when the subcommand was selected.
+using Action = std::function<ExitCode()>;
+
+//! A registered subcommand and its action.
+struct Command {
+  CLI::App* subcommand = nullptr;
+  Action run;
+};
+//! Each subcommand registers itself (options, help) on the main app and returns its action.
+Command add_surfaces_command(CLI::App& parent);
+Command add_solve_command(CLI::App& parent);
+Command add_mesh_command(CLI::App& parent);
+Command add_check_command(CLI::App& parent);
+
+//! Parses "a,b,c" into three finite doubles; throws InvalidInput naming `option` otherwise.
+std::array<double, 3> parse_vector3(const std::string& text, const std::string& option);
+
+//! A surface given on the command line, resolved: its name (catalog name, or "surface" for
+//! --expr), E, and the box Σ must lie in.
+struct SurfaceInput {
+  std::string name;
+  Surface surface;
+  Box3 box;
+};
+
+//! The options --surface NAME, --expr E, --box x0,x1,y0,y1,z0,z1 of `solve` and `mesh`.
+struct SurfaceOptions {
+  std::string surface;
+  std::string expr;
+  std::string box;
+  CLI::Option* surface_option = nullptr;
+  CLI::Option* expr_option = nullptr;
+  CLI::Option* box_option = nullptr;
+
+  //! Adds the three options to app.
+  void add_to(CLI::App& app);
+  //! True if --surface or --expr was given.
+  bool given() const;
+  //! Exactly one of --surface and --expr; --expr needs --box; --box with --surface replaces the
+  //! catalog box.  Throws InvalidInput (from the catalog, the parser, or here).
+  SurfaceInput resolve() const;
+};
+
+//! The shortest decimal text that reads back as exactly x.
+std::string format_number(double x);
+//! "x0,x1,y0,y1,z0,z1", the --box syntax.
+std::string format_box(const Box3& box);
+
+//! Lower-case extension of path including the dot ("" if none).
+std::string extension_of(const std::string& path);
+
+//! Throws InvalidInput unless the directory that would hold `path` exists.
+void require_writable_location(const std::string& path, const std::string& option);
+
+//! Writes the text produced by `write` to path through a temporary file in the same directory,
+//! renamed over path only when complete: an existing file is never truncated or left half
+//! written.  "-" writes to stdout.  Throws InvalidInput if the file cannot be written.
+void write_text_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+
+//! Prints `error: <message>` (newlines flattened) as a single line on stderr.
+void print_error(const std::string& message);
+//! Prints `warning: <message>` on stderr.
+void print_warning(const std::string& message);
+
+}  // namespace delmesh::app

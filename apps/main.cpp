@@ -1,0 +1,92 @@
+//! \file main.cpp
+//! The `delmesh` command line: subcommands surfaces, solve, mesh, check.  See command_line.h for
+//! the exit codes.  Every failure ends as one `error:` line and an exit code: the program never
+//! dies by a signal or an abort (SIGPIPE is ignored, std::terminate is intercepted).
+
+#include <csignal>
+#include <cstdlib>
+#include <exception>
+#include <iostream>
+#include <vector>
+#include <new>
+
+#include <CLI/CLI.hpp>
+
+#include "apps/command_line.h"
+#include "common/errors.h"
+
+namespace {
+
+using delmesh::app::ExitCode;
+
+[[noreturn]] void on_terminate() {
+  std::cerr << "error: internal: unexpected termination" << std::endl;
+  std::_Exit(static_cast<int>(ExitCode::internal_error));
+}
+
+int code(ExitCode c) { return static_cast<int>(c); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::signal(SIGPIPE, SIG_IGN);
+  std::set_terminate(on_terminate);
+  std::ios::sync_with_stdio(true);
+
+  CLI::App app{
+      "delmesh: meshes a smooth closed implicit surface E(x,y,z) = 0 with DelMesh (Cheng, Dey, Ramos,\n"
+      "Ray), with guaranteed topology (homeomorphic to the surface) and guaranteed triangle quality.\n"
+      "Exit codes: 0 complete; 1 `check --lambda` found a bound violated; 2 invalid input or usage\n"
+      "(one line `error: ...` on stderr); 3 stopped by a limit (partial output written); 4 internal\n"
+      "error.",
+      "delmesh"};
+  app.set_version_flag("--version", "delmesh 0.1.0");
+  app.require_subcommand(1);
+  app.fallthrough(false);
+  app.get_formatter()->column_width(34);
+
+  std::vector<delmesh::app::Command> commands;
+  try {
+    commands.push_back(delmesh::app::add_surfaces_command(app));
+    commands.push_back(delmesh::app::add_solve_command(app));
+    commands.push_back(delmesh::app::add_mesh_command(app));
+    commands.push_back(delmesh::app::add_check_command(app));
+  } catch (const std::exception& e) {
+    delmesh::app::print_error(std::string("internal: ") + e.what());
+    return code(ExitCode::internal_error);
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --help-all, --version
+    delmesh::app::print_error(e.what());
+    return code(ExitCode::invalid_input);
+  } catch (const std::exception& e) {
+    delmesh::app::print_error(e.what());
+    return code(ExitCode::invalid_input);
+  }
+
+  try {
+    for (auto& command : commands) {
+      if (command.subcommand->parsed()) return code(command.run());
+    }
+    delmesh::app::print_error("no subcommand given (try --help)");
+    return code(ExitCode::invalid_input);
+  } catch (const delmesh::InvalidInput& e) {
+    delmesh::app::print_error(e.what());
+    return code(ExitCode::invalid_input);
+  } catch (const std::invalid_argument& e) {
+    delmesh::app::print_error(e.what());
+    return code(ExitCode::invalid_input);
+  } catch (const std::bad_alloc&) {
+    delmesh::app::print_error("internal: out of memory");
+    return code(ExitCode::internal_error);
+  } catch (const std::exception& e) {
+    delmesh::app::print_error(std::string("internal: ") + e.what());
+    return code(ExitCode::internal_error);
+  } catch (...) {
+    delmesh::app::print_error("internal: unknown exception");
+    return code(ExitCode::internal_error);
+  }
+}

@@ -1,0 +1,197 @@
+//! \file mesh_command.cpp
+//! `delmesh mesh`: DelMesh (meshing/del_mesh.h) on a catalog surface or an expression; writes the
+//! mesh (OFF/PLY/OBJ by extension) and the statistics JSON.  Exit code 3 when a limit stopped the
+//! run: the partial mesh and statistics are still written.  Outputs are replaced atomically, only
+//! once the new file is complete; a failing run leaves existing files untouched.
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/command_line.h"
+#include "common/errors.h"
+#include "meshing/del_mesh.h"
+#include "meshing/mesh_io.h"
+
+namespace delmesh::app {
+
+namespace {
+
+//! Largest λ that Theorem 6.1 covers; λ ≥ 1/3 makes α(λ) = λ/(1−3λ) meaningless.
+constexpr double theorem_lambda = 0.06;
+constexpr double lambda_limit = 1.0 / 3.0;
+
+struct MeshOptions {
+  SurfaceOptions surface;
+  std::string input_mesh;
+  double lambda = 0.06;
+  std::string phase = "all";
+  std::string solver = "subdivision";
+  double size_bound = 0;
+  std::string out, stats;
+  std::size_t max_points = DelMeshOptions{}.max_points;
+  double time_limit = 0;
+  std::uint64_t seed = 1;
+  bool quiet = false;
+  CLI::Option* input_mesh_option = nullptr;
+  CLI::Option* size_bound_option = nullptr;
+  CLI::Option* out_option = nullptr;
+  CLI::Option* stats_option = nullptr;
+};
+
+template <class T>
+std::string to_text(const T& value) {
+  std::ostringstream s;
+  s << value;
+  return s.str();
+}
+
+void check_lambda(double lambda) {
+  if (!std::isfinite(lambda) || lambda <= 0 || lambda >= lambda_limit) {
+    throw InvalidInput("--lambda must satisfy 0 < lambda < 1/3, got " + format_number(lambda));
+  }
+  if (lambda > theorem_lambda) {
+    print_warning("lambda = " + format_number(lambda) +
+                  " > 0.06: Theorem 6.1 does not cover it (no guarantee of topology or quality)");
+  }
+}
+
+ExitCode run_mesh(const MeshOptions& o) {
+  check_lambda(o.lambda);
+  if (o.input_mesh_option->count() > 0) {
+    if (o.surface.given()) throw InvalidInput("--input-mesh excludes --surface and --expr");
+    (void)read_mesh(o.input_mesh);  // a missing or corrupt file is reported as such first
+    throw InvalidInput("--input-mesh: remeshing triangulated surfaces is not implemented yet");
+  }
+  if (!o.surface.given()) throw InvalidInput("give one of --surface NAME, --expr E --box B, --input-mesh FILE");
+
+  DelMeshOptions options;
+  options.lambda = o.lambda;
+  if (o.phase == "all") {
+    options.phase = MeshPhase::all;
+  } else if (o.phase == "topology") {
+    options.phase = MeshPhase::topology;
+  } else {
+    throw InvalidInput("--phase: expected topology or all, got '" + o.phase + "'");
+  }
+  if (o.solver == "subdivision") {
+    options.solver = SolverBackend::subdivision;
+  } else if (o.solver == "homotopy") {
+    options.solver = SolverBackend::homotopy;
+  } else {
+    throw InvalidInput("--solver: expected subdivision or homotopy, got '" + o.solver + "'");
+  }
+  if (o.size_bound_option->count() > 0) {
+    if (!std::isfinite(o.size_bound) || o.size_bound <= 0) {
+      throw InvalidInput("--size-bound must be a positive length, got " + format_number(o.size_bound));
+    }
+    options.size_bound = o.size_bound;
+  }
+  if (o.max_points < 1) throw InvalidInput("--max-points must be at least 1");
+  if (!std::isfinite(o.time_limit) || o.time_limit < 0) {
+    throw InvalidInput("--time-limit must be >= 0 seconds (0: none), got " + format_number(o.time_limit));
+  }
+  options.max_points = o.max_points;
+  options.time_limit_seconds = o.time_limit;
+  options.seed = o.seed;
+
+  const SurfaceInput input = o.surface.resolve();
+  const std::string out = o.out_option->count() > 0 ? o.out : input.name + ".off";
+  const std::string stats = o.stats_option->count() > 0 ? o.stats : input.name + ".json";
+  const std::string extension = extension_of(out);
+  if (extension != ".off" && extension != ".ply" && extension != ".obj") {
+    throw InvalidInput("--out: the extension must be .off, .ply or .obj, got '" + out + "'");
+  }
+  require_writable_location(out, "--out");
+  require_writable_location(stats, "--stats");
+  if (out == "-") throw InvalidInput("--out: a mesh file name is required (\"-\" is only for --stats)");
+  if (stats == out) throw InvalidInput("--stats and --out name the same file " + out);
+
+  if (!o.quiet) {
+    options.progress = [](const std::string& message) { std::cerr << "delmesh: " << message << std::endl; };
+    std::cerr << "delmesh: meshing " << input.name << " (" << input.surface.text() << " = 0) in "
+              << format_box(input.box) << ", lambda " << format_number(o.lambda) << ", phase " << o.phase
+              << std::endl;
+  }
+
+  DelMeshResult result = del_mesh(input.surface, input.box, options);
+
+  nlohmann::json statistics = result.statistics;
+  if (!statistics.is_object()) statistics = nlohmann::json::object();
+  if (!statistics.contains("status")) statistics["status"] = to_text(result.status);
+  if (!statistics.contains("surface")) {
+    statistics["surface"] = {{"name", input.name},
+                             {"equation", input.surface.text()},
+                             {"box", {input.box.lo[0], input.box.hi[0], input.box.lo[1], input.box.hi[1],
+                                      input.box.lo[2], input.box.hi[2]}}};
+  }
+  if (!statistics.contains("seed")) statistics["seed"] = o.seed;
+  if (!statistics.contains("mesh_file")) statistics["mesh_file"] = out;
+
+  try {
+    write_mesh(result.mesh, out);
+  } catch (const InvalidInput&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InvalidInput(std::string("--out: ") + e.what());
+  }
+  write_text_atomically(stats, [&](std::ostream& s) { s << statistics.dump(2) << "\n"; });
+
+  const bool complete = result.status == MeshStatus::complete;
+  if (!o.quiet) {
+    std::cerr << "delmesh: " << result.status << ": wrote " << out << " (" << result.mesh.number_of_vertices()
+              << " vertices, " << result.mesh.number_of_faces() << " triangles)"
+              << (stats == "-" ? "" : " and " + stats) << std::endl;
+  }
+  if (!complete) {
+    print_warning("stopped by " + std::string(result.status == MeshStatus::time_limit ? "--time-limit" : "--max-points") +
+                  " (status " + to_text(result.status) + "): the mesh is partial");
+    return ExitCode::limit_reached;
+  }
+  return ExitCode::complete;
+}
+
+}  // namespace
+
+Command add_mesh_command(CLI::App& parent) {
+  auto o = std::make_shared<MeshOptions>();
+  CLI::App* sub = parent.add_subcommand(
+      "mesh",
+      "Mesh the surface E = 0 with DelMesh (Sec. 6.2). For 0 < lambda <= 0.06 the output is homeomorphic to "
+      "the surface, every triangle has radius-edge ratio <= 1+lambda and every edge roughness <= 2 beta(lambda) "
+      "(Theorem 6.1). Writes the mesh and a statistics JSON. Exit code 3: stopped by --max-points or "
+      "--time-limit, partial mesh and statistics written.");
+  o->surface.add_to(*sub);
+  o->input_mesh_option = sub->add_option(
+      "--input-mesh", o->input_mesh,
+      "A triangulated surface (OFF/PLY/OBJ) to remesh: the file is validated, but remeshing is not "
+      "implemented yet (exit code 2)");
+  sub->add_option("--lambda", o->lambda,
+                  "lambda in (0, 1/3); Theorem 6.1 covers (0, 0.06], larger values run with a warning")
+      ->capture_default_str();
+  sub->add_option("--phase", o->phase, "topology (SampleTopology only, Sec. 5) or all (DelMesh, Sec. 6.2)")
+      ->capture_default_str();
+  sub->add_option("--solver", o->solver, "subdivision or homotopy (polynomial E only)")->capture_default_str();
+  o->size_bound_option = sub->add_option(
+      "--size-bound", o->size_bound,
+      "H > 0 (length units of E): also refine triangles whose surface Delaunay ball radius exceeds H");
+  o->out_option = sub->add_option("--out", o->out,
+                                  "Mesh file, format by extension .off|.ply|.obj (default: <name>.off, <name> = "
+                                  "the catalog name or 'surface' for --expr)");
+  o->stats_option =
+      sub->add_option("--stats", o->stats, "Statistics JSON file, or - for stdout (default: <name>.json)");
+  sub->add_option("--max-points", o->max_points, "Stop (exit code 3) after this many sample points (>= 1)")
+      ->capture_default_str();
+  sub->add_option("--time-limit", o->time_limit, "Stop (exit code 3) after this many seconds; 0 means none")
+      ->capture_default_str();
+  sub->add_option("--seed", o->seed, "Seed of the generic directions; same input and seed give the same mesh")
+      ->capture_default_str();
+  sub->add_flag("--quiet", o->quiet, "No progress on stderr");
+  return {sub, [o]() { return run_mesh(*o); }};
+}
+
+}  // namespace delmesh::app

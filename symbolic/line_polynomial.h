@@ -5,7 +5,7 @@
 //! Evaluating the coefficients over Interval gives rigorous coefficient enclosures for the
 //! univariate isolator (SurfaceLine, VorEdge).
 
-#include <optional>
+#include <vector>
 
 #include "symbolic/compiled_system.h"
 #include "symbolic/surface.h"
@@ -20,13 +20,31 @@ class LinePolynomial {
   //! Degree in t (= total degree of E, or lower for special E).
   int degree() const { return degree_; }
   //! coefficients[k] = c_k(p, v) with E(p + t v) = Σ_k c_k t^k; parameters are (p, v), 6 doubles.
-  //! Output is degree()+1 values, lowest degree first.
+  //! Output is degree()+1 values, lowest degree first.  Instantiated for double, Interval (needs a
+  //! live RoundingGuard; the result encloses the exact coefficient at the given doubles),
+  //! MpfrReal, MpfiInterval (at the current default precision) and Complex.
   template <class T>
   void coefficients(const double* p_and_v, T* coefficients) const;
 
+  //! The parameter symbols p0 p1 p2 v0 v1 v2 of the coefficient expressions.
+  const std::vector<GiNaC::symbol>& parameters() const { return parameters_; }
+  //! c_k(p, v) as exact expanded polynomials in parameters(), lowest degree first.
+  const std::vector<GiNaC::ex>& coefficient_expressions() const { return coefficient_expressions_; }
+
  private:
+  std::vector<GiNaC::symbol> parameters_;          // p0 p1 p2 v0 v1 v2
+  std::vector<GiNaC::ex> coefficient_expressions_;  // c_0 … c_deg
   int degree_ = 0;
   CompiledSystem program_;  // no unknowns; parameters (p, v); outputs c_0 … c_deg
 };
+
+#define DELMESH_DECLARE_LINE_POLYNOMIAL(T) \
+  extern template void LinePolynomial::coefficients<T>(const double*, T*) const;
+DELMESH_DECLARE_LINE_POLYNOMIAL(double)
+DELMESH_DECLARE_LINE_POLYNOMIAL(Interval)
+DELMESH_DECLARE_LINE_POLYNOMIAL(MpfrReal)
+DELMESH_DECLARE_LINE_POLYNOMIAL(MpfiInterval)
+DELMESH_DECLARE_LINE_POLYNOMIAL(Complex)
+#undef DELMESH_DECLARE_LINE_POLYNOMIAL
 
 }  // namespace delmesh

@@ -1,0 +1,56 @@
+#include "symbolic/line_polynomial.h"
+
+#include <array>
+
+#include "common/errors.h"
+
+namespace delmesh {
+
+namespace {
+
+std::vector<GiNaC::symbol> line_parameters() {
+  return {GiNaC::symbol("p0"), GiNaC::symbol("p1"), GiNaC::symbol("p2"),
+          GiNaC::symbol("v0"), GiNaC::symbol("v1"), GiNaC::symbol("v2")};
+}
+
+//! The coefficients of E(p + t v) in t, expanded, lowest degree first.
+std::vector<GiNaC::ex> expand_along_line(const Surface& surface, const std::vector<GiNaC::symbol>& pv) {
+  if (!surface.is_polynomial())
+    throw PreconditionViolation("LinePolynomial: E = " + surface.text() +
+                                " is not a polynomial with rational coefficients");
+  const GiNaC::symbol t("t");
+  const GiNaC::lst on_line{coordinate_x() == pv[0] + t * pv[3], coordinate_y() == pv[1] + t * pv[4],
+                           coordinate_z() == pv[2] + t * pv[5]};
+  const GiNaC::ex along = surface.E().subs(on_line).expand();
+  const int degree = along.degree(t);
+  std::vector<GiNaC::ex> coefficients;
+  coefficients.reserve(static_cast<std::size_t>(degree) + 1);
+  for (int k = 0; k <= degree; ++k) coefficients.push_back(along.coeff(t, k));
+  return coefficients;
+}
+
+}  // namespace
+
+LinePolynomial::LinePolynomial(const Surface& surface)
+    : parameters_(line_parameters()),
+      coefficient_expressions_(expand_along_line(surface, parameters_)),
+      degree_(static_cast<int>(coefficient_expressions_.size()) - 1),
+      program_(coefficient_expressions_, {}, parameters_) {}
+
+template <class T>
+void LinePolynomial::coefficients(const double* p_and_v, T* coefficients) const {
+  std::array<T, 6> parameters;
+  for (std::size_t i = 0; i < 6; ++i) parameters[i] = T(p_and_v[i]);
+  program_.values<T>(nullptr, parameters.data(), coefficients);
+}
+
+#define DELMESH_DEFINE_LINE_POLYNOMIAL(T) \
+  template void LinePolynomial::coefficients<T>(const double*, T*) const;
+DELMESH_DEFINE_LINE_POLYNOMIAL(double)
+DELMESH_DEFINE_LINE_POLYNOMIAL(Interval)
+DELMESH_DEFINE_LINE_POLYNOMIAL(MpfrReal)
+DELMESH_DEFINE_LINE_POLYNOMIAL(MpfiInterval)
+DELMESH_DEFINE_LINE_POLYNOMIAL(Complex)
+#undef DELMESH_DEFINE_LINE_POLYNOMIAL
+
+}  // namespace delmesh

@@ -1,0 +1,30 @@
+#pragma once
+//! \file bernstein.h
+//! Interval Bernstein-basis tools for the univariate isolator (internal).  Every function needs a
+//! live RoundingGuard; every result is an enclosure (each exact coefficient of every polynomial
+//! of the input family lies in the corresponding output interval).
+
+#include "symbolic/scalar_types.h"
+
+namespace delmesh::detail {
+
+//! Largest degree the Bernstein conversion accepts (binomial coefficients stay exact doubles).
+inline constexpr int max_bernstein_degree = 60;
+
+//! Bernstein coefficients b_0..b_d on s ∈ [0, 1] of q(s) = Σ_k c_k (t0 + h s)^k, for every
+//! c_k ∈ c[k] and h ∈ h_range (Taylor shift, scaling, then b_i = Σ_{k≤i} C(i,k)/C(d,k) q_k).
+//! `scratch` holds d + 1 intervals.  Precondition: 0 ≤ d ≤ max_bernstein_degree.
+void bernstein_from_monomial(int d, const Interval* c, double t0, const Interval& h_range, Interval* b,
+                             Interval* scratch);
+
+//! de Casteljau subdivision at λ ∈ (0, 1) (a double, taken exactly): left holds the Bernstein
+//! coefficients of the piece [0, λ], right those of [λ, 1], each reparametrized to [0, 1].
+//! left[d] = right[0] encloses q(λ).  `scratch` holds d + 1 intervals; outputs must not alias b.
+void de_casteljau(int d, const Interval* b, double lambda, Interval* left, Interval* right, Interval* scratch);
+
+//! Horner evaluation of Σ_k c_k x^k over the interval x.
+Interval horner(int d, const Interval* c, const Interval& x);
+//! Horner evaluation of the derivative Σ_k k c_k x^{k−1} over the interval x.
+Interval horner_derivative(int d, const Interval* c, const Interval& x);
+
+}  // namespace delmesh::detail

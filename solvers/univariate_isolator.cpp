@@ -1,0 +1,438 @@
+#include "solvers/univariate_isolator.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "common/errors.h"
+#include "common/tolerances.h"
+#include "solvers/detail/bernstein.h"
+#include "solvers/detail/interval_box.h"
+#include "symbolic/scalar_traits.h"
+
+namespace delmesh {
+
+namespace {
+
+using detail::midpoint;
+
+//! Split points tried, in order: a split point at which the value cannot be proved nonzero
+//! (a root on the split) would leave both halves undecidable.
+constexpr double split_ratios[] = {0.5, 0.4375, 0.5625, 0.375, 0.625};
+
+// Interval sign of a value: +1, −1, or 0 (not certain, including NaN bounds).
+inline int certain_sign(const Interval& a) { return a.inf() > 0 ? 1 : (a.sup() < 0 ? -1 : 0); }
+
+//! E(p + t v) over the compiled surface_line system (any E).
+struct LineSystemEvaluator {
+  const CompiledSystem& line;
+  const Interval* parameters;   // 6 point intervals
+  const double* parameters_d;   // 6 doubles
+  Interval value(const Interval& t) const {
+    Interval out;
+    line.values(&t, parameters, &out);
+    return out;
+  }
+  void value_and_derivative(const Interval& t, Interval& f, Interval& df) const {
+    line.values_and_jacobian(&t, parameters, &f, &df);
+  }
+  void value_and_derivative(double t, double& f, double& df) const {
+    line.values_and_jacobian(&t, parameters_d, &f, &df);
+  }
+};
+
+//! E(p + t v) = Σ c_k t^k from the enclosed coefficients (polynomial E).
+struct PolynomialEvaluator {
+  int degree;
+  const Interval* c;    // enclosures
+  const double* c_mid;  // their midpoints, for Newton steps
+  Interval value(const Interval& t) const { return detail::horner(degree, c, t); }
+  void value_and_derivative(const Interval& t, Interval& f, Interval& df) const {
+    f = detail::horner(degree, c, t);
+    df = detail::horner_derivative(degree, c, t);
+  }
+  void value_and_derivative(double t, double& f, double& df) const {
+    double a = c_mid[degree], da = 0;
+    for (int k = degree - 1; k >= 0; --k) {
+      da = da * t + a;
+      a = a * t + c_mid[k];
+    }
+    f = a, df = da;
+  }
+};
+
+//! [a, b] contains exactly one zero: sign change with certain signs at a and b and a derivative
+//! enclosure over [a, b] excluding 0.
+template <class Evaluator>
+bool certify_interval(const Evaluator& e, double a, double b) {
+  if (!(a < b)) return false;
+  const int sa = certain_sign(e.value(Interval(a))), sb = certain_sign(e.value(Interval(b)));
+  if (sa == 0 || sb == 0 || sa == sb) return false;
+  Interval f, df;
+  e.value_and_derivative(Interval(a, b), f, df);
+  return certainly_nonzero(df);
+}
+
+//! A tight certified interval around the unique zero known to lie in the open interval (lo, hi):
+//! Newton steps in double from x, then a certified [x − r, x + r] ⊂ (lo, hi).  Falls back to
+//! certify [lo, hi] itself; returns false if neither can be certified.
+template <class Evaluator>
+bool refine_root(const Evaluator& e, double lo, double hi, double x, double scale, double& out_lo, double& out_hi) {
+  for (int it = 0; it < 8; ++it) {
+    double f, df;
+    e.value_and_derivative(x, f, df);
+    if (!(df != 0) || !std::isfinite(f / df)) break;
+    const double next = std::min(std::max(x - f / df, lo), hi);
+    const bool done = std::abs(next - x) <= 1e-15 * scale;
+    x = next;
+    if (done) break;
+  }
+  double r = tolerances::univariate_root_relative_radius * std::max(std::abs(x), scale);
+  for (int attempt = 0; attempt < 3; ++attempt, r *= 1024) {
+    const double a = -(r - x), b = x + r;  // outward under the upward rounding mode
+    if (a <= lo || b >= hi) break;
+    if (certify_interval(e, a, b)) {
+      out_lo = a, out_hi = b;
+      return true;
+    }
+  }
+  if (certify_interval(e, lo, hi)) {
+    out_lo = lo, out_hi = hi;
+    return true;
+  }
+  return false;
+}
+
+struct Leaf {
+  double lo, hi;  // t
+  UndecidedReason reason;
+};
+
+class Isolation {
+ public:
+  Isolation(const CompiledSystem& line, const std::array<double, 3>& p, const std::array<double, 3>& v, double t0,
+            double t1, const UnivariateOptions& options)
+      : line_(line), t0_(t0), t1_(t1), options_(options) {
+    for (int i = 0; i < 3; ++i) params_d_[i] = p[i], params_d_[i + 3] = v[i];
+    for (int i = 0; i < 6; ++i) params_[i] = Interval(params_d_[i]);
+    scale_ = t1 - t0;
+  }
+
+  SolveResult run(const LinePolynomial* polynomial) {
+    if (polynomial && polynomial->degree() <= detail::max_bernstein_degree)
+      run_bernstein(*polynomial);
+    else
+      run_newton();
+    return finish();
+  }
+
+ private:
+  // ---- polynomial E: Bernstein subdivision ----
+  void run_bernstein(const LinePolynomial& polynomial) {
+    const int d = polynomial.degree();
+    const std::size_t block = static_cast<std::size_t>(d) + 1;
+    static thread_local std::vector<Interval> c, pool, scratch, left, right;
+    static thread_local std::vector<double> c_mid;
+    c.resize(block), c_mid.resize(block), scratch.resize(block), left.resize(block), right.resize(block);
+    polynomial.coefficients(params_d_, c.data());
+    for (int k = 0; k <= d; ++k) c_mid[k] = midpoint(c[k]);
+    const PolynomialEvaluator eval{d, c.data(), c_mid.data()};
+    const Interval h = Interval(t1_) - Interval(t0_);
+    struct Node {
+      double sa, sb;
+    };
+    static thread_local std::vector<Node> nodes;
+    nodes.clear();
+    pool.resize(block * 64);
+    detail::bernstein_from_monomial(d, c.data(), t0_, h, pool.data(), scratch.data());
+    nodes.push_back({0.0, 1.0});
+    // t-enclosure of the point s (s carries ≤ 1 ulp of representation error).
+    auto t_of = [&](double s) {
+      const double e = 0x1p-52;
+      return Interval(t0_) + h * Interval(s == 0 ? 0.0 : s - e, s == 1 ? 1.0 : s + e);
+    };
+    auto t_outer = [&](double sa, double sb, double& lo, double& hi) {
+      lo = std::max(t0_, t_of(sa).inf());
+      hi = std::min(t1_, t_of(sb).sup());
+      if (sa == 0) lo = t0_;
+      if (sb == 1) hi = t1_;
+    };
+    while (!nodes.empty()) {
+      if (stopped_) break;
+      const Node node = nodes.back();
+      const std::size_t top = nodes.size() - 1;
+      nodes.pop_back();
+      const Interval* b = pool.data() + top * block;
+      ++counters_.boxes;
+      if (counters_.boxes > options_.box_budget) {
+        nodes.push_back(node);
+        stop(SolveStatus::box_limit);
+        break;
+      }
+      // Exclusion: all Bernstein coefficients of one certain sign.
+      bool all_pos = true, all_neg = true, all_certain = true;
+      int variations = 0, last = 0;
+      for (int i = 0; i <= d; ++i) {
+        const int s = certain_sign(b[i]);
+        all_pos = all_pos && s > 0;
+        all_neg = all_neg && s < 0;
+        if (s == 0) {
+          all_certain = false;
+        } else {
+          if (last != 0 && s != last) ++variations;
+          last = s;
+        }
+      }
+      if (all_pos || all_neg) {
+        ++counters_.exclusions;
+        continue;
+      }
+      const double w = node.sb - node.sa;
+      const int s_left = certain_sign(b[0]), s_right = certain_sign(b[d]);
+      if (all_certain && variations == 1) {
+        isolated(eval, node.sa, node.sb, t_of, t_outer);
+        continue;
+      }
+      // Monotone piece: the derivative's Bernstein coefficients d (b_{i+1} − b_i) of one sign.
+      bool inc = d > 0, dec = d > 0;
+      for (int i = 0; i < d; ++i) {
+        const int s = certain_sign(b[i + 1] - b[i]);
+        inc = inc && s > 0;
+        dec = dec && s < 0;
+      }
+      const bool monotone = inc || dec;
+      if (monotone && s_left != 0 && s_right != 0) {
+        if (s_left == s_right) {
+          ++counters_.exclusions;
+        } else {
+          isolated(eval, node.sa, node.sb, t_of, t_outer);
+        }
+        continue;
+      }
+      const bool boundary = (node.sa == 0 && s_left == 0) || (node.sb == 1 && s_right == 0);
+      if ((!monotone && w < tolerances::singular_box_relative_width) || w < tolerances::min_box_relative_width) {
+        double lo, hi;
+        t_outer(node.sa, node.sb, lo, hi);
+        const UndecidedReason reason = boundary ? UndecidedReason::boundary_root
+                                       : monotone ? UndecidedReason::precision
+                                                  : UndecidedReason::singular_root;
+        undecided_leaf(lo, hi, reason);
+        continue;
+      }
+      // Split, avoiding a split point at which the value is not certainly nonzero.
+      double lambda = split_ratios[0];
+      for (double candidate : split_ratios) {
+        lambda = candidate;
+        detail::de_casteljau(d, b, lambda, left.data(), right.data(), scratch.data());
+        if (certainly_nonzero(left[d])) break;
+      }
+      const double sm = node.sa + lambda * w;
+      if (pool.size() < (top + 2) * block) pool.resize(2 * (top + 2) * block);
+      std::copy(right.begin(), right.end(), pool.begin() + top * block);
+      std::copy(left.begin(), left.end(), pool.begin() + (top + 1) * block);
+      nodes.push_back({sm, node.sb});
+      nodes.push_back({node.sa, sm});
+    }
+    for (const Node& node : nodes) {
+      double lo, hi;
+      t_outer(node.sa, node.sb, lo, hi);
+      leaves_.push_back({lo, hi, stop_reason()});
+    }
+    nodes.clear();
+  }
+
+  template <class TOf, class TOuter>
+  void isolated(const PolynomialEvaluator& eval, double sa, double sb, const TOf& t_of, const TOuter& t_outer) {
+    // The unique root lies in (t(sa), t(sb)); [inner_lo, inner_hi] is inside that range.
+    const double inner_lo = sa == 0 ? t0_ : t_of(sa).sup();
+    const double inner_hi = sb == 1 ? t1_ : t_of(sb).inf();
+    double lo, hi;
+    if (inner_lo < inner_hi &&
+        refine_root(eval, inner_lo, inner_hi, midpoint(Interval(inner_lo, inner_hi)), scale_, lo, hi)) {
+      certified(lo, hi);
+      return;
+    }
+    // Rigorous but not tight: keep the isolating interval as a certified box when its outer
+    // enclosure still proves a single root, else report it undecided.
+    t_outer(sa, sb, lo, hi);
+    if (certify_interval(eval, lo, hi))
+      certified(lo, hi);
+    else
+      undecided_leaf(lo, hi, UndecidedReason::precision);
+  }
+
+  // ---- any E: interval Newton and bisection on the compiled line system ----
+  void run_newton() {
+    const LineSystemEvaluator eval{line_, params_, params_d_};
+    struct Node {
+      double a, b;
+    };
+    static thread_local std::vector<Node> nodes;
+    nodes.clear();
+    nodes.push_back({t0_, t1_});
+    while (!nodes.empty()) {
+      if (stopped_) break;
+      Node node = nodes.back();
+      nodes.pop_back();
+      ++counters_.boxes;
+      if (counters_.boxes > options_.box_budget) {
+        nodes.push_back(node);
+        stop(SolveStatus::box_limit);
+        break;
+      }
+      const Interval T(node.a, node.b);
+      Interval f, df;
+      eval.value_and_derivative(T, f, df);
+      if (certainly_nonzero(f)) {
+        ++counters_.exclusions;
+        continue;
+      }
+      const double w = (node.b - node.a) / scale_;
+      const int sa = certain_sign(eval.value(Interval(node.a))), sb = certain_sign(eval.value(Interval(node.b)));
+      const bool monotone = certainly_nonzero(df);
+      if (monotone && sa != 0 && sb != 0) {
+        if (sa == sb) {
+          ++counters_.exclusions;
+        } else {
+          double lo, hi;
+          if (refine_root(eval, node.a, node.b, midpoint(T), scale_, lo, hi))
+            certified(lo, hi);
+          else
+            undecided_leaf(node.a, node.b, UndecidedReason::precision);
+        }
+        continue;
+      }
+      if (monotone) {
+        // Interval Newton: every zero in T lies in m − f(m)/f'(T).
+        const double m = midpoint(T);
+        const Interval n = Interval(m) - eval.value(Interval(m)) / df;
+        if (detail::is_finite(n)) {
+          if (detail::disjoint(n, T)) {
+            ++counters_.exclusions;
+            continue;
+          }
+          const Interval c = detail::intersection(n, T);
+          if (detail::width(c) < tolerances::krawczyk_contraction_ratio * detail::width(T) && c.inf() < c.sup()) {
+            nodes.push_back({c.inf(), c.sup()});
+            continue;
+          }
+        }
+      }
+      const bool boundary = (node.a == t0_ && sa == 0) || (node.b == t1_ && sb == 0);
+      if ((!monotone && w < tolerances::singular_box_relative_width) || w < tolerances::min_box_relative_width) {
+        const UndecidedReason reason = boundary ? UndecidedReason::boundary_root
+                                       : monotone ? UndecidedReason::precision
+                                                  : UndecidedReason::singular_root;
+        undecided_leaf(node.a, node.b, reason);
+        continue;
+      }
+      double split = midpoint(T);
+      for (double ratio : split_ratios) {
+        split = node.a + ratio * (node.b - node.a);
+        if (split <= node.a || split >= node.b) split = midpoint(T);
+        if (certainly_nonzero(eval.value(Interval(split)))) break;
+      }
+      nodes.push_back({split, node.b});
+      nodes.push_back({node.a, split});
+    }
+    for (const Node& node : nodes) leaves_.push_back({node.a, node.b, stop_reason()});
+    nodes.clear();
+  }
+
+  // ---- bookkeeping ----
+  void certified(double lo, double hi) {
+    ++counters_.krawczyk_successes;
+    CertifiedRoot root;
+    root.box.bounds = {{lo, hi}};
+    const double t = 0.5 * lo + 0.5 * hi;
+    root.midpoint = {t};
+    line_.world_point(&t, params_d_, root.world.data());
+    roots_.push_back(std::move(root));
+  }
+
+  void undecided_leaf(double lo, double hi, UndecidedReason reason) {
+    leaves_.push_back({lo, hi, reason});
+    if (reason == UndecidedReason::singular_root || reason == UndecidedReason::boundary_root ||
+        reason == UndecidedReason::precision)
+      if (++unresolved_ > tolerances::non_isolated_box_count) stop(SolveStatus::non_isolated);
+  }
+
+  void stop(SolveStatus status) {
+    stopped_ = true;
+    status_ = status;
+  }
+  UndecidedReason stop_reason() const {
+    return status_ == SolveStatus::non_isolated ? UndecidedReason::non_isolated : UndecidedReason::budget;
+  }
+
+  SolveResult finish() {
+    SolveResult result;
+    // Undecided leaves: sorted, adjacent ones with the same reason merged into one region.
+    std::sort(leaves_.begin(), leaves_.end(), [](const Leaf& a, const Leaf& b) { return a.lo < b.lo; });
+    std::vector<Leaf> merged;
+    for (const Leaf& leaf : leaves_) {
+      Leaf l = leaf;
+      if (status_ == SolveStatus::non_isolated) l.reason = UndecidedReason::non_isolated;
+      if (!merged.empty() && merged.back().reason == l.reason && merged.back().hi >= l.lo)
+        merged.back().hi = std::max(merged.back().hi, l.hi);
+      else
+        merged.push_back(l);
+    }
+    for (const Leaf& leaf : merged) {
+      UndecidedBox box;
+      box.box.bounds = {{leaf.lo, leaf.hi}};
+      box.reason = leaf.reason;
+      const double t = 0.5 * leaf.lo + 0.5 * leaf.hi;
+      line_.world_point(&t, params_d_, box.world.data());
+      result.undecided.push_back(std::move(box));
+    }
+    std::sort(roots_.begin(), roots_.end(),
+              [](const CertifiedRoot& a, const CertifiedRoot& b) { return a.midpoint[0] < b.midpoint[0]; });
+    result.roots = std::move(roots_);
+    result.counters = counters_;
+    result.status = stopped_ ? status_ : (result.undecided.empty() ? SolveStatus::complete : SolveStatus::undecided);
+    return result;
+  }
+
+  const CompiledSystem& line_;
+  double t0_, t1_, scale_;
+  UnivariateOptions options_;
+  double params_d_[6];
+  Interval params_[6];
+  std::vector<CertifiedRoot> roots_;
+  std::vector<Leaf> leaves_;
+  SolverCounters counters_;
+  std::size_t unresolved_ = 0;
+  bool stopped_ = false;
+  SolveStatus status_ = SolveStatus::complete;
+};
+
+}  // namespace
+
+SolveResult isolate_line_roots(const CompiledSystem& line, const LinePolynomial* polynomial,
+                               const std::array<double, 3>& p, const std::array<double, 3>& v, double t0,
+                               double t1, const UnivariateOptions& options) {
+  if (line.n_unknowns() != 1 || line.n_equations() != 1 || line.n_parameters() != 6)
+    throw InvalidInput("isolate_line_roots: expected the surface_line system (1 unknown t, 1 equation, "
+                       "6 parameters p, v); got " + std::to_string(line.n_unknowns()) + " unknowns, " +
+                       std::to_string(line.n_equations()) + " equations, " +
+                       std::to_string(line.n_parameters()) + " parameters");
+  if (!std::isfinite(t0) || !std::isfinite(t1) || !(t0 < t1))
+    throw InvalidInput("isolate_line_roots: need finite t0 < t1");
+  bool finite = true, nonzero = false;
+  for (int i = 0; i < 3; ++i) {
+    finite = finite && std::isfinite(p[i]) && std::isfinite(v[i]);
+    nonzero = nonzero || v[i] != 0;
+  }
+  if (!finite || !nonzero) throw InvalidInput("isolate_line_roots: p and v must be finite and v non-zero");
+  const auto start = std::chrono::steady_clock::now();
+  RoundingGuard guard;
+  Isolation isolation(line, p, v, t0, t1, options);
+  SolveResult result = isolation.run(polynomial);
+  result.counters.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace delmesh

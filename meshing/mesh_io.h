@@ -1,21 +1,42 @@
 #pragma once
 //! \file mesh_io.h
-//! Reading and writing triangle meshes as OFF, PLY or OBJ, chosen by the file extension.
-//! Output is readable by MeshLab and ParaView.
+//! Reading and writing triangle meshes as OFF, PLY or OBJ, chosen by the file extension
+//! (case-insensitive).  Output is ASCII with 17 significant digits (every double round-trips, and
+//! the same mesh always gives the same bytes) and is readable by MeshLab and ParaView.
 
+#include <array>
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include "meshing/surface_mesh.h"
 
 namespace delmesh {
 
-//! Writes mesh to path (.off, .ply or .obj).  Throws InvalidInput for another extension and
-//! std::runtime_error if the file cannot be written.  Writes to a temporary file and renames it,
-//! so an existing file is never left half-written.
-void write_mesh(const SurfaceMesh& mesh, const std::string& path);
+//! A triangle soup as read from a file: points and index triples, nothing merged or reordered.
+struct TriangleSoup {
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+};
 
-//! Reads a triangle mesh from path.  Throws InvalidInput if the file is missing, unreadable,
-//! corrupt, not a triangle mesh, or has an unknown extension.
+//! Writes mesh to path (.off, .ply or .obj; the live vertices in index order, then the faces).
+//! Throws InvalidInput for another extension or a non-triangle face, and std::runtime_error if the
+//! file cannot be written.  Writes to a temporary file in the same directory and renames it, so an
+//! existing file is never left half-written.
+void write_mesh(const SurfaceMesh& mesh, const std::string& path);
+//! The same for a soup (the writer used by write_mesh).  Throws InvalidInput on an index out of range.
+void write_triangle_soup(const TriangleSoup& soup, const std::string& path);
+
+//! Reads a triangle soup from path (OFF, ASCII or binary PLY, OBJ).  Throws InvalidInput, with
+//! the path and the reason, if the file is missing, unreadable, truncated or corrupt, has no
+//! triangles, has a face that is not a triangle or repeats a vertex, has an index out of range or
+//! a non-finite coordinate, or has an unknown extension.  Works for any soup (non-manifold too),
+//! so that the checker can report on bad meshes.
+TriangleSoup read_triangle_soup(const std::string& path);
+
+//! Reads a triangle mesh from path: read_triangle_soup, then builds the Surface_mesh.  Throws
+//! InvalidInput additionally if the soup is not a polygon mesh (an edge in more than two
+//! triangles, a pinched vertex, inconsistent orientation), which Surface_mesh cannot represent.
 SurfaceMesh read_mesh(const std::string& path);
 
 }  // namespace delmesh

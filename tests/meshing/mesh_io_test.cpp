@@ -1,0 +1,200 @@
+#include "meshing/mesh_io.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include <boost/test/unit_test.hpp>
+
+#include "common/errors.h"
+#include "meshing/mesh_checker.h"
+#include "tests/meshing/known_meshes.h"
+
+using namespace delmesh;
+namespace fs = std::filesystem;
+
+namespace {
+
+//! A fresh temporary directory, removed with its content at the end of the test.
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    static int counter = 0;
+    path = fs::temp_directory_path() /
+           ("delmesh_mesh_io_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+  std::string file(const std::string& name) const { return (path / name).string(); }
+  std::string write(const std::string& name, const std::string& content) const {
+    std::ofstream(file(name), std::ios::binary) << content;
+    return file(name);
+  }
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+//! A torus whose coordinates need all 17 digits (not representable in fewer).
+SurfaceMesh awkward_torus() {
+  test::Soup s = test::torus(7, 5);
+  for (Point3& p : s.points) p = Point3(p.x() / 3.0, p.y() * std::sqrt(2.0), p.z() + 1e-9 / 7.0);
+  return s.to_surface_mesh();
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(mesh_io_suite)
+
+BOOST_AUTO_TEST_CASE(round_trip_is_exact_in_every_format) {
+  TempDir dir;
+  const SurfaceMesh mesh = awkward_torus();
+  for (const char* name : {"t.off", "t.ply", "t.obj", "T.OFF"}) {
+    const std::string path = dir.file(name);
+    write_mesh(mesh, path);
+    const SurfaceMesh back = read_mesh(path);
+    BOOST_TEST(back.number_of_vertices() == mesh.number_of_vertices(), name);
+    BOOST_TEST(back.number_of_faces() == mesh.number_of_faces(), name);
+    // Every coordinate comes back bit for bit, in the same order.
+    auto it = back.vertices().begin();
+    bool exact = true;
+    for (auto v : mesh.vertices()) exact = exact && back.point(*it++) == mesh.point(v);
+    BOOST_TEST(exact, name);
+    BOOST_TEST(check_mesh(back).has_topology({1}), name);
+    BOOST_TEST(check_mesh(back).oriented, name);
+    // Same faces with the same orientation: the soups are identical.
+    TriangleSoup a = read_triangle_soup(path);
+    std::vector<Point3> pts;
+    std::vector<std::array<std::size_t, 3>> tris;
+    mesh_to_soup(mesh, pts, tris);
+    BOOST_TEST((a.triangles == tris), name);
+    // No temporary file is left behind.
+    std::size_t files = 0;
+    for (const auto& entry : fs::directory_iterator(dir.path)) files += entry.is_regular_file();
+    BOOST_TEST(files == 1u);
+    fs::remove(path);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(output_is_byte_reproducible_and_readable_text) {
+  TempDir dir;
+  const SurfaceMesh mesh = awkward_torus();
+  for (const char* ext : {".off", ".ply", ".obj"}) {
+    write_mesh(mesh, dir.file(std::string("a") + ext));
+    write_mesh(mesh, dir.file(std::string("b") + ext));
+    const std::string a = slurp(dir.file(std::string("a") + ext));
+    BOOST_TEST(!a.empty());
+    BOOST_TEST(a == slurp(dir.file(std::string("b") + ext)), ext);
+  }
+  // Headers that MeshLab and ParaView expect.
+  BOOST_TEST(slurp(dir.file("a.off")).rfind("OFF", 0) == 0u);
+  const std::string ply = slurp(dir.file("a.ply"));
+  BOOST_TEST(ply.rfind("ply\nformat ascii 1.0\n", 0) == 0u);
+  BOOST_TEST(ply.find("element face 70") != std::string::npos);
+  BOOST_TEST(slurp(dir.file("a.obj")).find("\nf ") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(overwrite_replaces_the_file) {
+  TempDir dir;
+  const std::string path = dir.file("m.off");
+  write_mesh(test::octahedron().to_surface_mesh(), path);
+  write_mesh(test::icosahedron().to_surface_mesh(), path);
+  BOOST_TEST(read_mesh(path).number_of_vertices() == 12u);
+}
+
+BOOST_AUTO_TEST_CASE(write_errors) {
+  TempDir dir;
+  const SurfaceMesh mesh = test::octahedron().to_surface_mesh();
+  BOOST_CHECK_THROW(write_mesh(mesh, dir.file("m.stl")), InvalidInput);
+  BOOST_CHECK_THROW(write_mesh(mesh, dir.file("m")), InvalidInput);
+  BOOST_CHECK_THROW(write_mesh(mesh, dir.file("no/such/dir/m.off")), std::runtime_error);
+}
+
+BOOST_AUTO_TEST_CASE(reads_a_binary_ply) {
+  TempDir dir;
+  // Two triangles, little-endian floats for the vertices and uchar/int lists for the faces.
+  std::ostringstream out(std::ios::binary);
+  out << "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+         "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n";
+  const float v[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0.5f}};
+  out.write(reinterpret_cast<const char*>(v), sizeof v);
+  const unsigned char three = 3;
+  const int f[2][3] = {{0, 1, 2}, {2, 1, 3}};
+  for (const auto& face : f) {
+    out.write(reinterpret_cast<const char*>(&three), 1);
+    out.write(reinterpret_cast<const char*>(face), sizeof face);
+  }
+  const std::string path = dir.write("b.ply", out.str());
+  const TriangleSoup soup = read_triangle_soup(path);
+  BOOST_TEST(soup.points.size() == 4u);
+  BOOST_TEST(soup.triangles.size() == 2u);
+  BOOST_TEST(soup.points[3].z() == 0.5);
+  BOOST_TEST(check_mesh(read_mesh(path)).boundary_edges == 4u);
+}
+
+BOOST_AUTO_TEST_CASE(corrupt_files_are_invalid_input) {
+  TempDir dir;
+  const std::string good = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  BOOST_CHECK_NO_THROW(read_triangle_soup(dir.write("good.off", good)));
+  const std::pair<const char*, std::string> bad[] = {
+      {"missing.off", ""},  // not written
+      {"empty.off", ""},
+      {"garbage.off", "this is not a mesh\n"},
+      {"truncated.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n"},
+      {"truncated_face.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n"},
+      {"huge_count.off", "OFF\n4000000000 1 0\n0 0 0\n"},
+      {"quad.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n"},
+      {"index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"},
+      {"repeat.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1\n"},
+      {"nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"},
+      {"inf.obj", "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n"},
+      {"no_faces.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n"},
+      {"index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"},
+      {"quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"},
+      {"truncated.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+                        "property double z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                        "end_header\n0 0 0\n1 0 0\n"},
+      {"no_header_end.ply", "ply\nformat ascii 1.0\nelement vertex 3\n"},
+      {"huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 999999999999\nproperty float x\n"
+                   "property float y\nproperty float z\nend_header\n"},
+      {"mesh.stl", good},
+      {"mesh", good},
+  };
+  for (const auto& [name, content] : bad) {
+    const std::string path = dir.file(name);
+    if (std::string(name) != "missing.off") dir.write(name, content);
+    try {
+      (void)read_triangle_soup(path);
+      BOOST_ERROR("no exception for " << name);
+    } catch (const InvalidInput& e) {
+      // The message names the file.
+      BOOST_TEST(std::string(e.what()).find(name) != std::string::npos, name << ": " << e.what());
+    } catch (const std::exception& e) {
+      BOOST_ERROR("wrong exception type for " << name << ": " << e.what());
+    }
+    BOOST_CHECK_THROW(read_mesh(path), InvalidInput);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(non_manifold_soup_reads_as_soup_only) {
+  TempDir dir;
+  // Two triangles sharing one vertex plus a third through the same edge as the first: an edge in
+  // three triangles cannot be a Surface_mesh.
+  const std::string path = dir.write(
+      "nm.off", "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n");
+  const TriangleSoup soup = read_triangle_soup(path);
+  BOOST_TEST(check_mesh(soup.points, soup.triangles).nonmanifold_edges == 1u);
+  BOOST_CHECK_THROW(read_mesh(path), InvalidInput);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

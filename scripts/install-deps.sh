@@ -12,6 +12,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libbenchmark-dev
   python3 python3-matplotlib
+  libcgal-demo
 )
 
 missing=()

@@ -43,6 +43,8 @@ class CompiledSystem {
   std::size_t n_parameters() const { return n_parameters_; }
   std::size_t n_equations() const { return n_equations_; }
   bool has_hessians() const { return static_cast<bool>(hessians_); }
+  //! True iff world_point() is available (a primitive system, or n ≥ 3 unknowns).
+  bool has_world_point() const { return static_cast<bool>(world_point_); }
   //! Number of instructions of the values+Jacobian program (a size measure for reports).
   std::size_t instruction_count() const;
 

@@ -1,0 +1,192 @@
+#include "symbolic/detail/straight_line_program.h"
+
+#include <cmath>
+#include <sstream>
+#include <thread>
+
+#include <boost/math/constants/constants.hpp>
+#include <boost/test/unit_test.hpp>
+
+#include "common/errors.h"
+
+using namespace delmesh;
+using delmesh::detail::OpCode;
+using delmesh::detail::StraightLineProgram;
+
+namespace {
+
+double evalf_at(const GiNaC::ex& e, const std::vector<GiNaC::symbol>& symbols, const std::vector<double>& values) {
+  GiNaC::exmap m;
+  for (std::size_t i = 0; i < symbols.size(); ++i) m[symbols[i]] = values[i];
+  return GiNaC::ex_to<GiNaC::numeric>(e.subs(m).evalf()).to_double();
+}
+
+std::size_t count_op(const StraightLineProgram& p, OpCode op) {
+  std::size_t n = 0;
+  for (const auto& ins : p.code()) n += ins.op == op;
+  return n;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(straight_line_program)
+
+BOOST_AUTO_TEST_CASE(common_subexpressions_are_shared) {
+  GiNaC::symbol x("x"), y("y");
+  const GiNaC::ex e = GiNaC::pow(x + y, 2) + GiNaC::pow(x + y, 3);
+  const StraightLineProgram shared({e}, {x, y});
+  const StraightLineProgram unshared({e}, {x, y}, false);
+  // x + y once, its square, its cube, the sum.
+  BOOST_CHECK_EQUAL(shared.instruction_count(), 4u);
+  BOOST_CHECK_EQUAL(count_op(shared, OpCode::add), 2u);
+  BOOST_CHECK_EQUAL(count_op(unshared, OpCode::add), 3u);
+  BOOST_CHECK_LT(shared.instruction_count(), unshared.instruction_count());
+  const double in[2] = {0.25, 1.5};
+  double a, b;
+  shared.evaluate(in, &a);
+  unshared.evaluate(in, &b);
+  BOOST_CHECK_CLOSE(a, std::pow(1.75, 2) + std::pow(1.75, 3), 1e-13);
+  BOOST_CHECK_EQUAL(a, b);
+
+  // Sharing across outputs: the second output costs nothing new.
+  const StraightLineProgram two({e, GiNaC::pow(x + y, 3)}, {x, y});
+  BOOST_CHECK_EQUAL(two.instruction_count(), 4u);
+}
+
+BOOST_AUTO_TEST_CASE(squares_are_tight_over_intervals) {
+  GiNaC::symbol x("x");
+  const StraightLineProgram p({GiNaC::pow(x, 2), x * x, GiNaC::pow(x, 3) - x}, {x});
+  BOOST_CHECK_EQUAL(count_op(p, OpCode::square), 1u);  // x*x is the same GiNaC expression as x^2
+  RoundingGuard guard;
+  const Interval in(-1, 2);
+  Interval out[3];
+  p.evaluate(&in, out);
+  BOOST_CHECK_EQUAL(out[0].inf(), 0.0);
+  BOOST_CHECK_EQUAL(out[0].sup(), 4.0);
+  BOOST_CHECK_EQUAL(out[1].inf(), 0.0);
+  BOOST_CHECK_EQUAL(out[1].sup(), 4.0);
+  BOOST_CHECK_EQUAL(out[2].inf(), -3.0);  // [-1, 8] − [-1, 2]
+  BOOST_CHECK_EQUAL(out[2].sup(), 9.0);
+}
+
+BOOST_AUTO_TEST_CASE(every_operation_agrees_with_evalf) {
+  GiNaC::symbol x("x"), y("y"), z("z");
+  const std::vector<GiNaC::ex> outputs = {
+      x - 2 * y + GiNaC::numeric(3, 7) * z,
+      (x - 2 * y) / (GiNaC::pow(x, 2) + 1),
+      -x * y / z,
+      GiNaC::pow(x, -3) + GiNaC::pow(y, 5),
+      GiNaC::sqrt(x * x + y * y),
+      GiNaC::pow(x * x + 1, GiNaC::numeric(3, 2)) + GiNaC::pow(y * y + 2, GiNaC::numeric(-1, 2)),
+      GiNaC::exp(-4 * (GiNaC::pow(x - GiNaC::numeric(9, 20), 2) + y * y)) * GiNaC::log(z + 3),
+      GiNaC::sin(x * GiNaC::Pi) * GiNaC::cos(y) - GiNaC::cos(z) / 5,
+      GiNaC::ex(GiNaC::numeric(-7, 3)),
+      y,
+  };
+  const StraightLineProgram p(outputs, {x, y, z});
+  std::vector<double> out(outputs.size());
+  for (const std::vector<double>& in : {std::vector<double>{0.3, -1.25, 0.7}, std::vector<double>{-2.5, 0.125, 3.0}}) {
+    p.evaluate(in.data(), out.data());
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+      const double ref = evalf_at(outputs[i], {x, y, z}, in);
+      BOOST_CHECK_MESSAGE(std::fabs(out[i] - ref) <= 1e-14 * std::max(1.0, std::fabs(ref)),
+                          "output " << i << " = " << outputs[i] << ": " << out[i] << " vs " << ref);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(split_inputs_and_outputs_and_no_inputs) {
+  GiNaC::symbol t("t"), p("p"), q("q");
+  const StraightLineProgram program({t * p, t + q, p - q}, {t, p, q});
+  const double unknown = 2, parameters[2] = {3, 5};
+  double first, rest[2];
+  program.evaluate(&unknown, 1, parameters, &first, 1, rest);
+  BOOST_CHECK_EQUAL(first, 6.0);
+  BOOST_CHECK_EQUAL(rest[0], 7.0);
+  BOOST_CHECK_EQUAL(rest[1], -2.0);
+
+  const StraightLineProgram constants({GiNaC::Pi * 2 / 3, GiNaC::numeric(1, 10)}, {});
+  BOOST_CHECK_EQUAL(constants.n_inputs(), 0u);
+  double c[2];
+  constants.evaluate(static_cast<const double*>(nullptr), c);
+  BOOST_CHECK_CLOSE(c[0], 2 * M_PI / 3, 1e-13);
+  BOOST_CHECK_EQUAL(c[1], 0.1);
+  RoundingGuard guard;
+  Interval ci[2];
+  constants.evaluate(static_cast<const Interval*>(nullptr), ci);
+  BOOST_CHECK(ci[1].inf() < ci[1].sup());  // 1/10 is not a double: enclosed by two
+  BOOST_CHECK(ci[0].inf() <= 2 * M_PI / 3 && 2 * M_PI / 3 <= ci[0].sup());
+}
+
+BOOST_AUTO_TEST_CASE(unsupported_expressions_throw) {
+  GiNaC::symbol x("x"), y("y"), w("w");
+  const std::vector<GiNaC::symbol> in = {x, y};
+  BOOST_CHECK_THROW(StraightLineProgram({GiNaC::pow(x, GiNaC::numeric(1, 3))}, in), PreconditionViolation);
+  BOOST_CHECK_THROW(StraightLineProgram({GiNaC::pow(x, y)}, in), PreconditionViolation);
+  BOOST_CHECK_THROW(StraightLineProgram({GiNaC::tan(x)}, in), PreconditionViolation);
+  BOOST_CHECK_THROW(StraightLineProgram({GiNaC::abs(x)}, in), PreconditionViolation);
+  BOOST_CHECK_THROW(StraightLineProgram({x + w}, in), PreconditionViolation);
+  BOOST_CHECK_THROW(StraightLineProgram({x + GiNaC::numeric(0.5)}, in), PreconditionViolation);
+  BOOST_CHECK_THROW(StraightLineProgram({x + GiNaC::I}, in), PreconditionViolation);
+  BOOST_CHECK_THROW(StraightLineProgram({x * GiNaC::Euler}, in), PreconditionViolation);
+  BOOST_CHECK_THROW(StraightLineProgram({x}, {x, x}), PreconditionViolation);
+  std::ostringstream os;
+  os << OpCode::square;
+  BOOST_CHECK_EQUAL(os.str(), "square");
+}
+
+BOOST_AUTO_TEST_CASE(programs_alternate_and_threads_evaluate_concurrently) {
+  GiNaC::symbol x("x"), y("y");
+  const StraightLineProgram a({GiNaC::pow(x, 4) + GiNaC::numeric(1, 3) * y}, {x, y});
+  const StraightLineProgram b({GiNaC::numeric(2, 3) - x * y}, {x, y});
+  const double in[2] = {1.5, -2};
+  double va, vb;
+  for (int k = 0; k < 3; ++k) {  // constants reloaded when another program ran in between
+    a.evaluate(in, &va);
+    b.evaluate(in, &vb);
+    BOOST_CHECK_CLOSE(va, std::pow(1.5, 4) - 2.0 / 3, 1e-13);
+    BOOST_CHECK_CLOSE(vb, 2.0 / 3 + 3, 1e-13);
+  }
+  std::vector<double> results(4, 0);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      double sum = 0;
+      for (int k = 0; k < 2000; ++k) {
+        const double p[2] = {0.001 * k, 1.0 + t};
+        double v;
+        (t % 2 ? a : b).evaluate(p, &v);
+        sum += v;
+      }
+      results[t] = sum;
+    });
+  }
+  for (auto& th : threads) th.join();
+  for (int t = 0; t < 4; ++t) {
+    double sum = 0;
+    for (int k = 0; k < 2000; ++k) {
+      const double xk = 0.001 * k, yk = 1.0 + t;
+      sum += t % 2 ? std::pow(xk, 4) + yk / 3 : 2.0 / 3 - xk * yk;
+    }
+    BOOST_CHECK_CLOSE(results[t], sum, 1e-10);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(multiprecision_registers_follow_the_default_precision) {
+  GiNaC::symbol x("x");
+  const StraightLineProgram p({x / 3 + GiNaC::Pi}, {x});
+  const unsigned saved = MpfrReal::default_precision();
+  for (unsigned digits : {20u, 80u}) {
+    MpfrReal::default_precision(digits);
+    const MpfrReal in = 1;
+    MpfrReal out;
+    p.evaluate(&in, &out);
+    const MpfrReal ref = MpfrReal(1) / 3 + boost::math::constants::pi<MpfrReal>();
+    BOOST_CHECK(abs(out - ref) < pow(MpfrReal(10), -static_cast<int>(digits) + 1));
+    BOOST_CHECK_EQUAL(mpfr_get_prec(out.backend().data()),
+                      static_cast<mpfr_prec_t>(ScalarTraits<MpfrReal>::precision()));
+  }
+  MpfrReal::default_precision(saved);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -81,9 +81,10 @@ std::vector<CatalogEntry> make_catalog() {
                      nullptr});
 
   entries.push_back({"chair", "(x^2+y^2+z^2-0.95)^2-0.8*((z-1)^2-2*x^2)*((z+1)^2-2*y^2)",
-                     box(-1.6, 1.6, -1.6, 1.6, -1.6, 1.6), 1, {0},
+                     box(-1.6, 1.6, -1.6, 1.6, -1.6, 1.6), 1, {3},
                      "the 'chair' quartic (r^2 - a k^2)^2 - b((z-k)^2 - 2x^2)((z+k)^2 - 2y^2), k = 5, "
-                     "a = 0.95, b = 0.8, scaled by 1/5",
+                     "a = 0.95, b = 0.8, scaled by 1/5; genus 3 (8 critical points of a generic height: "
+                     "max, min, 6 saddles); E has critical value -1/100 near Σ, so Σ has narrow necks",
                      nullptr});
 
   entries.push_back({"tanglecube", "x^4-5*x^2+y^4-5*y^2+z^4-5*z^2+11.8", box(-3, 3, -3, 3, -3, 3), 1, {5},

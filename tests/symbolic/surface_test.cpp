@@ -1,0 +1,200 @@
+#include "symbolic/surface.h"
+
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <boost/test/unit_test.hpp>
+
+#include "common/errors.h"
+
+using namespace delmesh;
+
+namespace {
+
+const GiNaC::symbol& x = coordinate_x();
+const GiNaC::symbol& y = coordinate_y();
+const GiNaC::symbol& z = coordinate_z();
+
+bool same(const GiNaC::ex& a, const GiNaC::ex& b) { return (a - b).expand().is_zero(); }
+
+//! The message of the InvalidInput thrown by Surface::parse(text), or "" if none was thrown.
+std::string parse_error(const std::string& text) {
+  try {
+    (void)Surface::parse(text);
+  } catch (const InvalidInput& error) {
+    return error.what();
+  }
+  return "";
+}
+
+std::string box_error(const std::string& text) {
+  try {
+    (void)Box3::parse(text);
+  } catch (const InvalidInput& error) {
+    return error.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(surface)
+
+BOOST_AUTO_TEST_CASE(torus_gradient_and_hessian_match_hand_derivation) {
+  // E = (s + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2), R = 1, r = 2/5, s = x^2 + y^2 + z^2.
+  const Surface torus = Surface::parse("(x^2+y^2+z^2+0.84)^2-4*(x^2+y^2)");
+  const GiNaC::ex S = x * x + y * y + z * z + GiNaC::numeric(21, 25);
+  BOOST_TEST(same(torus.E(), S * S - 4 * (x * x + y * y)));
+  BOOST_TEST(same(torus.gradient()[0], 4 * x * S - 8 * x));
+  BOOST_TEST(same(torus.gradient()[1], 4 * y * S - 8 * y));
+  BOOST_TEST(same(torus.gradient()[2], 4 * z * S));
+  const GiNaC::matrix& H = torus.hessian();
+  BOOST_TEST(same(H(0, 0), 4 * S + 8 * x * x - 8));
+  BOOST_TEST(same(H(2, 2), 4 * S + 8 * z * z));
+  BOOST_TEST(same(H(0, 1), 8 * x * y));
+  BOOST_TEST(same(H(0, 2), 8 * x * z));
+  for (unsigned i = 0; i < 3; ++i)
+    for (unsigned j = 0; j < 3; ++j) BOOST_TEST(same(H(i, j), H(j, i)));
+  BOOST_TEST(torus.is_polynomial());
+  BOOST_TEST(torus.degree() == 4);
+  BOOST_TEST(torus.evaluate({1.4, 0, 0}) == 0.0, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(torus.evaluate({0, 0.6, 0}) == 0.0, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(torus.evaluate({1, 0, 0}) < 0);
+}
+
+BOOST_AUTO_TEST_CASE(decimal_literals_become_exact_rationals) {
+  BOOST_TEST(same(Surface::parse("0.16*x").E(), GiNaC::numeric(4, 25) * x));
+  BOOST_TEST(same(Surface::parse("0.1*x+y").E(), GiNaC::numeric(1, 10) * x + y));
+  BOOST_TEST(same(Surface::parse("x-0.3").E(), x - GiNaC::numeric(3, 10)));
+  BOOST_TEST(same(Surface::parse("1.5e-3*x").E(), GiNaC::numeric(3, 2000) * x));
+  BOOST_TEST(same(Surface::parse("2E2*x+.5").E(), 200 * x + GiNaC::numeric(1, 2)));
+  BOOST_TEST(same(Surface::parse("x^2.0").E(), x * x));
+  // 0.1 + 0.2 - 0.3 is exactly 0, which it is not in binary floating point.
+  BOOST_TEST(same(Surface::parse("(0.1+0.2-0.3)*y+x").E(), x));
+  // Many digits survive: 0.1234567890123456789 is not a double.
+  BOOST_TEST(same(Surface::parse("0.1234567890123456789*x").E(),
+                  GiNaC::numeric("1234567890123456789") / GiNaC::numeric("10000000000000000000") * x));
+  // A double inside a built expression becomes the rational of its shortest decimal.
+  BOOST_TEST(same(Surface(GiNaC::numeric(0.1) * x).E(), GiNaC::numeric(1, 10) * x));
+  BOOST_TEST(same(Surface(GiNaC::numeric(-2.5e-7) + y).E(), y - GiNaC::numeric(1, 4000000)));
+}
+
+BOOST_AUTO_TEST_CASE(accepted_syntax) {
+  BOOST_TEST(same(Surface::parse("-x^2+y").E(), y - x * x));
+  BOOST_TEST(same(Surface::parse("2*(-x)+y").E(), y - 2 * x));
+  BOOST_TEST(same(Surface::parse("x^(-2)*y - 1").E(), y / (x * x) - 1));
+  BOOST_TEST(same(Surface::parse("x^(2)").E(), x * x));
+  BOOST_TEST(same(Surface::parse("x/3+y").E(), x / 3 + y));
+  BOOST_TEST(same(Surface::parse("Pi*x").E(), Surface::parse("pi*x").E()));
+  const Surface analytic = Surface::parse("exp(-x^2)+sqrt(y^2+1)+sin(z)*cos(x)-log(2+z^2)");
+  BOOST_TEST(!analytic.is_polynomial());
+  BOOST_TEST(analytic.degree() == -1);
+  BOOST_TEST(same(analytic.gradient()[2], GiNaC::cos(z) * GiNaC::cos(x) - 2 * z / (2 + z * z)));
+  BOOST_TEST(std::isnan(Surface::parse("sqrt(x)").evaluate({-1, 0, 0})));
+  BOOST_TEST(Surface::parse("x^2+y^2+z^2-1").text() == "x^2+y^2+z^2-1");
+}
+
+BOOST_AUTO_TEST_CASE(polynomial_and_degree) {
+  BOOST_TEST(Surface::parse("x^2+y^2+z^2-1").degree() == 2);
+  BOOST_TEST(Surface::parse("(x^2-x^4-y^2)^2+z^2-0.02").degree() == 8);
+  BOOST_TEST(Surface::parse("x*y*z-0.5").degree() == 3);
+  BOOST_TEST(Surface::parse("x^3-x^3+y").degree() == 1);
+  BOOST_TEST(!Surface::parse("1/x+y").is_polynomial());
+  BOOST_TEST(!Surface::parse("sqrt(2)*x+y").is_polynomial());
+  BOOST_TEST(!Surface::parse("Pi*x+y").is_polynomial());
+  BOOST_TEST(!Surface::parse("exp(x)+y").is_polynomial());
+  BOOST_TEST(Surface::parse("exp(0)*x+y").is_polynomial());
+}
+
+BOOST_AUTO_TEST_CASE(malformed_expressions_throw_and_name_the_problem) {
+  // {text, a fragment the message must contain}
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"x+w", "'w'"},
+      {"x+w", "position 3"},
+      {"tan(x)", "'tan'"},
+      {"abs(x)", "'abs'"},
+      {"x^0.5", "0.5"},
+      {"x^y", "'y'"},
+      {"x^(1/2)", "'/'"},
+      {"x^2^3", "ambiguous"},
+      {"x^-2", "'-'"},
+      {"2*-x+y", "'-'"},
+      {"", "empty"},
+      {"   ", "empty"},
+      {"3", "constant"},
+      {"x-x", "constant"},
+      {"0*y+2", "constant"},
+      {"I*x", "'I'"},
+      {"Euler*x", "'Euler'"},
+      {"sqrt(-1)*x", "complex"},
+      {"log(-2)+x", "complex"},
+      {"x**2", "'*'"},
+      {"x+", "end"},
+      {"(x+y", "')'"},
+      {"x)", "')'"},
+      {"x y", "'y'"},
+      {"2x", "'x'"},
+      {"sin x", "'sin'"},
+      {"x(1)", "'x'"},
+      {"sqrt(x,y)", "','"},
+      {"x=1", "'='"},
+      {"x;y", "';'"},
+      {"{x,y}", "'{'"},
+      {"1e*x", "1e"},
+  };
+  for (const auto& [text, fragment] : cases) {
+    const std::string message = parse_error(text);
+    BOOST_TEST_CONTEXT("text \"" << text << "\", message \"" << message << "\"") {
+      BOOST_TEST(!message.empty());
+      BOOST_TEST(message.find(fragment) != std::string::npos);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(built_expressions_are_validated) {
+  const GiNaC::symbol w("w");
+  BOOST_CHECK_THROW(Surface(x + w), InvalidInput);
+  BOOST_CHECK_THROW(Surface(GiNaC::tan(x)), InvalidInput);
+  BOOST_CHECK_THROW(Surface(GiNaC::abs(x) + y), InvalidInput);
+  BOOST_CHECK_THROW(Surface(GiNaC::pow(x, GiNaC::numeric(1, 3))), InvalidInput);
+  BOOST_CHECK_THROW(Surface(GiNaC::pow(x, y)), InvalidInput);
+  BOOST_CHECK_THROW(Surface(GiNaC::ex(3)), InvalidInput);
+  BOOST_CHECK_THROW(Surface(GiNaC::I * x), InvalidInput);
+  BOOST_CHECK_THROW(Surface(GiNaC::Euler * x), InvalidInput);
+  BOOST_CHECK_NO_THROW(Surface(GiNaC::exp(x) + GiNaC::sqrt(y * y + 1) - 3));
+  BOOST_CHECK_NO_THROW(Surface(GiNaC::pow(GiNaC::sqrt(x * x + 1), 3) - y));
+}
+
+BOOST_AUTO_TEST_CASE(box_parsing) {
+  const Box3 b = Box3::parse("-1,2, -3,4 ,0.5,1.5");
+  BOOST_TEST(b.lo[0] == -1.0);
+  BOOST_TEST(b.hi[0] == 2.0);
+  BOOST_TEST(b.lo[1] == -3.0);
+  BOOST_TEST(b.hi[1] == 4.0);
+  BOOST_TEST(b.lo[2] == 0.5);
+  BOOST_TEST(b.hi[2] == 1.5);
+  BOOST_TEST(b.diagonal() == std::sqrt(9.0 + 49.0 + 1.0), boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(b.contains({0, 0, 1}));
+  BOOST_TEST(b.contains({2, 4, 1.5}));
+  BOOST_TEST(!b.contains({0, 0, 2}));
+
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"1,2,3", "6"},          {"", "6"},
+      {"0,1,0,1,0,1,", "6"},   {"0,1,0,1,0,1,2", "6"},
+      {"0,1,0,1,1,0", "z"},    {"0,0,0,1,0,1", "x"},
+      {"0,1,0,1,0,nan", "nan"}, {"0,1,0,1,0,inf", "inf"},
+      {"a,1,0,1,0,1", "\"a\""}, {"0,1x,0,1,0,1", "1x"},
+      {"0,1,,1,0,1", "field 3"},
+  };
+  for (const auto& [text, fragment] : bad) {
+    const std::string message = box_error(text);
+    BOOST_TEST_CONTEXT("box \"" << text << "\", message \"" << message << "\"") {
+      BOOST_TEST(!message.empty());
+      BOOST_TEST(message.find(fragment) != std::string::npos);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()

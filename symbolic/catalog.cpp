@@ -75,21 +75,38 @@ std::vector<CatalogEntry> make_catalog() {
                      "torus about the z-axis, core radius R = 1, tube radius r = 0.4; lfs = min(r, rho) = 0.4",
                      torus_lfs(0.4)});
 
+  // genus2: Σ = {g² + z² = 1/50} is the double of the planar region D = {|g| ≤ √(1/50)}.  The
+  // critical points of g are the saddle (0, 0) with g = 0 and the maxima (±1/√2, 0) with g = 1/4,
+  // so for 0 < √(1/50) < 1/4 the set {g ≥ −√(1/50)} is a disc and {g > √(1/50)} two discs in it:
+  // D is a disc with two holes and its double has genus 2.  ∇E = (2g∇g, 2z) vanishes on Σ only
+  // where ∇g = 0 and g² = 1/50, which never happens.
   entries.push_back({"genus2", "(x^2-x^4-y^2)^2+z^2-0.02", box(-1.3, 1.3, -0.9, 0.9, -0.4, 0.4), 1, {2},
                      "double torus g^2 + z^2 = 1/50 around the figure-eight g = x^2 - x^4 - y^2 = 0 "
                      "(the double of the planar region |g| <= sqrt(1/50), a disc with two holes)",
                      nullptr});
 
+  // chair: genus 3 by a Morse count (a generic height has 1 maximum, 1 minimum and 6 saddles on
+  // Σ) and by the Euler characteristic of {E < 0} on grids of 100³ and 250³ cells.  The critical
+  // points of E at (±0.612, ±0.612, 0) have E = −1/100 and lie about 0.044 inside Σ: narrow
+  // necks, a small lfs there.
   entries.push_back({"chair", "(x^2+y^2+z^2-0.95)^2-0.8*((z-1)^2-2*x^2)*((z+1)^2-2*y^2)",
                      box(-1.6, 1.6, -1.6, 1.6, -1.6, 1.6), 1, {3},
                      "the 'chair' quartic (r^2 - a k^2)^2 - b((z-k)^2 - 2x^2)((z+k)^2 - 2y^2), k = 5, "
                      "a = 0.95, b = 0.8, scaled by 1/5; genus 3 (8 critical points of a generic height: "
-                     "max, min, 6 saddles); E has critical value -1/100 near Σ, so Σ has narrow necks",
+                     "max, min, 6 saddles); narrow necks near (+-0.61, +-0.61, 0)",
                      nullptr});
 
+  // tanglecube: genus 5 (Morse count: 16 critical points of a generic height, χ = −8; grid χ of
+  // the solid −4).  Critical values of E: 11.8, 5.55, −0.7, −6.95, so 0 is a regular value.
   entries.push_back({"tanglecube", "x^4-5*x^2+y^4-5*y^2+z^4-5*z^2+11.8", box(-3, 3, -3, 3, -3, 3), 1, {5},
                      "the tangle cube x^4 - 5x^2 + y^4 - 5y^2 + z^4 - 5z^2 + 11.8", nullptr});
 
+  // metaball and two_blobs: f = Σ w_i exp(−4|x − c_i|²), E = T − f.  All critical points of f lie
+  // in the plane P through the centres, and across P, f(q + s n) = f(q) exp(−4 s²) for q ∈ P; so
+  // {f ≥ T} is a thickening of D = {q ∈ P : f(q) ≥ T} and Σ is the double of D.  metaball: all
+  // critical values of f are ≥ 0.54 > T = 0.3 (3 maxima, 3 saddles, 1 minimum), so D is a disc
+  // and Σ a sphere.  two_blobs: the saddle of f on the line of the centres has f ≈ 0.198 < T < the
+  // maxima ≈ 0.9, 1.0, so D is two discs.  Σ ⊂ ⋃ balls(c_i, √(ln(Σ w_i / T) / 4)) ⊂ box.
   entries.push_back({"metaball",
                      "0.3-exp(-4*((x+0.55)^2+(y+0.3)^2+z^2))-exp(-4*((x-0.55)^2+(y+0.35)^2+z^2))"
                      "-0.8*exp(-4*((x-0.05)^2+(y-0.6)^2+(z-0.25)^2))",

@@ -12,6 +12,10 @@
 
 namespace delmesh {
 
+//! Every entry is smooth (∇E ≠ 0 on Σ, certified by interval subdivision in the tests), has
+//! E > 0 outside (on the unbounded side, in particular on the whole boundary of its box, also
+//! certified) and E < 0 inside, and its genus per component was checked by two independent
+//! computations (Morse count of a generic height function; cubical complex of {E < 0} on a grid).
 struct CatalogEntry {
   std::string name;
   std::string equation;                 //!< E(x, y, z) as text, parsed by Surface::parse
@@ -19,7 +23,9 @@ struct CatalogEntry {
   int components = 1;
   std::vector<int> genus_per_component; //!< sorted ascending
   std::string description;
-  //! lfs(p) for p ∈ Σ when known analytically (sphere, torus, ellipsoid bound), else empty.
+  //! lfs(p) for p ∈ Σ when known analytically (distance from p to the medial axis of Σ, which is
+  //! known in closed form for sphere, ellipsoid, torus, thin_handle, near_sheets), else empty.
+  //! Precondition: p ∈ Σ (the value at other points is not meaningful).
   std::function<double(const std::array<double, 3>&)> local_feature_size;
 
   Surface surface() const { return Surface::parse(equation); }

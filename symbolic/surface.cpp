@@ -85,6 +85,11 @@ double Box3::diagonal() const {
 
 namespace {
 
+//! Input limits (not tolerances): a decimal literal's exponent, and an integer power, are bounded
+//! so that a typo cannot make the exact arithmetic run out of memory.
+constexpr long kMaxDecimalExponent = 400;
+constexpr long kMaxPower = 1000;
+
 //! The exact rational value of a decimal literal "123", "0.16", ".5", "1.5e-3", "2E4".
 GiNaC::numeric decimal_to_rational(const std::string& literal) {
   std::string digits;
@@ -111,7 +116,9 @@ GiNaC::numeric decimal_to_rational(const std::string& literal) {
     for (; i < literal.size() && std::isdigit(static_cast<unsigned char>(literal[i])); ++i) exponent += literal[i];
     if (i != literal.size() || exponent.empty() || exponent == "+" || exponent == "-")
       throw InvalidInput("malformed number \"" + literal + "\"");
-    if (exponent.size() > 6) throw InvalidInput("number \"" + literal + "\": exponent out of range");
+    if (exponent.size() > 6 || std::abs(std::stol(exponent)) > kMaxDecimalExponent)
+      throw InvalidInput("number \"" + literal + "\": decimal exponent out of range (|e| <= " +
+                         std::to_string(kMaxDecimalExponent) + ")");
     scale += std::stol(exponent);
   }
   if (digits.empty()) throw InvalidInput("malformed number \"" + literal + "\"");
@@ -253,6 +260,8 @@ class Recognizer {
     if (t.kind == TokenKind::number) {
       GiNaC::numeric value = decimal_to_rational(t.text);
       if (!value.is_integer()) fail("non-integer power '^" + t.text + "'", t);
+      if (GiNaC::abs(value) > kMaxPower)
+        fail("power '^" + t.text + "' too large (at most " + std::to_string(kMaxPower) + ")", t);
       return;
     }
     if (t.kind == TokenKind::op && (t.text == "+" || t.text == "-"))
@@ -453,10 +462,14 @@ Surface::Surface(GiNaC::ex E, std::string text) {
 }
 
 double Surface::evaluate(const std::array<double, 3>& p) const {
-  GiNaC::ex value =
-      E_.subs(GiNaC::lst{coordinate_x() == GiNaC::numeric(p[0]), coordinate_y() == GiNaC::numeric(p[1]),
-                         coordinate_z() == GiNaC::numeric(p[2])})
-          .evalf();
+  GiNaC::ex value;
+  try {
+    value = E_.subs(GiNaC::lst{coordinate_x() == GiNaC::numeric(p[0]), coordinate_y() == GiNaC::numeric(p[1]),
+                               coordinate_z() == GiNaC::numeric(p[2])})
+                .evalf();
+  } catch (const std::exception&) {  // a pole (1/0, log(0)): E is not defined there
+    return std::nan("");
+  }
   if (!GiNaC::is_a<GiNaC::numeric>(value)) return std::nan("");
   const auto& n = GiNaC::ex_to<GiNaC::numeric>(value);
   if (!n.is_real()) return std::nan("");

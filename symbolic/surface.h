@@ -40,6 +40,7 @@ class Surface {
   //! Throws InvalidInput (message quotes the offending token and its 1-based position) on a
   //! syntax error, an unknown symbol or function, a non-integer power (x^0.5, x^y, a^b^c), an
   //! empty or constant expression (3, x-x), or an expression with complex constants (sqrt(-1)).
+  //! Input limits: integer powers |n| ≤ 1000, decimal exponents |e| ≤ 400 (1e400).
   static Surface parse(const std::string& text);
 
   //! Wraps an already built expression in x, y, z; the same validation as parse() on the
@@ -62,7 +63,7 @@ class Surface {
   const std::string& text() const { return text_; }
 
   //! E at a point, in double (GiNaC evalf; for tests and diagnostics only, not inner loops).
-  //! NaN where E is not real (e.g. sqrt or log of a negative number).
+  //! NaN where E is not real or not defined (sqrt or log of a negative number, 1/0, log 0).
   double evaluate(const std::array<double, 3>& p) const;
 
  private:

@@ -93,6 +93,7 @@ BOOST_AUTO_TEST_CASE(accepted_syntax) {
   BOOST_TEST(analytic.degree() == -1);
   BOOST_TEST(same(analytic.gradient()[2], GiNaC::cos(z) * GiNaC::cos(x) - 2 * z / (2 + z * z)));
   BOOST_TEST(std::isnan(Surface::parse("sqrt(x)").evaluate({-1, 0, 0})));
+  BOOST_TEST(std::isnan(Surface::parse("1/x+y").evaluate({0, 1, 0})));
   BOOST_TEST(Surface::parse("x^2+y^2+z^2-1").text() == "x^2+y^2+z^2-1");
 }
 
@@ -143,6 +144,8 @@ BOOST_AUTO_TEST_CASE(malformed_expressions_throw_and_name_the_problem) {
       {"x;y", "';'"},
       {"{x,y}", "'{'"},
       {"1e*x", "1e"},
+      {"x^100000+y", "too large"},
+      {"1e999*x", "out of range"},
   };
   for (const auto& [text, fragment] : cases) {
     const std::string message = parse_error(text);

@@ -201,7 +201,10 @@ class EndpointCertifier {
 
   std::array<double, 3> world(const std::vector<double>& u) const {
     std::array<double, 3> xyz{};
-    system_.world_point<double>(u.data(), parameters_.data(), xyz.data());
+    if (system_.has_world_point())
+      system_.world_point<double>(u.data(), parameters_.data(), xyz.data());
+    else  // no world map (bare equations in fewer than 3 unknowns): the unknowns, zero-padded
+      for (std::size_t i = 0; i < std::min<std::size_t>(3, u.size()); ++i) xyz[i] = u[i];
     return xyz;
   }
 
@@ -272,8 +275,16 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
   // γ: a unit complex number drawn from the seed (the gamma trick).
   KostlanRng rng(options.seed);
   const Complex gamma = std::polar(1.0, 2.0 * M_PI * rng.uniform());
+  // the random affine patch of the projective tracking: a unit complex Gaussian vector
+  std::vector<Complex> patch(n + 1);
+  double patch_norm = 0;
+  for (auto& c : patch) {
+    c = Complex(rng.normal(), rng.normal());
+    patch_norm += std::norm(c);
+  }
+  for (auto& c : patch) c /= std::sqrt(patch_norm);
   const std::vector<Complex> complex_parameters(parameters.begin(), parameters.end());
-  const detail::HomotopyTracker tracker(system, degrees, complex_parameters, gamma);
+  const detail::HomotopyTracker tracker(system, degrees, complex_parameters, gamma, patch);
   const auto settings = detail::TrackerSettings::defaults();
 
   SolveResult result;

@@ -3,6 +3,8 @@
 //! Internal: predictor–corrector tracking of one path of the total-degree homotopy
 //! H(u, s) = (1 − s) γ g(u) + s f(u), g_i = u_i^{d_i} − 1, from s = 0 to s = 1, and the
 //! classification of its endpoint.  f and its Jacobian come from a CompiledSystem over Complex.
+//! Tracking is projective: homogeneous coordinates on a random affine patch ⟨c, X⟩ = 1, so paths
+//! going to infinity stay bounded.
 
 #include <cstddef>
 #include <ostream>
@@ -41,7 +43,7 @@ struct TrackerSettings {
 
 struct PathEndpoint {
   PathOutcome outcome = PathOutcome::failed;
-  std::vector<Complex> point;  //!< last point of the path (after the endgame's Newton refinement)
+  std::vector<Complex> point;  //!< last point of the path in u (after the endgame's Newton refinement)
   double s = 0;                //!< path parameter reached
   double condition = 0;        //!< 2-norm condition number of the row-equilibrated J_f at point
   double last_correction = 0;  //!< size of the last Newton correction at s = 1 (accuracy estimate)
@@ -52,9 +54,10 @@ struct PathEndpoint {
 class HomotopyTracker {
  public:
   //! Precondition: f is square with n unknowns, degrees.size() == n, every degree ≥ 1,
-  //! parameters.size() == f.n_parameters(), |gamma| = 1.
+  //! parameters.size() == f.n_parameters(), |gamma| = 1, patch.size() == n + 1 (a generic
+  //! complex vector: the patch ⟨patch, (X_0, …, X_n)⟩ = 1).
   HomotopyTracker(const CompiledSystem& f, std::vector<int> degrees, std::vector<Complex> parameters,
-                  Complex gamma);
+                  Complex gamma, std::vector<Complex> patch);
 
   //! Tracks the path starting at the start solution `start` (g(start) = 0).
   PathEndpoint track(const std::vector<Complex>& start, const TrackerSettings& settings) const;
@@ -64,6 +67,7 @@ class HomotopyTracker {
   std::vector<int> degrees_;
   std::vector<Complex> parameters_;
   Complex gamma_;
+  std::vector<Complex> patch_;
 };
 
 }  // namespace delmesh::detail

@@ -1,0 +1,246 @@
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "common/errors.h"
+#include "solvers/detail/homotopy_tracker.h"
+#include "solvers/homotopy_solver.h"
+#include "solvers/query_geometry.h"
+#include "symbolic/catalog.h"
+#include "symbolic/primitives.h"
+
+using namespace delmesh;
+using GiNaC::ex;
+using GiNaC::symbol;
+
+namespace {
+
+const symbol& X() { return coordinate_x(); }
+const symbol& Y() { return coordinate_y(); }
+
+PrimitiveSystem make_system(std::vector<ex> equations, std::vector<symbol> unknowns) {
+  PrimitiveSystem s;
+  s.name = "test";
+  s.unknowns = std::move(unknowns);
+  s.equations = std::move(equations);
+  s.jacobian = GiNaC::matrix(s.equations.size(), s.unknowns.size());
+  for (std::size_t i = 0; i < s.equations.size(); ++i)
+    for (std::size_t j = 0; j < s.unknowns.size(); ++j) s.jacobian(i, j) = s.equations[i].diff(s.unknowns[j]);
+  for (std::size_t k = 0; k < 3; ++k) s.world_point[k] = k < s.unknowns.size() ? ex(s.unknowns[k]) : ex(0);
+  return s;
+}
+
+SolveResult solve(const PrimitiveSystem& system, const std::vector<double>& parameters, const Domain& domain,
+                  std::uint64_t seed = 1) {
+  const CompiledSystem compiled(system);
+  HomotopyOptions options;
+  options.seed = seed;
+  return solve_homotopy(compiled, equation_degrees(system), parameters, domain, options);
+}
+
+//! The certified root matching `expected` (max-norm distance ≤ 1e-10), checking it lies in its box.
+bool has_root(const SolveResult& r, const std::vector<double>& expected) {
+  for (const auto& root : r.roots) {
+    bool close = true;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      close = close && std::abs(root.midpoint[i] - expected[i]) <= 1e-10;
+      close = close && root.box.bounds[i][0] <= root.midpoint[i] && root.midpoint[i] <= root.box.bounds[i][1];
+    }
+    if (close) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(homotopy_solver_test)
+
+BOOST_AUTO_TEST_CASE(equation_degrees_are_total_degrees_in_the_unknowns) {
+  const symbol a("a");
+  const auto s = make_system({X() * X() * Y() + a * a * a * X() - 1, (X() + 1) * (X() + 1) - X() * X(), a * Y() + 2},
+                             {X(), Y()});
+  BOOST_TEST(equation_degrees(s) == std::vector<int>({3, 1, 1}), boost::test_tools::per_element());
+  const auto sphere = surface_critical_system(catalog_entry("sphere").surface());
+  BOOST_TEST(equation_degrees(sphere) == std::vector<int>({2, 1, 1}), boost::test_tools::per_element());
+  const auto torus = surface_critical_system(catalog_entry("torus").surface());
+  BOOST_TEST(equation_degrees(torus) == std::vector<int>({4, 3, 3}), boost::test_tools::per_element());
+  const auto line = surface_line_system(catalog_entry("tanglecube").surface());
+  BOOST_TEST(equation_degrees(line) == std::vector<int>({4}), boost::test_tools::per_element());
+}
+
+BOOST_AUTO_TEST_CASE(equation_degrees_rejects_non_polynomial) {
+  BOOST_CHECK_THROW(equation_degrees(make_system({GiNaC::sin(X()) + Y(), X() - Y()}, {X(), Y()})), InvalidInput);
+  BOOST_CHECK_THROW(equation_degrees(make_system({1 / X() + Y(), X() - Y()}, {X(), Y()})), InvalidInput);
+  BOOST_CHECK_THROW(equation_degrees(make_system({GiNaC::sqrt(X() * X() + 1), Y()}, {X(), Y()})), InvalidInput);
+}
+
+BOOST_AUTO_TEST_CASE(start_solutions_are_the_bezout_many_roots_of_unity) {
+  const std::vector<int> degrees{3, 4, 2};
+  BOOST_TEST(bezout_number(degrees) == 24u);
+  const auto starts = total_degree_start_solutions(degrees);
+  BOOST_TEST(starts.size() == 24u);
+  std::set<std::vector<long>> distinct;
+  for (const auto& s : starts) {
+    BOOST_REQUIRE(s.size() == 3u);
+    std::vector<long> key;
+    for (std::size_t i = 0; i < 3; ++i) {
+      BOOST_TEST(std::abs(std::pow(s[i], degrees[i]) - 1.0) < 1e-14);
+      key.push_back(std::lround(1e6 * s[i].real()));
+      key.push_back(std::lround(1e6 * s[i].imag()));
+    }
+    distinct.insert(key);
+  }
+  BOOST_TEST(distinct.size() == 24u);
+  BOOST_CHECK_THROW(bezout_number({}), InvalidInput);
+  BOOST_CHECK_THROW(total_degree_start_solutions({2, 0}), InvalidInput);
+}
+
+BOOST_AUTO_TEST_CASE(circle_meets_line) {
+  const auto s = make_system({X() * X() + Y() * Y() - 1, Y() - X()}, {X(), Y()});
+  const auto r = solve(s, {}, Domain::from_box({{{-2.0, 2.0}}, {{-2.0, 2.0}}}));
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_TEST(r.roots.size() == 2u);
+  const double h = std::sqrt(0.5);
+  BOOST_TEST(has_root(r, {h, h}));
+  BOOST_TEST(has_root(r, {-h, -h}));
+  BOOST_TEST(r.counters.paths >= 2u);
+}
+
+BOOST_AUTO_TEST_CASE(circle_meets_circle) {
+  const auto s = make_system({X() * X() + Y() * Y() - 1, (X() - 1) * (X() - 1) + Y() * Y() - 1}, {X(), Y()});
+  const auto r = solve(s, {}, Domain::from_box({{{-2.0, 2.0}}, {{-2.0, 2.0}}}));
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_TEST(r.roots.size() == 2u);
+  BOOST_TEST(has_root(r, {0.5, std::sqrt(3.0) / 2}));
+  BOOST_TEST(has_root(r, {0.5, -std::sqrt(3.0) / 2}));
+  BOOST_TEST(r.counters.paths == 4u);  // two of the four paths go to the circular points at infinity
+}
+
+BOOST_AUTO_TEST_CASE(half_space_domain_keeps_only_the_roots_inside) {
+  // circle ∩ line with the half-plane x + y ≤ 0: only (−1/√2, −1/√2) is inside
+  const auto s = make_system({X() * X() + Y() * Y() - 1, Y() - X()}, {X(), Y()});
+  Domain domain = Domain::from_box({{{-2.0, 2.0}}, {{-2.0, 2.0}}});
+  domain.half_spaces.push_back({{1.0, 1.0}, 0.0});
+  const auto r = solve(s, {}, domain);
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_TEST(r.roots.size() == 1u);
+  BOOST_TEST(has_root(r, {-std::sqrt(0.5), -std::sqrt(0.5)}));
+  BOOST_TEST(r.counters.roots_outside == 1u);
+  // and a box that contains no root
+  const auto none = solve(s, {}, Domain::from_box({{{0.8, 2.0}}, {{-2.0, 2.0}}}));
+  BOOST_TEST(none.status == SolveStatus::complete);
+  BOOST_TEST(none.roots.empty());
+}
+
+BOOST_AUTO_TEST_CASE(tangent_circles_are_flagged_singular_never_certified) {
+  // (1, 0) is a double root; the other two paths go to infinity
+  const auto s = make_system({X() * X() + Y() * Y() - 1, (X() - 2) * (X() - 2) + Y() * Y() - 1}, {X(), Y()});
+  const auto r = solve(s, {}, Domain::from_box({{{-3.0, 3.0}}, {{-3.0, 3.0}}}));
+  BOOST_TEST(r.status == SolveStatus::undecided);
+  BOOST_TEST(r.roots.empty());
+  BOOST_REQUIRE(!r.undecided.empty());
+  bool covered = false;
+  for (const auto& u : r.undecided) {
+    BOOST_TEST_MESSAGE("undecided " << u.reason << " [" << u.box.bounds[0][0] << ", " << u.box.bounds[0][1] << "] × ["
+                                    << u.box.bounds[1][0] << ", " << u.box.bounds[1][1] << "]");
+    covered = covered || (u.reason == UndecidedReason::singular_root && u.box.bounds[0][0] <= 1 &&
+                          1 <= u.box.bounds[0][1] && u.box.bounds[1][0] <= 0 && 0 <= u.box.bounds[1][1]);
+  }
+  BOOST_TEST(covered);
+}
+
+BOOST_AUTO_TEST_CASE(sphere_critical_points_are_plus_minus_d) {
+  const auto system = surface_critical_system(catalog_entry("sphere").surface());
+  const Vec3 d = unit_vector({0.3, -0.5, 0.8});
+  const auto frame = orthonormal_frame(d);
+  const std::vector<double> parameters{frame.a[0], frame.a[1], frame.a[2], frame.b[0], frame.b[1], frame.b[2]};
+  const auto r = solve(system, parameters, Domain::from_box({{{-1.5, 1.5}}, {{-1.5, 1.5}}, {{-1.5, 1.5}}}));
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_TEST(r.roots.size() == 2u);
+  BOOST_TEST(has_root(r, {d[0], d[1], d[2]}));
+  BOOST_TEST(has_root(r, {-d[0], -d[1], -d[2]}));
+  for (const auto& root : r.roots)
+    for (int k = 0; k < 3; ++k) BOOST_TEST(std::abs(root.world[k] - root.midpoint[k]) < 1e-15);
+}
+
+BOOST_AUTO_TEST_CASE(line_meets_torus_in_four_points) {
+  // torus (R = 1, r = 0.4) and the line (−2, 0.3, 0.1) + t (1, 0, 0): with w = x², the roots solve
+  // w² − 2.12 w + 0.5236 = 0, so x = ±√w and t = x + 2.
+  const auto system = surface_line_system(catalog_entry("torus").surface());
+  const std::vector<double> parameters{-2, 0.3, 0.1, 1, 0, 0};
+  const auto r = solve(system, parameters, Domain::from_box({{{0.0, 4.0}}}));
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_TEST(r.roots.size() == 4u);
+  for (double sign_w : {-1.0, 1.0})
+    for (double sign_x : {-1.0, 1.0}) {
+      const double w = (2.12 + sign_w * std::sqrt(2.4)) / 2;
+      const double t = sign_x * std::sqrt(w) + 2;
+      BOOST_TEST(has_root(r, {t}), "t = " << t);
+    }
+  for (const auto& root : r.roots) {
+    BOOST_TEST(std::abs(root.world[0] - (root.midpoint[0] - 2)) < 1e-14);
+    BOOST_TEST(std::abs(root.world[1] - 0.3) < 1e-15);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(reproducible_for_a_seed_and_seed_independent_roots) {
+  const auto s = make_system({X() * X() * X() - 2 * X() * Y() + Y() * Y() - GiNaC::numeric(1, 3),
+                              X() * X() + 3 * Y() * Y() * Y() - X() - 1},
+                             {X(), Y()});
+  const auto domain = Domain::from_box({{{-3.0, 3.0}}, {{-3.0, 3.0}}});
+  const auto a = solve(s, {}, domain, 7), b = solve(s, {}, domain, 7), c = solve(s, {}, domain, 8);
+  BOOST_TEST(a.status == SolveStatus::complete);
+  BOOST_REQUIRE(a.roots.size() == b.roots.size());
+  for (std::size_t i = 0; i < a.roots.size(); ++i) {
+    BOOST_TEST(a.roots[i].midpoint == b.roots[i].midpoint, boost::test_tools::per_element());
+    BOOST_TEST(a.roots[i].box.bounds == b.roots[i].box.bounds);
+  }
+  BOOST_TEST(a.counters.paths == b.counters.paths);
+  BOOST_REQUIRE(c.roots.size() == a.roots.size());
+  for (const auto& root : c.roots) BOOST_TEST(has_root(a, root.midpoint));
+}
+
+BOOST_AUTO_TEST_CASE(univariate_cubic) {
+  const auto s = make_system({(X() - 1) * (X() - 2) * (X() + 3)}, {X()});
+  const auto r = solve(s, {}, Domain::from_box({{{-5.0, 1.5}}}));
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_TEST(r.roots.size() == 2u);
+  BOOST_TEST(has_root(r, {1.0}));
+  BOOST_TEST(has_root(r, {-3.0}));
+}
+
+BOOST_AUTO_TEST_CASE(time_limit_returns_the_domain_undecided) {
+  const auto s = make_system({X() * X() + Y() * Y() - 1, Y() - X()}, {X(), Y()});
+  const CompiledSystem compiled(s);
+  HomotopyOptions options;
+  options.time_limit_seconds = 1e-12;
+  const auto r = solve_homotopy(compiled, {2, 1}, {}, Domain::from_box({{{-2.0, 2.0}}, {{-2.0, 2.0}}}), options);
+  BOOST_TEST(r.status == SolveStatus::time_limit);
+  BOOST_REQUIRE(!r.undecided.empty());
+  BOOST_TEST(r.undecided.back().reason == UndecidedReason::budget);
+  BOOST_TEST(r.undecided.back().box.bounds[0][0] == -2.0);
+}
+
+BOOST_AUTO_TEST_CASE(invalid_input_throws) {
+  const auto s = make_system({X() * X() + Y() * Y() - 1, Y() - X()}, {X(), Y()});
+  const CompiledSystem compiled(s);
+  const auto box2 = Domain::from_box({{{-2.0, 2.0}}, {{-2.0, 2.0}}});
+  BOOST_CHECK_THROW((void)solve_homotopy(compiled, {2}, {}, box2), InvalidInput);
+  BOOST_CHECK_THROW((void)solve_homotopy(compiled, {2, 0}, {}, box2), InvalidInput);
+  BOOST_CHECK_THROW((void)solve_homotopy(compiled, {2, 1}, {1.0}, box2), InvalidInput);
+  BOOST_CHECK_THROW((void)solve_homotopy(compiled, {2, 1}, {}, Domain::from_box({{{-2.0, 2.0}}})), InvalidInput);
+  const auto over = make_system({X() * X() + Y() * Y() - 1, Y() - X(), X()}, {X(), Y()});
+  BOOST_CHECK_THROW((void)solve_homotopy(CompiledSystem(over), {2, 1, 1}, {}, box2), InvalidInput);
+}
+
+BOOST_AUTO_TEST_CASE(path_outcome_prints) {
+  std::ostringstream out;
+  out << detail::PathOutcome::finite << ' ' << detail::PathOutcome::singular << ' ' << detail::PathOutcome::diverging
+      << ' ' << detail::PathOutcome::failed;
+  BOOST_TEST(out.str() == "finite singular diverging failed");
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -12,7 +12,11 @@
 //! | silhouette_plane       | u, v     | o, a, b, d(3)                      | E, ⟨∇E, d⟩ |
 //! | silhouette_critical    | x, y, z  | d(3), d'(3)                        | E, G = ⟨∇E,d⟩, ⟨∇G × ∇E, d'⟩ |
 //!
-//! Plane frames (a, b) are orthonormal.  Adding a primitive means adding one builder function and
+//! Plane frames (a, b) are orthonormal.  Parameter symbols are named after the table, component
+//! by component (a0 a1 a2 b0 b1 b2, p0 … v2, o0 … b2, d0 d1 d2), except d' whose components are
+//! e0 e1 e2.  world_point is (x, y, z) for the 3 × 3 systems, p + t v and o + u a + v b otherwise.
+//! Every builder derives fresh parameter and reduced-unknown symbols; x, y, z are the shared
+//! coordinate symbols of surface.h.  Adding a primitive means adding one builder function and
 //! its row in the registry, both in primitives.cpp.
 
 #include <functional>

@@ -1,0 +1,191 @@
+#include "meshing/delaunay.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Delaunay_triangulation_cell_base_3.h>
+#include <CGAL/Triangulation_data_structure_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include "common/errors.h"
+
+namespace delmesh {
+
+TriangleKey make_triangle_key(VertexId a, VertexId b, VertexId c) {
+  TriangleKey t{a, b, c};
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+EdgeKey make_edge_key(VertexId a, VertexId b) { return a < b ? EdgeKey{a, b} : EdgeKey{b, a}; }
+
+namespace detail {
+
+struct VertexInfo {
+  VertexId id = -1;
+  bool is_seed = false;
+};
+
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<VertexInfo, Kernel>;
+using Cb = CGAL::Delaunay_triangulation_cell_base_3<Kernel>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
+using Dt = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
+
+struct DelaunayImpl {
+  Dt dt;
+  std::vector<Dt::Vertex_handle> handles;  // by id; null when removed
+  std::vector<std::array<double, 3>> points;
+  std::vector<char> seeds;
+  std::size_t alive = 0;
+
+  Dt::Vertex_handle handle(VertexId id) const {
+    if (id < 0 || id >= static_cast<VertexId>(handles.size()) || handles[id] == Dt::Vertex_handle())
+      throw PreconditionViolation("Delaunay: no vertex with id " + std::to_string(id));
+    return handles[id];
+  }
+};
+
+}  // namespace detail
+
+Delaunay::Delaunay() : impl_(std::make_unique<detail::DelaunayImpl>()) {}
+Delaunay::~Delaunay() = default;
+Delaunay::Delaunay(Delaunay&&) noexcept = default;
+Delaunay& Delaunay::operator=(Delaunay&&) noexcept = default;
+
+std::optional<VertexId> Delaunay::insert(const std::array<double, 3>& p, bool is_seed) {
+  for (double c : p)
+    if (!std::isfinite(c)) throw PreconditionViolation("Delaunay::insert: non-finite point");
+  const std::size_t before = impl_->dt.number_of_vertices();
+  auto v = impl_->dt.insert(Point3(p[0], p[1], p[2]));
+  if (impl_->dt.number_of_vertices() == before) return std::nullopt;  // coincides with a vertex
+  const VertexId id = static_cast<VertexId>(impl_->handles.size());
+  v->info().id = id;
+  v->info().is_seed = is_seed;
+  impl_->handles.push_back(v);
+  impl_->points.push_back(p);
+  impl_->seeds.push_back(is_seed ? 1 : 0);
+  ++impl_->alive;
+  return id;
+}
+
+void Delaunay::remove(VertexId id) {
+  auto v = impl_->handle(id);
+  impl_->dt.remove(v);
+  impl_->handles[id] = detail::Dt::Vertex_handle();
+  --impl_->alive;
+}
+
+bool Delaunay::contains(VertexId id) const {
+  return id >= 0 && id < static_cast<VertexId>(impl_->handles.size()) &&
+         impl_->handles[id] != detail::Dt::Vertex_handle();
+}
+
+const std::array<double, 3>& Delaunay::point(VertexId id) const {
+  if (id < 0 || id >= static_cast<VertexId>(impl_->points.size()))
+    throw PreconditionViolation("Delaunay::point: bad id");
+  return impl_->points[id];
+}
+
+bool Delaunay::is_seed(VertexId id) const { return impl_->seeds.at(id) != 0; }
+std::size_t Delaunay::size() const { return impl_->alive; }
+int Delaunay::dimension() const { return impl_->dt.dimension(); }
+
+std::vector<VertexId> Delaunay::vertices() const {
+  std::vector<VertexId> out;
+  out.reserve(impl_->alive);
+  for (VertexId id = 0; id < static_cast<VertexId>(impl_->handles.size()); ++id)
+    if (impl_->handles[id] != detail::Dt::Vertex_handle()) out.push_back(id);
+  return out;
+}
+
+std::vector<VertexId> Delaunay::neighbours(VertexId id) const {
+  auto v = impl_->handle(id);
+  std::vector<VertexId> out;
+  if (impl_->dt.dimension() < 1) return out;
+  std::vector<detail::Dt::Vertex_handle> adjacent;
+  impl_->dt.finite_adjacent_vertices(v, std::back_inserter(adjacent));
+  for (auto w : adjacent) out.push_back(w->info().id);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::vector<TriangleKey> Delaunay::incident_triangles(VertexId id) const {
+  auto v = impl_->handle(id);
+  std::vector<TriangleKey> out;
+  const auto& dt = impl_->dt;
+  if (dt.dimension() == 3) {
+    std::vector<detail::Dt::Facet> facets;
+    dt.finite_incident_facets(v, std::back_inserter(facets));
+    for (const auto& f : facets) {
+      const auto c = f.first;
+      const int i = f.second;
+      out.push_back(make_triangle_key(c->vertex((i + 1) & 3)->info().id,
+                                      c->vertex((i + 2) & 3)->info().id,
+                                      c->vertex((i + 3) & 3)->info().id));
+    }
+  } else if (dt.dimension() == 2) {
+    std::vector<detail::Dt::Cell_handle> cells;
+    dt.incident_cells(v, std::back_inserter(cells));
+    for (auto c : cells) {
+      if (dt.is_infinite(c)) continue;
+      out.push_back(make_triangle_key(c->vertex(0)->info().id, c->vertex(1)->info().id,
+                                      c->vertex(2)->info().id));
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::vector<TriangleKey> Delaunay::triangles() const {
+  std::vector<TriangleKey> out;
+  const auto& dt = impl_->dt;
+  if (dt.dimension() == 3) {
+    for (auto f = dt.finite_facets_begin(); f != dt.finite_facets_end(); ++f) {
+      const auto c = f->first;
+      const int i = f->second;
+      out.push_back(make_triangle_key(c->vertex((i + 1) & 3)->info().id,
+                                      c->vertex((i + 2) & 3)->info().id,
+                                      c->vertex((i + 3) & 3)->info().id));
+    }
+  } else if (dt.dimension() == 2) {
+    for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c)
+      out.push_back(make_triangle_key(c->vertex(0)->info().id, c->vertex(1)->info().id,
+                                      c->vertex(2)->info().id));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+bool Delaunay::is_triangle(const TriangleKey& t) const {
+  const auto& dt = impl_->dt;
+  if (dt.dimension() < 2) return false;
+  for (VertexId id : t)
+    if (!contains(id)) return false;
+  detail::Dt::Cell_handle c;
+  int i, j, k;
+  return dt.is_facet(impl_->handles[t[0]], impl_->handles[t[1]], impl_->handles[t[2]], c, i, j, k);
+}
+
+bool Delaunay::is_edge(const EdgeKey& e) const {
+  const auto& dt = impl_->dt;
+  if (dt.dimension() < 1) return false;
+  if (!contains(e[0]) || !contains(e[1])) return false;
+  detail::Dt::Cell_handle c;
+  int i, j;
+  return dt.is_edge(impl_->handles[e[0]], impl_->handles[e[1]], c, i, j);
+}
+
+std::pair<VertexId, double> Delaunay::nearest(const std::array<double, 3>& x) const {
+  if (impl_->alive == 0) throw PreconditionViolation("Delaunay::nearest: empty triangulation");
+  auto v = impl_->dt.nearest_vertex(Point3(x[0], x[1], x[2]));
+  const auto& p = impl_->points[v->info().id];
+  const double d = std::sqrt((p[0] - x[0]) * (p[0] - x[0]) + (p[1] - x[1]) * (p[1] - x[1]) +
+                             (p[2] - x[2]) * (p[2] - x[2]));
+  return {v->info().id, d};
+}
+
+}  // namespace delmesh

@@ -1,0 +1,33 @@
+#pragma once
+// A convex polytope in R^3 as a list of planar faces (vertex loops), built from a box and clipped
+// by half-spaces {x : <n, x> <= c}.  Each face remembers the label of the half-space it lies on
+// (-1 .. -6 for the box faces).  Used for the bounding box and the facet list of a clipped
+// Voronoi cell.  Floating point; faces of area ~0 are dropped.
+
+#include <vector>
+
+#include "meshing/detail/vec3.h"
+#include "symbolic/surface.h"
+
+namespace delmesh::detail {
+
+struct PolytopeFace {
+  int label = 0;
+  std::vector<V3> loop;
+};
+
+class ConvexPolytope {
+ public:
+  explicit ConvexPolytope(const Box3& box);
+  //! Intersects with {x : <n, x> <= c}; the new face (if any) gets `label`.
+  void clip(const V3& n, double c, int label);
+  bool empty() const { return faces_.empty(); }
+  const std::vector<PolytopeFace>& faces() const { return faces_; }
+  //! Bounding box [lo, hi] of the vertices.  Precondition: !empty().
+  std::array<V3, 2> bounding_box() const;
+
+ private:
+  std::vector<PolytopeFace> faces_;
+};
+
+}  // namespace delmesh::detail

@@ -1,0 +1,19 @@
+#pragma once
+//! \file facet_contact.h
+//! FacetContact(F) (§5.3, Lemma 4.8): a tangential contact of the facet's plane with Σ inside F.
+
+#include <optional>
+
+#include "meshing/restricted_delaunay.h"
+#include "meshing/witness.h"
+
+namespace delmesh {
+
+//! SurfacePlaneContact(Σ, Π) over the facet polygon F of the Delaunay edge pq, in exclusion mode
+//! ({E, ∂uE, ∂vE} has no solution for a non-tangent plane, so certification is not needed): every
+//! region that cannot be excluded is a possible contact; its centre projected onto Σ is returned
+//! if it lies in F (the one furthest from p = the smaller id).  Nothing if every region of F is
+//! excluded.  The facet frame is RestrictedDelaunay::facet(pq).
+std::optional<Witness> facet_contact_witness(RestrictedDelaunay& restricted, const EdgeKey& pq);
+
+}  // namespace delmesh

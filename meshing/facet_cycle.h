@@ -1,0 +1,20 @@
+#pragma once
+//! \file facet_cycle.h
+//! FacetCycle(F) (§5.3, Lemma 4.9): guards against F ∩ Σ containing a closed curve.
+
+#include <optional>
+
+#include "meshing/restricted_delaunay.h"
+#include "meshing/witness.h"
+
+namespace delmesh {
+
+//! CurveCritical(Σ, Π, d) with d = a, the first axis of the facet's frame (a seeded generic
+//! in-plane direction, RestrictedDelaunay::facet_rotation), over the polygon F.  For each
+//! critical point x in F (certified, or the centre of an undecided region), the line ℓ_x through
+//! x parallel to d is clipped to F and SurfaceLine(Σ, ℓ_x ∩ F) is solved; if it has ≥ 2 points
+//! (undecided regions on ℓ_x count, projected onto Σ), the one furthest from p (the smaller id of
+//! pq) is returned.  Precondition (the paper's): FacetContact(F) returned nothing.
+std::optional<Witness> facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& pq);
+
+}  // namespace delmesh

@@ -1,0 +1,29 @@
+#pragma once
+//! \file quality.h
+//! Quality (§6.1, after Chew) and the size control beyond the paper.
+
+#include <optional>
+
+#include "meshing/restricted_delaunay.h"
+#include "meshing/witness.h"
+
+namespace delmesh {
+
+//! Circumradius of the triangle pqr.
+double circumradius(const Vec3& p, const Vec3& q, const Vec3& r);
+//! ρ(t) = circumradius / shortest edge.
+double radius_edge_ratio(const Vec3& p, const Vec3& q, const Vec3& r);
+
+//! If t ∈ Tri S|Σ has ρ(t) > 1 + λ, a point of Σ on t's dual Voronoi edge (the first certified
+//! crossing; the paper lets the choice be arbitrary), measured from the vertex of t at the
+//! shortest edge inserted last; otherwise nothing.
+std::optional<Witness> quality_witness(RestrictedDelaunay& restricted, const TriangleKey& t, double lambda);
+
+//! Size control (`--size-bound H`): if t ∈ Tri S|Σ has surface Delaunay ball radius (the distance
+//! from its dual point on Σ to its vertices) > H, that dual point.  Like Quality, it only inserts
+//! points of Σ on dual Voronoi edges of restricted triangles, so Topology re-run afterwards keeps
+//! the topological guarantee; the distance bound of Theorem 6.1's proof is replaced by H for the
+//! points it inserts, so termination follows from packing at scale min(H, λ·lfs).
+std::optional<Witness> size_witness(RestrictedDelaunay& restricted, const TriangleKey& t, double size_bound);
+
+}  // namespace delmesh

@@ -1,0 +1,57 @@
+#include "meshing/sample_topology.h"
+
+#include <cmath>
+
+#include "common/errors.h"
+#include "common/tolerances.h"
+#include "meshing/detail/vec3.h"
+
+namespace delmesh {
+
+using namespace detail;
+
+Vec3 generic_direction(std::uint64_t seed, int k) {
+  const double z = 2 * seeded_uniform(seed, k, 1, 101) - 1;
+  const double phi = 2 * M_PI * seeded_uniform(seed, k, 2, 101);
+  const double r = std::sqrt(std::max(0.0, 1 - z * z));
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+SeedReport insert_seeds(Topology& topology) {
+  auto& oracle = topology.oracle();
+  const Box3& box = oracle.box();
+  const Domain domain =
+      Domain::from_box({{box.lo[0], box.hi[0]}, {box.lo[1], box.hi[1]}, {box.lo[2], box.hi[2]}});
+  SeedReport report;
+  for (int k = 0; k < tolerances::mesher_height_direction_retries; ++k) {
+    const Vec3 d = generic_direction(topology.seed(), k);
+    ++report.attempts;
+    const auto result = oracle.surface_critical(d, domain, tolerances::mesher_box_budget_global);
+    if (result.status == SolveStatus::non_isolated) continue;
+    report.height_direction = d;
+    std::vector<Vec3> points;
+    for (const auto& root : result.roots) points.push_back(root.world);
+    report.undecided = result.undecided.size();
+    for (const auto& u : result.undecided)
+      if (auto x = oracle.project(u.world)) points.push_back(*x);
+    if (points.empty())
+      throw InvalidInput("the surface is empty in the box: no critical point of E = 0 was found");
+    for (const auto& x : points)
+      if (topology.insert(Witness{x, CheckKind::seed, -1, false})) ++report.seeds;
+    return report;
+  }
+  throw InvalidInput("cannot find a generic height direction: every direction tried gave non-isolated critical points");
+}
+
+TopologyStatus sample_topology(Topology& topology, SeedReport& report) {
+  report = insert_seeds(topology);
+  if (const auto status = topology.run(); status != TopologyStatus::complete) return status;
+  for (VertexId id : topology.delaunay().vertices()) {
+    if (!topology.delaunay().contains(id) || !topology.delaunay().is_seed(id)) continue;
+    topology.remove(id);
+    if (const auto status = topology.run(); status != TopologyStatus::complete) return status;
+  }
+  return TopologyStatus::complete;
+}
+
+}  // namespace delmesh

@@ -1,0 +1,37 @@
+#pragma once
+//! \file sample_topology.h
+//! SampleTopology(Σ) (§5.4): seeds S₀ = SurfaceCritical(Σ) in a generic height direction;
+//! Topology(S₀); then delete the seeds one at a time, re-running Topology after each deletion
+//! (Lemma 5.4, Corollary 5.2).
+//!
+//! Choices: the height direction is a seeded pseudo-random unit vector (the paper's x3 is not
+//! generic for e.g. a torus with axis x3, whose critical points form circles).  If the solver
+//! reports non_isolated, another seeded direction is tried, at most
+//! tolerances::mesher_height_direction_retries times, then InvalidInput.  Undecided regions of the
+//! seed solve are projected onto Σ and inserted as seeds too (they are deleted again in step 3).
+//! Seeds are deleted in increasing id order.
+
+#include <cstdint>
+
+#include "meshing/topology.h"
+
+namespace delmesh {
+
+struct SeedReport {
+  Vec3 height_direction{};
+  std::size_t seeds = 0;        //!< seeds inserted
+  std::size_t undecided = 0;    //!< undecided regions of the seed solve
+  int attempts = 0;             //!< height directions tried
+};
+
+//! The k-th seeded generic unit direction (k = 0, 1, …).
+Vec3 generic_direction(std::uint64_t seed, int k);
+
+//! Step 1: inserts the seeds into topology.  Throws InvalidInput if Σ is empty in the box (no
+//! critical point) or no generic height direction is found.
+SeedReport insert_seeds(Topology& topology);
+
+//! Steps 1–3.  Returns the status of the last Topology run (a limit stops it early).
+[[nodiscard]] TopologyStatus sample_topology(Topology& topology, SeedReport& report);
+
+}  // namespace delmesh

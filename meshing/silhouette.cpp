@@ -1,0 +1,59 @@
+#include "meshing/silhouette.h"
+
+#include <cmath>
+
+#include "meshing/detail/candidates.h"
+#include "meshing/detail/vec3.h"
+#include "solvers/query_geometry.h"
+
+namespace delmesh {
+
+using namespace detail;
+
+Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, const Vec3& n_p) {
+  const auto frame = orthonormal_frame(n_p);
+  const double angle = 2 * M_PI * seeded_uniform(restricted.seed(), p, 0, 29);
+  return std::cos(angle) * frame.a + std::sin(angle) * frame.b;
+}
+
+std::optional<Witness> silhouette_witness(RestrictedDelaunay& restricted, VertexId p) {
+  const auto& del = restricted.delaunay();
+  auto& oracle = restricted.oracle();
+  const Vec3& pp = del.point(p);
+  const Vec3 n_p = oracle.normal(pp);
+  if (!(norm(n_p) > 0)) return std::nullopt;
+  const VoronoiCell cell = voronoi_cell(del, p, oracle.box());
+  if (!cell.valid) return std::nullopt;
+  const Vec3 d2 = silhouette_direction(restricted, p, n_p);
+  {
+    const auto result = oracle.silhouette_critical(n_p, d2, cell.domain);
+    std::vector<Vec3> points;
+    for (const auto& root : result.roots) points.push_back(root.world);
+    bool from_undecided = false;
+    for (const auto& u : result.undecided)
+      if (auto x = cell_candidate(oracle, cell, u)) {
+        points.push_back(*x);
+        from_undecided = true;
+      }
+    if (!points.empty())
+      return Witness{points[furthest_index(points, pp)], CheckKind::silhouette, p, from_undecided};
+  }
+  for (VertexId q : cell.facet_neighbours) {
+    const VoronoiFacet& f = restricted.facet(make_edge_key(p, q));
+    if (!f.valid) continue;
+    const auto result = oracle.silhouette_plane(f.origin, f.a, f.b, n_p, f.domain);
+    std::vector<Vec3> points;
+    for (const auto& root : result.roots) points.push_back(root.world);
+    bool from_undecided = false;
+    for (const auto& u : result.undecided)
+      if (auto x = facet_candidate(oracle, f, u)) {
+        points.push_back(*x);
+        from_undecided = true;
+      }
+    if (!points.empty())
+      return Witness{points[furthest_index(points, pp)], CheckKind::silhouette, p, from_undecided};
+  }
+  return std::nullopt;
+}
+
+}  // namespace delmesh

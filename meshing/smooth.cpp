@@ -1,0 +1,40 @@
+#include "meshing/smooth.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "meshing/detail/candidates.h"
+#include "meshing/detail/vec3.h"
+
+namespace delmesh {
+
+using namespace detail;
+
+Vec3 outward_normal(RestrictedDelaunay& restricted, const TriangleKey& t) {
+  const auto& del = restricted.delaunay();
+  const Vec3 &p = del.point(t[0]), &q = del.point(t[1]), &r = del.point(t[2]);
+  Vec3 n = normalized(cross(q - p, r - p));
+  const auto& rec = restricted.edge_record(t);
+  if (dot(n, restricted.oracle().gradient(rec.dual_point)) < 0) n = (-1.0) * n;
+  return n;
+}
+
+std::optional<Witness> smooth_witness(RestrictedDelaunay& restricted, const EdgeKey& pq, double threshold) {
+  std::vector<TriangleKey> pair;
+  for (const auto& t : restricted.star(pq[0]))
+    if (std::find(t.begin(), t.end(), pq[1]) != t.end()) pair.push_back(t);
+  if (pair.size() != 2) return std::nullopt;
+  const Vec3 n1 = outward_normal(restricted, pair[0]), n2 = outward_normal(restricted, pair[1]);
+  const double g = std::acos(std::clamp(dot(n1, n2), -1.0, 1.0));
+  if (!(g > threshold)) return std::nullopt;
+  std::vector<Vec3> points;
+  for (const auto& t : pair) {
+    const auto& rec = restricted.edge_record(t);
+    points.insert(points.end(), rec.crossings.begin(), rec.crossings.end());
+  }
+  if (points.empty()) return std::nullopt;
+  const Vec3& p = restricted.delaunay().point(pq[0]);
+  return Witness{points[furthest_index(points, p)], CheckKind::smooth, pq[0], false};
+}
+
+}  // namespace delmesh

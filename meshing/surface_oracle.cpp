@@ -1,0 +1,203 @@
+#include "meshing/surface_oracle.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "common/errors.h"
+#include "common/tolerances.h"
+#include "meshing/detail/vec3.h"
+#include "solvers/homotopy_solver.h"
+#include "solvers/query_geometry.h"
+#include "solvers/subdivision_solver.h"
+#include "solvers/univariate_isolator.h"
+#include "symbolic/compiled_system.h"
+#include "symbolic/line_polynomial.h"
+#include "symbolic/primitives.h"
+
+namespace delmesh {
+
+using namespace detail;
+
+std::ostream& operator<<(std::ostream& out, Primitive primitive) {
+  switch (primitive) {
+    case Primitive::surface_critical: return out << "surface_critical";
+    case Primitive::surface_line: return out << "surface_line";
+    case Primitive::surface_plane_contact: return out << "surface_plane_contact";
+    case Primitive::curve_critical: return out << "curve_critical";
+    case Primitive::silhouette_plane: return out << "silhouette_plane";
+    case Primitive::silhouette_critical: return out << "silhouette_critical";
+  }
+  return out << "unknown";
+}
+
+struct SurfaceOracle::Impl {
+  Surface surface;
+  std::vector<PrimitiveSystem> systems;   // in Primitive order
+  std::vector<CompiledSystem> compiled;   // in Primitive order
+  std::vector<std::vector<int>> degrees;  // for homotopy (square polynomial systems)
+  std::unique_ptr<LinePolynomial> line_polynomial;
+  std::unique_ptr<CompiledSystem> gradient;  // E with its Jacobian = ∇E
+
+  explicit Impl(const Surface& s) : surface(s) {
+    systems.push_back(surface_critical_system(s));
+    systems.push_back(surface_line_system(s));
+    systems.push_back(surface_plane_contact_system(s));
+    systems.push_back(curve_critical_system(s));
+    systems.push_back(silhouette_plane_system(s));
+    systems.push_back(silhouette_critical_system(s));
+    for (const auto& sys : systems) {
+      compiled.emplace_back(sys);
+      std::vector<int> deg;
+      if (s.is_polynomial() && sys.is_square()) {
+        try {
+          deg = equation_degrees(sys);
+        } catch (const InvalidInput&) {
+          deg.clear();
+        }
+      }
+      degrees.push_back(deg);
+    }
+    if (s.is_polynomial()) line_polynomial = std::make_unique<LinePolynomial>(s);
+    const std::vector<GiNaC::symbol> xyz{coordinate_x(), coordinate_y(), coordinate_z()};
+    gradient = std::make_unique<CompiledSystem>(std::vector<GiNaC::ex>{s.E()}, xyz,
+                                                std::vector<GiNaC::symbol>{});
+  }
+};
+
+SurfaceOracle::SurfaceOracle(const Surface& surface, const Box3& box, SolverBackend backend)
+    : impl_(std::make_unique<Impl>(surface)), box_(box), backend_(backend) {}
+SurfaceOracle::~SurfaceOracle() = default;
+SurfaceOracle::SurfaceOracle(SurfaceOracle&&) noexcept = default;
+SurfaceOracle& SurfaceOracle::operator=(SurfaceOracle&&) noexcept = default;
+
+const Surface& SurfaceOracle::surface() const { return impl_->surface; }
+
+SolveResult SurfaceOracle::finish(Primitive primitive, SolveResult result,
+                                  std::chrono::steady_clock::time_point start) {
+  auto& s = stats_[static_cast<int>(primitive)];
+  ++s.calls;
+  // Only roots inside the domain count; the solver classifies them.
+  std::vector<CertifiedRoot> inside;
+  for (auto& r : result.roots)
+    if (r.inside_domain) inside.push_back(std::move(r));
+  result.roots = std::move(inside);
+  s.certified_roots += result.roots.size();
+  s.undecided += result.undecided.size();
+  s.boxes += result.counters.boxes;
+  s.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+SolveResult SurfaceOracle::solve_square(int index, const std::vector<double>& parameters,
+                                        const Domain& domain, std::size_t box_budget) {
+  const auto& sys = impl_->compiled[index];
+  if (backend_ == SolverBackend::homotopy && !impl_->degrees[index].empty()) {
+    HomotopyOptions options;
+    return solve_homotopy(sys, impl_->degrees[index], parameters, domain, options);
+  }
+  SubdivisionOptions options;
+  options.box_budget = box_budget;
+  return solve_subdivision(sys, parameters, domain, options);
+}
+
+SolveResult SurfaceOracle::surface_line(const Vec3& p, const Vec3& v, double t0, double t1) {
+  const auto start = std::chrono::steady_clock::now();
+  UnivariateOptions options;
+  options.box_budget = tolerances::mesher_box_budget_1d;
+  auto r = isolate_line_roots(impl_->compiled[1], impl_->line_polynomial.get(), p, v, t0, t1, options);
+  return finish(Primitive::surface_line, std::move(r), start);
+}
+
+SolveResult SurfaceOracle::surface_critical(const Vec3& d, const Domain& domain, std::size_t box_budget) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto frame = orthonormal_frame(d);
+  std::vector<double> params{frame.a[0], frame.a[1], frame.a[2], frame.b[0], frame.b[1], frame.b[2]};
+  return finish(Primitive::surface_critical, solve_square(0, params, domain, box_budget), start);
+}
+
+SolveResult SurfaceOracle::surface_plane_contact(const Vec3& o, const Vec3& a, const Vec3& b,
+                                                 const Domain& domain) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<double> params{o[0], o[1], o[2], a[0], a[1], a[2], b[0], b[1], b[2]};
+  SubdivisionOptions options;
+  options.box_budget = tolerances::mesher_box_budget_2d;
+  options.exclusion_mode = true;
+  auto r = solve_subdivision(impl_->compiled[2], params, domain, options);
+  return finish(Primitive::surface_plane_contact, std::move(r), start);
+}
+
+SolveResult SurfaceOracle::curve_critical(const Vec3& o, const Vec3& a, const Vec3& b, const Domain& domain) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<double> params{o[0], o[1], o[2], a[0], a[1], a[2], b[0], b[1], b[2]};
+  return finish(Primitive::curve_critical,
+                solve_square(3, params, domain, tolerances::mesher_box_budget_2d), start);
+}
+
+SolveResult SurfaceOracle::silhouette_plane(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& d,
+                                            const Domain& domain) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<double> params{o[0], o[1], o[2], a[0], a[1], a[2], b[0], b[1], b[2], d[0], d[1], d[2]};
+  return finish(Primitive::silhouette_plane,
+                solve_square(4, params, domain, tolerances::mesher_box_budget_2d), start);
+}
+
+SolveResult SurfaceOracle::silhouette_critical(const Vec3& d, const Vec3& d2, const Domain& domain) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<double> params{d[0], d[1], d[2], d2[0], d2[1], d2[2]};
+  return finish(Primitive::silhouette_critical,
+                solve_square(5, params, domain, tolerances::mesher_box_budget_3d), start);
+}
+
+double SurfaceOracle::E(const Vec3& x) const {
+  double value = 0;
+  impl_->gradient->values<double>(x.data(), nullptr, &value);
+  return value;
+}
+
+Vec3 SurfaceOracle::gradient(const Vec3& x) const {
+  double value = 0;
+  Vec3 g{};
+  impl_->gradient->values_and_jacobian<double>(x.data(), nullptr, &value, g.data());
+  return g;
+}
+
+Vec3 SurfaceOracle::normal(const Vec3& x) const { return normalized(gradient(x)); }
+
+std::optional<Vec3> SurfaceOracle::project(const Vec3& start) const {
+  Vec3 x = start;
+  const double tol = tolerances::projection_relative_tolerance * diagonal();
+  for (int it = 0; it < tolerances::projection_iterations; ++it) {
+    double value = 0;
+    Vec3 g{};
+    impl_->gradient->values_and_jacobian<double>(x.data(), nullptr, &value, g.data());
+    const double gg = dot(g, g);
+    if (!(gg > 0) || !std::isfinite(value)) return std::nullopt;
+    const double step = value / gg;
+    x = x - step * g;
+    if (!box_.contains(x)) return std::nullopt;
+    if (std::abs(step) * std::sqrt(gg) <= tol) return x;
+  }
+  return std::nullopt;
+}
+
+nlohmann::json SurfaceOracle::statistics_json() const {
+  nlohmann::json per = nlohmann::json::object();
+  PrimitiveStatistics total;
+  for (int i = 0; i < primitive_count; ++i) {
+    const auto& s = stats_[i];
+    std::ostringstream name;
+    name << static_cast<Primitive>(i);
+    per[name.str()] = {{"calls", s.calls}, {"certified_roots", s.certified_roots},
+                       {"undecided", s.undecided}, {"boxes", s.boxes}, {"seconds", s.seconds}};
+    total.calls += s.calls;
+    total.certified_roots += s.certified_roots;
+    total.undecided += s.undecided;
+    total.boxes += s.boxes;
+    total.seconds += s.seconds;
+  }
+  return {{"systems", total.calls}, {"certified_roots", total.certified_roots},
+          {"undecided", total.undecided}, {"boxes", total.boxes}, {"seconds", total.seconds},
+          {"per_primitive", per}};
+}
+
+}  // namespace delmesh

@@ -1,0 +1,206 @@
+#include "meshing/voronoi_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "meshing/detail/convex_polytope.h"
+#include "meshing/detail/vec3.h"
+#include "solvers/query_geometry.h"
+
+namespace delmesh {
+
+using namespace detail;
+
+namespace {
+
+using P2 = std::array<double, 2>;
+
+// Sutherland–Hodgman: keeps {w : <n, w> <= c} of a convex polygon.
+std::vector<P2> clip_polygon(const std::vector<P2>& poly, const P2& n, double c) {
+  std::vector<P2> out;
+  const std::size_t m = poly.size();
+  for (std::size_t i = 0; i < m; ++i) {
+    const P2& a = poly[i];
+    const P2& b = poly[(i + 1) % m];
+    const double sa = n[0] * a[0] + n[1] * a[1] - c, sb = n[0] * b[0] + n[1] * b[1] - c;
+    if (sa <= 0) out.push_back(a);
+    if ((sa < 0 && sb > 0) || (sa > 0 && sb < 0)) {
+      const double s = sa / (sa - sb);
+      out.push_back({a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])});
+    }
+  }
+  return out;
+}
+
+double polygon_area(const std::vector<P2>& poly) {
+  double area = 0;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const P2& a = poly[i];
+    const P2& b = poly[(i + 1) % poly.size()];
+    area += a[0] * b[1] - a[1] * b[0];
+  }
+  return 0.5 * area;
+}
+
+Vec3 circumcentre(const Vec3& p, const Vec3& q, const Vec3& r) {
+  const Vec3 a = q - p, b = r - p;
+  const Vec3 axb = cross(a, b);
+  const double d = 2 * dot(axb, axb);
+  const Vec3 num = cross(dot(a, a) * b - dot(b, b) * a, axb);
+  return p + (1.0 / d) * num;
+}
+
+}  // namespace
+
+bool half_spaces_contain(const Domain& domain, const std::vector<double>& u, double tolerance) {
+  for (const auto& h : domain.half_spaces) {
+    double s = 0, nn = 0;
+    for (std::size_t k = 0; k < u.size() && k < h.normal.size(); ++k) {
+      s += h.normal[k] * u[k];
+      nn += h.normal[k] * h.normal[k];
+    }
+    if (nn == 0) continue;
+    if ((s - h.offset) / std::sqrt(nn) > tolerance) return false;
+  }
+  return true;
+}
+
+Vec3 VoronoiFacet::world(double u, double v) const { return origin + u * a + v * b; }
+
+std::array<double, 2> VoronoiFacet::plane_coordinates(const Vec3& x) const {
+  return {dot(x - origin, a), dot(x - origin, b)};
+}
+
+bool VoronoiFacet::contains(double u, double v, double tolerance) const {
+  return valid && half_spaces_contain(domain, {u, v}, tolerance);
+}
+
+bool VoronoiCell::contains(const Vec3& x, double tolerance) const {
+  if (!valid) return false;
+  for (int k = 0; k < 3; ++k)
+    if (x[k] < domain.box.bounds[k][0] - tolerance || x[k] > domain.box.bounds[k][1] + tolerance)
+      return false;
+  return half_spaces_contain(domain, {x[0], x[1], x[2]}, tolerance);
+}
+
+VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& t, const Box3& box) {
+  VoronoiEdge e;
+  e.triangle = t;
+  const Vec3& p = del.point(t[0]);
+  const Vec3& q = del.point(t[1]);
+  const Vec3& r = del.point(t[2]);
+  const Vec3 n = cross(q - p, r - p);
+  if (!(norm(n) > 0)) return e;
+  e.point = circumcentre(p, q, r);
+  e.direction = normalized(n);
+  const auto clipped = clip_line_to_box(e.point, e.direction, box);
+  if (!clipped) return e;
+  double t0 = (*clipped)[0], t1 = (*clipped)[1];
+  bool v0 = false, v1 = false;
+  for (VertexId s : del.neighbours(t[0])) {
+    if (s == t[1] || s == t[2]) continue;
+    const Vec3& x = del.point(s);
+    const Vec3 w = x - p;
+    const double slope = dot(w, e.direction);
+    const double rhs = dot(w, 0.5 * (x + p) - e.point);
+    const double scale = norm(w);
+    if (std::abs(slope) <= 1e-15 * scale) {
+      if (rhs < 0) return e;  // the whole line is outside V_p
+      continue;
+    }
+    const double bound = rhs / slope;
+    if (slope > 0) {
+      if (bound < t1) { t1 = bound; v1 = true; }
+    } else {
+      if (bound > t0) { t0 = bound; v0 = true; }
+    }
+  }
+  e.t0 = t0;
+  e.t1 = t1;
+  e.at_vertex0 = v0;
+  e.at_vertex1 = v1;
+  e.valid = t0 < t1;
+  return e;
+}
+
+VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3& box, double rotation) {
+  VoronoiFacet f;
+  f.edge = edge;
+  const Vec3& p = del.point(edge[0]);
+  const Vec3& q = del.point(edge[1]);
+  f.origin = 0.5 * (p + q);
+  const auto section = plane_box_section(f.origin, q - p, box);
+  if (!section) return f;
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  f.a = c * section->frame.a + s * section->frame.b;
+  f.b = (-s) * section->frame.a + c * section->frame.b;
+  f.normal = section->frame.d;
+  f.origin = section->origin;
+  std::vector<P2> poly;
+  for (const auto& w : section->polygon) poly.push_back({c * w[0] + s * w[1], -s * w[0] + c * w[1]});
+  for (VertexId r : del.neighbours(edge[0])) {
+    if (r == edge[1]) continue;
+    const Vec3& x = del.point(r);
+    const Vec3 w = x - p;
+    const P2 n{dot(w, f.a), dot(w, f.b)};
+    const double off = dot(w, 0.5 * (x + p) - f.origin);
+    if (std::abs(n[0]) + std::abs(n[1]) <= 1e-15 * norm(w)) {
+      if (off < 0) return f;
+      continue;
+    }
+    poly = clip_polygon(poly, n, off);
+    if (poly.size() < 3) return f;
+  }
+  // Drop (numerically) repeated vertices.
+  std::vector<P2> clean;
+  double extent = 0;
+  for (const auto& w : poly) extent = std::max({extent, std::abs(w[0]), std::abs(w[1])});
+  const double eps = 1e-12 * std::max(extent, box.diagonal());
+  for (const auto& w : poly)
+    if (clean.empty() || std::hypot(w[0] - clean.back()[0], w[1] - clean.back()[1]) > eps)
+      clean.push_back(w);
+  while (clean.size() >= 2 &&
+         std::hypot(clean.front()[0] - clean.back()[0], clean.front()[1] - clean.back()[1]) <= eps)
+    clean.pop_back();
+  if (clean.size() < 3 || polygon_area(clean) <= eps * eps) return f;
+  f.polygon = std::move(clean);
+  f.domain = polygon_domain(f.polygon);
+  f.valid = true;
+  return f;
+}
+
+VoronoiCell voronoi_cell(const Delaunay& del, VertexId site, const Box3& box) {
+  VoronoiCell cell;
+  cell.site = site;
+  const Vec3& p = del.point(site);
+  ConvexPolytope polytope(box);
+  std::vector<std::pair<VertexId, HalfSpace>> planes;
+  for (VertexId s : del.neighbours(site)) {
+    const Vec3& x = del.point(s);
+    const Vec3 w = x - p;
+    const double off = dot(w, 0.5 * (x + p));
+    polytope.clip(w, off, s);
+    planes.push_back({s, HalfSpace{{w[0], w[1], w[2]}, off}});
+    if (polytope.empty()) return cell;
+  }
+  const auto bb = polytope.bounding_box();
+  std::vector<std::array<double, 2>> bounds;
+  for (int k = 0; k < 3; ++k) {
+    if (!(bb[0][k] < bb[1][k])) return cell;
+    bounds.push_back({bb[0][k], bb[1][k]});
+  }
+  cell.domain = Domain::from_box(bounds);
+  for (const auto& f : polytope.faces())
+    if (f.label >= 0) cell.facet_neighbours.push_back(f.label);
+  std::sort(cell.facet_neighbours.begin(), cell.facet_neighbours.end());
+  cell.facet_neighbours.erase(std::unique(cell.facet_neighbours.begin(), cell.facet_neighbours.end()),
+                              cell.facet_neighbours.end());
+  for (const auto& [s, h] : planes)
+    if (std::binary_search(cell.facet_neighbours.begin(), cell.facet_neighbours.end(), s))
+      cell.domain.half_spaces.push_back(h);
+  cell.valid = true;
+  return cell;
+}
+
+}  // namespace delmesh

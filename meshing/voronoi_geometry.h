@@ -1,0 +1,74 @@
+#pragma once
+//! \file voronoi_geometry.h
+//! The Voronoi faces of Vor S as convex polytopes given by half-spaces — exactly what the solvers
+//! take (solvers/domain.h).  Σ lies strictly inside the box B, so every face is clipped to B
+//! and no intersection with Σ is lost; no dummy points are added.
+//!
+//! Choices (the paper leaves them open):
+//! - V_p = B ∩ ⋂_{q ∈ N(p)} {x : |x−p| ≤ |x−q|} with N(p) the Delaunay neighbours of p.  This
+//!   description holds in every dimension of Del S (a degenerate, e.g. coplanar, sample set
+//!   included), so unbounded cells, facets and edges are handled uniformly.
+//! - The facet F of a Delaunay edge pq lies in the bisector plane Π of pq with frame
+//!   (o = (p+q)/2, a, b), a, b orthonormal ⟂ q−p, rotated in Π by a caller-supplied angle (the
+//!   mesher passes a seeded pseudo-random angle, so that d = a is a generic in-plane direction
+//!   for CurveCritical); F = Π ∩ V_p, computed by clipping the polygon Π ∩ B.
+//! - The edge of a Delaunay triangle pqr is its support line c + t n (c the circumcentre, n the
+//!   unit normal (q−p)×(r−p)/|…| of pqr with p < q < r by id) intersected with V_p: a segment
+//!   between two Voronoi vertices, or a ray clipped by B, or (in dimension 2) a line clipped by B.
+//! Constructions are floating point; the combinatorics come from CGAL's exact predicates.
+
+#include <array>
+#include <optional>
+#include <vector>
+
+#include "meshing/delaunay.h"
+#include "solvers/domain.h"
+#include "symbolic/surface.h"
+
+namespace delmesh {
+
+using Vec3 = std::array<double, 3>;
+
+//! The Voronoi edge dual to a Delaunay triangle: {point + t·direction : t ∈ [t0, t1]}.
+struct VoronoiEdge {
+  TriangleKey triangle{};
+  Vec3 point{};          //!< circumcentre of the triangle
+  Vec3 direction{};      //!< unit normal of the triangle
+  double t0 = 0, t1 = 0;
+  bool at_vertex0 = false, at_vertex1 = false;  //!< endpoint is a Voronoi vertex (not on ∂B)
+  bool valid = false;    //!< false if the clipped edge is empty (numerically degenerate)
+  Vec3 at(double t) const { return {point[0] + t * direction[0], point[1] + t * direction[1], point[2] + t * direction[2]}; }
+};
+
+//! The Voronoi facet dual to a Delaunay edge pq, in its plane frame.
+struct VoronoiFacet {
+  EdgeKey edge{};
+  Vec3 origin{}, a{}, b{}, normal{};               //!< x = origin + u a + v b; normal ∥ q−p
+  std::vector<std::array<double, 2>> polygon;      //!< counter-clockwise (u, v)
+  Domain domain;                                   //!< bounding box ∩ edge half-planes
+  bool valid = false;                              //!< false if F is empty or has no area
+  Vec3 world(double u, double v) const;
+  //! (u, v) of the orthogonal projection of x onto Π.
+  std::array<double, 2> plane_coordinates(const Vec3& x) const;
+  //! Whether (u, v) lies in F up to `tolerance` (absolute, world units).
+  bool contains(double u, double v, double tolerance) const;
+};
+
+//! The clipped Voronoi cell V_p ∩ B.
+struct VoronoiCell {
+  VertexId site = -1;
+  std::vector<VertexId> facet_neighbours;  //!< q with a facet pq of positive area on ∂V_p
+  Domain domain;                           //!< bounding box of V_p ∩ B ∩ bisector half-spaces
+  bool valid = false;
+  bool contains(const Vec3& x, double tolerance) const;
+};
+
+VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& triangle, const Box3& box);
+VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3& box, double rotation);
+VoronoiCell voronoi_cell(const Delaunay& del, VertexId p, const Box3& box);
+
+//! Whether the point u (solver unknowns) satisfies every half-space of the domain up to tolerance
+//! (the box is not tested).
+bool half_spaces_contain(const Domain& domain, const std::vector<double>& u, double tolerance);
+
+}  // namespace delmesh

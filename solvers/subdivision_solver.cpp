@@ -303,9 +303,21 @@ class Subdivision {
       root.box.bounds[i] = {R.x[i].inf(), R.x[i].sup()};
       root.midpoint[i] = midpoint(R.x[i]);
     }
-    system_.world_point(root.midpoint.data(), params_d_.data(), root.world.data());
+    world(root.midpoint.data(), root.world);
     root.inside_domain = true;
     roots_.push_back(std::move(root));
+  }
+
+  //! The world point of the unknowns, or (0, 0, 0) for a system without one (CompiledSystem
+  //! built from bare expressions in fewer than three unknowns).
+  void world(const double* u, std::array<double, 3>& out) {
+    if (!has_world_) return;
+    try {
+      system_.world_point(u, params_d_.data(), out.data());
+    } catch (const PreconditionViolation&) {
+      has_world_ = false;
+      out = {0, 0, 0};
+    }
   }
 
   void add_undecided(const Box& X, UndecidedReason reason) {
@@ -333,7 +345,7 @@ class Subdivision {
         centre[i] = midpoint(box.x[i]);
       }
       u.reason = non_isolated && reason != UndecidedReason::boundary_root ? UndecidedReason::non_isolated : reason;
-      system_.world_point(centre, params_d_.data(), u.world.data());
+      world(centre, u.world);
       result.undecided.push_back(std::move(u));
     }
     result.roots = std::move(roots_);
@@ -359,6 +371,7 @@ class Subdivision {
   SolverCounters counters_;
   std::size_t unresolved_ = 0;
   bool stopped_ = false;
+  bool has_world_ = true;
   SolveStatus status_ = SolveStatus::complete;
 };
 

@@ -22,8 +22,27 @@ struct SubdivisionOptions {
   bool exclusion_mode = false;
 };
 
+//! Solves f(u; parameters) = 0 for u in the polytope `domain` (box ∩ half-spaces), certified in
+//! the sense of solve_result.h.  Per box of a depth-first work list: exclusion by the half-spaces
+//! (box certainly outside one), by the natural interval form of f, and by the mean-value form
+//! f(m) + J(X')(X − m); then (square systems) one Krawczyk step on the ε-inflated box X' (no
+//! zero → excluded; K ⊂ int X' → a unique zero, refined by Krawczyk iteration, de-duplicated
+//! against the zeros already found through their uniqueness boxes, and classified against every
+//! face: inside → returned, outside → counted in roots_outside, undecidable → undecided
+//! boundary_root); a strongly contracting step is repeated, otherwise the widest side is
+//! bisected.  A box narrower than tolerances::singular_box_relative_width whose interval
+//! Jacobian determinant contains 0 (or narrower than min_box_relative_width) is re-examined in
+//! MPFI at tolerances::escalation_precisions, then returned undecided (singular_root, or
+//! precision).  More than tolerances::non_isolated_box_count such boxes → status non_isolated
+//! (a curve of solutions) and the rest of the work list is returned undecided at once.  Budgets
+//! return the unexplored boxes undecided (budget).  Roots and undecided boxes carry world
+//! points via system.world_point ((0, 0, 0) if the system has none).
+//! Exclusion mode (m > n): only the exclusion tests; the boxes that cannot be excluded down to
+//! the singular width come back undecided (singular_root if every equation's enclosure still
+//! contains 0, else precision); status complete means "no solution in the domain" is proved.
 //! Precondition: system.n_unknowns() == domain.dimension() ∈ {2, 3};
-//! parameters.size() == system.n_parameters(); m == n unless exclusion_mode.
+//! parameters.size() == system.n_parameters() (finite); m == n unless exclusion_mode (then
+//! n ≤ m ≤ 6).  Violations throw InvalidInput.  Creates its own RoundingGuard.
 SolveResult solve_subdivision(const CompiledSystem& system, const std::vector<double>& parameters,
                               const Domain& domain, const SubdivisionOptions& options = {});
 

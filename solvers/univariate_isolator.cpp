@@ -75,17 +75,25 @@ bool certify_interval(const Evaluator& e, double a, double b) {
   return certainly_nonzero(df);
 }
 
-//! A tight certified interval around the unique zero known to lie in the open interval (lo, hi):
-//! Newton steps in double from x, then a certified [x − r, x + r] ⊂ (lo, hi).  Falls back to
-//! certify [lo, hi] itself; returns false if neither can be certified.
+//! A tight certified interval around the unique zero known to lie in the open interval (lo, hi)
+//! where E changes sign: safeguarded Newton steps in double (bisection of the bracket when a
+//! step leaves it), then a certified [x − r, x + r] ⊂ (lo, hi).  Falls back to certifying [lo, hi]
+//! itself; returns false if neither can be certified.
 template <class Evaluator>
 bool refine_root(const Evaluator& e, double lo, double hi, double x, double scale, double& out_lo, double& out_hi) {
-  for (int it = 0; it < 8; ++it) {
+  double a = lo, b = hi, fa, dfa;
+  e.value_and_derivative(a, fa, dfa);
+  for (int it = 0; it < 100; ++it) {
     double f, df;
     e.value_and_derivative(x, f, df);
-    if (!(df != 0) || !std::isfinite(f / df)) break;
-    const double next = std::min(std::max(x - f / df, lo), hi);
-    const bool done = std::abs(next - x) <= 1e-15 * scale;
+    if (f == 0) break;
+    if ((f < 0) == (fa < 0))
+      a = x, fa = f;
+    else
+      b = x;
+    double next = x - f / df;
+    if (!(next > a && next < b)) next = 0.5 * a + 0.5 * b;
+    const bool done = std::abs(next - x) <= 1e-15 * scale || b - a <= 1e-15 * scale;
     x = next;
     if (done) break;
   }

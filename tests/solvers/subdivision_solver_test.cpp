@@ -1,0 +1,279 @@
+#include "solvers/subdivision_solver.h"
+
+#include <chrono>
+#include <cmath>
+#include <random>
+
+#include <boost/test/unit_test.hpp>
+
+#include "common/errors.h"
+#include "solvers/query_geometry.h"
+#include "symbolic/catalog.h"
+#include "symbolic/primitives.h"
+
+using namespace delmesh;
+
+namespace {
+
+std::vector<double> frame_parameters(const Vec3& d) {
+  const OrthonormalFrame f = orthonormal_frame(d);
+  return {f.a[0], f.a[1], f.a[2], f.b[0], f.b[1], f.b[2]};
+}
+
+bool contains(const SolverBox& box, const std::vector<double>& point, double slack = 0) {
+  for (std::size_t i = 0; i < point.size(); ++i)
+    if (point[i] < box.bounds[i][0] - slack || point[i] > box.bounds[i][1] + slack) return false;
+  return true;
+}
+
+//! Asserts: status complete, the certified roots are exactly `expected` (each in one box).
+void check_roots(const SolveResult& r, const std::vector<std::vector<double>>& expected, double tol = 1e-9) {
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_TEST(r.undecided.empty());
+  BOOST_REQUIRE_EQUAL(r.roots.size(), expected.size());
+  for (const auto& e : expected) {
+    int hits = 0;
+    for (const auto& root : r.roots) {
+      double dist = 0;
+      for (std::size_t i = 0; i < e.size(); ++i) dist = std::max(dist, std::abs(root.midpoint[i] - e[i]));
+      if (dist < tol) {
+        ++hits;
+        BOOST_TEST(contains(root.box, e, tol));
+        BOOST_TEST(root.inside_domain);
+      }
+    }
+    BOOST_TEST(hits == 1);
+  }
+}
+
+bool any_reason(const SolveResult& r, UndecidedReason reason) {
+  for (const auto& u : r.undecided)
+    if (u.reason == reason) return true;
+  return false;
+}
+
+//! Two circles in (u, v): (u − c1)² + v² = r1², (u − c2)² + v² = r2² (parameters c1, r1, c2, r2).
+CompiledSystem two_circles() {
+  GiNaC::symbol u("u"), v("v"), c1("c1"), r1("r1"), c2("c2"), r2("r2");
+  return CompiledSystem({(u - c1) * (u - c1) + v * v - r1 * r1, (u - c2) * (u - c2) + v * v - r2 * r2}, {u, v},
+                        {c1, r1, c2, r2});
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(subdivision_solver)
+
+BOOST_AUTO_TEST_CASE(sphere_critical_points_are_plus_minus_d) {
+  const CatalogEntry& entry = catalog_entry("sphere");
+  const CompiledSystem system(surface_critical_system(entry.surface()));
+  const Domain domain = box_domain(entry.box);
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 8; ++trial) {
+    const Vec3 d = unit_vector({normal(rng), normal(rng), normal(rng)});
+    const SolveResult r = solve_subdivision(system, frame_parameters(d), domain);
+    check_roots(r, {{d[0], d[1], d[2]}, {-d[0], -d[1], -d[2]}});
+    for (const auto& root : r.roots)
+      for (int i = 0; i < 3; ++i) BOOST_TEST(std::abs(root.world[i] - root.midpoint[i]) < 1e-15);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(ellipsoid_critical_points) {
+  // x²/a² + y²/b² + z²/c² = 1: the points with normal ∥ d are ± M⁻¹d / √(dᵀM⁻¹d), M = diag(1/a²…).
+  const CatalogEntry& entry = catalog_entry("ellipsoid");
+  const CompiledSystem system(surface_critical_system(entry.surface()));
+  const Domain domain = box_domain(entry.box);
+  const double axes2[3] = {2.25, 1.0, 0.5625};
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 4; ++trial) {
+    const Vec3 d = unit_vector({normal(rng), normal(rng), normal(rng)});
+    double q = 0;
+    for (int i = 0; i < 3; ++i) q += axes2[i] * d[i] * d[i];
+    std::vector<double> x(3), y(3);
+    for (int i = 0; i < 3; ++i) x[i] = axes2[i] * d[i] / std::sqrt(q), y[i] = -x[i];
+    check_roots(solve_subdivision(system, frame_parameters(d), domain), {x, y});
+  }
+}
+
+BOOST_AUTO_TEST_CASE(tanglecube_has_24_critical_points_in_z) {
+  // ∇E ∥ z: 4x³ − 10x = 0 = 4y³ − 10y, so x, y ∈ {0, ±√2.5} with x⁴ − 5x² ∈ {0, −6.25}.  Then
+  // z⁴ − 5z² + c = 0 with c = 11.8 + f(x) + f(y):
+  //   c = 11.8  (x = y = 0):           25 − 47.2 < 0, no real z;
+  //   c = 5.55  (4 pairs, one of x, y zero): z² = (5 ± √2.8)/2 > 0, 4 values of z → 16 points;
+  //   c = −0.7  (4 pairs, both ±√2.5):   z² = (5 + √27.8)/2 only, 2 values of z → 8 points.
+  const CatalogEntry& entry = catalog_entry("tanglecube");
+  const CompiledSystem system(surface_critical_system(entry.surface()));
+  const SolveResult r = solve_subdivision(system, {1, 0, 0, 0, 1, 0}, box_domain(entry.box));
+  std::vector<std::vector<double>> expected;
+  const double s = std::sqrt(2.5);
+  for (double x : {-s, 0.0, s})
+    for (double y : {-s, 0.0, s}) {
+      const double c = 11.8 + (x * x * x * x - 5 * x * x) + (y * y * y * y - 5 * y * y);
+      const double disc = 25 - 4 * c;
+      if (disc < 0) continue;
+      for (double w : {(5 + std::sqrt(disc)) / 2, (5 - std::sqrt(disc)) / 2})
+        if (w > 0) expected.push_back({x, y, std::sqrt(w)}), expected.push_back({x, y, -std::sqrt(w)});
+    }
+  BOOST_REQUIRE_EQUAL(expected.size(), 24u);
+  check_roots(r, expected);
+}
+
+BOOST_AUTO_TEST_CASE(circle_circle_two_and_zero_roots) {
+  const CompiledSystem system = two_circles();
+  const Domain domain = Domain::from_box({{-2, 3}, {-2, 2}});
+  // Unit circles at 0 and 1 meet at (1/2, ±√3/2).
+  check_roots(solve_subdivision(system, {0, 1, 1, 1}, domain), {{0.5, std::sqrt(0.75)}, {0.5, -std::sqrt(0.75)}});
+  // Centres 2.5 apart: no intersection.
+  check_roots(solve_subdivision(system, {0, 1, 2.5, 1}, domain), {});
+}
+
+BOOST_AUTO_TEST_CASE(roots_inside_and_outside_a_polygon) {
+  const CompiledSystem system = two_circles();
+  // Triangle (−1, −1.5), (2, −1.5), (0.5, 0.2): contains (1/2, −√3/2) but not (1/2, +√3/2).
+  const Domain triangle = polygon_domain({{-1, -1.5}, {2, -1.5}, {0.5, 0.2}});
+  const SolveResult r = solve_subdivision(system, {0, 1, 1, 1}, triangle);
+  check_roots(r, {{0.5, -std::sqrt(0.75)}});
+  // A face 1e-9 from the lower root: the root's box straddles the face until Krawczyk refinement
+  // decides the side.  Outside → not returned, counted; inside → certified.
+  const double v_root = -std::sqrt(0.75);
+  for (double gap : {-1e-9, 1e-9}) {
+    Domain half = Domain::from_box({{-2, 3}, {-2, 2}});
+    half.half_spaces.push_back({{0, 1}, v_root + gap});  // v ≤ v_root + gap
+    const SolveResult h = solve_subdivision(system, {0, 1, 1, 1}, half);
+    if (gap < 0) {
+      check_roots(h, {});
+      BOOST_TEST(h.counters.roots_outside == 1u);
+    } else {
+      check_roots(h, {{0.5, v_root}});
+    }
+  }
+}
+
+// ---- degenerate suite: flagged, never falsely certified ----
+
+BOOST_AUTO_TEST_CASE(root_exactly_on_a_box_face_is_boundary_root) {
+  const CompiledSystem system = two_circles();
+  // The roots have u = 1/2 exactly; the box face u = 0.5 passes through both.
+  const SolveResult r = solve_subdivision(system, {0, 1, 1, 1}, Domain::from_box({{0.5, 2}, {-2, 2}}));
+  BOOST_TEST(r.roots.empty());
+  BOOST_TEST(r.status == SolveStatus::undecided);
+  BOOST_REQUIRE_EQUAL(r.undecided.size(), 2u);
+  for (const auto& u : r.undecided) {
+    BOOST_TEST(u.reason == UndecidedReason::boundary_root);
+    BOOST_TEST(contains(u.box, {0.5, u.box.bounds[1][0] > 0 ? std::sqrt(0.75) : -std::sqrt(0.75)}));
+  }
+  // A root exactly on a half-space face: v ≤ u − 0.5 + √0.75 ... use the face u ≤ 0.5.
+  Domain half = Domain::from_box({{-2, 3}, {-2, 2}});
+  half.half_spaces.push_back({{1, 0}, 0.5});
+  const SolveResult h = solve_subdivision(system, {0, 1, 1, 1}, half);
+  BOOST_TEST(h.roots.empty());
+  BOOST_TEST(h.undecided.size() == 2u);
+  BOOST_TEST(any_reason(h, UndecidedReason::boundary_root));
+}
+
+BOOST_AUTO_TEST_CASE(tangent_circles_double_root_is_singular) {
+  const CompiledSystem system = two_circles();
+  // Unit circles at 0 and 2 touch at (1, 0).
+  const SolveResult r = solve_subdivision(system, {0, 1, 2, 1}, Domain::from_box({{-2, 3.5}, {-2, 2}}));
+  BOOST_TEST(r.roots.empty());
+  BOOST_TEST(r.status == SolveStatus::undecided);
+  BOOST_REQUIRE(!r.undecided.empty());
+  bool covers = false;
+  for (const auto& u : r.undecided) {
+    BOOST_TEST(u.reason == UndecidedReason::singular_root);
+    covers = covers || contains(u.box, {1, 0});
+  }
+  BOOST_TEST(covers);
+}
+
+BOOST_AUTO_TEST_CASE(torus_axis_direction_is_non_isolated_within_budget) {
+  // Direction z = the torus axis: the critical points form the circles ρ = 1, z = ±0.4.
+  const CatalogEntry& entry = catalog_entry("torus");
+  const CompiledSystem system(surface_critical_system(entry.surface()));
+  const auto start = std::chrono::steady_clock::now();
+  const SolveResult r = solve_subdivision(system, {1, 0, 0, 0, 1, 0}, box_domain(entry.box));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  BOOST_TEST(r.status == SolveStatus::non_isolated);
+  BOOST_TEST(r.roots.empty());
+  BOOST_TEST(!r.undecided.empty());
+  BOOST_TEST(r.counters.boxes < SubdivisionOptions{}.box_budget);
+  BOOST_TEST_MESSAGE("torus axis: " << r.counters.boxes << " boxes, " << seconds << " s");
+  // A generic direction has isolated critical points again (4 on this torus: ±d-extremes of the
+  // outer and inner equators' images… at least the two global extremes in direction d).
+  const Vec3 d = unit_vector({0.3, 0.2, 1.0});
+  const SolveResult g = solve_subdivision(system, frame_parameters(d), box_domain(entry.box));
+  BOOST_TEST(g.status == SolveStatus::complete);
+  BOOST_TEST(g.roots.size() == 4u);
+}
+
+BOOST_AUTO_TEST_CASE(cone_apex_is_never_certified) {
+  // x² + y² − z²: the critical system in direction z is singular at the apex (0, 0, 0).
+  const Surface cone = Surface::parse("x^2+y^2-z^2");
+  const CompiledSystem system(surface_critical_system(cone));
+  const SolveResult r = solve_subdivision(system, {1, 0, 0, 0, 1, 0}, Domain::from_box({{-0.5, 0.7}, {-0.6, 0.5}, {-0.5, 0.55}}));
+  BOOST_TEST(r.roots.empty());
+  BOOST_TEST(r.status != SolveStatus::complete);
+  bool covers = false;
+  for (const auto& u : r.undecided) covers = covers || contains(u.box, {0, 0, 0});
+  BOOST_TEST(covers);
+  BOOST_TEST(any_reason(r, UndecidedReason::singular_root));
+}
+
+// ---- exclusion mode (SurfacePlaneContact) ----
+
+BOOST_AUTO_TEST_CASE(exclusion_mode_plane_missing_and_tangent_to_sphere) {
+  const Surface sphere = catalog_entry("sphere").surface();
+  const CompiledSystem contact(surface_plane_contact_system(sphere));
+  SubdivisionOptions options;
+  options.exclusion_mode = true;
+  const Domain square = Domain::from_box({{-0.7, 0.6}, {-0.5, 0.65}});
+  // The plane z = 1.2 misses the sphere.
+  const SolveResult miss = solve_subdivision(contact, {0, 0, 1.2, 1, 0, 0, 0, 1, 0}, square, options);
+  BOOST_TEST(miss.status == SolveStatus::complete);
+  BOOST_TEST(miss.undecided.empty());
+  BOOST_TEST(miss.roots.empty());
+  // The plane z = 0.5 cuts the sphere transversally: no tangential contact either.
+  const SolveResult cut = solve_subdivision(contact, {0, 0, 0.5, 1, 0, 0, 0, 1, 0}, square, options);
+  BOOST_TEST(cut.status == SolveStatus::complete);
+  // The plane z = 1 touches it at (0, 0, 1) = (u, v) = (0, 0).
+  const SolveResult touch = solve_subdivision(contact, {0, 0, 1, 1, 0, 0, 0, 1, 0}, square, options);
+  BOOST_TEST(touch.status == SolveStatus::undecided);
+  BOOST_TEST(touch.roots.empty());
+  bool covers = false;
+  for (const auto& u : touch.undecided) {
+    covers = covers || contains(u.box, {0, 0});
+    BOOST_TEST(u.reason == UndecidedReason::singular_root);
+    BOOST_TEST(std::abs(u.world[2] - 1) < 1e-6);
+  }
+  BOOST_TEST(covers);
+}
+
+BOOST_AUTO_TEST_CASE(budgets_return_unexplored_boxes) {
+  const CatalogEntry& entry = catalog_entry("tanglecube");
+  const CompiledSystem system(surface_critical_system(entry.surface()));
+  SubdivisionOptions options;
+  options.box_budget = 50;
+  const SolveResult r = solve_subdivision(system, {1, 0, 0, 0, 1, 0}, box_domain(entry.box), options);
+  BOOST_TEST(r.status == SolveStatus::box_limit);
+  BOOST_TEST(r.counters.boxes == 50u);
+  BOOST_TEST(any_reason(r, UndecidedReason::budget));
+  // Every expected root is certified or in an undecided box.
+  const double s = std::sqrt(2.5), z = std::sqrt((5 + std::sqrt(27.8)) / 2);
+  bool found = false;
+  for (const auto& u : r.undecided) found = found || contains(u.box, {s, s, z});
+  for (const auto& root : r.roots) found = found || contains(root.box, {s, s, z});
+  BOOST_TEST(found);
+}
+
+BOOST_AUTO_TEST_CASE(invalid_input_throws) {
+  const CompiledSystem system = two_circles();
+  BOOST_CHECK_THROW((void)solve_subdivision(system, {0, 1, 1}, Domain::from_box({{0, 1}, {0, 1}})), InvalidInput);
+  BOOST_CHECK_THROW((void)solve_subdivision(system, {0, 1, 1, 1}, Domain::from_box({{0, 1}, {0, 1}, {0, 1}})),
+                    InvalidInput);
+  const CompiledSystem contact(surface_plane_contact_system(catalog_entry("sphere").surface()));
+  BOOST_CHECK_THROW((void)solve_subdivision(contact, std::vector<double>(9, 0.0), Domain::from_box({{0, 1}, {0, 1}})),
+                    InvalidInput);  // over-determined without exclusion_mode
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -1,0 +1,207 @@
+#include "solvers/univariate_isolator.h"
+
+#include <cmath>
+#include <random>
+
+#include <boost/test/unit_test.hpp>
+
+#include "common/errors.h"
+#include "symbolic/catalog.h"
+#include "symbolic/primitives.h"
+
+using namespace delmesh;
+
+namespace {
+
+struct LineProblem {
+  Surface surface;
+  CompiledSystem line;
+  LinePolynomial polynomial;
+  explicit LineProblem(const Surface& s)
+      : surface(s), line(surface_line_system(s)), polynomial(s) {}
+};
+
+const LineProblem& torus() {
+  static const LineProblem problem(catalog_entry("torus").surface());
+  return problem;
+}
+const LineProblem& sphere() {
+  static const LineProblem problem(catalog_entry("sphere").surface());
+  return problem;
+}
+
+std::vector<double> root_ts(const SolveResult& r) {
+  std::vector<double> ts;
+  for (const auto& root : r.roots) ts.push_back(root.midpoint[0]);
+  return ts;
+}
+
+bool any_reason(const SolveResult& r, UndecidedReason reason) {
+  for (const auto& u : r.undecided)
+    if (u.reason == reason) return true;
+  return false;
+}
+
+//! Every certified interval must contain exactly one known root, and no two the same.
+void check_roots(const SolveResult& r, const std::vector<double>& expected, double tol = 1e-12) {
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_TEST(r.undecided.empty());
+  BOOST_REQUIRE_EQUAL(r.roots.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    BOOST_TEST(std::abs(r.roots[i].midpoint[0] - expected[i]) < tol);
+    BOOST_TEST(r.roots[i].box.bounds[0][0] <= expected[i] + tol);
+    BOOST_TEST(r.roots[i].box.bounds[0][1] >= expected[i] - tol);
+  }
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(univariate_isolator)
+
+BOOST_AUTO_TEST_CASE(line_through_torus_four_two_zero_roots) {
+  const auto& T = torus();
+  // Along the x axis: (x² + 0.84)² = 4x² ⇔ |x| = 1 ± 0.4.  t = x + 2.
+  for (const LinePolynomial* poly : {&T.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+    const SolveResult four = isolate_line_roots(T.line, poly, {-2, 0, 0}, {1, 0, 0}, 0, 4);
+    check_roots(four, {0.6, 1.4, 2.6, 3.4});
+    // World points lie on the torus.
+    for (const auto& root : four.roots) BOOST_TEST(std::abs(T.surface.evaluate(root.world)) < 1e-9);
+    // Vertical line x = 1, y = 0: (z² + 1.84)² = 4 ⇔ z = ±0.4.  t = z + 1.
+    check_roots(isolate_line_roots(T.line, poly, {1, 0, -1}, {0, 0, 1}, 0, 2), {0.6, 1.4});
+    // The axis misses the torus.
+    check_roots(isolate_line_roots(T.line, poly, {0, 0, -1}, {0, 0, 1}, 0, 2), {});
+  }
+}
+
+BOOST_AUTO_TEST_CASE(random_lines_bernstein_and_newton_agree) {
+  const auto& T = torus();
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> uni(-1, 1);
+  int total = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const std::array<double, 3> p{1.6 * uni(rng), 1.6 * uni(rng), 0.6 * uni(rng)}, v{uni(rng), uni(rng), uni(rng)};
+    const SolveResult a = isolate_line_roots(T.line, &T.polynomial, p, v, -1, 1);
+    const SolveResult b = isolate_line_roots(T.line, nullptr, p, v, -1, 1);
+    if (a.status != SolveStatus::complete)
+      for (const auto& u : a.undecided)
+        BOOST_TEST_MESSAGE("trial " << trial << " status " << a.status << " undecided [" << u.box.bounds[0][0] << ", "
+                                    << u.box.bounds[0][1] << "] " << u.reason << " roots " << a.roots.size()
+                                    << " newton " << b.status << " " << b.roots.size());
+    BOOST_REQUIRE(a.status == SolveStatus::complete);
+    BOOST_REQUIRE(b.status == SolveStatus::complete);
+    BOOST_REQUIRE_EQUAL(a.roots.size(), b.roots.size());
+    for (std::size_t i = 0; i < a.roots.size(); ++i) {
+      BOOST_TEST(std::abs(a.roots[i].midpoint[0] - b.roots[i].midpoint[0]) < 1e-12);
+      BOOST_TEST(std::abs(T.surface.evaluate(a.roots[i].world)) < 1e-9);
+    }
+    total += static_cast<int>(a.roots.size());
+  }
+  BOOST_TEST(total > 100);  // the random lines do meet the torus
+}
+
+BOOST_AUTO_TEST_CASE(tangent_line_double_root_is_singular_never_certified) {
+  const auto& S = sphere();
+  // p + t v = (1, 0, t − 1): E = (t − 1)², a double root at t = 1 (Lemma 4.7(ii)).
+  for (const LinePolynomial* poly : {&S.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+    const SolveResult r = isolate_line_roots(S.line, poly, {1, 0, -1}, {0, 0, 1}, 0, 2);
+    BOOST_TEST(r.roots.empty());
+    BOOST_TEST(r.status == SolveStatus::undecided);
+    BOOST_REQUIRE(!r.undecided.empty());
+    bool covers = false;
+    for (const auto& u : r.undecided) {
+      BOOST_TEST(u.reason == UndecidedReason::singular_root);
+      covers = covers || (u.box.bounds[0][0] <= 1 && u.box.bounds[0][1] >= 1);
+    }
+    BOOST_TEST(covers);
+  }
+  // A torus tangent line that is only nearly tangent in double: x = 1.4 (not representable).
+  const auto& T = torus();
+  const SolveResult r = isolate_line_roots(T.line, &T.polynomial, {1.4, 0, -1}, {0, 0, 1}, 0, 2);
+  BOOST_TEST(r.roots.empty());
+  BOOST_TEST(any_reason(r, UndecidedReason::singular_root));
+}
+
+BOOST_AUTO_TEST_CASE(root_at_an_end_is_boundary_root) {
+  const auto& S = sphere();
+  for (const LinePolynomial* poly : {&S.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+    // Through the centre along x: roots t = ±1; t0 = −1 is a root, +1 is outside [−1, 0.5].
+    const SolveResult r = isolate_line_roots(S.line, poly, {0, 0, 0}, {1, 0, 0}, -1, 0.5);
+    BOOST_TEST(r.roots.empty());
+    BOOST_TEST(r.status == SolveStatus::undecided);
+    BOOST_REQUIRE_EQUAL(r.undecided.size(), 1u);
+    BOOST_TEST(r.undecided[0].reason == UndecidedReason::boundary_root);
+    BOOST_TEST(r.undecided[0].box.bounds[0][0] == -1.0);
+    // Both ends roots; an interior root stays certified.
+    const SolveResult both = isolate_line_roots(S.line, poly, {0, 0, 0}, {1, 0, 0}, -1, 1);
+    BOOST_TEST(both.roots.empty());
+    BOOST_TEST(both.undecided.size() == 2u);
+    const SolveResult interior = isolate_line_roots(S.line, poly, {0, 0, 0}, {1, 0, 0}, -1, 2);
+    BOOST_REQUIRE_EQUAL(interior.roots.size(), 1u);
+    BOOST_TEST(std::abs(interior.roots[0].midpoint[0] - 1) < 1e-14);
+    BOOST_TEST(interior.undecided.size() == 1u);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(root_at_a_bisection_point_is_certified) {
+  const auto& S = sphere();
+  // The line (t, 0, 0) meets the sphere at t = ±1; on [−1.5, 3.5] the root t = 1 is exactly the
+  // first bisection point, so the split must move off it.
+  const SolveResult r = isolate_line_roots(S.line, &S.polynomial, {0, 0, 0}, {1, 0, 0}, -3, 1.5);
+  check_roots(r, {-1, 1});
+  const SolveResult mid = isolate_line_roots(S.line, &S.polynomial, {0, 0, 0}, {1, 0, 0}, -1.5, 3.5);
+  check_roots(mid, {-1, 1});
+}
+
+BOOST_AUTO_TEST_CASE(non_polynomial_surface_uses_interval_newton) {
+  // exp(x² + y² + z² − 1) − 1 = 0 is the unit sphere.
+  const Surface s = Surface::parse("exp(x^2+y^2+z^2-1)-1");
+  const CompiledSystem line(surface_line_system(s));
+  check_roots(isolate_line_roots(line, nullptr, {0, 0, 0}, {0, 1, 0}, -2, 2), {-1, 1});
+  const SolveResult tangent = isolate_line_roots(line, nullptr, {0, 1, -1}, {0, 0, 1}, 0, 2);
+  BOOST_TEST(tangent.roots.empty());
+  BOOST_TEST(any_reason(tangent, UndecidedReason::singular_root));
+}
+
+BOOST_AUTO_TEST_CASE(line_inside_the_surface_is_non_isolated) {
+  // E = (x − y)(z² + (x − y)²): E ≡ 0 along the line x = y, z = 0.
+  const Surface s = Surface::parse("(x-y)*z^2+(x-y)^3");
+  const LineProblem problem(s);
+  const SolveResult r = isolate_line_roots(problem.line, &problem.polynomial, {0, 0, 0}, {1, 1, 0}, -1, 1);
+  BOOST_TEST(r.roots.empty());
+  BOOST_TEST(r.status == SolveStatus::non_isolated);
+  BOOST_TEST(r.counters.boxes < 5000u);
+  // The undecided regions cover [−1, 1].
+  double covered = 0;
+  for (const auto& u : r.undecided) covered += u.box.bounds[0][1] - u.box.bounds[0][0];
+  BOOST_TEST(covered >= 2.0 - 1e-9);
+}
+
+BOOST_AUTO_TEST_CASE(box_budget_returns_the_rest_as_undecided) {
+  const auto& T = torus();
+  UnivariateOptions options;
+  options.box_budget = 3;
+  const SolveResult r = isolate_line_roots(T.line, &T.polynomial, {-2, 0, 0}, {1, 0, 0}, 0, 4, options);
+  BOOST_TEST(r.status == SolveStatus::box_limit);
+  BOOST_TEST(any_reason(r, UndecidedReason::budget));
+  double covered = 0;
+  for (const auto& u : r.undecided) covered += u.box.bounds[0][1] - u.box.bounds[0][0];
+  for (const auto& root : r.roots) covered += root.box.bounds[0][1] - root.box.bounds[0][0];
+  BOOST_TEST(r.roots.size() + r.undecided.size() >= 1u);
+  // Roots not certified lie in undecided intervals.
+  for (double t : {0.6, 1.4, 2.6, 3.4}) {
+    bool found = false;
+    for (const auto& u : r.undecided) found = found || (u.box.bounds[0][0] <= t && t <= u.box.bounds[0][1]);
+    for (const auto& root : r.roots) found = found || (root.box.bounds[0][0] <= t && t <= root.box.bounds[0][1]);
+    BOOST_TEST(found);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(invalid_input_throws) {
+  const auto& S = sphere();
+  BOOST_CHECK_THROW((void)isolate_line_roots(S.line, &S.polynomial, {0, 0, 0}, {1, 0, 0}, 1, 0), InvalidInput);
+  BOOST_CHECK_THROW((void)isolate_line_roots(S.line, &S.polynomial, {0, 0, 0}, {0, 0, 0}, 0, 1), InvalidInput);
+  const CompiledSystem critical(surface_critical_system(S.surface));
+  BOOST_CHECK_THROW((void)isolate_line_roots(critical, nullptr, {0, 0, 0}, {1, 0, 0}, 0, 1), InvalidInput);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -18,10 +18,33 @@ struct UnivariateOptions {
   std::size_t box_budget = 100000;
 };
 
-//! Roots of E(p + t v) on [t0, t1] (t0 < t1).  `line` is the compiled surface_line system;
-//! `polynomial` may be null (then interval Newton is used).  Certified roots carry t as
-//! midpoint[0] and the world point.  A root within the isolator's resolution of t0 or t1 is
-//! reported as undecided with reason boundary_root.
+//! The zeros of E(p + t v) for t in the closed interval [t0, t1], certified in the sense of
+//! solve_result.h: every zero lies in a returned certified interval (box.bounds[0], with t as
+//! midpoint[0] and the world point p + t v) or in an undecided interval; each certified interval
+//! contains exactly one zero, proved by
+//!  - (polynomial E) the interval Bernstein coefficients of E(p + t v) on a subinterval, all of
+//!    certain sign with exactly one sign variation (Descartes' rule for the Bernstein basis), or
+//!    a derivative whose Bernstein coefficients have one certain sign with certain opposite end
+//!    values; coefficients are enclosed by evaluating `polynomial` over Interval and shifting to
+//!    [t0, t1] in interval arithmetic;
+//!  - (any E, polynomial == null or degree > 60) interval Newton on the compiled `line` system:
+//!    a derivative enclosure excluding 0 with certain opposite signs at the ends;
+//! and then narrowed to a tight interval around the Newton-refined zero, re-certified by a sign
+//! change and a derivative excluding 0 inside the isolating interval.  Subdivision avoids split
+//! points where the value is not certainly nonzero.  Undecided reasons:
+//!  - singular_root: E and E' cannot be excluded from 0 on an interval narrower than
+//!    tolerances::singular_box_relative_width·(t1 − t0): a double root (the line tangent to Σ,
+//!    Lemma 4.7(ii)) or two zeros closer than that — never certified, never dropped;
+//!  - boundary_root: a zero at t0 or t1 within the resolution (the end value's enclosure
+//!    contains 0 on the last subinterval);
+//!  - precision: monotone but undecidable at min_box_relative_width;
+//!  - non_isolated: more than tolerances::non_isolated_box_count undecided intervals (E ≡ 0 along
+//!    the line, the line lies in Σ); the remaining intervals are returned at once;
+//!  - budget: options.box_budget subintervals visited (status box_limit).
+//! Adjacent undecided intervals with the same reason are merged.  Certified roots are sorted by t.
+//! Preconditions (else InvalidInput): `line` is a surface_line system (1 unknown, 1 equation,
+//! 6 parameters p, v); t0 < t1 finite; p, v finite, v ≠ 0; `polynomial`, when given, is the
+//! LinePolynomial of the same surface.  Creates its own RoundingGuard.
 SolveResult isolate_line_roots(const CompiledSystem& line, const LinePolynomial* polynomial,
                                const std::array<double, 3>& p, const std::array<double, 3>& v,
                                double t0, double t1, const UnivariateOptions& options = {});

@@ -36,7 +36,7 @@ ExitCode run_check(const CheckOptions& o) {
   const MeshReport report = check_mesh(read_mesh(o.mesh));
 
   bool all_pass = true;
-  nlohmann::json out = to_json(report);
+  nlohmann::ordered_json out = nlohmann::ordered_json::parse(to_json(report).dump());
   TheoremBounds bounds{};
   bool angle_ok = true, ratio_ok = true, roughness_ok = true;
   if (with_bounds) {
@@ -57,7 +57,7 @@ ExitCode run_check(const CheckOptions& o) {
   }
 
   if (o.json) {
-    std::cout << out.dump(2) << std::endl;
+    print_json(std::cout, out);
   } else {
     std::cout << "mesh:                  " << o.mesh << "\n";
     std::cout << "vertices:              " << report.vertices << "\n";
@@ -89,11 +89,13 @@ ExitCode run_check(const CheckOptions& o) {
 
 Command add_check_command(CLI::App& parent) {
   auto o = std::make_shared<CheckOptions>();
-  CLI::App* sub = parent.add_subcommand(
-      "check",
+  CLI::App* sub = parent.add_subcommand("check", "Check a mesh file independently (topology, quality, bounds)");
+  sub->footer(
       "Check a triangle mesh file (OFF, PLY or OBJ) from the file alone: components, Euler characteristic, "
       "genus per component, closed / manifold / orientable, minimum angle, maximum radius-edge ratio, "
-      "maximum roughness. With --lambda, compare with the bounds of Theorem 6.1 (exit code 1 if one fails).");
+      "maximum roughness. With --lambda, compare with the bounds of Theorem 6.1." "\n\n"
+      "Exit codes: 0 checked (and with --lambda every bound holds), 1 some bound fails, "
+              "2 invalid input (missing or corrupt file, lambda out of range), 4 internal error.");
   sub->add_option("MESH", o->mesh, "The mesh file (.off, .ply or .obj)")->required();
   o->lambda_option = sub->add_option("--lambda", o->lambda,
                                      "lambda in (0, 1/6): compare with min angle >= asin(1/(2+2 lambda)), "

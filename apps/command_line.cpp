@@ -82,8 +82,6 @@ void SurfaceOptions::add_to(CLI::App& app) {
   box_option = app.add_option("--box", box,
                               "x0,x1,y0,y1,z0,z1: the box Sigma must lie strictly inside "
                               "(required with --expr; replaces the catalog box with --surface)");
-  surface_option->excludes(expr_option);
-  expr_option->excludes(surface_option);
 }
 
 bool SurfaceOptions::given() const {
@@ -106,6 +104,7 @@ SurfaceInput SurfaceOptions::resolve() const {
 
 std::string format_number(double x) {
   if (!std::isfinite(x)) return std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf");
+  if (x == 0) return "0";  // also -0
   for (int digits = 1; digits <= 17; ++digits) {
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
@@ -183,6 +182,20 @@ void write_text_atomically(const std::string& path, const std::function<void(std
     std::filesystem::remove(temporary, ignored);
     throw InvalidInput("cannot write " + path + ": " + ec.message());
   }
+}
+
+void print_json(std::ostream& out, const nlohmann::ordered_json& object) {
+  if (!object.is_object() || object.empty()) {
+    out << object.dump() << std::endl;
+    return;
+  }
+  out << "{\n";
+  std::size_t i = 0;
+  for (auto it = object.begin(); it != object.end(); ++it, ++i) {
+    out << "  " << nlohmann::ordered_json(it.key()).dump() << ": " << it.value().dump()
+        << (i + 1 < object.size() ? ",\n" : "\n");
+  }
+  out << "}" << std::endl;
 }
 
 void print_error(const std::string& message) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "symbolic/surface.h"
 
@@ -90,6 +91,10 @@ void require_writable_location(const std::string& path, const std::string& optio
 //! renamed over path only when complete: an existing file is never truncated or left half
 //! written.  "-" writes to stdout.  Throws InvalidInput if the file cannot be written.
 void write_text_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+
+//! Prints a JSON object with one top-level key per line, each value on one line (readable and
+//! still valid JSON); other values as one line.
+void print_json(std::ostream& out, const nlohmann::ordered_json& object);
 
 //! Prints `error: <message>` (newlines flattened) as a single line on stderr.
 void print_error(const std::string& message);

@@ -50,18 +50,16 @@ std::string to_text(const T& value) {
   return s.str();
 }
 
-void check_lambda(double lambda) {
+//! Throws InvalidInput unless 0 < λ < 1/3; returns whether Theorem 6.1 covers λ (λ ≤ 0.06).
+bool check_lambda(double lambda) {
   if (!std::isfinite(lambda) || lambda <= 0 || lambda >= lambda_limit) {
     throw InvalidInput("--lambda must satisfy 0 < lambda < 1/3, got " + format_number(lambda));
   }
-  if (lambda > theorem_lambda) {
-    print_warning("lambda = " + format_number(lambda) +
-                  " > 0.06: Theorem 6.1 does not cover it (no guarantee of topology or quality)");
-  }
+  return lambda <= theorem_lambda;
 }
 
 ExitCode run_mesh(const MeshOptions& o) {
-  check_lambda(o.lambda);
+  const bool covered = check_lambda(o.lambda);
   if (o.input_mesh_option->count() > 0) {
     if (o.surface.given()) throw InvalidInput("--input-mesh excludes --surface and --expr");
     (void)read_mesh(o.input_mesh);  // a missing or corrupt file is reported as such first
@@ -111,11 +109,24 @@ ExitCode run_mesh(const MeshOptions& o) {
   if (out == "-") throw InvalidInput("--out: a mesh file name is required (\"-\" is only for --stats)");
   if (stats == out) throw InvalidInput("--stats and --out name the same file " + out);
 
+  // All options are valid from here on: a warning now cannot precede an `error:` about them.
+  if (!covered) {
+    print_warning("lambda = " + format_number(o.lambda) +
+                  " > 0.06: Theorem 6.1 does not cover it (no guarantee of topology or quality)");
+  }
   if (!o.quiet) {
-    options.progress = [](const std::string& message) { std::cerr << "delmesh: " << message << std::endl; };
-    std::cerr << "delmesh: meshing " << input.name << " (" << input.surface.text() << " = 0) in "
-              << format_box(input.box) << ", lambda " << format_number(o.lambda) << ", phase " << o.phase
-              << std::endl;
+    // The header goes out with the first progress report, i.e. once del_mesh has accepted the
+    // surface: a surface rejected as invalid input gives the single `error:` line only.
+    auto header = std::make_shared<std::string>("delmesh: meshing " + input.name + " (" + input.surface.text() +
+                                                " = 0) in " + format_box(input.box) + ", lambda " +
+                                                format_number(o.lambda) + ", phase " + o.phase);
+    options.progress = [header](const std::string& message) {
+      if (!header->empty()) {
+        std::cerr << *header << std::endl;
+        header->clear();
+      }
+      std::cerr << "delmesh: " << message << std::endl;
+    };
   }
 
   DelMeshResult result = del_mesh(input.surface, input.box, options);
@@ -159,12 +170,14 @@ ExitCode run_mesh(const MeshOptions& o) {
 
 Command add_mesh_command(CLI::App& parent) {
   auto o = std::make_shared<MeshOptions>();
-  CLI::App* sub = parent.add_subcommand(
-      "mesh",
+  CLI::App* sub = parent.add_subcommand("mesh", "Mesh a surface with DelMesh; write the mesh and its statistics");
+  sub->footer(
       "Mesh the surface E = 0 with DelMesh (Sec. 6.2). For 0 < lambda <= 0.06 the output is homeomorphic to "
       "the surface, every triangle has radius-edge ratio <= 1+lambda and every edge roughness <= 2 beta(lambda) "
-      "(Theorem 6.1). Writes the mesh and a statistics JSON. Exit code 3: stopped by --max-points or "
-      "--time-limit, partial mesh and statistics written.");
+      "(Theorem 6.1). Writes the mesh and a statistics JSON." "\n\n"
+      "Exit codes: 0 complete; 2 invalid input (one `error:` line; existing output files are left "
+              "untouched); 3 stopped by --max-points or --time-limit (the partial mesh and the statistics are "
+              "written); 4 internal error.");
   o->surface.add_to(*sub);
   o->input_mesh_option = sub->add_option(
       "--input-mesh", o->input_mesh,

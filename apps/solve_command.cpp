@@ -252,7 +252,7 @@ ExitCode run_solve(const SolveOptions& o) {
     }
     out["boxes"] = result.counters.boxes;
     out["seconds"] = seconds;
-    std::cout << out.dump(2) << std::endl;
+    print_json(std::cout, out);
   } else {
     std::cout << "primitive: " << o.primitive << " (" << query.description << ")\n";
     std::cout << "surface:   " << input.name << ": " << input.surface.text() << " = 0 in " << format_box(input.box)
@@ -283,10 +283,19 @@ ExitCode run_solve(const SolveOptions& o) {
 
 Command add_solve_command(CLI::App& parent) {
   auto o = std::make_shared<SolveOptions>();
-  CLI::App* sub = parent.add_subcommand(
-      "solve",
-      "Solve one numerical primitive of Sec. 5.2 on a surface with a certified solver and print its "
-      "roots in world coordinates (and the regions it could not decide).");
+  CLI::App* sub = parent.add_subcommand("solve", "Solve one numerical primitive of Sec. 5.2 (certified)");
+  sub->footer(
+      "Solve one numerical primitive of Sec. 5.2 on a surface with a certified solver and print its roots in "
+      "world coordinates, and the regions it could neither exclude nor certify (undecided)." "\n\n"
+      
+      "Parameters per primitive:\n"
+      "  surface_critical       [--direction] (default 0,0,1), domain: the box\n"
+      "  surface_line           --point --direction, domain: the line clipped to the box\n"
+      "  surface_plane_contact  --plane-origin --plane-normal, domain: the polygon plane & box\n"
+      "  curve_critical         --plane-origin --plane-normal --direction (in-plane)\n"
+      "  silhouette_plane       --plane-origin --plane-normal --direction\n"
+      "  silhouette_critical    --direction --direction2, domain: the box\n"
+      "Exit codes: 0 solved (whatever the status), 2 invalid input, 4 internal error.");
   o->surface.add_to(*sub);
   std::string names;
   for (const PrimitiveInfo& info : primitive_registry()) names += (names.empty() ? "" : "|") + info.name;

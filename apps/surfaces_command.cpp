@@ -12,9 +12,8 @@
 namespace delmesh::app {
 
 Command add_surfaces_command(CLI::App& parent) {
-  CLI::App* sub = parent.add_subcommand(
-      "surfaces",
-      "List the catalog of named surfaces: name, equation E (the surface is E = 0), the box it lies "
+  CLI::App* sub = parent.add_subcommand("surfaces", "List the catalog of named surfaces");
+  sub->footer("List the catalog of named surfaces: name, equation E (the surface is E = 0), the box it lies "
       "in, its number of components and the genus of each, and a description.");
   auto json = std::make_shared<bool>(false);
   sub->add_flag("--json", *json, "Print a JSON array of objects {name, equation, box (x0,x1,y0,y1,"

@@ -1,6 +1,8 @@
 #include "symbolic/detail/straight_line_program.h"
 
+#include <algorithm>
 #include <atomic>
+#include <functional>
 #include <map>
 #include <ostream>
 #include <sstream>
@@ -52,13 +54,12 @@ int make_ref(Kind kind, int index) { return index * 3 + static_cast<int>(kind); 
 Kind ref_kind(int ref) { return static_cast<Kind>(ref % 3); }
 int ref_index(int ref) { return ref / 3; }
 
-bool is_negative_term(const GiNaC::ex& t) {
-  if (GiNaC::is_a<GiNaC::numeric>(t)) return GiNaC::ex_to<GiNaC::numeric>(t).is_negative();
-  if (GiNaC::is_a<GiNaC::mul>(t) && t.nops() > 0) {
-    const GiNaC::ex last = t.op(t.nops() - 1);
-    return GiNaC::is_a<GiNaC::numeric>(last) && GiNaC::ex_to<GiNaC::numeric>(last).is_negative();
-  }
-  return false;
+
+std::uint64_t mix(std::uint64_t h, std::uint64_t v) {  // splitmix64 finaliser of h ⊕ v
+  std::uint64_t z = h ^ (v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2));
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
 }
 
 }  // namespace
@@ -74,14 +75,10 @@ class StraightLineProgram::Compiler {
     }
   }
 
+  //! The register holding the value of e.
   int compile(const GiNaC::ex& e) {
-    if (share_) {
-      const auto it = memo_.find(e);
-      if (it != memo_.end()) return it->second;
-    }
-    const int ref = compile_uncached(e);
-    if (share_) memo_.emplace(e, ref);
-    return ref;
+    const SignedRef v = signed_value(e);
+    return v.negated ? emit(OpCode::neg, v.ref) : v.ref;
   }
 
   //! Fixes the register numbers: [inputs | constants | instructions].
@@ -105,20 +102,44 @@ class StraightLineProgram::Compiler {
   }
 
  private:
-  int compile_uncached(const GiNaC::ex& e) {
+  //! value = (negated ? −1 : 1) · register[ref].  Sums are compiled up to sign in one canonical
+  //! orientation, so that s and −s (which GiNaC may produce in either form, depending on its
+  //! term order) share one computation; the sign travels outwards through products and odd
+  //! powers and becomes a subtraction in sums.  Negation is exact in every scalar type, so this
+  //! changes no rounding.
+  struct SignedRef {
+    int ref;
+    bool negated;
+  };
+
+  SignedRef signed_value(const GiNaC::ex& e) {
+    if (share_) {
+      const auto it = memo_.find(e);
+      if (it != memo_.end()) return it->second;
+    }
+    const SignedRef v = signed_value_uncached(e);
+    if (share_) memo_.emplace(e, v);
+    return v;
+  }
+
+  SignedRef signed_value_uncached(const GiNaC::ex& e) {
     using namespace GiNaC;
     if (is_a<symbol>(e)) {
       const auto it = symbols_.find(e);
       if (it == symbols_.end())
         unsupported(e, "the symbol is neither an unknown nor a parameter of the system");
-      return it->second;
+      return {it->second, false};
     }
-    if (is_a<numeric>(e)) return rational_constant(e);
+    if (is_a<numeric>(e)) {
+      const numeric& q = ex_to<numeric>(e);
+      if (!q.is_rational()) unsupported(e, "only exact real rational numbers can be compiled");
+      return {rational_constant(abs(q)), q.is_negative()};
+    }
     if (is_a<constant>(e)) {
-      if (e.is_equal(Pi)) return pi_constant();
+      if (e.is_equal(Pi)) return {pi_constant(), false};
       unsupported(e, "the only supported named constant is Pi");
     }
-    if (is_a<add>(e)) return compile_add(e);
+    if (is_a<add>(e)) return compile_add(e, canonical(e).negative);
     if (is_a<mul>(e)) return compile_mul(e);
     if (is_a<power>(e)) return compile_power(e.op(0), e.op(1), e);
     if (is_a<function>(e)) {
@@ -130,17 +151,22 @@ class StraightLineProgram::Compiler {
       else if (name == "cos") op = OpCode::cos;
       else unsupported(e, "the function '" + name + "' is not supported (exp, log, sqrt, sin, cos are)");
       if (e.nops() != 1) unsupported(e, "expected one argument");
-      return emit(op, compile(e.op(0)));
+      return {emit(op, compile(e.op(0))), false};
     }
     unsupported(e, "unsupported kind of expression");
   }
 
-  int rational_constant(const GiNaC::ex& e) {
-    const GiNaC::numeric& q = GiNaC::ex_to<GiNaC::numeric>(e);
-    if (!q.is_rational()) unsupported(e, "only exact real rational numbers can be compiled");
+  //! A constant register holding q ≥ 0 (shared between equal constants when sharing).
+  int rational_constant(const GiNaC::numeric& q) {
+    if (share_) {
+      const auto it = constant_refs_.find(q);
+      if (it != constant_refs_.end()) return it->second;
+    }
     const std::string text = to_text(q.numer()) + "/" + to_text(q.denom());
     program_.constants_.push_back(Constant{Rational(text), false});
-    return make_ref(Kind::constant, static_cast<int>(program_.constants_.size() - 1));
+    const int ref = make_ref(Kind::constant, static_cast<int>(program_.constants_.size() - 1));
+    if (share_) constant_refs_.emplace(q, ref);
+    return ref;
   }
 
   int pi_constant() {
@@ -148,81 +174,167 @@ class StraightLineProgram::Compiler {
     return make_ref(Kind::constant, static_cast<int>(program_.constants_.size() - 1));
   }
 
-  int compile_add(const GiNaC::ex& e) {
-    int acc = -1;
-    std::vector<GiNaC::ex> negatives;
-    for (std::size_t i = 0; i < e.nops(); ++i) {
-      const GiNaC::ex t = e.op(i);
-      if (is_negative_term(t)) {
-        negatives.push_back(-t);
-      } else {
-        const int r = compile(t);
-        acc = acc < 0 ? r : emit(OpCode::add, acc, r);
+  //! The canonical form of an expression up to sign, independent of the run.  GiNaC orders the
+  //! operands of sums and products by hash values seeded with type_info addresses, which change
+  //! from run to run (ASLR), and picks the sign of a sum under an even power accordingly.  The
+  //! compiler instead visits operands sorted by `hash` and orients every sum by it, so the program
+  //! (and every rounding it performs) is the same in every run.  value(e) = ±M(e) where M(e) is
+  //! the canonical magnitude identified by `hash`, and `negative` gives the sign.
+  struct Canon {
+    std::uint64_t hash;
+    bool negative;
+  };
+
+  Canon canonical(const GiNaC::ex& e) {
+    using namespace GiNaC;
+    const auto it = canon_.find(e);
+    if (it != canon_.end()) return it->second;
+    Canon c{0, false};
+    const auto signed_hash = [](const Canon& x, bool flip) { return mix(x.hash, (x.negative != flip) ? 2 : 1); };
+    if (is_a<symbol>(e)) {
+      const auto s = symbols_.find(e);
+      c.hash = mix(1, s == symbols_.end() ? std::hash<std::string>()(ex_to<symbol>(e).get_name()) : s->second + 1);
+    } else if (is_a<numeric>(e)) {
+      const numeric& q = ex_to<numeric>(e);
+      c.negative = q.is_real() && q.is_negative();
+      c.hash = mix(2, std::hash<std::string>()(to_text(c.negative ? ex(-q) : e)));
+    } else if (is_a<add>(e)) {
+      std::vector<Canon> terms;
+      for (std::size_t i = 0; i < e.nops(); ++i) terms.push_back(canonical(e.op(i)));
+      std::uint64_t h[2];
+      for (int flip = 0; flip < 2; ++flip) {
+        std::vector<std::uint64_t> keys;
+        for (const Canon& t : terms) keys.push_back(signed_hash(t, flip));
+        std::sort(keys.begin(), keys.end());
+        h[flip] = 3;
+        for (std::uint64_t k : keys) h[flip] = mix(h[flip], k);
       }
+      c.negative = h[1] < h[0];  // orient the sum by the smaller hash
+      c.hash = h[c.negative ? 1 : 0];
+    } else if (is_a<mul>(e)) {
+      std::vector<std::uint64_t> keys;
+      for (std::size_t i = 0; i < e.nops(); ++i) {
+        const Canon f = canonical(e.op(i));
+        c.negative ^= f.negative;
+        const bool unit = is_a<numeric>(e.op(i)) && abs(ex_to<numeric>(e.op(i))).is_equal(numeric(1));
+        if (!unit) keys.push_back(f.hash);  // −x is x up to sign
+      }
+      std::sort(keys.begin(), keys.end());
+      if (keys.size() == 1) {
+        c.hash = keys[0];
+      } else {
+        c.hash = 4;
+        for (std::uint64_t k : keys) c.hash = mix(c.hash, k);
+      }
+    } else if (is_a<power>(e)) {
+      const Canon b = canonical(e.op(0));
+      const ex& k = e.op(1);
+      const bool integer = is_a<numeric>(k) && ex_to<numeric>(k).is_integer();
+      c.hash = mix(mix(5, integer ? b.hash : signed_hash(b, false)), canonical(k).hash ^ (canonical(k).negative ? 7 : 0));
+      c.negative = integer && b.negative && ex_to<numeric>(k).is_odd();
+    } else {
+      c.hash = is_a<function>(e) ? mix(6, std::hash<std::string>()(ex_to<function>(e).get_name()))
+                                 : mix(7, std::hash<std::string>()(to_text(e)));
+      for (std::size_t i = 0; i < e.nops(); ++i) c.hash = mix(c.hash, signed_hash(canonical(e.op(i)), false));
     }
-    for (const GiNaC::ex& t : negatives) {
-      const int r = compile(t);
-      acc = acc < 0 ? emit(OpCode::neg, r) : emit(OpCode::sub, acc, r);
-    }
-    return acc;
+    canon_.emplace(e, c);
+    return c;
   }
 
-  int compile_mul(const GiNaC::ex& e) {
+  //! The operands of a sum or product in canonical order.
+  std::vector<GiNaC::ex> sorted_operands(const GiNaC::ex& e) {
+    std::vector<std::pair<std::uint64_t, GiNaC::ex>> keyed;
+    for (std::size_t i = 0; i < e.nops(); ++i) keyed.emplace_back(canonical(e.op(i)).hash, e.op(i));
+    std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<GiNaC::ex> out;
+    for (auto& k : keyed) out.push_back(k.second);
+    return out;
+  }
+
+  //! Σ terms as a chain of additions and subtractions (positive terms first); with flip, the
+  //! chain computes −Σ terms and the result is marked negated.
+  SignedRef compile_add(const GiNaC::ex& e, bool flip) {
+    std::vector<SignedRef> terms;
+    for (const GiNaC::ex& t : sorted_operands(e)) {
+      SignedRef v = signed_value(t);
+      v.negated ^= flip;
+      terms.push_back(v);
+    }
+    int acc = -1;
+    for (const SignedRef& t : terms)
+      if (!t.negated) acc = acc < 0 ? t.ref : emit(OpCode::add, acc, t.ref);
+    if (acc < 0) {  // every term negative: −(Σ |terms|)
+      for (const SignedRef& t : terms) acc = acc < 0 ? t.ref : emit(OpCode::add, acc, t.ref);
+      return {acc, !flip};
+    }
+    for (const SignedRef& t : terms)
+      if (t.negated) acc = emit(OpCode::sub, acc, t.ref);
+    return {acc, flip};
+  }
+
+  //! ± (|coefficient| · Π numerator factors) / Π denominator factors.
+  SignedRef compile_mul(const GiNaC::ex& e) {
     using namespace GiNaC;
-    numeric coefficient(1);
-    int numerator = -1, denominator = -1;
-    for (std::size_t i = 0; i < e.nops(); ++i) {
-      const ex f = e.op(i);
-      if (is_a<numeric>(f)) {
-        coefficient *= ex_to<numeric>(f);
+    bool negated = false;
+    int numerator = -1, denominator = -1, coefficient = -1;
+    for (const ex& f : sorted_operands(e)) {
+      SignedRef v;
+      bool in_denominator = false;
+      if (is_a<numeric>(f) && ex_to<numeric>(f).is_rational()) {
+        const numeric& q = ex_to<numeric>(f);
+        negated ^= q.is_negative();
+        if (!abs(q).is_equal(numeric(1))) coefficient = rational_constant(abs(q));
         continue;
       }
       if (is_a<power>(f) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_negative()) {
-        const int r = compile(pow(f.op(0), -f.op(1)));
-        denominator = denominator < 0 ? r : emit(OpCode::mul, denominator, r);
-        continue;
+        v = signed_value(pow(f.op(0), -f.op(1)));
+        in_denominator = true;
+      } else {
+        v = signed_value(f);
       }
-      const int r = compile(f);
-      numerator = numerator < 0 ? r : emit(OpCode::mul, numerator, r);
+      negated ^= v.negated;
+      int& chain = in_denominator ? denominator : numerator;
+      chain = chain < 0 ? v.ref : emit(OpCode::mul, chain, v.ref);
     }
-    if (!coefficient.is_equal(numeric(1)) && !coefficient.is_equal(numeric(-1))) {
-      const int c = compile(coefficient.is_negative() ? ex(-coefficient) : ex(coefficient));
-      numerator = numerator < 0 ? c : emit(OpCode::mul, c, numerator);
-    }
+    if (coefficient >= 0) numerator = numerator < 0 ? coefficient : emit(OpCode::mul, coefficient, numerator);
     int result;
     if (numerator < 0)
-      result = denominator < 0 ? compile(numeric(1)) : emit(OpCode::inv, denominator);
+      result = denominator < 0 ? rational_constant(numeric(1)) : emit(OpCode::inv, denominator);
     else
       result = denominator < 0 ? numerator : emit(OpCode::div, numerator, denominator);
-    return coefficient.is_negative() ? emit(OpCode::neg, result) : result;
+    return {result, negated};
   }
 
   //! base^n for an integer n ≠ 0 given the compiled base.
   int integer_power(int base, long n) {
     const long m = n < 0 ? -n : n;
-    if (m > 1L << 30) throw PreconditionViolation("straight-line program: exponent too large");
+    if (m > (1L << 30)) throw PreconditionViolation("straight-line program: exponent too large");
     int r = base;
     if (m == 2) r = emit(OpCode::square, base);
     else if (m > 2) r = emit(OpCode::pow, base, static_cast<int>(m));
     return n < 0 ? emit(OpCode::inv, r) : r;
   }
 
-  int compile_power(const GiNaC::ex& base, const GiNaC::ex& exponent, const GiNaC::ex& e) {
+  SignedRef compile_power(const GiNaC::ex& base, const GiNaC::ex& exponent, const GiNaC::ex& e) {
     using namespace GiNaC;
     if (!is_a<numeric>(exponent)) unsupported(e, "the exponent must be an integer or half an odd integer");
     const numeric& k = ex_to<numeric>(exponent);
     if (k.is_integer()) {
+      if (k.is_zero()) return {rational_constant(numeric(1)), false};
       if (!k.is_pos_integer()) {  // negative: share base^|k| with other occurrences
-        if (k.is_zero()) return compile(numeric(1));
-        return emit(OpCode::inv, compile(pow(base, -exponent)));
+        const SignedRef v = signed_value(pow(base, -exponent));
+        return {emit(OpCode::inv, v.ref), v.negated};
       }
-      if (!k.is_equal(numeric(k.to_long()))) unsupported(e, "exponent too large");
-      return integer_power(compile(base), k.to_long());
+      if (k > numeric(1L << 30)) unsupported(e, "exponent too large");
+      const long n = k.to_long();
+      const SignedRef b = signed_value(base);  // (−b)ⁿ = ±bⁿ
+      return {integer_power(b.ref, n), b.negated && (n % 2 == 1)};
     }
     const numeric twice = k * 2;
     if (twice.is_integer()) {  // k = p/2 with p odd: sqrt(base)^p
+      if (twice > numeric(1L << 30) || twice < numeric(-(1L << 30))) unsupported(e, "exponent too large");
       const int s = emit(OpCode::sqrt, compile(base));
-      return integer_power(s, twice.to_long());
+      return {integer_power(s, twice.to_long()), false};
     }
     unsupported(e, "the exponent must be an integer or half an odd integer");
   }
@@ -243,7 +355,9 @@ class StraightLineProgram::Compiler {
   StraightLineProgram& program_;
   bool share_;
   std::map<GiNaC::ex, int, GiNaC::ex_is_less> symbols_;
-  std::map<GiNaC::ex, int, GiNaC::ex_is_less> memo_;
+  std::map<GiNaC::ex, SignedRef, GiNaC::ex_is_less> memo_;
+  std::map<GiNaC::ex, Canon, GiNaC::ex_is_less> canon_;
+  std::map<GiNaC::numeric, int, GiNaC::ex_is_less> constant_refs_;
   std::map<std::tuple<int, int, int>, int> instructions_;
 };
 

@@ -266,6 +266,56 @@ BOOST_AUTO_TEST_CASE(budgets_return_unexplored_boxes) {
   BOOST_TEST(found);
 }
 
+namespace {
+
+//! Ellipsoid critical points in random directions over random Voronoi-cell-sized boxes near one
+//! of them (so the root is inside, outside or near a face): every known root strictly inside the
+//! box is in a certified or an undecided box; every certified root is a known root inside it.
+void ellipsoid_sweep(int trials, std::uint64_t seed) {
+  const CatalogEntry& entry = catalog_entry("ellipsoid");
+  const CompiledSystem system(surface_critical_system(entry.surface()));
+  const double axes2[3] = {2.25, 1.0, 0.5625};
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> offset(-0.15, 0.15);
+  int certified = 0;
+  for (int trial = 0; trial < trials; ++trial) {
+    const Vec3 d = unit_vector({normal(rng), normal(rng), normal(rng)});
+    double q = 0;
+    for (int i = 0; i < 3; ++i) q += axes2[i] * d[i] * d[i];
+    std::vector<std::vector<double>> known(2, std::vector<double>(3));
+    for (int i = 0; i < 3; ++i) known[0][i] = axes2[i] * d[i] / std::sqrt(q), known[1][i] = -known[0][i];
+    std::vector<std::array<double, 2>> bounds(3);
+    for (int i = 0; i < 3; ++i) {
+      const double c = known[0][i] + offset(rng);
+      bounds[i] = {c - 0.125, c + 0.125};
+    }
+    const SolveResult r = solve_subdivision(system, frame_parameters(d), Domain::from_box(bounds));
+    for (const auto& root : r.roots) {
+      bool matches = false;
+      for (const auto& k : known) matches = matches || contains(root.box, k, 1e-12);
+      BOOST_TEST(matches);
+      ++certified;
+    }
+    for (const auto& k : known) {
+      bool strictly_inside = true;
+      for (int i = 0; i < 3; ++i) strictly_inside = strictly_inside && k[i] > bounds[i][0] + 1e-9 && k[i] < bounds[i][1] - 1e-9;
+      if (!strictly_inside) continue;
+      bool covered = false;
+      for (const auto& root : r.roots) covered = covered || contains(root.box, k, 1e-12);
+      for (const auto& u : r.undecided) covered = covered || contains(u.box, k, 1e-12);
+      BOOST_TEST(covered);
+    }
+  }
+  BOOST_TEST(certified > trials / 10);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(ellipsoid_random_cells_never_miss_never_invent) { ellipsoid_sweep(150, 3); }
+
+BOOST_AUTO_TEST_CASE(ellipsoid_random_cells_sweep, *boost::unit_test::label("slow")) { ellipsoid_sweep(20000, 4); }
+
 BOOST_AUTO_TEST_CASE(invalid_input_throws) {
   const CompiledSystem system = two_circles();
   BOOST_CHECK_THROW((void)solve_subdivision(system, {0, 1, 1}, Domain::from_box({{0, 1}, {0, 1}})), InvalidInput);

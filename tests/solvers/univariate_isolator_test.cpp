@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include <boost/multiprecision/cpp_bin_float.hpp>
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
@@ -195,6 +196,64 @@ BOOST_AUTO_TEST_CASE(box_budget_returns_the_rest_as_undecided) {
     BOOST_TEST(found);
   }
 }
+
+namespace {
+
+//! Random lines against the unit sphere, |p + t v|² = 1, on t ∈ [−1, 1]: every analytic root
+//! strictly inside is certified or undecided; every certified interval holds an analytic root.
+//! Half of the lines are nearly tangent (distance to the centre 1 ± 1e-7…1e-15): a certified
+//! interval must then hold exactly one of the two close roots.
+void sphere_line_sweep(int trials, std::uint64_t seed) {
+  const auto& S = sphere();
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uni(-1, 1);
+  for (int trial = 0; trial < trials; ++trial) {
+    std::array<double, 3> v{normal(rng), normal(rng), normal(rng)}, p{uni(rng), uni(rng), uni(rng)};
+    double vv = 0, pv = 0;
+    for (int i = 0; i < 3; ++i) vv += v[i] * v[i];
+    for (int i = 0; i < 3; ++i) v[i] /= std::sqrt(vv);
+    for (int i = 0; i < 3; ++i) pv += p[i] * v[i];
+    for (int i = 0; i < 3; ++i) p[i] -= pv * v[i];  // p ⟂ v: the closest point to the centre
+    double pp = 0;
+    for (int i = 0; i < 3; ++i) pp += p[i] * p[i];
+    if (trial % 2 == 1) {  // nearly tangent
+      const double target = 1 + std::pow(10.0, -7 - 8 * std::abs(uni(rng))) * (uni(rng) < 0 ? -1 : 1);
+      for (int i = 0; i < 3; ++i) p[i] *= target / std::sqrt(pp);
+      pp = 0;
+      for (int i = 0; i < 3; ++i) pp += p[i] * p[i];
+    }
+    const double shift = 0.5 * uni(rng);  // roots at t = shift ± √(1 − |p|²)
+    for (int i = 0; i < 3; ++i) p[i] -= shift * v[i];
+    // The roots of the line as represented in double, from a·t² + b·t + c = 0 in 50 digits
+    // (a = v·v, b = 2 p·v, c = p·p − 1 are exact there).
+    using Real = boost::multiprecision::cpp_bin_float_50;
+    Real a = 0, b = 0, c = -1;
+    for (int i = 0; i < 3; ++i) a += Real(v[i]) * v[i], b += 2 * Real(p[i]) * v[i], c += Real(p[i]) * p[i];
+    const Real disc = b * b - 4 * a * c;
+    std::vector<double> known;
+    if (disc >= 0) known = {static_cast<double>((-b - sqrt(disc)) / (2 * a)), static_cast<double>((-b + sqrt(disc)) / (2 * a))};
+    const SolveResult r = isolate_line_roots(S.line, &S.polynomial, p, v, -1, 1);
+    for (const auto& root : r.roots) {
+      int inside = 0;  // a certified interval holds exactly one root (near-double pairs included)
+      for (double k : known) inside += (root.box.bounds[0][0] <= k && k <= root.box.bounds[0][1]) ? 1 : 0;
+      BOOST_TEST(inside == 1);
+    }
+    for (double k : known) {
+      if (!(k > -1 + 1e-9 && k < 1 - 1e-9)) continue;
+      bool covered = false;
+      for (const auto& root : r.roots) covered = covered || (root.box.bounds[0][0] - 1e-9 <= k && k <= root.box.bounds[0][1] + 1e-9);
+      for (const auto& u : r.undecided) covered = covered || (u.box.bounds[0][0] - 1e-9 <= k && k <= u.box.bounds[0][1] + 1e-9);
+      BOOST_TEST(covered);
+    }
+  }
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(sphere_random_lines_never_miss_never_invent) { sphere_line_sweep(400, 21); }
+
+BOOST_AUTO_TEST_CASE(sphere_random_lines_sweep, *boost::unit_test::label("slow")) { sphere_line_sweep(200000, 22); }
 
 BOOST_AUTO_TEST_CASE(invalid_input_throws) {
   const auto& S = sphere();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include <boost/multiprecision/cpp_bin_float.hpp>
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
@@ -315,6 +316,54 @@ void ellipsoid_sweep(int trials, std::uint64_t seed) {
 BOOST_AUTO_TEST_CASE(ellipsoid_random_cells_never_miss_never_invent) { ellipsoid_sweep(150, 3); }
 
 BOOST_AUTO_TEST_CASE(ellipsoid_random_cells_sweep, *boost::unit_test::label("slow")) { ellipsoid_sweep(20000, 4); }
+
+namespace {
+
+//! Two circles (centres (0, 0) and (c, 0), radii 1 and r) that cross, nearly touch (gap ±1e-6 …
+//! ±1e-14) or miss, over random boxes: each certified box holds exactly one intersection point
+//! (computed in 50 digits), every intersection strictly inside the box is covered.
+void circles_sweep(int trials, std::uint64_t seed) {
+  const CompiledSystem system = two_circles();
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uni(-1, 1);
+  using Real = boost::multiprecision::cpp_bin_float_50;
+  for (int trial = 0; trial < trials; ++trial) {
+    const double r = 0.5 + 0.4 * std::abs(uni(rng));
+    double c = 1 + r;
+    if (trial % 3 == 0) c -= 0.5 * std::abs(uni(rng));                                        // crossing
+    else c += std::pow(10.0, -6 - 8 * std::abs(uni(rng))) * (uni(rng) < 0 ? -1 : 1);          // nearly touching
+    // u = (1 − r² + c²) / (2c), v = ±√(1 − u²), from the parameters as doubles.
+    const Real U = (Real(1) - Real(r) * r + Real(c) * c) / (2 * Real(c)), V2 = 1 - U * U;
+    std::vector<std::vector<double>> known;
+    if (V2 >= 0) {
+      known.push_back({static_cast<double>(U), static_cast<double>(sqrt(V2))});
+      known.push_back({static_cast<double>(U), -static_cast<double>(sqrt(V2))});
+    }
+    const double cu = 1 + 0.2 * uni(rng), cv = 0.3 * uni(rng);
+    const std::vector<std::array<double, 2>> bounds = {{cu - 0.3, cu + 0.3}, {cv - 0.4, cv + 0.4}};
+    const SolveResult result = solve_subdivision(system, {0, 1, c, r}, Domain::from_box(bounds));
+    for (const auto& root : result.roots) {
+      int inside = 0;
+      for (const auto& k : known) inside += contains(root.box, k) ? 1 : 0;
+      BOOST_TEST(inside == 1);
+    }
+    for (const auto& k : known) {
+      if (!(k[0] > bounds[0][0] + 1e-9 && k[0] < bounds[0][1] - 1e-9 && k[1] > bounds[1][0] + 1e-9 &&
+            k[1] < bounds[1][1] - 1e-9))
+        continue;
+      bool covered = false;
+      for (const auto& root : result.roots) covered = covered || contains(root.box, k, 1e-12);
+      for (const auto& u : result.undecided) covered = covered || contains(u.box, k, 1e-12);
+      BOOST_TEST(covered);
+    }
+  }
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(circles_random_never_miss_never_invent) { circles_sweep(300, 8); }
+
+BOOST_AUTO_TEST_CASE(circles_random_sweep, *boost::unit_test::label("slow")) { circles_sweep(30000, 9); }
 
 BOOST_AUTO_TEST_CASE(invalid_input_throws) {
   const CompiledSystem system = two_circles();

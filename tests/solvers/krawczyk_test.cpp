@@ -91,6 +91,24 @@ BOOST_AUTO_TEST_CASE(mpfi_agrees_and_is_tighter_on_tiny_boxes) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(mpfi_decides_what_double_cancellation_cannot) {
+  // (x + c)² − c² − 2 c x − 1/4 = x² − 1/4 with c = 1e8: in double the enclosure of the value at
+  // a point is ~1 wide (cancellation of 1e16-sized terms), so Krawczyk cannot prove the root
+  // x = 1/2; at 106 bits it can.  This also checks that the MPFI precision reaches the program.
+  GiNaC::symbol x("x"), c("c");
+  const CompiledSystem system({GiNaC::pow(x + c, 2) - c * c - 2 * c * x - GiNaC::numeric(1, 4)}, {x}, {c});
+  const std::vector<Interval> box = {Interval(0.49, 0.51)};
+  {
+    RoundingGuard guard;
+    BOOST_TEST(krawczyk_test(system, {1e8}, box).outcome == KrawczykOutcome::inconclusive);
+  }
+  const KrawczykResult high = krawczyk_test_mpfi(system, {1e8}, box, 106);
+  BOOST_TEST(high.outcome == KrawczykOutcome::unique_root);
+  BOOST_TEST(high.contracted[0].inf() <= 0.5);
+  BOOST_TEST(high.contracted[0].sup() >= 0.5);
+  BOOST_TEST(high.contracted[0].sup() - high.contracted[0].inf() < 1e-3);  // one quadratic step from 0.02
+}
+
 BOOST_AUTO_TEST_CASE(invalid_input_throws) {
   const CompiledSystem system = circle_and_diagonal();
   RoundingGuard guard;

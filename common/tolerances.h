@@ -39,7 +39,7 @@ inline constexpr double generic_direction_perturbation = 1e-3;
 
 //! Homotopy: first step in the path parameter s ∈ [0, 1], and the largest step allowed.
 inline constexpr double homotopy_initial_step = 1e-2;
-inline constexpr double homotopy_max_step = 5e-2;
+inline constexpr double homotopy_max_step = 1e-1;
 
 //! Homotopy corrector: Newton corrections must fall below this (relative to 1 + ‖u‖∞) within
 //! homotopy_corrector_iterations iterations, else the step is rejected and halved.
@@ -160,5 +160,10 @@ inline constexpr double duplicate_sample_relative_distance = 1e-9;
 inline constexpr int box_face_max_depth = 14;
 //! The mesher reports progress at most this often (seconds).
 inline constexpr double progress_interval_seconds = 0.5;
+
+//! Subdivision: a box whose enclosure of f at its midpoint is wider than this fraction of the
+//! mean-value enclosure over the whole box is limited by rounding, not by its size; it is
+//! re-examined in MPFI before being bisected further.
+inline constexpr double precision_limited_ratio = 0.25;
 
 }  // namespace delmesh::tolerances

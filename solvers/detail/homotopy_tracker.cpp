@@ -227,15 +227,12 @@ class PathTracker {
     return false;
   }
 
-  //! 2-norm condition number of J with rows scaled to unit length (∞ if a row vanishes).
+  //! 2-norm condition number σ_max / σ_min of J (∞ if σ_min = 0).  Rows are not equilibrated:
+  //! at a singular point of Σ a Jacobian row can vanish up to round-off, and scaling it to unit
+  //! length would hide exactly the singularity this must detect.
   double condition(const AffineMat& J) const {
-    AffineMat scaled = J;
-    for (int i = 0; i < n_; ++i) {
-      const double r = scaled.row(i).norm();
-      if (!(r > 0) || !std::isfinite(r)) return std::numeric_limits<double>::infinity();
-      scaled.row(i) /= r;
-    }
-    Eigen::JacobiSVD<AffineMat> svd(scaled);
+    if (!J.allFinite()) return std::numeric_limits<double>::infinity();
+    Eigen::JacobiSVD<AffineMat> svd(J);
     const auto& sigma = svd.singularValues();
     const double smallest = sigma[n_ - 1];
     return smallest > 0 ? sigma[0] / smallest : std::numeric_limits<double>::infinity();

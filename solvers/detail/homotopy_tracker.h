@@ -45,7 +45,7 @@ struct PathEndpoint {
   PathOutcome outcome = PathOutcome::failed;
   std::vector<Complex> point;  //!< last point of the path in u (after the endgame's Newton refinement)
   double s = 0;                //!< path parameter reached
-  double condition = 0;        //!< 2-norm condition number of the row-equilibrated J_f at point
+  double condition = 0;        //!< 2-norm condition number of J_f at point
   double last_correction = 0;  //!< size of the last Newton correction at s = 1 (accuracy estimate)
   std::size_t steps = 0;       //!< accepted steps
   std::size_t rejections = 0;  //!< rejected steps

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <deque>
 #include <functional>
 #include <map>
 #include <ostream>
@@ -370,6 +371,7 @@ StraightLineProgram::StraightLineProgram(const std::vector<GiNaC::ex>& outputs,
   output_refs.reserve(outputs.size());
   for (const GiNaC::ex& e : outputs) output_refs.push_back(compiler.compile(e));
   compiler.finish(output_refs);
+  schedule();
 
   for (const Constant& c : constants_) {
     double d;
@@ -387,6 +389,64 @@ StraightLineProgram::StraightLineProgram(const std::vector<GiNaC::ex>& outputs,
     constants_double_.push_back(d);
     constants_interval_.push_back(i);
     constants_complex_.push_back(z);
+  }
+}
+
+namespace {
+bool is_binary(OpCode op) { return op == OpCode::add || op == OpCode::sub || op == OpCode::mul || op == OpCode::div; }
+}  // namespace
+
+void StraightLineProgram::schedule() {
+  // Kahn's algorithm; among the ready instructions prefer the opcode of the previous one, else the
+  // opcode with the most ready instructions (ties: the smaller opcode).  Deterministic.
+  const std::size_t n = code_.size();
+  const std::int32_t base = static_cast<std::int32_t>(n_inputs_ + constants_.size());
+  constexpr int n_ops = static_cast<int>(OpCode::cos) + 1;
+  std::vector<int> pending(n, 0);
+  std::vector<std::vector<std::int32_t>> users(n);
+  std::vector<std::deque<std::int32_t>> ready(n_ops);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Instruction& ins = code_[i];
+    std::int32_t deps[2] = {ins.a, is_binary(ins.op) ? ins.b : -1};
+    if (deps[1] == deps[0]) deps[1] = -1;
+    for (std::int32_t d : deps)
+      if (d >= base) {
+        ++pending[i];
+        users[d - base].push_back(static_cast<std::int32_t>(i));
+      }
+    if (pending[i] == 0) ready[static_cast<int>(ins.op)].push_back(static_cast<std::int32_t>(i));
+  }
+  std::vector<std::int32_t> order, position(n);
+  order.reserve(n);
+  int current = -1;
+  while (order.size() < n) {
+    if (current < 0 || ready[current].empty()) {
+      current = 0;
+      for (int op = 1; op < n_ops; ++op)
+        if (ready[op].size() > ready[current].size()) current = op;
+    }
+    const std::int32_t i = ready[current].front();
+    ready[current].pop_front();
+    position[i] = static_cast<std::int32_t>(order.size());
+    order.push_back(i);
+    for (std::int32_t u : users[i])
+      if (--pending[u] == 0) ready[static_cast<int>(code_[u].op)].push_back(u);
+  }
+  const auto renumber = [&](std::int32_t reg) { return reg >= base ? base + position[reg - base] : reg; };
+  std::vector<Instruction> code;
+  code.reserve(n);
+  for (std::int32_t i : order) {
+    Instruction ins = code_[i];
+    ins.a = renumber(ins.a);
+    if (is_binary(ins.op)) ins.b = renumber(ins.b);
+    code.push_back(ins);
+  }
+  code_ = std::move(code);
+  for (std::int32_t& reg : outputs_) reg = renumber(reg);
+  blocks_.clear();
+  for (std::uint32_t k = 0; k < n; ++k) {
+    if (blocks_.empty() || blocks_.back().op != code_[k].op) blocks_.push_back(Block{code_[k].op, k, k});
+    blocks_.back().end = k + 1;
   }
 }
 
@@ -445,24 +505,32 @@ void StraightLineProgram::evaluate(const T* in_first, std::size_t n_first, const
   }
   for (std::size_t i = 0; i < n_inputs_; ++i) Tr::assign(r[i], i < n_first ? in_first[i] : in_rest[i - n_first]);
 
-  T* out = r + n_inputs_ + n_c;
-  for (const Instruction& ins : code_) {
-    T& o = *out++;
-    switch (ins.op) {
-      case OpCode::add: Tr::add(o, r[ins.a], r[ins.b]); break;
-      case OpCode::sub: Tr::sub(o, r[ins.a], r[ins.b]); break;
-      case OpCode::mul: Tr::mul(o, r[ins.a], r[ins.b]); break;
-      case OpCode::div: Tr::div(o, r[ins.a], r[ins.b]); break;
-      case OpCode::neg: Tr::neg(o, r[ins.a]); break;
-      case OpCode::inv: Tr::inv(o, r[ins.a]); break;
-      case OpCode::square: Tr::square(o, r[ins.a]); break;
-      case OpCode::pow: Tr::pow(o, r[ins.a], ins.b); break;
-      case OpCode::exp: Tr::exp(o, r[ins.a]); break;
-      case OpCode::log: Tr::log(o, r[ins.a]); break;
-      case OpCode::sqrt: Tr::sqrt(o, r[ins.a]); break;
-      case OpCode::sin: Tr::sin(o, r[ins.a]); break;
-      case OpCode::cos: Tr::cos(o, r[ins.a]); break;
+  T* const out = r + n_inputs_ + n_c;
+  const Instruction* const code = code_.data();
+  for (const Block& block : blocks_) {
+    const std::uint32_t begin = block.begin, end = block.end;
+#define DELMESH_SLP_RUN(STATEMENT)                     \
+  for (std::uint32_t k = begin; k < end; ++k) {        \
+    const Instruction& ins = code[k];                  \
+    STATEMENT;                                         \
+  }                                                    \
+  break;
+    switch (block.op) {
+      case OpCode::add: DELMESH_SLP_RUN(Tr::add(out[k], r[ins.a], r[ins.b]))
+      case OpCode::sub: DELMESH_SLP_RUN(Tr::sub(out[k], r[ins.a], r[ins.b]))
+      case OpCode::mul: DELMESH_SLP_RUN(Tr::mul(out[k], r[ins.a], r[ins.b]))
+      case OpCode::div: DELMESH_SLP_RUN(Tr::div(out[k], r[ins.a], r[ins.b]))
+      case OpCode::neg: DELMESH_SLP_RUN(Tr::neg(out[k], r[ins.a]))
+      case OpCode::inv: DELMESH_SLP_RUN(Tr::inv(out[k], r[ins.a]))
+      case OpCode::square: DELMESH_SLP_RUN(Tr::square(out[k], r[ins.a]))
+      case OpCode::pow: DELMESH_SLP_RUN(Tr::pow(out[k], r[ins.a], ins.b))
+      case OpCode::exp: DELMESH_SLP_RUN(Tr::exp(out[k], r[ins.a]))
+      case OpCode::log: DELMESH_SLP_RUN(Tr::log(out[k], r[ins.a]))
+      case OpCode::sqrt: DELMESH_SLP_RUN(Tr::sqrt(out[k], r[ins.a]))
+      case OpCode::sin: DELMESH_SLP_RUN(Tr::sin(out[k], r[ins.a]))
+      case OpCode::cos: DELMESH_SLP_RUN(Tr::cos(out[k], r[ins.a]))
     }
+#undef DELMESH_SLP_RUN
   }
   for (std::size_t j = 0; j < outputs_.size(); ++j) {
     T& target = j < n_out_first ? out_first[j] : out_rest[j - n_out_first];

@@ -49,7 +49,12 @@ class StraightLineProgram {
   std::size_t n_constants() const { return constants_.size(); }
   //! Number of arithmetic instructions (inputs and constants not counted).
   std::size_t instruction_count() const { return code_.size(); }
+  //! The instructions in execution order; instruction k writes register
+  //! n_inputs() + n_constants() + k.
   const std::vector<Instruction>& code() const { return code_; }
+  //! Number of runs of equal opcodes in code(): the evaluator dispatches once per run (the
+  //! instructions are scheduled, dependencies permitting, to make runs long).
+  std::size_t block_count() const { return blocks_.size(); }
 
   //! outputs[i] = value of output i at the inputs.  Inputs are read from in_first[0, n_first)
   //! followed by in_rest[0, n_inputs − n_first); outputs are written to out_first[0, n_out_first)
@@ -76,6 +81,11 @@ class StraightLineProgram {
   std::size_t n_inputs_ = 0;
   std::vector<Constant> constants_;
   std::vector<Instruction> code_;
+  struct Block {
+    OpCode op;
+    std::uint32_t begin, end;  // code_[begin, end) all have opcode op
+  };
+  std::vector<Block> blocks_;
   std::vector<std::int32_t> outputs_;  // register of each output
   std::uint64_t serial_ = 0;           // unique per program: keys the per-thread constant cache
   // Constants pre-converted for the fixed-precision types.
@@ -85,6 +95,8 @@ class StraightLineProgram {
 
   template <class T>
   void load_constants(T* registers) const;
+  //! Reorders code_ (a topological order that groups equal opcodes) and fills blocks_.
+  void schedule();
 };
 
 #define DELMESH_DECLARE_SLP_EVALUATE(T)                                                         \

@@ -1,0 +1,376 @@
+//! \file compare_cgal.cpp
+//! delmesh against CGAL 5.5.1's Surface_mesher (make_surface_mesh) and Mesh_3 (make_mesh_3 with
+//! facet criteria only), in one process run, on catalog surfaces given by their compiled E:
+//!  1. benchmark: torus and genus2 with delmesh (λ = 0.06, size bound 0.05), Surface_mesher (angle
+//!     30°, radius 0.05, distance 0.005) and Mesh_3 (facet_angle 30, facet_size 0.05,
+//!     facet_distance 0.005, no perturb, no exude); the ratio of delmesh's seconds per output
+//!     vertex to Mesh_3's (issue 5 target ≤ 3);
+//!  2. coarsest: delmesh at λ = 0.06 without size bound against CGAL at the coarsest of a ladder of
+//!     settings that still gives the right topology;
+//!  3. demo: CGAL at coarse settings on thin_handle / two_blobs / near_sheets, where it loses a
+//!     handle or a component, against delmesh without size bound.
+//! Every mesh is judged by the independent checker (meshing/mesh_checker.h) against the catalog's
+//! topology.  Output: <out-dir>/compare_cgal.csv (and the meshes under <out-dir>/meshes/).
+
+#include <CGAL/Complex_2_in_triangulation_3.h>
+#include <CGAL/Implicit_surface_3.h>
+#include <CGAL/Labeled_mesh_domain_3.h>
+#include <CGAL/Mesh_complex_3_in_triangulation_3.h>
+#include <CGAL/Mesh_criteria_3.h>
+#include <CGAL/Mesh_triangulation_3.h>
+#include <CGAL/Surface_mesh_default_criteria_3.h>
+#include <CGAL/Surface_mesh_default_triangulation_3.h>
+#include <CGAL/make_mesh_3.h>
+#include <CGAL/make_surface_mesh.h>
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <unordered_map>
+
+#include "common/errors.h"
+#include "experiments/experiment_support.h"
+#include "meshing/del_mesh.h"
+#include "meshing/mesh_io.h"
+#include "symbolic/catalog.h"
+
+namespace {
+
+using namespace delmesh;
+using namespace delmesh::experiments;
+namespace fs = std::filesystem;
+
+struct CgalSettings {
+  double angle_deg = 30, radius = 0.05, distance = 0.005;
+  std::string text() const {
+    std::ostringstream out;
+    out << "angle=" << angle_deg << ";radius=" << radius << ";distance=" << distance;
+    return out.str();
+  }
+};
+
+//! One mesher run: the output as a soup, how long it took, and how it ended.
+struct Run {
+  std::string method, parameters, status = "complete";
+  TriangleSoup soup;
+  double seconds = 0;
+};
+
+//! Orients every triangle so that its normal agrees with ∇E at its centroid (outward for E < 0
+//! inside).  Only for the written files; the checker decides orientability itself.
+void orient_by_gradient(TriangleSoup& soup, const CompiledE& E) {
+  for (auto& t : soup.triangles) {
+    const Point3 &a = soup.points[t[0]], &b = soup.points[t[1]], &c = soup.points[t[2]];
+    const Vector3 n = CGAL::cross_product(b - a, c - a);
+    const std::array<double, 3> g_at{(a.x() + b.x() + c.x()) / 3, (a.y() + b.y() + c.y()) / 3,
+                                     (a.z() + b.z() + c.z()) / 3};
+    std::array<double, 3> g{};
+    E.value_and_gradient(g_at, g);
+    if (n.x() * g[0] + n.y() * g[1] + n.z() * g[2] < 0) std::swap(t[1], t[2]);
+  }
+}
+
+//! The facets of a CGAL complex as a soup, vertices numbered in order of first appearance.
+template <class FacetIterator, class ToPoint>
+TriangleSoup soup_of_facets(FacetIterator begin, FacetIterator end, ToPoint to_point) {
+  TriangleSoup soup;
+  std::unordered_map<const void*, std::size_t> index;
+  for (auto it = begin; it != end; ++it) {
+    const auto cell = it->first;
+    const int opposite = it->second;
+    std::array<std::size_t, 3> triangle{};
+    for (int k = 0; k < 3; ++k) {
+      const auto vertex = cell->vertex((opposite + 1 + k) & 3);
+      const auto [at, inserted] = index.emplace(&*vertex, soup.points.size());
+      if (inserted) soup.points.push_back(to_point(vertex->point()));
+      triangle[k] = at->second;
+    }
+    soup.triangles.push_back(triangle);
+  }
+  return soup;
+}
+
+// --- CGAL Surface_mesher -------------------------------------------------------------------------
+using SmTriangulation = CGAL::Surface_mesh_default_triangulation_3;
+using SmComplex = CGAL::Complex_2_in_triangulation_3<SmTriangulation>;
+using SmTraits = SmTriangulation::Geom_traits;
+using SmSurface = CGAL::Implicit_surface_3<SmTraits, std::function<SmTraits::FT(SmTraits::Point_3)>>;
+
+Run run_surface_mesher(const CompiledE& E, const std::array<double, 3>& centre, double squared_radius,
+                       const CgalSettings& s) {
+  Run run;
+  run.method = "surface_mesher";
+  run.parameters = s.text() + ";manifold_tag";
+  const Stopwatch clock;
+  SmTriangulation triangulation;
+  SmComplex complex(triangulation);
+  SmSurface surface([E](SmTraits::Point_3 p) { return E(p.x(), p.y(), p.z()); },
+                    SmTraits::Sphere_3(SmTraits::Point_3(centre[0], centre[1], centre[2]), squared_radius));
+  CGAL::Surface_mesh_default_criteria_3<SmTriangulation> criteria(s.angle_deg, s.radius, s.distance);
+  CGAL::make_surface_mesh(complex, surface, criteria, CGAL::Manifold_tag());
+  run.soup = soup_of_facets(complex.facets_begin(), complex.facets_end(),
+                            [](const SmTraits::Point_3& p) { return Point3(p.x(), p.y(), p.z()); });
+  run.seconds = clock.seconds();
+  return run;
+}
+
+// --- CGAL Mesh_3 ---------------------------------------------------------------------------------
+using MeshDomain = CGAL::Labeled_mesh_domain_3<Kernel>;
+using M3Triangulation = CGAL::Mesh_triangulation_3<MeshDomain>::type;
+using M3Complex = CGAL::Mesh_complex_3_in_triangulation_3<M3Triangulation>;
+using M3Criteria = CGAL::Mesh_criteria_3<M3Triangulation>;
+
+Run run_mesh_3(const CompiledE& E, const std::array<double, 3>& centre, double squared_radius,
+               const CgalSettings& s) {
+  Run run;
+  run.method = "mesh_3";
+  run.parameters = s.text() + ";facet_criteria_only;no_perturb;no_exude";
+  const Stopwatch clock;
+  namespace p = CGAL::parameters;
+  MeshDomain domain = MeshDomain::create_implicit_mesh_domain(
+      std::function<double(const Point3&)>([E](const Point3& q) { return E(q.x(), q.y(), q.z()); }),
+      Kernel::Sphere_3(Point3(centre[0], centre[1], centre[2]), squared_radius));
+  M3Criteria criteria(p::facet_angle = s.angle_deg, p::facet_size = s.radius, p::facet_distance = s.distance);
+  M3Complex complex = CGAL::make_mesh_3<M3Complex>(domain, criteria, p::no_perturb(), p::no_exude());
+  const auto to_point = [](const M3Triangulation::Point& wp) {
+    return Point3(wp.point().x(), wp.point().y(), wp.point().z());
+  };
+  run.soup = soup_of_facets(complex.facets_in_complex_begin(), complex.facets_in_complex_end(), to_point);
+  run.seconds = clock.seconds();
+  return run;
+}
+
+// --- delmesh -------------------------------------------------------------------------------------
+Run run_delmesh(const CatalogEntry& entry, double lambda, std::optional<double> size_bound,
+                const DelMeshOptions& base) {
+  Run run;
+  run.method = "delmesh";
+  std::ostringstream parameters;
+  parameters << "lambda=" << lambda << ";size_bound=" << (size_bound ? field(*size_bound) : "none")
+             << ";seed=" << base.seed;
+  run.parameters = parameters.str();
+  DelMeshOptions options = base;
+  options.lambda = lambda;
+  options.size_bound = size_bound;
+  const Stopwatch clock;
+  try {
+    DelMeshResult result = del_mesh(entry.surface(), entry.box, options);
+    run.seconds = clock.seconds();
+    std::ostringstream status;
+    status << result.status;
+    run.status = status.str();
+    mesh_to_soup(result.mesh, run.soup.points, run.soup.triangles);
+  } catch (const std::exception& e) {
+    run.seconds = clock.seconds();
+    run.status = std::string("error: ") + e.what();
+    for (char& c : run.status)
+      if (c == ',' || c == '\n') c = ';';
+  }
+  return run;
+}
+
+struct Context {
+  fs::path out_dir;
+  bool write_meshes = true;
+  CsvWriter* csv = nullptr;
+};
+
+std::vector<std::string> csv_columns() {
+  std::vector<std::string> columns{"experiment", "surface", "method", "parameters", "status", "seconds",
+                                   "seconds_per_vertex", "expected_genus", "topology_correct"};
+  append(columns, report_columns());
+  return columns;
+}
+
+//! Checks, prints, writes the mesh and the CSV row of one run; returns the checker's report.
+MeshReport record(Context& context, const std::string& experiment, const CatalogEntry& entry, Run& run,
+                  const CompiledE& E) {
+  MeshReport report;
+  if (!run.soup.triangles.empty()) report = check_mesh(run.soup.points, run.soup.triangles);
+  const bool correct = report.has_topology(entry.genus_per_component);
+  const double per_vertex = report.vertices ? run.seconds / static_cast<double>(report.vertices) : 0.0;
+  std::cout << experiment << " " << entry.name << " " << run.method << " [" << run.parameters << "] "
+            << run.status << ": " << report.vertices << " vertices, min angle " << report.min_angle_deg
+            << " deg, components " << report.components << ", genus " << field(report.genus_per_component)
+            << (correct ? " (correct)" : " (WRONG, expected " + field(entry.genus_per_component) + ")") << ", "
+            << run.seconds << " s" << std::endl;
+  std::vector<std::string> row{experiment, entry.name, run.method, run.parameters, run.status,
+                               field(run.seconds), field(per_vertex), field(entry.genus_per_component),
+                               field(correct)};
+  append(row, report_fields(report));
+  context.csv->row(row);
+  if (context.write_meshes && !run.soup.triangles.empty()) {
+    if (run.method != "delmesh") orient_by_gradient(run.soup, E);
+    std::string settings = run.parameters;
+    for (char& c : settings)
+      if (c == ';' || c == '=') c = '_';
+    const fs::path mesh_dir = context.out_dir / "meshes";
+    fs::create_directories(mesh_dir);
+    write_triangle_soup(run.soup, (mesh_dir / ("compare_" + experiment + "_" + entry.name + "_" + run.method +
+                                               "_" + settings + ".off"))
+                                      .string());
+  }
+  return report;
+}
+
+double seconds_per_vertex(const Run& run) {
+  std::size_t referenced = 0;
+  if (!run.soup.triangles.empty()) referenced = check_mesh(run.soup.points, run.soup.triangles).vertices;
+  return referenced ? run.seconds / static_cast<double>(referenced) : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string field_list(const std::vector<double>& values) {
+  std::string text;
+  for (double v : values) text += (text.empty() ? "" : ";") + field(v);
+  return text;
+}
+
+std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ','))
+    if (!part.empty()) parts.push_back(part);
+  return parts;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"delmesh vs CGAL Surface_mesher and Mesh_3 (issue 5 benchmark, coarsest-topology "
+               "comparison and the topology demo); writes <out-dir>/compare_cgal.csv"};
+  std::string surfaces = "torus,genus2", demo_surfaces = "thin_handle,two_blobs,near_sheets";
+  std::string experiments_to_run = "benchmark,coarsest,demo";
+  double lambda = 0.06, size_bound = 0.05;
+  CgalSettings fine;
+  std::vector<double> coarse_radii{0.5, 1.0};
+  std::vector<double> ladder{0.8, 0.4, 0.2, 0.1, 0.05};
+  std::string out_dir = "out";
+  bool no_meshes = false, skip_delmesh = false;
+  DelMeshOptions base;
+  base.progress = nullptr;
+  app.add_option("--surfaces", surfaces, "benchmark surfaces (catalog names, comma separated)")->capture_default_str();
+  app.add_option("--demo-surfaces", demo_surfaces, "demo surfaces")->capture_default_str();
+  app.add_option("--experiments", experiments_to_run, "any of benchmark,coarsest,demo")->capture_default_str();
+  app.add_option("--lambda", lambda, "delmesh lambda")->capture_default_str();
+  app.add_option("--size-bound", size_bound, "delmesh size bound H in the benchmark")->capture_default_str();
+  app.add_option("--angle", fine.angle_deg, "CGAL facet angle bound (deg), benchmark")->capture_default_str();
+  app.add_option("--radius", fine.radius, "CGAL facet radius / size bound, benchmark")->capture_default_str();
+  app.add_option("--distance", fine.distance, "CGAL facet distance bound, benchmark")->capture_default_str();
+  app.add_option("--coarse-radii", coarse_radii, "CGAL radius bounds of the demo (distance = radius/10)")
+      ->capture_default_str();
+  app.add_option("--ladder", ladder, "CGAL radius bounds tried by 'coarsest' (distance = radius/10), coarse first")
+      ->capture_default_str();
+  app.add_option("--seed", base.seed, "delmesh seed")->capture_default_str();
+  app.add_option("--time-limit", base.time_limit_seconds, "delmesh time limit per run (s), 0 none")
+      ->capture_default_str();
+  app.add_option("--max-points", base.max_points, "delmesh point limit per run")->capture_default_str();
+  app.add_option("--out-dir", out_dir, "output directory")->capture_default_str();
+  app.add_flag("--no-meshes", no_meshes, "do not write the meshes");
+  app.add_flag("--skip-delmesh", skip_delmesh, "run only the CGAL meshers");
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    Context context;
+    context.out_dir = out_dir;
+    context.write_meshes = !no_meshes;
+    CsvWriter csv(fs::path(out_dir) / "compare_cgal.csv", "compare_cgal",
+                  {{"lambda", field(lambda)},
+                   {"size_bound", field(size_bound)},
+                   {"benchmark_cgal", fine.text()},
+                   {"demo_radii", field_list(coarse_radii)},
+                   {"ladder_radii", field_list(ladder)},
+                   {"seed", field(static_cast<long long>(base.seed))},
+                   {"time_limit", field(base.time_limit_seconds)},
+                   {"cgal", CGAL_VERSION_STR}},
+                  csv_columns());
+    context.csv = &csv;
+    const auto wanted = split(experiments_to_run);
+    auto wants = [&wanted](const std::string& name) {
+      return std::find(wanted.begin(), wanted.end(), name) != wanted.end();
+    };
+
+    struct Prepared {
+      const CatalogEntry* entry;
+      CompiledE E;
+      std::array<double, 3> centre;
+      double squared_radius;
+    };
+    auto prepare = [](const std::string& name) {
+      const CatalogEntry& entry = catalog_entry(name);
+      CompiledE E(entry.surface());
+      const auto centre = inside_point(E, entry.box);
+      return Prepared{&entry, E, centre, enclosing_squared_radius(centre, entry.box)};
+    };
+
+    if (wants("benchmark")) {
+      for (const std::string& name : split(surfaces)) {
+        const Prepared s = prepare(name);
+        Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, fine);
+        record(context, "benchmark", *s.entry, sm, s.E);
+        Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, fine);
+        record(context, "benchmark", *s.entry, m3, s.E);
+        if (!skip_delmesh) {
+          Run dm = run_delmesh(*s.entry, lambda, size_bound, base);
+          record(context, "benchmark", *s.entry, dm, s.E);
+          std::cout << "benchmark " << name << ": delmesh seconds per vertex / Mesh_3's = "
+                    << seconds_per_vertex(dm) / seconds_per_vertex(m3) << " (target <= 3)" << std::endl;
+        }
+      }
+    }
+    if (wants("coarsest")) {
+      for (const std::string& name : split(surfaces)) {
+        const Prepared s = prepare(name);
+        std::optional<Run> coarsest_m3;
+        for (double radius : ladder) {
+          const CgalSettings settings{fine.angle_deg, radius, radius / 10};
+          Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, settings);
+          record(context, "coarsest", *s.entry, sm, s.E);
+          Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings);
+          const MeshReport r = record(context, "coarsest", *s.entry, m3, s.E);
+          if (!coarsest_m3 && r.has_topology(s.entry->genus_per_component)) coarsest_m3 = m3;
+        }
+        if (!skip_delmesh) {
+          Run dm = run_delmesh(*s.entry, lambda, std::nullopt, base);
+          record(context, "coarsest", *s.entry, dm, s.E);
+          if (coarsest_m3) {
+            std::cout << "coarsest " << name << ": delmesh (no size bound) seconds per vertex / Mesh_3's at ["
+                      << coarsest_m3->parameters
+                      << "] = " << seconds_per_vertex(dm) / seconds_per_vertex(*coarsest_m3) << std::endl;
+          } else {
+            std::cout << "coarsest " << name << ": no Mesh_3 setting of the ladder had the right topology" << std::endl;
+          }
+        }
+      }
+    }
+    if (wants("demo")) {
+      for (const std::string& name : split(demo_surfaces)) {
+        const Prepared s = prepare(name);
+        for (double radius : coarse_radii) {
+          const CgalSettings coarse{fine.angle_deg, radius, radius / 10};
+          Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, coarse);
+          record(context, "demo", *s.entry, sm, s.E);
+          Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, coarse);
+          record(context, "demo", *s.entry, m3, s.E);
+        }
+        if (!skip_delmesh) {
+          Run dm = run_delmesh(*s.entry, lambda, std::nullopt, base);
+          record(context, "demo", *s.entry, dm, s.E);
+        }
+      }
+    }
+    csv.close();
+    std::cout << "wrote " << csv.path().string() << std::endl;
+  } catch (const InvalidInput& e) {
+    std::cerr << "error: " << e.what() << std::endl;
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << std::endl;
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,203 @@
+#pragma once
+//! \file experiment_support.h
+//! What every experiment program shares (header only: each experiments/*.cpp is one program):
+//! the git revision for CSV headers, a CSV writer whose first line is a `# ` comment with the
+//! revision and the parameters, E compiled for fast double evaluation, a point inside Σ, and the
+//! checker columns.
+//!
+//! CSV convention: line 1 `# program=NAME git=REV date=ISO8601 key=value ...`, line 2 the column
+//! names, then one row per run; numbers with 17 significant digits; fields never contain commas.
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "meshing/mesh_checker.h"
+#include "symbolic/compiled_system.h"
+#include "symbolic/surface.h"
+
+namespace delmesh::experiments {
+
+//! `git rev-parse --short HEAD` of the working directory (plus "-dirty" if tracked files differ),
+//! or "unknown" outside a repository.
+inline std::string git_revision() {
+  auto run = [](const char* command) {
+    std::string text;
+    if (FILE* pipe = ::popen(command, "r")) {
+      char buffer[256];
+      while (std::fgets(buffer, sizeof buffer, pipe)) text += buffer;
+      ::pclose(pipe);
+    }
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+    return text;
+  };
+  std::string revision = run("git rev-parse --short HEAD 2>/dev/null");
+  if (revision.empty()) return "unknown";
+  if (!run("git status --porcelain --untracked-files=no 2>/dev/null").empty()) revision += "-dirty";
+  return revision;
+}
+
+inline std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+//! A CSV file: a comment header line, the column names, then rows.  Written to a temporary name
+//! and renamed by close() (or the destructor), so a crashed run never leaves a half file under the
+//! final name.
+class CsvWriter {
+ public:
+  CsvWriter(const std::filesystem::path& path, const std::string& program,
+            const std::vector<std::pair<std::string, std::string>>& parameters,
+            const std::vector<std::string>& columns)
+      : path_(path), temporary_(path.string() + ".partial"), columns_(columns.size()) {
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    out_.open(temporary_);
+    if (!out_) throw std::runtime_error("cannot write " + temporary_.string());
+    out_ << "# program=" << program << " git=" << git_revision() << " date=" << utc_now();
+    for (const auto& [key, value] : parameters) out_ << ' ' << key << '=' << value;
+    out_ << '\n';
+    for (std::size_t i = 0; i < columns.size(); ++i) out_ << (i ? "," : "") << columns[i];
+    out_ << '\n';
+  }
+  ~CsvWriter() { close(); }
+  CsvWriter(const CsvWriter&) = delete;
+  CsvWriter& operator=(const CsvWriter&) = delete;
+
+  //! One row; the number of fields must equal the number of columns.
+  void row(const std::vector<std::string>& fields) {
+    if (fields.size() != columns_) throw std::logic_error("CSV row has the wrong number of fields");
+    for (std::size_t i = 0; i < fields.size(); ++i) out_ << (i ? "," : "") << fields[i];
+    out_ << '\n';
+    out_.flush();
+  }
+  void close() {
+    if (!out_.is_open()) return;
+    out_.close();
+    std::filesystem::rename(temporary_, path_);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_, temporary_;
+  std::size_t columns_;
+  std::ofstream out_;
+};
+
+inline std::string field(double value) {
+  if (!std::isfinite(value)) return std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf");
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
+}
+inline std::string field(long long value) { return std::to_string(value); }
+inline std::string field(std::size_t value) { return std::to_string(value); }
+inline std::string field(int value) { return std::to_string(value); }
+inline std::string field(bool value) { return value ? "1" : "0"; }
+inline std::string field(const std::string& value) { return value; }
+inline std::string field(const char* value) { return value; }
+//! A list of integers as "a;b;c" (semicolons keep the CSV comma-separated).
+inline std::string field(const std::vector<int>& values) {
+  std::string text;
+  for (std::size_t i = 0; i < values.size(); ++i) text += (i ? ";" : "") + std::to_string(values[i]);
+  return text;
+}
+
+//! Seconds of wall-clock time since construction.
+class Stopwatch {
+ public:
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+//! E and ∇E of a surface compiled once, evaluated in double.  Cheap to copy (shared program).
+class CompiledE {
+ public:
+  explicit CompiledE(const Surface& surface)
+      : system_(std::make_shared<CompiledSystem>(
+            std::vector<GiNaC::ex>{surface.E()},
+            std::vector<GiNaC::symbol>{coordinate_x(), coordinate_y(), coordinate_z()},
+            std::vector<GiNaC::symbol>{})) {}
+  double operator()(double x, double y, double z) const {
+    const double p[3] = {x, y, z};
+    double value = 0;
+    system_->values<double>(p, nullptr, &value);
+    return value;
+  }
+  //! Returns E(p) and writes ∇E(p) to gradient.
+  double value_and_gradient(const std::array<double, 3>& p, std::array<double, 3>& gradient) const {
+    double value = 0;
+    system_->values_and_jacobian<double>(p.data(), nullptr, &value, gradient.data());
+    return value;
+  }
+
+ private:
+  std::shared_ptr<const CompiledSystem> system_;
+};
+
+//! The most negative sample of E on a regular grid of the box (n³ points): a point inside Σ for the
+//! CGAL meshers' bounding spheres (which need E(centre) < 0).  Throws if no sample is negative.
+inline std::array<double, 3> inside_point(const CompiledE& E, const Box3& box, int n = 41) {
+  std::array<double, 3> best{};
+  double best_value = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const std::array<double, 3> p{box.lo[0] + (box.hi[0] - box.lo[0]) * (i + 0.5) / n,
+                                      box.lo[1] + (box.hi[1] - box.lo[1]) * (j + 0.5) / n,
+                                      box.lo[2] + (box.hi[2] - box.lo[2]) * (k + 0.5) / n};
+        const double value = E(p[0], p[1], p[2]);
+        if (value < best_value) {
+          best_value = value;
+          best = p;
+        }
+      }
+  if (!(best_value < 0)) throw std::runtime_error("no point with E < 0 found in the box");
+  return best;
+}
+
+//! Squared radius of the smallest sphere about centre that contains the box.
+inline double enclosing_squared_radius(const std::array<double, 3>& centre, const Box3& box) {
+  double r2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double d = std::max(centre[i] - box.lo[i], box.hi[i] - centre[i]);
+    r2 += d * d;
+  }
+  return r2;
+}
+
+//! Column names and fields of the checker's report, in the same order.
+inline std::vector<std::string> report_columns() {
+  return {"vertices", "triangles", "components", "euler_characteristic", "genus_per_component",
+          "closed", "manifold", "orientable", "min_angle_deg", "max_radius_edge_ratio",
+          "max_roughness_rad"};
+}
+inline std::vector<std::string> report_fields(const MeshReport& r) {
+  return {field(r.vertices), field(r.triangles), field(r.components), field(r.euler_characteristic),
+          field(r.genus_per_component), field(r.closed), field(r.manifold), field(r.orientable),
+          field(r.min_angle_deg), field(r.max_radius_edge_ratio), field(r.max_roughness_rad)};
+}
+
+template <class T>
+void append(std::vector<T>& to, const std::vector<T>& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
+
+}  // namespace delmesh::experiments

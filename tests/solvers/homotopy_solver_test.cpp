@@ -166,6 +166,23 @@ BOOST_AUTO_TEST_CASE(sphere_critical_points_are_plus_minus_d) {
     for (int k = 0; k < 3; ++k) BOOST_TEST(std::abs(root.world[k] - root.midpoint[k]) < 1e-15);
 }
 
+BOOST_AUTO_TEST_CASE(tanglecube_has_24_critical_points_in_direction_z) {
+  // E = g(x) + g(y) + g(z) + 11.8, g(t) = t⁴ − 5t²; ∇E ∥ e_z ⇔ g'(x) = g'(y) = 0 ⇔ x, y ∈ {0, ±√(5/2)},
+  // g(0) = 0, g(±√(5/2)) = −25/4.  Then z⁴ − 5z² + c = 0 with c = 11.8 + g(x) + g(y):
+  //  x = y = 0: c = 11.8, no real z;  one of x, y non-zero (4 pairs): c = 5.55, z² = (5 ± √2.8)/2,
+  //  4 values of z;  both non-zero (4 pairs): c = −0.7, z² = (5 + √27.8)/2, 2 values.  16 + 8 = 24.
+  const auto system = surface_critical_system(catalog_entry("tanglecube").surface());
+  const std::vector<double> parameters{1, 0, 0, 0, 1, 0};  // a = e_x, b = e_y
+  const auto r = solve(system, parameters, Domain::from_box({{{-3.0, 3.0}}, {{-3.0, 3.0}}, {{-3.0, 3.0}}}));
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_TEST(r.roots.size() == 24u);
+  BOOST_TEST(r.counters.paths == 36u);
+  const double s = std::sqrt(2.5);
+  BOOST_TEST(has_root(r, {s, 0, std::sqrt((5 + std::sqrt(2.8)) / 2)}));
+  BOOST_TEST(has_root(r, {0, -s, -std::sqrt((5 - std::sqrt(2.8)) / 2)}));
+  BOOST_TEST(has_root(r, {-s, s, std::sqrt((5 + std::sqrt(27.8)) / 2)}));
+}
+
 BOOST_AUTO_TEST_CASE(line_meets_torus_in_four_points) {
   // torus (R = 1, r = 0.4) and the line (−2, 0.3, 0.1) + t (1, 0, 0): with w = x², the roots solve
   // w² − 2.12 w + 0.5236 = 0, so x = ±√w and t = x + 2.

@@ -7,7 +7,19 @@
 //! Interval evaluation is an enclosure: for every point of the input boxes the exact value of each
 //! output lies in the returned interval (requires a live RoundingGuard).  Rational constants are
 //! enclosed exactly; exp, log, sin, cos, sqrt are enclosed as documented in scalar_traits.h.
-//! Thread safety: evaluate() uses thread-local scratch space; distinct threads may evaluate the
+//! Where an output is undefined on part of a box (log or sqrt of an argument that may be ≤ 0 or
+//! < 0) the result has infinite (possibly NaN) bounds: decide exclusion with certainly_nonzero()
+//! (scalar_traits.h), never with raw comparisons.  MpfiInterval evaluation is an enclosure by
+//! MPFI with the same conventions.
+//! MpfrReal and MpfiInterval evaluate at the type's current default precision
+//! (MpfrReal::default_precision(), MpfiInterval::default_precision(), in decimal digits as Boost
+//! defines it): inputs are rounded (MPFI: enclosed) to it, rational constants are converted at it
+//! (correctly rounded, resp. enclosed) and every output carries it.
+//! The programs are compiled from the expressions as given (nothing is expanded); common
+//! subexpressions are shared across all outputs of a program (values + Jacobian is one program),
+//! and the program does not depend on GiNaC's run-dependent term order, so evaluation results are
+//! bitwise reproducible from run to run.
+//! Thread safety: evaluation uses thread-local scratch space; distinct threads may evaluate the
 //! same CompiledSystem concurrently.
 
 #include <memory>
@@ -31,7 +43,13 @@ class CompiledSystem {
   explicit CompiledSystem(const PrimitiveSystem& system, bool with_hessians = false);
 
   //! Compiles arbitrary expressions `equations` in `unknowns` and `parameters`; the Jacobian is
-  //! derived here.  world_point() is then the identity on the first three unknowns when n ≥ 3.
+  //! derived here.  world_point() is then the identity on the first three unknowns when n ≥ 3
+  //! (and throws PreconditionViolation when n < 3).  `unknowns` may be empty (then only values()
+  //! is meaningful; the parameters are the inputs).
+  //! Both constructors throw PreconditionViolation if an expression uses a symbol that is neither
+  //! an unknown nor a parameter, a symbol is listed twice, a number is not an exact real rational,
+  //! an exponent is not an integer or half an odd integer, or a function other than exp, log,
+  //! sin, cos (and sqrt, which GiNaC writes as a power) occurs.
   CompiledSystem(const std::vector<GiNaC::ex>& equations, const std::vector<GiNaC::symbol>& unknowns,
                  const std::vector<GiNaC::symbol>& parameters, bool with_hessians = false);
 
@@ -45,7 +63,7 @@ class CompiledSystem {
   bool has_hessians() const { return static_cast<bool>(hessians_); }
   //! True iff world_point() is available (a primitive system, or n ≥ 3 unknowns).
   bool has_world_point() const { return static_cast<bool>(world_point_); }
-  //! Number of instructions of the values+Jacobian program (a size measure for reports).
+  //! Number of arithmetic instructions of the values+Jacobian program (a size measure for reports).
   std::size_t instruction_count() const;
 
   //! values[i] = f_i(unknowns; parameters), i < m.
@@ -54,7 +72,8 @@ class CompiledSystem {
   //! values as above and jacobian[i*n + j] = ∂f_i/∂u_j (row-major m × n).
   template <class T>
   void values_and_jacobian(const T* unknowns, const T* parameters, T* values, T* jacobian) const;
-  //! hessians[(i*n + j)*n + k] = ∂²f_i/∂u_j∂u_k.  Precondition: has_hessians().
+  //! hessians[(i*n + j)*n + k] = ∂²f_i/∂u_j∂u_k.  Precondition: has_hessians() (else throws
+  //! PreconditionViolation).
   template <class T>
   void hessians(const T* unknowns, const T* parameters, T* hessians) const;
   //! The world point (x, y, z) of the unknowns (e.g. o + u a + v b for a plane system).

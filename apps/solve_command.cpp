@@ -203,6 +203,10 @@ ExitCode run_solve(const SolveOptions& o) {
   if (o.solver != "subdivision" && o.solver != "homotopy") {
     throw InvalidInput("--solver: expected subdivision or homotopy, got '" + o.solver + "'");
   }
+  if (o.max_boxes < 1) throw InvalidInput("--max-boxes must be at least 1");
+  if (!std::isfinite(o.time_limit) || o.time_limit < 0) {
+    throw InvalidInput("--time-limit must be >= 0 seconds (0: none), got " + format_number(o.time_limit));
+  }
   check_parameter_options(o);
   const SurfaceInput input = o.surface.resolve();
   const Query query = build_query(o, input.box);
@@ -321,11 +325,9 @@ Command add_solve_command(CLI::App& parent) {
                   "or homotopy (total-degree homotopy, polynomial E and square systems only)")
       ->capture_default_str();
   sub->add_option("--max-boxes", o->max_boxes, "box budget of the subdivision solver and the isolator (>= 1)")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->capture_default_str();
   sub->add_option("--time-limit", o->time_limit, "seconds; 0 means no limit (subdivision and homotopy)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->capture_default_str();
   sub->add_flag("--json", o->json,
                 "Print {\"status\", \"roots\": [[x,y,z],...], \"undecided\": [[[lo,hi],[lo,hi],[lo,hi]],...] "
                 "(world bounding boxes), \"boxes\", \"seconds\"}");

@@ -137,4 +137,20 @@ BOOST_AUTO_TEST_CASE(a_point_limit_stops_with_exit_3_and_writes_the_partial_outp
   BOOST_TEST(stats.at("status").get<std::string>() == "point_limit");
 }
 
+BOOST_AUTO_TEST_CASE(a_time_limit_stops_with_exit_3_and_replaces_outputs_atomically) {
+  ScratchDirectory dir;
+  write_text(dir / "g.off", octahedron_off);
+  const RunResult r = run_delmesh({"mesh", "--surface", "genus2", "--size-bound", "0.01", "--time-limit", "0.5",
+                                   "--quiet", "--out", "g.off", "--stats", "g.json"},
+                                  dir.path);
+  BOOST_TEST(!r.signalled);
+  BOOST_TEST(r.exit_code == 3, r.err);
+  BOOST_TEST(r.err.find("warning:") != std::string::npos);
+  const nlohmann::json stats = nlohmann::json::parse(read_text(dir / "g.json"));
+  BOOST_TEST(stats.at("status").get<std::string>() == "time_limit");
+  BOOST_TEST(read_text(dir / "g.off") != octahedron_off);  // replaced by the partial mesh
+  BOOST_TEST((files_in(dir) == std::vector<std::string>{"g.json", "g.off"}));
+  BOOST_TEST(run_delmesh({"check", "g.off"}, dir.path).exit_code == 0);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -80,6 +80,21 @@ BOOST_AUTO_TEST_CASE(line_through_the_centre_meets_the_sphere_at_distance_one) {
   BOOST_TEST(roots[0][0] * roots[1][0] < 0);  // opposite sides of the centre
 }
 
+BOOST_AUTO_TEST_CASE(homotopy_backend_agrees_on_the_sphere) {
+  const nlohmann::json critical = parse_solve_json(run_delmesh(
+      {"solve", "--surface", "sphere", "--primitive", "surface_critical", "--solver", "homotopy", "--json"}));
+  const Points poles = roots_of(critical);
+  BOOST_REQUIRE(poles.size() == 2u);
+  BOOST_TEST(std::abs(poles[0][2] + 1) < 1e-9);
+  BOOST_TEST(std::abs(poles[1][2] - 1) < 1e-9);
+  const nlohmann::json line = parse_solve_json(run_delmesh({"solve", "--surface", "sphere", "--primitive",
+                                                            "surface_line", "--point", "0,0,0", "--direction",
+                                                            "1,2,3", "--solver", "homotopy", "--json"}));
+  const Points hits = roots_of(line);
+  BOOST_REQUIRE(hits.size() == 2u);
+  for (const auto& p : hits) BOOST_TEST(std::abs(norm(p) - 1) < 1e-9);
+}
+
 BOOST_AUTO_TEST_CASE(a_line_missing_the_box_has_no_roots) {
   const nlohmann::json j = parse_solve_json(run_delmesh({"solve", "--surface", "sphere", "--primitive",
                                                          "surface_line", "--point", "0,0,5", "--direction",
@@ -170,6 +185,9 @@ BOOST_AUTO_TEST_CASE(bad_expressions_and_parameters_are_invalid_input) {
   require_invalid_input(run_delmesh({"solve", "--surface", "sphere", "--primitive", "surface_plane_contact",
                                      "--plane-origin", "0,0,0", "--plane-normal", "0,0,1", "--solver", "homotopy"}),
                         "homotopy");
+  require_invalid_input(run_delmesh({"solve", "--surface", "sphere", "--primitive", "surface_critical",
+                                     "--max-boxes", "0"}),
+                        "--max-boxes");
   require_invalid_input(run_delmesh({"solve", "--surface", "metaball", "--primitive", "surface_critical", "--solver",
                                      "homotopy"}));  // not polynomial
 }

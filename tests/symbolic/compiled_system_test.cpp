@@ -151,7 +151,7 @@ BOOST_AUTO_TEST_CASE(interval_encloses_point_values_on_random_boxes) {
     const std::size_t m = c.system.n_equations(), n = c.system.n_unknowns(), p = c.system.n_parameters();
     for (int trial = 0; trial < 3; ++trial) {
       const Input centre = random_input(c, rng);
-      const double radius = std::pow(10.0, -3.0 * unit(rng)) * 0.05;
+      const double radius = std::pow(10.0, -4.0 * unit(rng)) * 0.5;
       std::vector<Interval> box(n), params(p), out(m + m * n);
       for (std::size_t j = 0; j < n; ++j) box[j] = Interval(centre.unknowns[j] - radius, centre.unknowns[j] + radius);
       // Parameters: small intervals too (the mesher passes exact doubles, but enclosure must hold).

@@ -1,6 +1,7 @@
 #include "symbolic/detail/straight_line_program.h"
 
 #include <cmath>
+#include <random>
 #include <sstream>
 #include <thread>
 
@@ -119,6 +120,45 @@ BOOST_AUTO_TEST_CASE(program_does_not_depend_on_ginac_term_order) {
   a.evaluate(in, va);
   b.evaluate(in, vb);
   for (int k = 0; k < 4; ++k) BOOST_CHECK_EQUAL(va[k], vb[k]);  // bitwise the same roundings
+}
+
+BOOST_AUTO_TEST_CASE(interval_and_mpfi_programs_enclose_transcendental_expressions) {
+  GiNaC::symbol x("x"), y("y");
+  const std::vector<GiNaC::ex> outputs = {
+      GiNaC::sin(x * GiNaC::Pi) * GiNaC::cos(3 * y) - GiNaC::exp(-x * x - y * y),
+      GiNaC::log(x * x + y * y + GiNaC::numeric(1, 10)) / (2 + GiNaC::sin(y)),
+      GiNaC::sqrt(GiNaC::pow(x, 4) + 1) - GiNaC::pow(x - y, 3) + GiNaC::numeric(1, 3) / (x * x + 1),
+  };
+  const StraightLineProgram p(outputs, {x, y});
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> centre(-3, 3), unit(0, 1);
+  const unsigned saved = MpfiInterval::default_precision();
+  MpfiInterval::default_precision(20);
+  for (int trial = 0; trial < 200; ++trial) {
+    const double cx = centre(rng), cy = centre(rng), r = std::pow(10.0, -5 * unit(rng)) * 2;
+    const Interval box[2] = {Interval(cx - r, cx + r), Interval(cy - r, cy + r)};
+    const MpfiInterval fbox[2] = {MpfiInterval(cx - r, cx + r), MpfiInterval(cy - r, cy + r)};
+    Interval out[3];
+    MpfiInterval fout[3];
+    {
+      RoundingGuard guard;
+      p.evaluate(box, out);
+    }
+    p.evaluate(fbox, fout);
+    for (int s = 0; s < 10; ++s) {
+      const double point[2] = {cx - r + 2 * r * unit(rng), cy - r + 2 * r * unit(rng)};
+      double v[3];
+      p.evaluate(point, v);
+      for (int k = 0; k < 3; ++k) {
+        BOOST_CHECK_MESSAGE(out[k].inf() <= v[k] && v[k] <= out[k].sup(),
+                            "output " << k << " at (" << point[0] << ", " << point[1] << ")");
+        // MPFI encloses the exact value; the double differs from it by far less than 1e-9.
+        BOOST_CHECK(lower(fout[k]) <= v[k] + 1e-9 * (1 + std::fabs(v[k])) &&
+                    v[k] - 1e-9 * (1 + std::fabs(v[k])) <= upper(fout[k]));
+      }
+    }
+  }
+  MpfiInterval::default_precision(saved);
 }
 
 BOOST_AUTO_TEST_CASE(split_inputs_and_outputs_and_no_inputs) {

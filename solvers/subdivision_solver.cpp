@@ -121,7 +121,11 @@ class Subdivision {
     for (std::size_t i = 0; i < n_; ++i) mid[i] = Interval(midpoint(X.x[i]));
     system_.values_and_jacobian(mid, params_.data(), fm, jm);
     system_.values_and_jacobian(Xp.x, params_.data(), fx, jx);
-    // Mean-value form over X with the Jacobian enclosure over Xp ⊇ X.
+    // Mean-value form over X with the Jacobian enclosure over Xp ⊇ X.  When the enclosure of
+    // f at the single point m is not much tighter than the mean-value enclosure over the whole
+    // box, rounding (cancellation) rather than the box size limits what doubles can decide:
+    // bisecting further would not help, so the box is escalated to MPFI.
+    bool precision_limited = false;
     for (std::size_t i = 0; i < m_; ++i) {
       Interval acc = fm[i];
       for (std::size_t j = 0; j < n_; ++j) acc += jx[i * n_ + j] * (X.x[j] - mid[j]);
@@ -129,6 +133,12 @@ class Subdivision {
         ++counters_.exclusions;
         return;
       }
+      precision_limited = precision_limited || width(fm[i]) > tolerances::precision_limited_ratio * width(acc);
+    }
+    bool escalated = false;
+    if (precision_limited) {
+      if (escalate(X)) return;
+      escalated = true;
     }
     bool singular = true;
     if (!exclusion_) {
@@ -170,7 +180,7 @@ class Subdivision {
     double w = 0;
     const std::size_t side = detail::widest_side(X.x, n_, &w);
     if (w < singular_width_ && (singular || w < min_width_)) {
-      if (escalate(X)) return;
+      if (!escalated && escalate(X)) return;
       bool all_zero = true;
       for (std::size_t i = 0; i < m_; ++i) all_zero = all_zero && !certainly_nonzero(fx[i]);
       const UndecidedReason reason =
@@ -181,7 +191,7 @@ class Subdivision {
     // Bisect the widest side.
     const double split = midpoint(X.x[side]);
     if (!(split > X.x[side].inf() && split < X.x[side].sup())) {
-      if (escalate(X)) return;
+      if (!escalated && escalate(X)) return;
       add_undecided(X, UndecidedReason::precision);
       return;
     }
@@ -235,7 +245,7 @@ class Subdivision {
         ++counters_.krawczyk_successes;
         Box R;
         std::copy(k.contracted.begin(), k.contracted.end(), R.x);
-        handle_root(Xp, R);
+        handle_root(Xp, R, bits);
         return true;
       }
     }
@@ -269,8 +279,23 @@ class Subdivision {
     return true;
   }
 
-  void handle_root(const Box& U, Box R) {
+  //! Shrinks R by Krawczyk iteration in MPFI at `bits` (for roots only MPFI could certify).
+  void refine_mpfi(Box& R, int bits) const {
+    for (int it = 0; it < tolerances::root_refinement_iterations; ++it) {
+      const KrawczykResult k = krawczyk_test_mpfi(system_, params_d_, std::vector<Interval>(R.x, R.x + n_), bits);
+      if (k.outcome == KrawczykOutcome::no_root) return;
+      double before = 0, after = 0;
+      detail::widest_side(R.x, n_, &before);
+      detail::widest_side(k.contracted.data(), n_, &after);
+      std::copy(k.contracted.begin(), k.contracted.end(), R.x);
+      if (!(after < 0.75 * before)) return;
+    }
+  }
+
+  //! A unique zero in U, known to lie in R ⊂ U.  mpfi_bits > 0: certified only in MPFI.
+  void handle_root(const Box& U, Box R, int mpfi_bits = 0) {
     refine(R);
+    if (mpfi_bits > 0) refine_mpfi(R, mpfi_bits);
     for (const Found& f : found_)
       if (box_inside(R, f.uniqueness, n_) || box_inside(f.tight, U, n_)) return;  // the same zero
     found_.push_back({U, R});

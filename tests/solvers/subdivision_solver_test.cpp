@@ -151,6 +151,16 @@ BOOST_AUTO_TEST_CASE(roots_inside_and_outside_a_polygon) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(cancellation_is_escalated_to_mpfi) {
+  // (u + c)² − c² − 2 c u − 1/4 = u² − 1/4 and v − u/3 with c = 1e8: double enclosures of the
+  // first equation are ~1 wide at every point, so only MPFI certifies the roots (±1/2, ±1/6).
+  GiNaC::symbol u("u"), v("v"), c("c");
+  const CompiledSystem system({GiNaC::pow(u + c, 2) - c * c - 2 * c * u - GiNaC::numeric(1, 4), v - u / 3}, {u, v}, {c});
+  const SolveResult r = solve_subdivision(system, {1e8}, Domain::from_box({{-1, 1.1}, {-1, 0.9}}));
+  check_roots(r, {{0.5, 1.0 / 6}, {-0.5, -1.0 / 6}}, 1e-6);
+  BOOST_TEST(r.counters.precision_escalations > 0u);
+}
+
 // ---- degenerate suite: flagged, never falsely certified ----
 
 BOOST_AUTO_TEST_CASE(root_exactly_on_a_box_face_is_boundary_root) {

@@ -285,7 +285,8 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
   for (auto& c : patch) c /= std::sqrt(patch_norm);
   const std::vector<Complex> complex_parameters(parameters.begin(), parameters.end());
   const detail::HomotopyTracker tracker(system, degrees, complex_parameters, gamma, patch);
-  const auto settings = detail::TrackerSettings::defaults();
+  auto settings = detail::TrackerSettings::defaults();
+  settings.max_steps = options.max_steps_per_path;
 
   SolveResult result;
   const auto starts = total_degree_start_solutions(degrees);

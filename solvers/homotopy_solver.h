@@ -13,6 +13,7 @@
 
 #include "symbolic/scalar_types.h"
 
+#include "common/tolerances.h"
 #include "solvers/domain.h"
 #include "solvers/solve_result.h"
 #include "symbolic/compiled_system.h"
@@ -21,8 +22,11 @@
 namespace delmesh {
 
 struct HomotopyOptions {
-  std::uint64_t seed = 1;  //!< for γ; fixed seed → reproducible
-  double time_limit_seconds = 0;
+  std::uint64_t seed = 1;  //!< for γ and the projective patch; fixed seed → reproducible
+  double time_limit_seconds = 0;  //!< 0: none
+  //! Predictor–corrector steps one path may take before it is declared failed (a failed path
+  //! makes the solve undecided: the whole domain box is returned as undecided).
+  std::size_t max_steps_per_path = tolerances::homotopy_max_steps_per_path;
 };
 
 //! Total degree of each equation of `system` in its unknowns (parameters treated as constants).

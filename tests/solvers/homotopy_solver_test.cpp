@@ -241,6 +241,22 @@ BOOST_AUTO_TEST_CASE(time_limit_returns_the_domain_undecided) {
   BOOST_TEST(r.undecided.back().box.bounds[0][0] == -2.0);
 }
 
+BOOST_AUTO_TEST_CASE(failed_paths_make_the_whole_domain_undecided) {
+  // with a budget of 3 steps per path no path can reach s = 1: nothing may be certified or dropped
+  const auto s = make_system({X() * X() + Y() * Y() - 1, Y() - X()}, {X(), Y()});
+  const CompiledSystem compiled(s);
+  HomotopyOptions options;
+  options.max_steps_per_path = 3;
+  const auto r = solve_homotopy(compiled, {2, 1}, {}, Domain::from_box({{{-2.0, 2.0}}, {{-2.0, 2.0}}}), options);
+  BOOST_TEST(r.status == SolveStatus::undecided);
+  BOOST_TEST(r.roots.empty());
+  BOOST_REQUIRE(r.undecided.size() == 1u);
+  BOOST_TEST(r.undecided[0].reason == UndecidedReason::precision);
+  BOOST_TEST(r.undecided[0].box.bounds[0][0] == -2.0);
+  BOOST_TEST(r.undecided[0].box.bounds[1][1] == 2.0);
+  BOOST_TEST(r.counters.paths == 2u);
+}
+
 BOOST_AUTO_TEST_CASE(invalid_input_throws) {
   const auto s = make_system({X() * X() + Y() * Y() - 1, Y() - X()}, {X(), Y()});
   const CompiledSystem compiled(s);

@@ -2,9 +2,12 @@
 //! \file homotopy_solver.h
 //! Total-degree homotopy continuation for square polynomial systems: start system
 //! g_i = x_i^{d_i} − 1, H(x, s) = (1 − s) γ g(x) + s f(x) with a random complex γ (the gamma
-//! trick), predictor–corrector tracking over complex<double> with adaptive steps, an endgame for
-//! paths diverging or reaching singular endpoints, then Krawczyk certification of each real
-//! endpoint inside the domain.  Independent oracle for the subdivision solver and a backend
+//! trick), predictor–corrector tracking over complex<double> with adaptive steps (RK4 predictor,
+//! Newton corrector with a trust bound, step halving on failure and doubling after two successes),
+//! in homogeneous coordinates on a random affine patch so that paths going to infinity stay
+//! bounded; an endgame at s = 1 that classifies each endpoint as at infinity (diverging), singular
+//! (ill-conditioned Jacobian, or Newton not converging quadratically) or regular; then Krawczyk
+//! certification of each real endpoint inside the domain.  Independent oracle for the subdivision solver and a backend
 //! (--solver homotopy).  Roots not certified (singular, diverging near the domain) come back
 //! undecided; a path failure is reported, never dropped.
 

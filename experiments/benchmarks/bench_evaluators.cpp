@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <random>
@@ -19,6 +18,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "experiments/experiment_support.h"
 #include "symbolic/catalog.h"
 #include "symbolic/compiled_system.h"
 #include "symbolic/primitives.h"
@@ -136,6 +136,8 @@ int main(int argc, char** argv) {
   app.add_option("--csv", csv, "also write the table as CSV to this file");
   CLI11_PARSE(app, argc, argv);
 
+  std::printf("bench_evaluators (git %s, %s): values + Jacobian per second, median of %d\n\n",
+              experiments::git_revision().c_str(), experiments::utc_now().c_str(), repeats);
   std::vector<Row> rows;
   for (const std::string surface : {"genus2", "tanglecube"})
     for (const std::string primitive : {"surface_critical", "silhouette_critical", "surface_plane_contact"})
@@ -152,13 +154,16 @@ int main(int argc, char** argv) {
   std::printf("(checksum %.6g)\n", checksum);
 
   if (!csv.empty()) {
-    std::ofstream out(csv);
-    out << "surface,primitive,instructions,double_per_s,interval_per_s,mpfi106_per_s,evalf_per_s,"
-           "double_over_evalf\n";
+    experiments::CsvWriter out(csv, "bench_evaluators",
+                               {{"points", std::to_string(n_points)},
+                                {"repeats", std::to_string(repeats)},
+                                {"evalf_points", std::to_string(evalf_points)}},
+                               {"surface", "primitive", "instructions", "double_per_s", "interval_per_s",
+                                "mpfi106_per_s", "evalf_per_s", "double_over_evalf"});
     for (const Row& r : rows)
-      out << r.surface << ',' << r.primitive << ',' << r.instructions << ',' << r.double_rate << ','
-          << r.interval_rate << ',' << r.mpfi_rate << ',' << r.evalf_rate << ',' << r.double_rate / r.evalf_rate
-          << '\n';
+      out.row({r.surface, r.primitive, experiments::field(r.instructions), experiments::field(r.double_rate),
+               experiments::field(r.interval_rate), experiments::field(r.mpfi_rate),
+               experiments::field(r.evalf_rate), experiments::field(r.double_rate / r.evalf_rate)});
   }
   return 0;
 }

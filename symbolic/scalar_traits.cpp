@@ -278,10 +278,25 @@ void ScalarTraits<MpfiInterval>::pow(MpfiInterval& out, const MpfiInterval& a, i
     return;
   }
   const unsigned long m = n < 0 ? -static_cast<long>(n) : n;
-  mpfr_t lo, hi;
+  // Per-thread endpoint temporaries at the precision of out (no allocation per call).
+  struct Endpoints {
+    mpfr_t lo, hi;
+    Endpoints() {
+      mpfr_init2(lo, MPFR_PREC_MIN);
+      mpfr_init2(hi, MPFR_PREC_MIN);
+    }
+    ~Endpoints() {
+      mpfr_clear(lo);
+      mpfr_clear(hi);
+    }
+  };
+  thread_local Endpoints t;
+  mpfr_ptr lo = t.lo, hi = t.hi;
   const mpfr_prec_t prec = mpfi_get_prec(out.backend().data());
-  mpfr_init2(lo, prec);
-  mpfr_init2(hi, prec);
+  if (mpfr_get_prec(lo) != prec) {
+    mpfr_set_prec(lo, prec);
+    mpfr_set_prec(hi, prec);
+  }
   if (m % 2 == 1) {  // x ↦ xᵐ is increasing
     mpfr_pow_ui(lo, left(a), m, MPFR_RNDD);
     mpfr_pow_ui(hi, right(a), m, MPFR_RNDU);
@@ -292,8 +307,6 @@ void ScalarTraits<MpfiInterval>::pow(MpfiInterval& out, const MpfiInterval& a, i
     mpfr_pow_ui(hi, hi, m, MPFR_RNDU);
   }
   mpfi_interv_fr(out.backend().data(), lo, hi);
-  mpfr_clear(lo);
-  mpfr_clear(hi);
   if (n < 0) mpfi_inv(out.backend().data(), out.backend().data());
 }
 void ScalarTraits<MpfiInterval>::exp(MpfiInterval& out, const MpfiInterval& a) {

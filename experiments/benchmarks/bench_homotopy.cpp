@@ -38,9 +38,10 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
-std::string git_revision() {
+std::string git_revision(const std::string& repository) {
   std::string out;
-  if (FILE* pipe = popen("git rev-parse --short HEAD 2>/dev/null", "r")) {
+  const std::string command = "git -C '" + repository + "' rev-parse --short HEAD 2>/dev/null";
+  if (FILE* pipe = popen(command.c_str(), "r")) {
     char buffer[64];
     while (fgets(buffer, sizeof buffer, pipe)) out += buffer;
     pclose(pipe);
@@ -119,16 +120,17 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   std::vector<int> kostlan_degrees{4, 8};
   std::vector<std::string> surfaces{"torus", "genus2", "tanglecube"};
-  std::string csv_path;
+  std::string csv_path, repository = ".";
   app.add_option("--systems", systems, "random systems per degree")->check(CLI::PositiveNumber);
   app.add_option("--repeats", repeats, "timed repetitions per system (median)")->check(CLI::PositiveNumber);
   app.add_option("--seed", seed, "first seed");
   app.add_option("--degrees", kostlan_degrees, "Kostlan degrees of E");
   app.add_option("--surfaces", surfaces, "catalog surfaces for surface_critical");
   app.add_option("--csv", csv_path, "write a CSV file");
+  app.add_option("--repository", repository, "the delmesh git checkout (for the revision recorded)");
   CLI11_PARSE(app, argc, argv);
 
-  const std::string revision = git_revision();
+  const std::string revision = git_revision(repository);
   std::ofstream csv_file;
   std::ostream* csv = nullptr;
   if (!csv_path.empty()) {

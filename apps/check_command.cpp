@@ -99,7 +99,7 @@ Command add_check_command(CLI::App& parent) {
   sub->add_option("MESH", o->mesh, "The mesh file (.off, .ply or .obj)")->required();
   o->lambda_option = sub->add_option("--lambda", o->lambda,
                                      "lambda in (0, 1/6): compare with min angle >= asin(1/(2+2 lambda)), "
-                                     "radius-edge ratio <= 1+lambda, roughness <= 2 beta(lambda)");
+                                     "radius-edge ratio <= 1+lambda, roughness <= 2 beta(lambda)")->type_name("L");
   sub->add_flag("--json", o->json,
                 "Print the report as JSON (with --lambda also \"lambda\", \"bounds\" and \"pass\")");
   return {sub, [o]() { return run_check(*o); }};

@@ -75,13 +75,16 @@ std::array<double, 3> parse_vector3(const std::string& text, const std::string& 
 
 void SurfaceOptions::add_to(CLI::App& app) {
   surface_option = app.add_option("--surface", surface,
-                                  "A catalog surface (list: `delmesh surfaces`), e.g. torus");
+                                  "A catalog surface (list: `delmesh surfaces`), e.g. torus")
+                       ->type_name("NAME");
   expr_option = app.add_option("--expr", expr,
                                "An expression E(x,y,z); the surface is E = 0. Operators + - * / ^ "
-                               "(integer powers), exp sqrt sin cos log, Pi. Needs --box");
+                               "(integer powers), exp sqrt sin cos log, Pi. Needs --box")
+                    ->type_name("E");
   box_option = app.add_option("--box", box,
                               "x0,x1,y0,y1,z0,z1: the box Sigma must lie strictly inside "
-                              "(required with --expr; replaces the catalog box with --surface)");
+                              "(required with --expr; replaces the catalog box with --surface)")
+                   ->type_name("X0,X1,Y0,Y1,Z0,Z1");
 }
 
 bool SurfaceOptions::given() const {

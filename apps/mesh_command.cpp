@@ -182,26 +182,26 @@ Command add_mesh_command(CLI::App& parent) {
   o->input_mesh_option = sub->add_option(
       "--input-mesh", o->input_mesh,
       "A triangulated surface (OFF/PLY/OBJ) to remesh: the file is validated, but remeshing is not "
-      "implemented yet (exit code 2)");
+      "implemented yet (exit code 2)")->type_name("FILE");
   sub->add_option("--lambda", o->lambda,
-                  "lambda in (0, 1/3); Theorem 6.1 covers (0, 0.06], larger values run with a warning")
+                  "lambda in (0, 1/3); Theorem 6.1 covers (0, 0.06], larger values run with a warning")->type_name("L")
       ->capture_default_str();
-  sub->add_option("--phase", o->phase, "topology (SampleTopology only, Sec. 5) or all (DelMesh, Sec. 6.2)")
+  sub->add_option("--phase", o->phase, "topology (SampleTopology only, Sec. 5) or all (DelMesh, Sec. 6.2)")->type_name("PHASE")
       ->capture_default_str();
-  sub->add_option("--solver", o->solver, "subdivision or homotopy (polynomial E only)")->capture_default_str();
+  sub->add_option("--solver", o->solver, "subdivision or homotopy (polynomial E only)")->type_name("SOLVER")->capture_default_str();
   o->size_bound_option = sub->add_option(
       "--size-bound", o->size_bound,
-      "H > 0 (length units of E): also refine triangles whose surface Delaunay ball radius exceeds H");
+      "H > 0 (length units of E): also refine triangles whose surface Delaunay ball radius exceeds H")->type_name("H");
   o->out_option = sub->add_option("--out", o->out,
                                   "Mesh file, format by extension .off|.ply|.obj (default: <name>.off, <name> = "
-                                  "the catalog name or 'surface' for --expr)");
+                                  "the catalog name or 'surface' for --expr)")->type_name("FILE");
   o->stats_option =
-      sub->add_option("--stats", o->stats, "Statistics JSON file, or - for stdout (default: <name>.json)");
-  sub->add_option("--max-points", o->max_points, "Stop (exit code 3) after this many sample points (>= 1)")
+      sub->add_option("--stats", o->stats, "Statistics JSON file, or - for stdout (default: <name>.json)")->type_name("FILE|-");
+  sub->add_option("--max-points", o->max_points, "Stop (exit code 3) after this many sample points (>= 1)")->type_name("N")
       ->capture_default_str();
-  sub->add_option("--time-limit", o->time_limit, "Stop (exit code 3) after this many seconds; 0 means none")
+  sub->add_option("--time-limit", o->time_limit, "Stop (exit code 3) after this many seconds; 0 means none")->type_name("S")
       ->capture_default_str();
-  sub->add_option("--seed", o->seed, "Seed of the generic directions; same input and seed give the same mesh")
+  sub->add_option("--seed", o->seed, "Seed of the generic directions; same input and seed give the same mesh")->type_name("N")
       ->capture_default_str();
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
   return {sub, [o]() { return run_mesh(*o); }};

@@ -303,31 +303,39 @@ Command add_solve_command(CLI::App& parent) {
   o->surface.add_to(*sub);
   std::string names;
   for (const PrimitiveInfo& info : primitive_registry()) names += (names.empty() ? "" : "|") + info.name;
-  sub->add_option("--primitive", o->primitive, names)->required();
+  sub->add_option("--primitive", o->primitive, names)->required()->type_name("P");
   o->parameter_options["--direction"] = sub->add_option(
       "--direction", o->direction,
       "dx,dy,dz: height direction (surface_critical, default 0,0,1), line direction (surface_line), "
       "in-plane direction (curve_critical; its component in the plane is used), silhouette direction "
-      "(silhouette_plane, silhouette_critical)");
+      "(silhouette_plane, silhouette_critical)")
+      ->type_name("DX,DY,DZ");
   o->parameter_options["--direction2"] = sub->add_option(
       "--direction2", o->direction2, "dx,dy,dz: direction d' of the critical points of the silhouette "
-                                     "(silhouette_critical)");
+                                     "(silhouette_critical)")
+      ->type_name("DX,DY,DZ");
   o->parameter_options["--point"] =
       sub->add_option("--point", o->point, "px,py,pz: a point of the line (surface_line); the line is clipped "
-                                           "to the box");
+                                           "to the box")
+          ->type_name("PX,PY,PZ");
   o->parameter_options["--plane-origin"] = sub->add_option(
       "--plane-origin", o->plane_origin, "ox,oy,oz: a point of the plane (surface_plane_contact, curve_critical, "
-                                         "silhouette_plane); the domain is the polygon plane ∩ box");
+                                         "silhouette_plane); the domain is the polygon plane & box")
+      ->type_name("OX,OY,OZ");
   o->parameter_options["--plane-normal"] =
-      sub->add_option("--plane-normal", o->plane_normal, "nx,ny,nz: the plane's normal (non-zero)");
+      sub->add_option("--plane-normal", o->plane_normal, "nx,ny,nz: the plane's normal (non-zero)")
+      ->type_name("NX,NY,NZ");
   sub->add_option("--solver", o->solver,
                   "subdivision (certified interval subdivision; the univariate isolator for surface_line) "
                   "or homotopy (total-degree homotopy, polynomial E and square systems only)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->type_name("SOLVER");
   sub->add_option("--max-boxes", o->max_boxes, "box budget of the subdivision solver and the isolator (>= 1)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->type_name("N");
   sub->add_option("--time-limit", o->time_limit, "seconds; 0 means no limit (subdivision and homotopy)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->type_name("S");
   sub->add_flag("--json", o->json,
                 "Print {\"status\", \"roots\": [[x,y,z],...], \"undecided\": [[[lo,hi],[lo,hi],[lo,hi]],...] "
                 "(world bounding boxes), \"boxes\", \"seconds\"}");

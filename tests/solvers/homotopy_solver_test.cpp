@@ -135,6 +135,25 @@ BOOST_AUTO_TEST_CASE(half_space_domain_keeps_only_the_roots_inside) {
   BOOST_TEST(none.roots.empty());
 }
 
+BOOST_AUTO_TEST_CASE(root_on_a_face_is_a_boundary_root) {
+  // the root (1/2, 1/2) lies exactly on the box face x = 1/2, then exactly on the half-plane y ≤ x
+  const auto s = make_system({X() * X() + Y() * Y() - GiNaC::numeric(1, 2), Y() - X()}, {X(), Y()});
+  const auto on_box_face = solve(s, {}, Domain::from_box({{{-0.25, 0.5}}, {{-1.0, 1.0}}}));
+  BOOST_TEST(on_box_face.status == SolveStatus::undecided);
+  BOOST_TEST(on_box_face.roots.empty());
+  BOOST_REQUIRE(on_box_face.undecided.size() == 1u);
+  BOOST_TEST(on_box_face.undecided[0].reason == UndecidedReason::boundary_root);
+  BOOST_TEST(on_box_face.undecided[0].box.bounds[0][0] <= 0.5);
+  BOOST_TEST(on_box_face.undecided[0].box.bounds[0][1] >= 0.5);
+  Domain half = Domain::from_box({{{0.0, 1.0}}, {{0.0, 1.0}}});
+  half.half_spaces.push_back({{-1.0, 1.0}, 0.0});  // y − x ≤ 0
+  const auto on_half_space = solve(s, {}, half);
+  BOOST_TEST(on_half_space.status == SolveStatus::undecided);
+  BOOST_TEST(on_half_space.roots.empty());
+  BOOST_REQUIRE(on_half_space.undecided.size() == 1u);
+  BOOST_TEST(on_half_space.undecided[0].reason == UndecidedReason::boundary_root);
+}
+
 BOOST_AUTO_TEST_CASE(tangent_circles_are_flagged_singular_never_certified) {
   // (1, 0) is a double root; the other two paths go to infinity
   const auto s = make_system({X() * X() + Y() * Y() - 1, (X() - 2) * (X() - 2) + Y() * Y() - 1}, {X(), Y()});

@@ -152,11 +152,14 @@ std::vector<TriangleKey> Delaunay::triangles() const {
                                       c->vertex((i + 3) & 3)->info().id));
     }
   } else if (dt.dimension() == 2) {
-    for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c)
-      out.push_back(make_triangle_key(c->vertex(0)->info().id, c->vertex(1)->info().id,
-                                      c->vertex(2)->info().id));
+    // CGAL's cell iterators are empty below dimension 3: collect the stars instead.
+    for (VertexId id : vertices()) {
+      const auto star = incident_triangles(id);
+      out.insert(out.end(), star.begin(), star.end());
+    }
   }
   std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
@@ -174,6 +177,10 @@ bool Delaunay::is_edge(const EdgeKey& e) const {
   const auto& dt = impl_->dt;
   if (dt.dimension() < 1) return false;
   if (!contains(e[0]) || !contains(e[1])) return false;
+  if (dt.dimension() < 2) {
+    const auto n = neighbours(e[0]);
+    return std::binary_search(n.begin(), n.end(), e[1]);
+  }
   detail::Dt::Cell_handle c;
   int i, j;
   return dt.is_edge(impl_->handles[e[0]], impl_->handles[e[1]], c, i, j);

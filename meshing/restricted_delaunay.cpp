@@ -47,10 +47,21 @@ EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t) {
   if (!r.edge.valid) return r;
   const auto& e = r.edge;
   const auto result = oracle_.surface_line(e.point, e.direction, e.t0, e.t1);
-  for (const auto& root : result.roots) r.crossings.push_back(root.world);
   const double face_tol = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
   // Zeros at Voronoi vertices: whether each would be excluded by §5.1 if it were the only one.
   std::vector<bool> vertex_root_excluded;
+  const double vertex_tol = tolerances::duplicate_sample_relative_distance * oracle_.diagonal();
+  for (const auto& root : result.roots) {
+    // A certified zero numerically at a Voronoi vertex is the §5.1 degeneracy as well.
+    const double t = root.midpoint[0];
+    const bool at0 = e.at_vertex0 && std::abs(t - e.t0) <= vertex_tol;
+    const bool at1 = e.at_vertex1 && std::abs(t - e.t1) <= vertex_tol;
+    r.crossings.push_back(root.world);
+    if (at0 || at1) {
+      const Vec3 into = at0 ? e.direction : (-1.0) * e.direction;
+      vertex_root_excluded.push_back(dot(into, oracle_.normal(root.world)) > 0);
+    }
+  }
   for (const auto& u : result.undecided) {
     const double lo = u.box.bounds[0][0], hi = u.box.bounds[0][1];
     const double tm = 0.5 * (lo + hi);

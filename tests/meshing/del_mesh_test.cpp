@@ -1,0 +1,132 @@
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+
+#include "common/errors.h"
+#include "meshing/del_mesh.h"
+#include "meshing/mesh_checker.h"
+#include "meshing/theorem_bounds.h"
+#include "symbolic/catalog.h"
+
+using namespace delmesh;
+
+namespace {
+
+DelMeshResult run(const std::string& name, double lambda, std::uint64_t seed = 1) {
+  const auto& entry = catalog_entry(name);
+  DelMeshOptions options;
+  options.lambda = lambda;
+  options.seed = seed;
+  return del_mesh(entry.surface(), entry.box, options);
+}
+
+// Theorem 6.1 checked on the output by the independent checker.
+void check_theorem_6_1(const std::string& name, double lambda) {
+  const auto& entry = catalog_entry(name);
+  const auto result = run(name, lambda);
+  BOOST_TEST(result.status == MeshStatus::complete);
+  const auto r = check_mesh(result.mesh);
+  const auto b = theorem_bounds(lambda);
+  BOOST_TEST_MESSAGE(name << " lambda " << lambda << ": " << r.vertices << " vertices, min angle "
+                          << r.min_angle_deg << ", rho " << r.max_radius_edge_ratio << ", roughness "
+                          << r.max_roughness_rad);
+  BOOST_TEST(r.closed);
+  BOOST_TEST(r.manifold);
+  BOOST_TEST(r.orientable);
+  BOOST_TEST(r.components == entry.components);
+  BOOST_TEST(r.genus_per_component == entry.genus_per_component, boost::test_tools::per_element());
+  BOOST_TEST(r.min_angle_deg >= b.min_angle_deg - 1e-9);
+  BOOST_TEST(r.max_radius_edge_ratio <= b.max_radius_edge_ratio + 1e-9);
+  BOOST_TEST(r.max_roughness_rad <= b.max_roughness_rad + 1e-9);
+  BOOST_TEST(result.statistics["status"] == "complete");
+}
+
+bool same_mesh(const SurfaceMesh& a, const SurfaceMesh& b) {
+  if (a.number_of_vertices() != b.number_of_vertices() || a.number_of_faces() != b.number_of_faces()) return false;
+  auto va = a.vertices().begin();
+  for (auto vb : b.vertices()) {
+    if (a.point(*va) != b.point(vb)) return false;
+    ++va;
+  }
+  auto fa = a.faces().begin();
+  for (auto fb : b.faces()) {
+    auto ha = a.halfedge(*fa), hb = b.halfedge(fb);
+    for (int k = 0; k < 3; ++k) {
+      if (a.target(ha).idx() != b.target(hb).idx()) return false;
+      ha = a.next(ha);
+      hb = b.next(hb);
+    }
+    ++fa;
+  }
+  return true;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(del_mesh_suite)
+
+BOOST_AUTO_TEST_CASE(sphere_meets_theorem_6_1) { check_theorem_6_1("sphere", 0.06); }
+
+BOOST_AUTO_TEST_CASE(torus_meets_theorem_6_1) { check_theorem_6_1("torus", 0.06); }
+
+BOOST_AUTO_TEST_CASE(statistics_follow_the_contract) {
+  const auto result = run("sphere", 0.06);
+  const auto& j = result.statistics;
+  for (const char* key : {"status", "lambda", "vertices", "triangles", "components", "euler_characteristic",
+                          "genus_per_component", "closed_manifold", "orientable", "min_angle_deg",
+                          "max_radius_edge_ratio", "max_roughness_rad", "bounds", "insertions", "solver",
+                          "seconds_per_check", "height_direction", "seed", "seconds"})
+    BOOST_TEST(j.contains(key), key);
+  for (const char* key : {"seeds", "seeds_deleted", "vor_edge", "facet_contact", "topo_disk", "facet_cycle",
+                          "silhouette", "quality", "smooth", "size"})
+    BOOST_TEST(j["insertions"].contains(key), key);
+  for (const char* key : {"systems", "certified_roots", "undecided", "boxes", "seconds"})
+    BOOST_TEST(j["solver"].contains(key), key);
+  BOOST_TEST(j["euler_characteristic"] == 2);
+  BOOST_TEST(j["insertions"]["seeds"] == j["insertions"]["seeds_deleted"]);
+  BOOST_TEST(j["theorem_applies"] == true);
+}
+
+BOOST_AUTO_TEST_CASE(same_seed_same_mesh) {
+  const auto a = run("torus", 0.06, 7), b = run("torus", 0.06, 7);
+  BOOST_TEST(same_mesh(a.mesh, b.mesh));
+}
+
+BOOST_AUTO_TEST_CASE(size_bound_refines) {
+  const auto& entry = catalog_entry("sphere");
+  DelMeshOptions options;
+  options.size_bound = 0.4;
+  const auto result = del_mesh(entry.surface(), entry.box, options);
+  BOOST_TEST(result.statistics["insertions"]["size"].get<int>() > 0);
+  const auto r = check_mesh(result.mesh);
+  BOOST_TEST(r.genus_per_component == std::vector<int>{0}, boost::test_tools::per_element());
+  BOOST_TEST(r.vertices > run("sphere", 0.06).statistics["vertices"].get<std::size_t>());
+}
+
+BOOST_AUTO_TEST_CASE(point_limit_stops_with_a_partial_mesh) {
+  const auto& entry = catalog_entry("torus");
+  DelMeshOptions options;
+  options.max_points = 10;
+  const auto result = del_mesh(entry.surface(), entry.box, options);
+  BOOST_TEST(result.status == MeshStatus::point_limit);
+  BOOST_TEST(result.statistics["status"] == "point_limit");
+}
+
+BOOST_AUTO_TEST_CASE(lambda_out_of_range_is_invalid) {
+  const auto& entry = catalog_entry("sphere");
+  DelMeshOptions options;
+  for (double lambda : {0.0, -0.1, 1.0 / 3.0, 0.5}) {
+    options.lambda = lambda;
+    BOOST_CHECK_THROW((void)del_mesh(entry.surface(), entry.box, options), InvalidInput);
+  }
+  options.lambda = 0.1;  // allowed, outside Theorem 6.1
+  const auto result = del_mesh(entry.surface(), entry.box, options);
+  BOOST_TEST(result.statistics["theorem_applies"] == false);
+}
+
+BOOST_AUTO_TEST_CASE(catalog_at_lambda_006_and_003, *boost::unit_test::label("slow")) {
+  for (const auto& entry : catalog())
+    for (double lambda : {0.06, 0.03}) check_theorem_6_1(entry.name, lambda);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -1,0 +1,37 @@
+#include <boost/test/unit_test.hpp>
+
+#include "check_fixture.h"
+#include "meshing/detail/vec3.h"
+#include "meshing/facet_contact.h"
+
+using namespace delmesh;
+using delmesh::test::CheckFixture;
+
+BOOST_AUTO_TEST_SUITE(facet_contact)
+
+// The bisector plane x = 1 of (0.5,0,0) and (1.5,0,0) touches the unit sphere at (1,0,0).
+BOOST_AUTO_TEST_CASE(facet_touching_the_sphere_fires_at_the_contact) {
+  CheckFixture f(test::unit_sphere, 1.6, {{0.5, 0, 0}, {1.5, 0, 0}});
+  const auto w = facet_contact_witness(f.restricted, {0, 1});
+  BOOST_TEST_REQUIRE(w.has_value());
+  BOOST_TEST(w->kind == CheckKind::facet_contact);
+  BOOST_TEST(detail::distance(w->point, {1, 0, 0}) < 1e-4);
+}
+
+// The plane x = 0.4 cuts the sphere transversally: no contact.
+BOOST_AUTO_TEST_CASE(transversal_facet_does_not_fire) {
+  CheckFixture f(test::unit_sphere, 1.6, {{0.2, 0, 0}, {0.6, 0, 0}});
+  BOOST_TEST(!facet_contact_witness(f.restricted, {0, 1}).has_value());
+}
+
+// A facet whose plane is tangent to the sphere outside the facet: (1,0,0) is cut off by a third
+// sample close to it, so there is no contact inside F.
+BOOST_AUTO_TEST_CASE(contact_outside_the_facet_does_not_fire) {
+  CheckFixture f(test::unit_sphere, 1.6, {{0.5, 0, 0}, {1.5, 0, 0}, {1.0, 0.4, 0}});
+  const auto& facet = f.restricted.facet({0, 1});
+  const auto uv = facet.plane_coordinates({1, 0, 0});
+  BOOST_TEST_REQUIRE(!facet.contains(uv[0], uv[1], 1e-9));
+  BOOST_TEST(!facet_contact_witness(f.restricted, {0, 1}).has_value());
+}
+
+BOOST_AUTO_TEST_SUITE_END()

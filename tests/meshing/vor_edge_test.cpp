@@ -1,0 +1,70 @@
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+
+#include "check_fixture.h"
+#include "meshing/detail/vec3.h"
+#include "meshing/vor_edge.h"
+
+using namespace delmesh;
+using delmesh::test::CheckFixture;
+
+BOOST_AUTO_TEST_SUITE(vor_edge)
+
+// Three points on the equator: the Voronoi edge is the z-axis, crossing the sphere twice.
+BOOST_AUTO_TEST_CASE(edge_crossing_twice_fires_with_the_furthest_crossing) {
+  CheckFixture f(test::unit_sphere, 1.5, {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}});
+  const auto& rec = f.restricted.edge_record({0, 1, 2});
+  BOOST_TEST(rec.crossings.size() == 2u);
+  const auto w = vor_edge_witness(f.restricted, {0, 1, 2});
+  BOOST_TEST_REQUIRE(w.has_value());
+  BOOST_TEST(w->kind == CheckKind::vor_edge);
+  BOOST_TEST(std::abs(std::abs(w->point[2]) - 1) < 1e-9);
+  BOOST_TEST(std::abs(f.oracle.E(w->point)) < 1e-9);
+}
+
+// Adding the south pole makes the edge a ray from the centre upwards: one crossing, no witness.
+BOOST_AUTO_TEST_CASE(ray_crossing_once_does_not_fire) {
+  CheckFixture f(test::unit_sphere, 1.5, {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, 0, -1}});
+  const auto& rec = f.restricted.edge_record({0, 1, 2});
+  BOOST_TEST(rec.crossings.size() == 1u);
+  BOOST_TEST(rec.restricted);
+  BOOST_TEST(!vor_edge_witness(f.restricted, {0, 1, 2}).has_value());
+}
+
+// A vertical Voronoi edge tangent to the sphere at (1, 0, 0) (Lemma 4.7(ii)).
+BOOST_AUTO_TEST_CASE(tangent_edge_fires_at_the_tangency) {
+  CheckFixture f(test::unit_sphere, 1.5, {{1.3, 0, 0}, {1, 0.3, 0}, {0.7, 0, 0}});
+  const auto w = vor_edge_witness(f.restricted, {0, 1, 2});
+  BOOST_TEST_REQUIRE(w.has_value());
+  BOOST_TEST(detail::distance(w->point, {1, 0, 0}) < 1e-5);
+}
+
+// The §5.1 rule (restricted_delaunay.h): a Voronoi vertex on Σ.  Tetrahedron around the north pole v = (0,0,1) with its
+// apex up: the three side edges leave v upwards (⟨u − v, n_v⟩ > 0) and meet Σ only at v, so their
+// triangles are not in Tri S|Σ; the bottom edge goes down through the ball and is kept.
+BOOST_AUTO_TEST_CASE(voronoi_vertex_on_the_surface_follows_section_5_1) {
+  const double r = 0.3, s = std::sqrt(8.0) / 3, t = std::sqrt(2.0) / 3;
+  CheckFixture f(test::unit_sphere, 1.5,
+                 {{0, 0, 1 + r}, {r * s, 0, 1 - r / 3}, {-r * t, r * std::sqrt(2.0 / 3), 1 - r / 3},
+                  {-r * t, -r * std::sqrt(2.0 / 3), 1 - r / 3}});
+  int kept = 0, excluded = 0;
+  for (const auto& tri : f.del.triangles()) {
+    const auto& rec = f.restricted.edge_record(tri);
+    const bool bottom = tri == TriangleKey{1, 2, 3};
+    if (bottom) {
+      BOOST_TEST(rec.restricted);
+      ++kept;
+    } else {
+      // The zero at v is found at v (a §5.1 vertex zero) or, the constructed vertex being
+      // rounded to just outside Σ, not at all: either way the triangle is not restricted.
+      BOOST_TEST(!rec.restricted);
+      BOOST_TEST(rec.crossings.size() <= 1u);
+      ++excluded;
+    }
+  }
+  BOOST_TEST(kept == 1);
+  BOOST_TEST(excluded == 3);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

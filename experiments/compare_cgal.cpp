@@ -58,6 +58,7 @@ struct Run {
   std::string method, parameters, status = "complete";
   TriangleSoup soup;
   double seconds = 0;
+  nlohmann::json statistics;  //!< delmesh's statistics record (empty for CGAL)
 };
 
 //! Orients every triangle so that its normal agrees with ∇E at its centroid (outward for E < 0
@@ -100,8 +101,13 @@ using SmComplex = CGAL::Complex_2_in_triangulation_3<SmTriangulation>;
 using SmTraits = SmTriangulation::Geom_traits;
 using SmSurface = CGAL::Implicit_surface_3<SmTraits, std::function<SmTraits::FT(SmTraits::Point_3)>>;
 
+//! Seed of CGAL's default random generator, reset before every CGAL run so that the runs are
+//! reproducible (CGAL seeds it from the clock otherwise; Surface_mesher's initial points use it).
+unsigned int cgal_seed = 0;
+
 Run run_surface_mesher(const CompiledE& E, const std::array<double, 3>& centre, double squared_radius,
                        const CgalSettings& s) {
+  CGAL::get_default_random() = CGAL::Random(cgal_seed);
   Run run;
   run.method = "surface_mesher";
   run.parameters = s.text() + ";manifold_tag";
@@ -126,6 +132,7 @@ using M3Criteria = CGAL::Mesh_criteria_3<M3Triangulation>;
 
 Run run_mesh_3(const CompiledE& E, const std::array<double, 3>& centre, double squared_radius,
                const CgalSettings& s) {
+  CGAL::get_default_random() = CGAL::Random(cgal_seed);
   Run run;
   run.method = "mesh_3";
   run.parameters = s.text() + ";facet_criteria_only;no_perturb;no_exude";
@@ -150,8 +157,13 @@ Run run_delmesh(const CatalogEntry& entry, double lambda, std::optional<double> 
   Run run;
   run.method = "delmesh";
   std::ostringstream parameters;
-  parameters << "lambda=" << lambda << ";size_bound=" << (size_bound ? field(*size_bound) : "none")
-             << ";seed=" << base.seed;
+  parameters << "lambda=" << lambda << ";size_bound=";
+  if (size_bound) {
+    parameters << *size_bound;
+  } else {
+    parameters << "none";
+  }
+  parameters << ";seed=" << base.seed;
   run.parameters = parameters.str();
   DelMeshOptions options = base;
   options.lambda = lambda;
@@ -163,6 +175,7 @@ Run run_delmesh(const CatalogEntry& entry, double lambda, std::optional<double> 
     std::ostringstream status;
     status << result.status;
     run.status = status.str();
+    run.statistics = result.statistics;
     mesh_to_soup(result.mesh, run.soup.points, run.soup.triangles);
   } catch (const std::exception& e) {
     run.seconds = clock.seconds();
@@ -210,9 +223,9 @@ MeshReport record(Context& context, const std::string& experiment, const Catalog
       if (c == ';' || c == '=') c = '_';
     const fs::path mesh_dir = context.out_dir / "meshes";
     fs::create_directories(mesh_dir);
-    write_triangle_soup(run.soup, (mesh_dir / ("compare_" + experiment + "_" + entry.name + "_" + run.method +
-                                               "_" + settings + ".off"))
-                                      .string());
+    const std::string stem = "compare_" + experiment + "_" + entry.name + "_" + run.method + "_" + settings;
+    write_triangle_soup(run.soup, (mesh_dir / (stem + ".off")).string());
+    if (!run.statistics.is_null()) std::ofstream(mesh_dir / (stem + ".json")) << run.statistics.dump(1) << '\n';
   }
   return report;
 }
@@ -266,6 +279,7 @@ int main(int argc, char** argv) {
   app.add_option("--ladder", ladder, "CGAL radius bounds tried by 'coarsest' (distance = radius/10), coarse first")
       ->capture_default_str();
   app.add_option("--seed", base.seed, "delmesh seed")->capture_default_str();
+  app.add_option("--cgal-seed", cgal_seed, "seed of CGAL's default random generator")->capture_default_str();
   app.add_option("--time-limit", base.time_limit_seconds, "delmesh time limit per run (s), 0 none")
       ->capture_default_str();
   app.add_option("--max-points", base.max_points, "delmesh point limit per run")->capture_default_str();
@@ -285,6 +299,7 @@ int main(int argc, char** argv) {
                    {"demo_radii", field_list(coarse_radii)},
                    {"ladder_radii", field_list(ladder)},
                    {"seed", field(static_cast<long long>(base.seed))},
+                   {"cgal_seed", field(static_cast<long long>(cgal_seed))},
                    {"time_limit", field(base.time_limit_seconds)},
                    {"cgal", CGAL_VERSION_STR}},
                   csv_columns());

@@ -28,12 +28,13 @@
 
 namespace delmesh::experiments {
 
-//! `git rev-parse --short HEAD` of the working directory (plus "-dirty" if tracked files differ),
-//! or "unknown" outside a repository.
+//! `git rev-parse --short HEAD` of the source tree this program was built from (plus "-dirty" if
+//! tracked files differ), or "unknown" if that tree is gone or not a repository.
 inline std::string git_revision() {
-  auto run = [](const char* command) {
+  const std::string source_dir = std::filesystem::path(__FILE__).parent_path().string();
+  auto run = [](const std::string& command) {
     std::string text;
-    if (FILE* pipe = ::popen(command, "r")) {
+    if (FILE* pipe = ::popen(command.c_str(), "r")) {
       char buffer[256];
       while (std::fgets(buffer, sizeof buffer, pipe)) text += buffer;
       ::pclose(pipe);
@@ -41,9 +42,10 @@ inline std::string git_revision() {
     while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
     return text;
   };
-  std::string revision = run("git rev-parse --short HEAD 2>/dev/null");
+  const std::string git = "git -C '" + source_dir + "' ";
+  std::string revision = run(git + "rev-parse --short HEAD 2>/dev/null");
   if (revision.empty()) return "unknown";
-  if (!run("git status --porcelain --untracked-files=no 2>/dev/null").empty()) revision += "-dirty";
+  if (!run(git + "status --porcelain --untracked-files=no 2>/dev/null").empty()) revision += "-dirty";
   return revision;
 }
 

@@ -73,11 +73,11 @@ BOOST_AUTO_TEST_CASE(line_clipping) {
 BOOST_AUTO_TEST_CASE(plane_sections_of_a_cube) {
   const Box3 box = unit_cube();
   // z = 0: a square of side 2, area 4.
-  auto s = plane_box_section({0, 0, 0}, {0, 0, 1}, box);
+  auto s = plane_box_section(Vec3{0, 0, 0}, Vec3{0, 0, 1}, box);
   BOOST_REQUIRE(s);
   BOOST_TEST(s->polygon.size() == 4u);
   // x + y + z = 0: a regular hexagon of side √2, area 3√3.
-  s = plane_box_section({0, 0, 0}, {1, 1, 1}, box);
+  s = plane_box_section(Vec3{0, 0, 0}, Vec3{1, 1, 1}, box);
   BOOST_REQUIRE(s);
   BOOST_TEST(s->polygon.size() == 6u);
   double area = 0;
@@ -98,9 +98,9 @@ BOOST_AUTO_TEST_CASE(plane_sections_of_a_cube) {
     BOOST_TEST(std::abs(on_face) < 1e-12);
   }
   // Misses, or touches only along an edge or at a corner.
-  BOOST_TEST(!plane_box_section({0, 0, 2}, {0, 0, 1}, box));
-  BOOST_TEST(!plane_box_section({1, 1, 1}, {1, 1, 1}, box));
-  BOOST_TEST(!plane_box_section({1, 1, 0}, {1, 1, 0}, box));
+  BOOST_TEST(!plane_box_section(Vec3{0, 0, 2}, Vec3{0, 0, 1}, box));
+  BOOST_TEST(!plane_box_section(Vec3{1, 1, 1}, Vec3{1, 1, 1}, box));
+  BOOST_TEST(!plane_box_section(Vec3{1, 1, 0}, Vec3{1, 1, 0}, box));
 }
 
 BOOST_AUTO_TEST_CASE(polygon_domain_half_spaces_contain_exactly_the_polygon) {

@@ -43,7 +43,7 @@ inline constexpr double homotopy_max_step = 1e-1;
 
 //! Homotopy corrector: Newton corrections must fall below this (relative to 1 + ‖u‖∞) within
 //! homotopy_corrector_iterations iterations, else the step is rejected and halved.
-inline constexpr double homotopy_corrector_tolerance = 1e-10;
+inline constexpr double homotopy_corrector_tolerance = 1e-8;
 inline constexpr int homotopy_corrector_iterations = 3;
 //! Homotopy corrector: the first Newton correction after a predictor step may not exceed this
 //! (relative to 1 + ‖u‖∞); a larger one means the step was too long (guards against path jumping).

@@ -14,7 +14,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from paper_common import output_path, read_csv  # noqa: E402
+from paper_common import loglog_slope, output_path, read_csv, surface_color  # noqa: E402
 
 
 def completed(rows):
@@ -43,7 +43,7 @@ def main():
                 label=f"Theorem 6.1 ({sense})")
         for name in surfaces:
             series = sorted((float(r["lambda"]), r[measured] * scale) for r in rows if r["surface"] == name)
-            ax.plot([s[0] for s in series], [s[1] for s in series], "o-", label=name)
+            ax.plot([s[0] for s in series], [s[1] for s in series], "o-", color=surface_color(name), label=name)
         ax.set_xlabel("λ")
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
@@ -56,13 +56,16 @@ def main():
 
     sized = [r for r in rows if isinstance(r["lfs_integral"], float) and not math.isnan(r["lfs_integral"])]
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for name in sorted({r["surface"] for r in rows}):
-        series = sorted((float(r["lambda"]), r["vertices"], r) for r in rows if r["surface"] == name)
-        axes[0].loglog([1 / s[0] for s in series], [s[1] for s in series], "o-", label=name)
-    ref = [1 / l for l in lambdas]
-    if rows:
-        top = max(r["vertices"] for r in rows)
-        axes[0].loglog(ref, [top * (x / ref[-1]) ** 2 for x in ref], "k:", label="∝ 1/λ²")
+    for name in surfaces:
+        series = sorted((1 / float(r["lambda"]), r["vertices"]) for r in rows if r["surface"] == name)
+        xs, ys = [s[0] for s in series], [s[1] for s in series]
+        label = name if len(xs) < 2 else f"{name} (slope {loglog_slope(xs, ys):.2f})"
+        axes[0].loglog(xs, ys, "o-", color=surface_color(name), label=label)
+    # Reference slope 2 through the coarsest run of the largest surface.
+    biggest = max(surfaces, key=lambda n: max(r["vertices"] for r in rows if r["surface"] == n))
+    anchor = min(((1 / float(r["lambda"]), r["vertices"]) for r in rows if r["surface"] == biggest))
+    ref = sorted(1 / l for l in lambdas)
+    axes[0].loglog(ref, [anchor[1] * (x / anchor[0]) ** 2 for x in ref], "k:", label="∝ 1/λ² (Theorem 6.1(iii))")
     axes[0].set_xlabel("1/λ")
     axes[0].set_ylabel("vertices |S|")
     axes[0].grid(alpha=0.3, which="both")
@@ -70,7 +73,7 @@ def main():
     for name in sorted({r["surface"] for r in sized}):
         series = sorted((float(r["lambda"]), r["vertices_lambda2_over_lfs_integral"]) for r in sized
                         if r["surface"] == name)
-        axes[1].plot([s[0] for s in series], [s[1] for s in series], "o-", label=name)
+        axes[1].plot([s[0] for s in series], [s[1] for s in series], "o-", color=surface_color(name), label=name)
     if sized:
         bound = [2 * (2 + 5 * l) ** 2 / math.pi for l in lambdas]
         axes[1].plot(lambdas, bound, "k--", marker="_", markersize=22, label="proof's bound 2(2+5λ)²/π")

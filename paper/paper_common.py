@@ -97,6 +97,28 @@ def render_mesh(ax, points, triangles, title=None, color=(0.62, 0.74, 0.86), edg
         ax.set_title(title, fontsize=9)
 
 
+SURFACE_ORDER = ["sphere", "ellipsoid", "torus", "genus2", "chair", "tanglecube", "metaball", "two_blobs",
+                 "thin_handle", "near_sheets"]
+
+
+def surface_color(name):
+    """The same colour for a surface in every figure."""
+    import matplotlib.pyplot as plt
+
+    palette = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    index = SURFACE_ORDER.index(name) if name in SURFACE_ORDER else len(SURFACE_ORDER) + hash(name) % 7
+    return palette[index % len(palette)]
+
+
+def loglog_slope(xs, ys):
+    """Least-squares slope of log y against log x."""
+    lx = [math.log(x) for x in xs]
+    ly = [math.log(y) for y in ys]
+    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
+    sxx = sum((a - mx) ** 2 for a in lx)
+    return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sxx if sxx > 0 else float("nan")
+
+
 def output_path(out_dir, *parts):
     path = os.path.join(out_dir, *parts)
     os.makedirs(os.path.dirname(path), exist_ok=True)

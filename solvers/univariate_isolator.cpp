@@ -65,20 +65,24 @@ struct PolynomialEvaluator {
 
 //! [a, b] contains exactly one zero: sign change with certain signs at a and b and a derivative
 //! enclosure over [a, b] excluding 0.
+//! With known_unique (the caller knows that an interval containing [a, b] holds exactly one
+//! zero), the sign change alone suffices.
 template <class Evaluator>
-bool certify_interval(const Evaluator& e, double a, double b) {
+bool certify_interval(const Evaluator& e, double a, double b, bool known_unique = false) {
   if (!(a < b)) return false;
   const int sa = certain_sign(e.value(Interval(a))), sb = certain_sign(e.value(Interval(b)));
   if (sa == 0 || sb == 0 || sa == sb) return false;
+  if (known_unique) return true;
   Interval f, df;
   e.value_and_derivative(Interval(a, b), f, df);
   return certainly_nonzero(df);
 }
 
-//! A tight certified interval around the unique zero known to lie in the open interval (lo, hi)
-//! where E changes sign: safeguarded Newton steps in double (bisection of the bracket when a
-//! step leaves it), then a certified [x − r, x + r] ⊂ (lo, hi).  Falls back to certifying [lo, hi]
-//! itself; returns false if neither can be certified.
+//! A tight certified interval around the unique zero known to lie in [lo, hi] (E has exactly
+//! one zero there, proved by the caller, and changes sign): safeguarded Newton steps in double
+//! (bisection of the bracket when a step leaves it), then growing intervals [x − r, x + r] ∩
+//! [lo, hi] until one has a certain sign change (it then holds that unique zero).  Returns false
+//! if none has.
 template <class Evaluator>
 bool refine_root(const Evaluator& e, double lo, double hi, double x, double scale, double& out_lo, double& out_hi) {
   double a = lo, b = hi, fa, dfa;
@@ -97,18 +101,16 @@ bool refine_root(const Evaluator& e, double lo, double hi, double x, double scal
     x = next;
     if (done) break;
   }
+  // Growing intervals around x, clipped to [lo, hi] (a root within r of an end of the isolating
+  // interval is still bracketed: the clipped end keeps a certain sign).
   double r = tolerances::univariate_root_relative_radius * std::max(std::abs(x), scale);
-  for (int attempt = 0; attempt < 3; ++attempt, r *= 1024) {
-    const double a = -(r - x), b = x + r;  // outward under the upward rounding mode
-    if (a <= lo || b >= hi) break;
-    if (certify_interval(e, a, b)) {
+  for (int attempt = 0; attempt < 16; ++attempt, r *= 8) {
+    const double a = std::max(-(r - x), lo), b = std::min(x + r, hi);  // outward under upward rounding
+    if (certify_interval(e, a, b, true)) {
       out_lo = a, out_hi = b;
       return true;
     }
-  }
-  if (certify_interval(e, lo, hi)) {
-    out_lo = lo, out_hi = hi;
-    return true;
+    if (a == lo && b == hi) break;
   }
   return false;
 }
@@ -263,7 +265,7 @@ class Isolation {
       return;
     }
     // Rigorous but not tight: keep the isolating interval as a certified box when its outer
-    // enclosure still proves a single root, else report it undecided.
+    // enclosure still proves a single root (sign change and monotone), else report it undecided.
     t_outer(sa, sb, lo, hi);
     if (certify_interval(eval, lo, hi))
       certified(lo, hi);

@@ -56,6 +56,11 @@ struct Stats {
     ++statuses[status.str()];
     roots += r.roots.size();
     undecided += r.undecided.size();
+    for (const auto& u : r.undecided) {
+      std::ostringstream reason;
+      reason << u.reason;
+      ++statuses["undecided_" + reason.str()];
+    }
   }
   std::string status_text() const {
     std::string text;

@@ -255,6 +255,29 @@ BOOST_AUTO_TEST_CASE(sphere_random_lines_never_miss_never_invent) { sphere_line_
 
 BOOST_AUTO_TEST_CASE(sphere_random_lines_sweep, *boost::unit_test::label("slow")) { sphere_line_sweep(200000, 22); }
 
+BOOST_AUTO_TEST_CASE(ill_conditioned_degree_10_line_agrees_with_newton) {
+  // Regression: monomial coefficients up to 1e5 in t make interval Horner over an interval
+  // useless near these roots (two of them 0.027 apart); certification must still succeed, by the
+  // sign change inside the Bernstein isolating interval.
+  const Surface s = Surface::parse(
+      "(x-0.860456)*(x+0.532638)*(x-0.786227)*(x+0.307254)*(x+0.0239051)*(x-0.351474)*(x+0.0572752)*"
+      "(x+0.741076)*(x-0.54776)*(x+0.362211)+y^2+z^2-0.01");
+  const LineProblem problem(s);
+  const std::array<double, 3> p{-1.2, -0.046025242264017885, -0.046557960182797502},
+      v{2.3999999999999999, -0.041147480546549209, -0.012035562762547103};
+  const SolveResult a = isolate_line_roots(problem.line, &problem.polynomial, p, v, 0, 1);
+  const SolveResult b = isolate_line_roots(problem.line, nullptr, p, v, 0, 1);
+  BOOST_TEST(a.status == SolveStatus::complete);
+  BOOST_TEST(b.status == SolveStatus::complete);
+  BOOST_REQUIRE_EQUAL(a.roots.size(), 4u);
+  BOOST_REQUIRE_EQUAL(b.roots.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    // The certified intervals of both paths hold the same root: they must overlap.
+    BOOST_TEST(a.roots[i].box.bounds[0][0] <= b.roots[i].box.bounds[0][1]);
+    BOOST_TEST(b.roots[i].box.bounds[0][0] <= a.roots[i].box.bounds[0][1]);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(invalid_input_throws) {
   const auto& S = sphere();
   BOOST_CHECK_THROW((void)isolate_line_roots(S.line, &S.polynomial, {0, 0, 0}, {1, 0, 0}, 1, 0), InvalidInput);

@@ -2,7 +2,8 @@
 // 4–6 in the box [−1, 1]³, solve_subdivision and solve_homotopy must return the same real roots
 // (same count, midpoints within 1e-8) whenever both report complete.  When one reports undecided,
 // the test says so explicitly and still requires every certified root of either solver to be a
-// certified root of the other or to lie in one of the other's undecided boxes.
+// certified root of the other or to lie in one of the other's undecided boxes.  The slow tier also
+// sweeps SurfaceCritical-shaped systems (E Kostlan of degree 4–6, E = ⟨∇E, a⟩ = ⟨∇E, b⟩ = 0).
 
 #include <boost/test/unit_test.hpp>
 
@@ -13,7 +14,9 @@
 
 #include "solvers/homotopy_solver.h"
 #include "solvers/kostlan_system.h"
+#include "solvers/query_geometry.h"
 #include "solvers/subdivision_solver.h"
+#include "symbolic/primitives.h"
 
 using namespace delmesh;
 
@@ -62,18 +65,13 @@ struct Tally {
   std::size_t systems = 0, both_complete = 0, subdivision_undecided = 0, homotopy_undecided = 0, roots = 0;
 };
 
-void cross_check(const std::vector<int>& degrees, std::uint64_t seed, Tally& tally) {
-  const PrimitiveSystem system = kostlan_system(degrees, seed);
-  const CompiledSystem compiled(system);
+void cross_check(const std::string& label, const CompiledSystem& compiled, const std::vector<int>& degrees,
+                 const std::vector<double>& parameters, std::uint64_t seed, Tally& tally) {
   const Domain domain = Domain::from_box({{{-1.0, 1.0}}, {{-1.0, 1.0}}, {{-1.0, 1.0}}});
   HomotopyOptions homotopy_options;
   homotopy_options.seed = seed;
-  const SolveResult sub = solve_subdivision(compiled, {}, domain);
-  const SolveResult hom = solve_homotopy(compiled, degrees, {}, domain, homotopy_options);
-
-  std::ostringstream label_text;
-  label_text << "kostlan degrees " << degrees[0] << "," << degrees[1] << "," << degrees[2] << " seed " << seed;
-  const std::string label = label_text.str();
+  const SolveResult sub = solve_subdivision(compiled, parameters, domain);
+  const SolveResult hom = solve_homotopy(compiled, degrees, parameters, domain, homotopy_options);
   ++tally.systems;
   BOOST_TEST(hom.counters.paths >= bezout_number(degrees));
   if (sub.is_complete() && hom.is_complete()) {
@@ -92,6 +90,28 @@ void cross_check(const std::vector<int>& degrees, std::uint64_t seed, Tally& tal
   }
   check_covered(sub, hom, "subdivision", "homotopy", label);
   check_covered(hom, sub, "homotopy", "subdivision", label);
+}
+
+//! A dense Kostlan system with the given degrees.
+void cross_check(const std::vector<int>& degrees, std::uint64_t seed, Tally& tally) {
+  const CompiledSystem compiled(kostlan_system(degrees, seed));
+  std::ostringstream label;
+  label << "kostlan degrees " << degrees[0] << "," << degrees[1] << "," << degrees[2] << " seed " << seed;
+  cross_check(label.str(), compiled, degrees, {}, seed, tally);
+}
+
+//! SurfaceCritical-shaped: E a Kostlan polynomial of degree d, the system E = ⟨∇E, a⟩ = ⟨∇E, b⟩ = 0
+//! for a random direction (degrees d, d − 1, d − 1).
+void cross_check_surface_critical(int degree, std::uint64_t seed, Tally& tally) {
+  KostlanRng rng(seed);
+  const Surface surface(kostlan_polynomial({coordinate_x(), coordinate_y(), coordinate_z()}, degree, rng));
+  const PrimitiveSystem system = surface_critical_system(surface);
+  const CompiledSystem compiled(system);
+  const auto frame = orthonormal_frame(unit_vector({rng.normal(), rng.normal(), rng.normal()}));
+  const std::vector<double> parameters{frame.a[0], frame.a[1], frame.a[2], frame.b[0], frame.b[1], frame.b[2]};
+  std::ostringstream label;
+  label << "kostlan surface_critical degree " << degree << " seed " << seed;
+  cross_check(label.str(), compiled, equation_degrees(system), parameters, seed, tally);
 }
 
 }  // namespace
@@ -126,6 +146,15 @@ BOOST_AUTO_TEST_CASE(kostlan_sweep, *boost::unit_test::label("slow")) {
             << tally.roots << " roots compared), subdivision undecided " << tally.subdivision_undecided
             << ", homotopy undecided " << tally.homotopy_undecided << "\n";
   // undecided outcomes are legitimate but must stay rare on generic random systems
+  BOOST_TEST(tally.both_complete * 10 >= tally.systems * 9);
+}
+
+BOOST_AUTO_TEST_CASE(kostlan_surface_critical_sweep, *boost::unit_test::label("slow")) {
+  Tally tally;
+  for (std::uint64_t seed = 1; seed <= 100; ++seed) cross_check_surface_critical(4 + static_cast<int>(seed % 3), seed, tally);
+  std::cout << "surface_critical cross-check sweep: " << tally.systems << " systems, " << tally.both_complete
+            << " both complete (" << tally.roots << " roots compared), subdivision undecided "
+            << tally.subdivision_undecided << ", homotopy undecided " << tally.homotopy_undecided << "\n";
   BOOST_TEST(tally.both_complete * 10 >= tally.systems * 9);
 }
 

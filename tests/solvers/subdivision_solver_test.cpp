@@ -275,6 +275,12 @@ BOOST_AUTO_TEST_CASE(budgets_return_unexplored_boxes) {
   for (const auto& u : r.undecided) found = found || contains(u.box, {s, s, z});
   for (const auto& root : r.roots) found = found || contains(root.box, {s, s, z});
   BOOST_TEST(found);
+  // A time limit far below the solve time stops it the same way.
+  SubdivisionOptions timed;
+  timed.time_limit_seconds = 1e-9;
+  const SolveResult t = solve_subdivision(system, {1, 0, 0, 0, 1, 0}, box_domain(entry.box), timed);
+  BOOST_TEST(t.status == SolveStatus::time_limit);
+  BOOST_TEST(any_reason(t, UndecidedReason::budget));
 }
 
 namespace {

@@ -104,6 +104,13 @@ bool refine_root(const Evaluator& e, double lo, double hi, double x, double scal
   // Growing intervals around x, clipped to [lo, hi] (a root within r of an end of the isolating
   // interval is still bracketed: the clipped end keeps a certain sign).
   double r = tolerances::univariate_root_relative_radius * std::max(std::abs(x), scale);
+  {
+    // Start near the radius at which |E| exceeds the width of its enclosure: 2 w(E(x)) / |E'(x)|.
+    double f, df;
+    e.value_and_derivative(x, f, df);
+    const double from_width = 2 * detail::width(e.value(Interval(x))) / std::abs(df);
+    if (std::isfinite(from_width)) r = std::max(r, from_width);
+  }
   for (int attempt = 0; attempt < 16; ++attempt, r *= 8) {
     const double a = std::max(-(r - x), lo), b = std::min(x + r, hi);  // outward under upward rounding
     if (certify_interval(e, a, b, true)) {

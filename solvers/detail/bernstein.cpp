@@ -5,12 +5,18 @@ namespace delmesh::detail {
 void bernstein_from_monomial(int d, const Interval* c, double t0, const Interval& h_range, Interval* b,
                              Interval* q) {
   // Taylor shift and scaling by Horner's scheme on polynomials: q ← q · (t0 + h s) + c_k.
-  const Interval T0(t0);
-  q[0] = c[d];
-  for (int k = d - 1, deg = 0; k >= 0; --k, ++deg) {
-    q[deg + 1] = h_range * q[deg];
-    for (int j = deg; j >= 1; --j) q[j] = T0 * q[j] + h_range * q[j - 1];
-    q[0] = T0 * q[0] + c[k];
+  if (t0 == 0) {
+    // No shift: q_k = c_k h^k.
+    Interval power(1.0);
+    for (int k = 0; k <= d; ++k, power *= h_range) q[k] = c[k] * power;
+  } else {
+    const Interval T0(t0);
+    q[0] = c[d];
+    for (int k = d - 1, deg = 0; k >= 0; --k, ++deg) {
+      q[deg + 1] = h_range * q[deg];
+      for (int j = deg; j >= 1; --j) q[j] = T0 * q[j] + h_range * q[j - 1];
+      q[0] = T0 * q[0] + c[k];
+    }
   }
   // Monomial in s → Bernstein: b_i = Σ_{k ≤ i} C(i, k) q_k / C(d, k).  Binomials are exact doubles.
   double binom_d[max_bernstein_degree + 1];

@@ -120,6 +120,21 @@ BOOST_AUTO_TEST_CASE(tanglecube_has_24_critical_points_in_z) {
   check_roots(r, expected);
 }
 
+BOOST_AUTO_TEST_CASE(curve_critical_on_a_sphere_section) {
+  // The plane z = 1/2 cuts the unit sphere in the circle u² + v² = 3/4; its critical points in the
+  // in-plane direction a = x are (u, v) = (±√3/2, 0), world points (±√3/2, 0, 1/2).
+  const CompiledSystem system(curve_critical_system(catalog_entry("sphere").surface()));
+  const SolveResult r =
+      solve_subdivision(system, {0, 0, 0.5, 1, 0, 0, 0, 1, 0}, Domain::from_box({{-1.1, 1.05}, {-0.9, 0.95}}));
+  const double h = std::sqrt(0.75);
+  check_roots(r, {{h, 0}, {-h, 0}});
+  for (const auto& root : r.roots) {
+    BOOST_TEST(std::abs(std::abs(root.world[0]) - h) < 1e-12);
+    BOOST_TEST(std::abs(root.world[1]) < 1e-12);
+    BOOST_TEST(std::abs(root.world[2] - 0.5) < 1e-15);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(circle_circle_two_and_zero_roots) {
   const CompiledSystem system = two_circles();
   const Domain domain = Domain::from_box({{-2, 3}, {-2, 2}});

@@ -99,7 +99,10 @@ class Subdivision {
 
   Box inflated(const Box& b) const {
     Box out;
-    for (std::size_t i = 0; i < n_; ++i) out.x[i] = detail::inflate(b.x[i], tolerances::krawczyk_inflation * width(b.x[i]));
+    // The floor keeps sides that contraction made (nearly) points from staying points: K ⊂ int X'
+    // needs X' to have an interior.
+    for (std::size_t i = 0; i < n_; ++i)
+      out.x[i] = detail::inflate(b.x[i], tolerances::krawczyk_inflation * std::max(width(b.x[i]), min_width_));
     return out;
   }
 

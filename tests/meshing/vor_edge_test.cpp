@@ -40,31 +40,4 @@ BOOST_AUTO_TEST_CASE(tangent_edge_fires_at_the_tangency) {
   BOOST_TEST(detail::distance(w->point, {1, 0, 0}) < 1e-5);
 }
 
-// The §5.1 rule (restricted_delaunay.h): a Voronoi vertex on Σ.  Tetrahedron around the north pole v = (0,0,1) with its
-// apex up: the three side edges leave v upwards (⟨u − v, n_v⟩ > 0) and meet Σ only at v, so their
-// triangles are not in Tri S|Σ; the bottom edge goes down through the ball and is kept.
-BOOST_AUTO_TEST_CASE(voronoi_vertex_on_the_surface_follows_section_5_1) {
-  const double r = 0.3, s = std::sqrt(8.0) / 3, t = std::sqrt(2.0) / 3;
-  CheckFixture f(test::unit_sphere, 1.5,
-                 {{0, 0, 1 + r}, {r * s, 0, 1 - r / 3}, {-r * t, r * std::sqrt(2.0 / 3), 1 - r / 3},
-                  {-r * t, -r * std::sqrt(2.0 / 3), 1 - r / 3}});
-  int kept = 0, excluded = 0;
-  for (const auto& tri : f.del.triangles()) {
-    const auto& rec = f.restricted.edge_record(tri);
-    const bool bottom = tri == TriangleKey{1, 2, 3};
-    if (bottom) {
-      BOOST_TEST(rec.restricted);
-      ++kept;
-    } else {
-      // The zero at v is found at v (a §5.1 vertex zero) or, the constructed vertex being
-      // rounded to just outside Σ, not at all: either way the triangle is not restricted.
-      BOOST_TEST(!rec.restricted);
-      BOOST_TEST(rec.crossings.size() <= 1u);
-      ++excluded;
-    }
-  }
-  BOOST_TEST(kept == 1);
-  BOOST_TEST(excluded == 3);
-}
-
 BOOST_AUTO_TEST_SUITE_END()

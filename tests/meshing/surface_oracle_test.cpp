@@ -1,0 +1,52 @@
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+
+#include "meshing/detail/vec3.h"
+#include "meshing/surface_oracle.h"
+#include "solvers/domain.h"
+
+using namespace delmesh;
+
+namespace {
+Box3 cube(double h) {
+  Box3 b;
+  b.lo = {-h, -h, -h};
+  b.hi = {h, h, h};
+  return b;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(surface_oracle)
+
+BOOST_AUTO_TEST_CASE(line_through_the_centre_meets_the_sphere_at_distance_one) {
+  SurfaceOracle oracle(Surface::parse("x^2+y^2+z^2-1"), cube(1.5), SolverBackend::subdivision);
+  const auto r = oracle.surface_line({0, 0, 0}, {0.6, 0.8, 0}, -1.4, 1.4);
+  BOOST_TEST_REQUIRE(r.roots.size() == 2u);
+  for (const auto& root : r.roots) BOOST_TEST(std::abs(detail::norm(root.world) - 1) < 1e-12);
+  const auto& s = oracle.statistics()[static_cast<int>(Primitive::surface_line)];
+  BOOST_TEST(s.calls == 1u);
+  BOOST_TEST(s.certified_roots == 2u);
+  BOOST_TEST(oracle.statistics_json()["systems"] == 1);
+}
+
+BOOST_AUTO_TEST_CASE(critical_points_of_the_sphere_are_plus_minus_d) {
+  SurfaceOracle oracle(Surface::parse("x^2+y^2+z^2-1"), cube(1.5), SolverBackend::subdivision);
+  const Vec3 d = detail::normalized(Vec3{0.3, -0.5, 0.8});
+  const auto r = oracle.surface_critical(
+      d, Domain::from_box({{-1.5, 1.5}, {-1.5, 1.5}, {-1.5, 1.5}}), 100000);
+  BOOST_TEST_REQUIRE(r.roots.size() == 2u);
+  for (const auto& root : r.roots) BOOST_TEST(std::abs(std::abs(detail::dot(root.world, d)) - 1) < 1e-9);
+}
+
+BOOST_AUTO_TEST_CASE(projection_lands_on_the_surface) {
+  SurfaceOracle oracle(Surface::parse("(x^2+y^2+z^2+0.84)^2-4*(x^2+y^2)"), cube(1.65), SolverBackend::subdivision);
+  const auto x = oracle.project({1.3, 0.2, 0.1});
+  BOOST_TEST_REQUIRE(x.has_value());
+  BOOST_TEST(std::abs(oracle.E(*x)) < 1e-12);
+  const auto n = oracle.normal({1.4, 0, 0});
+  BOOST_TEST(std::abs(n[0] - 1) < 1e-12);  // outward where E > 0 outside
+  BOOST_TEST(!oracle.project({0, 0, 0}).has_value());  // ∇E = 0 at the centre: no projection
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -79,6 +79,20 @@ BOOST_AUTO_TEST_CASE(sphere_critical_points_are_plus_minus_d) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(sphere_critical_points_along_the_axes) {
+  // Axis directions: the roots ±e_i have exact zero coordinates, which Krawczyk contracts to
+  // point intervals; they must still be certified.
+  const CatalogEntry& entry = catalog_entry("sphere");
+  const CompiledSystem system(surface_critical_system(entry.surface()));
+  for (int axis = 0; axis < 3; ++axis) {
+    Vec3 d{0, 0, 0};
+    d[axis] = 1;
+    std::vector<double> plus(3, 0.0), minus(3, 0.0);
+    plus[axis] = 1, minus[axis] = -1;
+    check_roots(solve_subdivision(system, frame_parameters(d), box_domain(entry.box)), {plus, minus});
+  }
+}
+
 BOOST_AUTO_TEST_CASE(ellipsoid_critical_points) {
   // x²/a² + y²/b² + z²/c² = 1: the points with normal ∥ d are ± M⁻¹d / √(dᵀM⁻¹d), M = diag(1/a²…).
   const CatalogEntry& entry = catalog_entry("ellipsoid");

@@ -338,14 +338,8 @@ class Subdivision {
 
   //! The world point of the unknowns, or (0, 0, 0) for a system without one (CompiledSystem
   //! built from bare expressions in fewer than three unknowns).
-  void world(const double* u, std::array<double, 3>& out) {
-    if (!has_world_) return;
-    try {
-      system_.world_point(u, params_d_.data(), out.data());
-    } catch (const PreconditionViolation&) {
-      has_world_ = false;
-      out = {0, 0, 0};
-    }
+  void world(const double* u, std::array<double, 3>& out) const {
+    if (system_.has_world_point()) system_.world_point(u, params_d_.data(), out.data());
   }
 
   void add_undecided(const Box& X, UndecidedReason reason) {
@@ -399,7 +393,6 @@ class Subdivision {
   SolverCounters counters_;
   std::size_t unresolved_ = 0;
   bool stopped_ = false;
-  bool has_world_ = true;
   SolveStatus status_ = SolveStatus::complete;
 };
 

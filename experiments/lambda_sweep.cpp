@@ -136,8 +136,8 @@ std::string lambda_tag(double lambda) {
 int main(int argc, char** argv) {
   CLI::App app{"Theorem 6.1 by experiment: DelMesh over a lambda sweep, checked by the independent "
                "checker against the bounds; writes <out-dir>/lambda_sweep.csv"};
-  std::string surfaces = "sphere,torus,ellipsoid,genus2,metaball";
-  std::vector<double> lambdas{0.06, 0.05, 0.04, 0.03};
+  std::string surfaces = "sphere,ellipsoid,torus,genus2,metaball,two_blobs,thin_handle,near_sheets";
+  std::vector<double> lambdas{0.06, 0.05, 0.04, 0.03, 0.02};
   std::string out_dir = "out";
   int resolution = 200;
   bool no_meshes = false;

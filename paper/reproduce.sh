@@ -34,8 +34,8 @@ if [ "$QUICK" = 1 ]; then
       --time-limit "$TIME_LIMIT" --out-dir "$OUT"
   "$BUILD/experiments/compare_cgal" --experiments benchmark --time-limit "$TIME_LIMIT" --out-dir "$OUT"
 else
-  "$BUILD/experiments/lambda_sweep" --surfaces sphere,torus,ellipsoid,genus2,metaball \
-      --lambdas 0.06 0.05 0.04 0.03 --time-limit "$TIME_LIMIT" --out-dir "$OUT"
+  "$BUILD/experiments/lambda_sweep" --surfaces sphere,ellipsoid,torus,genus2,metaball,two_blobs,thin_handle,near_sheets \
+      --lambdas 0.06 0.05 0.04 0.03 0.02 --time-limit "$TIME_LIMIT" --out-dir "$OUT"
   "$BUILD/experiments/compare_cgal" --time-limit "$TIME_LIMIT" --out-dir "$OUT"
 fi
 

@@ -166,4 +166,30 @@ inline constexpr double progress_interval_seconds = 0.5;
 //! re-examined in MPFI before being bisected further.
 inline constexpr double precision_limited_ratio = 0.25;
 
+// ---- certified subdivision and univariate isolation, continued (review r1: constants that were
+// ---- literals in solvers/{subdivision_solver,univariate_isolator}.{h,cpp}) ----
+
+//! Default maximum number of subintervals one univariate isolation may visit before it stops
+//! with status box_limit (the remaining intervals are returned as undecided).
+inline constexpr std::size_t default_univariate_box_budget = 100000;
+
+//! Krawczyk refinement of a certified root's box (root_refinement_iterations) stops once a step
+//! shrinks the widest side to no less than this fraction of it.
+inline constexpr double root_refinement_shrink_ratio = 0.75;
+
+//! Krawczyk steps in MPFI, per escalation precision, that try to separate a certified root from
+//! a face of the polytope before it is reported as boundary_root.
+inline constexpr int boundary_separation_iterations = 4;
+
+//! Univariate isolator: safeguarded Newton refinement of an isolated root stops when a step or
+//! the bracket is narrower than this (relative to t1 − t0), or after
+//! univariate_newton_iterations steps.
+inline constexpr double univariate_newton_relative_tolerance = 1e-15;
+inline constexpr int univariate_newton_iterations = 100;
+
+//! Univariate isolator: the tight interval around a refined root grows by this factor, at most
+//! univariate_certify_attempts times, until a sign change certifies it.
+inline constexpr double univariate_certify_growth = 8;
+inline constexpr int univariate_certify_attempts = 16;
+
 }  // namespace delmesh::tolerances

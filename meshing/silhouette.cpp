@@ -1,5 +1,6 @@
 #include "meshing/silhouette.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "meshing/detail/candidates.h"
@@ -16,7 +17,7 @@ Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, cons
   return std::cos(angle) * frame.a + std::sin(angle) * frame.b;
 }
 
-std::optional<Witness> silhouette_witness(RestrictedDelaunay& restricted, VertexId p) {
+std::optional<Witness> silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool facets_clean) {
   const auto& del = restricted.delaunay();
   auto& oracle = restricted.oracle();
   const Vec3& pp = del.point(p);
@@ -38,7 +39,19 @@ std::optional<Witness> silhouette_witness(RestrictedDelaunay& restricted, Vertex
     if (!points.empty())
       return Witness{points[furthest_index(points, pp)], CheckKind::silhouette, p, from_undecided};
   }
+  // Neighbours q such that a Voronoi edge of the facet pq meets Σ (see facets_clean).
+  std::vector<VertexId> crossing;
+  if (facets_clean) {
+    for (const auto& t : del.incident_triangles(p)) {
+      const auto& rec = restricted.edge_record(t);
+      if (rec.crossings.empty() && rec.candidates.empty() && rec.unresolved == 0) continue;
+      for (VertexId v : t)
+        if (v != p) crossing.push_back(v);
+    }
+    std::sort(crossing.begin(), crossing.end());
+  }
   for (VertexId q : cell.facet_neighbours) {
+    if (facets_clean && !std::binary_search(crossing.begin(), crossing.end(), q)) continue;
     const VoronoiFacet& f = restricted.facet(make_edge_key(p, q));
     if (!f.valid) continue;
     const auto result = oracle.silhouette_plane(f.origin, f.a, f.b, n_p, f.domain);

@@ -17,6 +17,13 @@ Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, cons
 //! from p; undecided regions are projected candidates) is returned.  Otherwise, for every facet
 //! pq of V_p, SilhouettePlane(Σ, Π_pq, n_p) over the facet polygon: a point inside the facet is
 //! returned.  Nothing if neither finds one.
-std::optional<Witness> silhouette_witness(RestrictedDelaunay& restricted, VertexId p);
+//!
+//! facets_clean: the caller asserts the §5.4 order — VorEdge, FacetContact, TopoDisk and
+//! FacetCycle found nothing on the faces of V_p (Topology runs step (e) only then).  Then a facet
+//! F = V_p ∩ V_q meets Σ only in open arcs ending on Voronoi edges of F (a closed curve would have
+//! given a FacetCycle witness, and Σ does not reach ∂B), so a facet none of whose Voronoi edges
+//! (the duals of the triangles pqr) meets Σ has F ∩ Σ = ∅ ⊇ F ∩ J_{n_p}, and SilhouettePlane is
+//! skipped for it.  With facets_clean = false every facet is solved.
+std::optional<Witness> silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool facets_clean = false);
 
 }  // namespace delmesh

@@ -146,7 +146,7 @@ TopologyStatus Topology::run() {
     } else if (!queue_e_.empty()) {
       kind = CheckKind::silhouette;
       const auto p = pop(queue_e_);
-      if (del_.contains(p)) w = silhouette_witness(restricted_, p);
+      if (del_.contains(p)) w = silhouette_witness(restricted_, p, /*facets_clean=*/true);
     } else {
       return TopologyStatus::complete;
     }

@@ -35,7 +35,7 @@ def main():
     panels = [("min_angle_deg", "bound_min_angle_deg", "minimum angle (deg)", "≥"),
               ("max_radius_edge_ratio", "bound_max_radius_edge_ratio", "max radius-edge ratio", "≤"),
               ("max_roughness_rad", "bound_max_roughness_rad", "max roughness (deg)", "≤")]
-    fig, axes = plt.subplots(1, 3, figsize=(13, 4))
+    fig, axes = plt.subplots(1, 4, figsize=(17, 4))
     for ax, (measured, bound, label, sense) in zip(axes, panels):
         scale = 180 / math.pi if measured.endswith("_rad") else 1.0
         any_row = {float(r["lambda"]): r[bound] for r in rows}
@@ -47,6 +47,23 @@ def main():
         ax.set_xlabel("λ")
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
+    # Margins: measured / bound for the two upper bounds (≤ 1 means the bound holds); violations in red.
+    ax = axes[3]
+    for measured, bound, marker in (("max_radius_edge_ratio", "bound_max_radius_edge_ratio", "s"),
+                                    ("max_roughness_rad", "bound_max_roughness_rad", "o")):
+        for name in surfaces:
+            series = sorted((float(r["lambda"]), r[measured] / r[bound]) for r in rows if r["surface"] == name)
+            ax.plot([x for x, _ in series], [y for _, y in series], marker + "-", color=surface_color(name),
+                    ms=4, lw=0.8)
+            for x, y in series:
+                if y > 1:
+                    ax.plot([x], [y], "x", color="red", ms=12, mew=2)
+                    ax.annotate(f"{name} {y:.3f}", (x, y), textcoords="offset points", xytext=(4, 4),
+                                fontsize=7, color="red")
+    ax.axhline(1.0, color="k", ls="--", lw=1.5)
+    ax.set_xlabel("λ")
+    ax.set_ylabel("measured / bound (■ ratio, ● roughness)")
+    ax.grid(alpha=0.3)
     axes[0].legend(fontsize=8)
     fig.suptitle(f"Measured quality vs Theorem 6.1 (git {meta.get('git', '?')})", fontsize=11)
     fig.tight_layout()

@@ -27,6 +27,19 @@ void ConvexPolytope::clip(const V3& n, double c, int label) {
   for (const auto& f : faces_)
     for (const auto& p : f.loop) extent = std::max(extent, std::abs(dot(n, p) - c) / scale);
   const double eps = 1e-13 * std::max(extent, 1e-300);
+  {
+    // Nothing to cut: every vertex is inside.
+    bool cuts = false;
+    for (const auto& f : faces_) {
+      for (const auto& p : f.loop)
+        if ((dot(n, p) - c) / scale > eps) {
+          cuts = true;
+          break;
+        }
+      if (cuts) break;
+    }
+    if (!cuts) return;
+  }
   for (const auto& f : faces_) {
     std::vector<V3> loop;
     const std::size_t m = f.loop.size();
@@ -54,9 +67,15 @@ void ConvexPolytope::clip(const V3& n, double c, int label) {
     V3 a = std::abs(nn[0]) < 0.9 ? V3{1, 0, 0} : V3{0, 1, 0};
     a = normalized(a - dot(a, nn) * nn);
     const V3 b = cross(nn, a);
-    std::sort(cut.begin(), cut.end(), [&](const V3& p, const V3& q) {
-      return std::atan2(dot(p - g, b), dot(p - g, a)) < std::atan2(dot(q - g, b), dot(q - g, a));
-    });
+    // Monotone pseudo-angle in [0, 4) (cheaper than atan2, same order).
+    auto pseudo_angle = [&](const V3& p) {
+      const double x = dot(p - g, a), y = dot(p - g, b);
+      const double r = std::abs(x) + std::abs(y);
+      if (r == 0) return 0.0;
+      const double t = y / r;  // in [-1, 1]
+      return x >= 0 ? (t >= 0 ? t : 4 + t) : 2 - t;
+    };
+    std::sort(cut.begin(), cut.end(), [&](const V3& p, const V3& q) { return pseudo_angle(p) < pseudo_angle(q); });
     std::vector<V3> loop;
     for (const auto& p : cut)
       if (loop.empty() || distance(loop.back(), p) > eps) loop.push_back(p);

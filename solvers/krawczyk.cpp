@@ -35,45 +35,32 @@ void check_arguments(const CompiledSystem& system, const std::vector<double>& pa
     if (!detail::is_finite(side)) throw InvalidInput("krawczyk_test: the box is not finite");
 }
 
-}  // namespace
-
-KrawczykResult krawczyk_test(const CompiledSystem& system, const std::vector<double>& parameters,
-                             const std::vector<Interval>& box) {
-  check_arguments(system, parameters, box);
-  const std::size_t n = box.size();
-  std::vector<Interval> p(parameters.begin(), parameters.end()), mid(n), fm(n), jm(n * n), fx(n), jx(n * n), k(n);
-  std::vector<double> jmid(n * n), y(n * n);
-  for (std::size_t i = 0; i < n; ++i) mid[i] = Interval(detail::midpoint(box[i]));
-  system.values_and_jacobian(mid.data(), p.data(), fm.data(), jm.data());
-  system.values_and_jacobian(box.data(), p.data(), fx.data(), jx.data());
-  KrawczykResult result;
-  result.contracted = box;
-  for (std::size_t i = 0; i < n; ++i)
-    if (certainly_nonzero(fx[i])) {
-      result.outcome = KrawczykOutcome::no_root;
-      return result;
-    }
-  for (std::size_t i = 0; i < n * n; ++i) jmid[i] = detail::midpoint(jm[i]);
-  if (!detail::invert_matrix(n, jmid.data(), y.data())) return result;  // singular J(m): inconclusive
-  detail::krawczyk_image(n, box.data(), mid.data(), fm.data(), jx.data(), y.data(), k.data());
-  result.outcome = detail::krawczyk_compare(n, k.data(), box.data(), result.contracted.data());
-  return result;
+//! Conversions between the double Interval boxes of the interface and the arithmetic T.
+template <class T>
+T lift(const Interval& a);
+template <>
+Interval lift<Interval>(const Interval& a) {
+  return a;
 }
+template <>
+MpfiInterval lift<MpfiInterval>(const Interval& a) {
+  return detail::to_mpfi(a);
+}
+Interval lower(const Interval& a) { return a; }
+Interval lower(const MpfiInterval& a) { return detail::to_interval(a); }
 
-KrawczykResult krawczyk_test_mpfi(const CompiledSystem& system, const std::vector<double>& parameters,
-                                  const std::vector<Interval>& box, int precision_bits) {
-  check_arguments(system, parameters, box);
-  if (precision_bits < 53) throw InvalidInput("krawczyk_test_mpfi: precision below 53 bits");
-  RoundingGuard guard;  // the double Interval bookkeeping below
+//! krawczyk_test in T's interval arithmetic (Interval under a RoundingGuard, or MPFI at the
+//! current default precision); every quantity is rounded outward to double intervals only for
+//! the preconditioner and the final comparison.
+template <class T>
+KrawczykResult krawczyk_step(const CompiledSystem& system, const std::vector<double>& parameters,
+                             const std::vector<Interval>& box) {
   const std::size_t n = box.size();
-  detail::MpfiPrecisionScope scope(precision_bits);
-  std::vector<MpfiInterval> p(parameters.size()), x(n), mid(n), fm(n), jm(n * n), fx(n), jx(n * n), k(n);
-  for (std::size_t i = 0; i < parameters.size(); ++i) p[i] = detail::to_mpfi(parameters[i], parameters[i]);
-  std::vector<Interval> mid_double(n), k_double(n);
+  std::vector<T> p(parameters.size()), x(n), mid(n), fm(n), jm(n * n), fx(n), jx(n * n), k(n);
+  for (std::size_t i = 0; i < parameters.size(); ++i) p[i] = lift<T>(Interval(parameters[i]));
   for (std::size_t i = 0; i < n; ++i) {
-    x[i] = detail::to_mpfi(box[i]);
-    const double m = detail::midpoint(box[i]);
-    mid[i] = detail::to_mpfi(m, m);
+    x[i] = lift<T>(box[i]);
+    mid[i] = lift<T>(Interval(detail::midpoint(box[i])));
   }
   system.values_and_jacobian(mid.data(), p.data(), fm.data(), jm.data());
   system.values_and_jacobian(x.data(), p.data(), fx.data(), jx.data());
@@ -85,12 +72,30 @@ KrawczykResult krawczyk_test_mpfi(const CompiledSystem& system, const std::vecto
       return result;
     }
   std::vector<double> jmid(n * n), y(n * n);
-  for (std::size_t i = 0; i < n * n; ++i) jmid[i] = detail::midpoint(detail::to_interval(jm[i]));
-  if (!detail::invert_matrix(n, jmid.data(), y.data())) return result;
+  for (std::size_t i = 0; i < n * n; ++i) jmid[i] = detail::midpoint(lower(jm[i]));
+  if (!detail::invert_matrix(n, jmid.data(), y.data())) return result;  // singular J(m): inconclusive
   detail::krawczyk_image(n, x.data(), mid.data(), fm.data(), jx.data(), y.data(), k.data());
-  for (std::size_t i = 0; i < n; ++i) k_double[i] = detail::to_interval(k[i]);
+  std::vector<Interval> k_double(n);
+  for (std::size_t i = 0; i < n; ++i) k_double[i] = lower(k[i]);
   result.outcome = detail::krawczyk_compare(n, k_double.data(), box.data(), result.contracted.data());
   return result;
+}
+
+}  // namespace
+
+KrawczykResult krawczyk_test(const CompiledSystem& system, const std::vector<double>& parameters,
+                             const std::vector<Interval>& box) {
+  check_arguments(system, parameters, box);
+  return krawczyk_step<Interval>(system, parameters, box);
+}
+
+KrawczykResult krawczyk_test_mpfi(const CompiledSystem& system, const std::vector<double>& parameters,
+                                  const std::vector<Interval>& box, int precision_bits) {
+  check_arguments(system, parameters, box);
+  if (precision_bits < 53) throw InvalidInput("krawczyk_test_mpfi: precision below 53 bits");
+  RoundingGuard guard;  // the double Interval bookkeeping
+  detail::MpfiPrecisionScope scope(precision_bits);
+  return krawczyk_step<MpfiInterval>(system, parameters, box);
 }
 
 }  // namespace delmesh

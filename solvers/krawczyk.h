@@ -10,10 +10,15 @@
 
 namespace delmesh {
 
-enum class KrawczykOutcome { unique_root, no_root, inconclusive };
+//! What one Krawczyk step proved about the box X.
+enum class KrawczykOutcome {
+  unique_root,  //!< K(X) ⊂ int X: X contains exactly one zero of f
+  no_root,      //!< f(X) ∌ 0 or K(X) ∩ X = ∅: X contains no zero of f
+  inconclusive  //!< neither (or J(m) singular, or NaN bounds)
+};
 std::ostream& operator<<(std::ostream& out, KrawczykOutcome outcome);
 
-struct KrawczykResult {
+struct [[nodiscard]] KrawczykResult {
   KrawczykOutcome outcome = KrawczykOutcome::inconclusive;
   std::vector<Interval> contracted;  //!< K(X) ∩ X (valid when not no_root)
 };

@@ -143,15 +143,10 @@ class Subdivision {
       if (escalate(X)) return;
       escalated = true;
     }
-    bool singular = true;
     if (!exclusion_) {
-      double jmid[max_unknowns * max_unknowns], y[max_unknowns * max_unknowns];
-      for (std::size_t i = 0; i < n_ * n_; ++i) jmid[i] = midpoint(jm[i]);
-      singular = !certainly_nonzero(determinant(n_, jx));
-      if (detail::invert_matrix(n_, jmid, y)) {
-        Interval k[max_unknowns], contracted[max_unknowns];
-        detail::krawczyk_image(n_, Xp.x, mid, fm, jx, y, k);
-        const KrawczykOutcome outcome = detail::krawczyk_compare(n_, k, Xp.x, contracted);
+      Interval contracted[max_unknowns];
+      KrawczykOutcome outcome;
+      if (krawczyk(Xp.x, mid, fm, jm, jx, contracted, outcome)) {
         if (outcome == KrawczykOutcome::no_root) {
           ++counters_.exclusions;
           return;
@@ -182,6 +177,8 @@ class Subdivision {
     }
     double w = 0;
     const std::size_t side = detail::widest_side(X.x, n_, &w);
+    // The interval Jacobian determinant over Xp is needed only on the smallest boxes.
+    const bool singular = w < singular_width_ && (exclusion_ || !certainly_nonzero(determinant(n_, jx)));
     if (w < singular_width_ && (singular || w < min_width_)) {
       if (!escalated && escalate(X)) return;
       bool all_zero = true;
@@ -203,6 +200,20 @@ class Subdivision {
     hi.x[side] = Interval(split, X.x[side].sup());
     work_.push_back(hi);
     work_.push_back(lo);
+  }
+
+  //! One Krawczyk step on the box B (double intervals) from the evaluations mid (a point m ∈ B),
+  //! fm ∋ f(m), jm ∋ J(m) and jx ⊇ J(B).  False when J(m) has no double inverse (nothing proved);
+  //! otherwise `outcome` as krawczyk_compare and, unless no_root, contracted = K(B) ∩ B.
+  bool krawczyk(const Interval* B, const Interval* mid, const Interval* fm, const Interval* jm, const Interval* jx,
+                Interval* contracted, KrawczykOutcome& outcome) const {
+    double jmid[max_unknowns * max_unknowns], y[max_unknowns * max_unknowns];
+    for (std::size_t i = 0; i < n_ * n_; ++i) jmid[i] = midpoint(jm[i]);
+    if (!detail::invert_matrix(n_, jmid, y)) return false;
+    Interval k[max_unknowns];
+    detail::krawczyk_image(n_, B, mid, fm, jx, y, k);
+    outcome = detail::krawczyk_compare(n_, k, B, contracted);
+    return true;
   }
 
   //! Re-examines X in MPFI at the escalation precisions: exclusion, then (square systems)
@@ -255,44 +266,48 @@ class Subdivision {
     return false;
   }
 
-  //! Shrinks R (which contains a zero) by Krawczyk iteration until it stops shrinking.
-  void refine(Box& R) const {
+  //! Shrinks R (which contains a zero) by Krawczyk iteration, at most root_refinement_iterations
+  //! steps, until a step leaves its widest side at ≥ root_refinement_shrink_ratio times before.  step(R, K) performs one Krawczyk
+  //! step on R and stores K ∩ R in K; it returns false when the step proved nothing usable.
+  template <class Step>
+  void shrink(Box& R, const Step& step) const {
     for (int it = 0; it < tolerances::root_refinement_iterations; ++it) {
-      Interval mid[max_unknowns], fm[max_equations], jm[max_equations * max_unknowns], fx[max_equations],
-          jx[max_equations * max_unknowns], k[max_unknowns], contracted[max_unknowns];
-      double jmid[max_unknowns * max_unknowns], y[max_unknowns * max_unknowns];
-      for (std::size_t i = 0; i < n_; ++i) mid[i] = Interval(midpoint(R.x[i]));
-      system_.values_and_jacobian(mid, params_.data(), fm, jm);
-      system_.values_and_jacobian(R.x, params_.data(), fx, jx);
-      for (std::size_t i = 0; i < n_ * n_; ++i) jmid[i] = midpoint(jm[i]);
-      if (!detail::invert_matrix(n_, jmid, y)) return;
-      detail::krawczyk_image(n_, R.x, mid, fm, jx, y, k);
-      if (detail::krawczyk_compare(n_, k, R.x, contracted) == KrawczykOutcome::no_root) return;
+      Box K;
+      if (!step(R, K)) return;
       double before = 0, after = 0;
       detail::widest_side(R.x, n_, &before);
-      detail::widest_side(contracted, n_, &after);
-      std::copy(contracted, contracted + n_, R.x);
-      if (!(after < 0.75 * before)) return;
+      detail::widest_side(K.x, n_, &after);
+      std::copy(K.x, K.x + n_, R.x);
+      if (!(after < tolerances::root_refinement_shrink_ratio * before)) return;
     }
+  }
+
+  //! shrink() with Krawczyk steps in double intervals.
+  void refine(Box& R) const {
+    shrink(R, [this](const Box& X, Box& K) {
+      Interval mid[max_unknowns], fm[max_equations], jm[max_equations * max_unknowns], fx[max_equations],
+          jx[max_equations * max_unknowns];
+      for (std::size_t i = 0; i < n_; ++i) mid[i] = Interval(midpoint(X.x[i]));
+      system_.values_and_jacobian(mid, params_.data(), fm, jm);
+      system_.values_and_jacobian(X.x, params_.data(), fx, jx);
+      KrawczykOutcome outcome;
+      return krawczyk(X.x, mid, fm, jm, jx, K.x, outcome) && outcome != KrawczykOutcome::no_root;
+    });
+  }
+
+  //! shrink() with Krawczyk steps in MPFI at `bits` (for roots only MPFI could certify).
+  void refine_mpfi(Box& R, int bits) const {
+    shrink(R, [this, bits](const Box& X, Box& K) {
+      const KrawczykResult k = krawczyk_test_mpfi(system_, params_d_, std::vector<Interval>(X.x, X.x + n_), bits);
+      std::copy(k.contracted.begin(), k.contracted.end(), K.x);
+      return k.outcome != KrawczykOutcome::no_root;
+    });
   }
 
   static bool box_inside(const Box& a, const Box& b, std::size_t n) {
     for (std::size_t i = 0; i < n; ++i)
       if (!detail::inside(a.x[i], b.x[i])) return false;
     return true;
-  }
-
-  //! Shrinks R by Krawczyk iteration in MPFI at `bits` (for roots only MPFI could certify).
-  void refine_mpfi(Box& R, int bits) const {
-    for (int it = 0; it < tolerances::root_refinement_iterations; ++it) {
-      const KrawczykResult k = krawczyk_test_mpfi(system_, params_d_, std::vector<Interval>(R.x, R.x + n_), bits);
-      if (k.outcome == KrawczykOutcome::no_root) return;
-      double before = 0, after = 0;
-      detail::widest_side(R.x, n_, &before);
-      detail::widest_side(k.contracted.data(), n_, &after);
-      std::copy(k.contracted.begin(), k.contracted.end(), R.x);
-      if (!(after < 0.75 * before)) return;
-    }
   }
 
   //! A unique zero in U, known to lie in R ⊂ U.  mpfi_bits > 0: certified only in MPFI.
@@ -307,7 +322,7 @@ class Subdivision {
       // Try to separate the root from the face at higher precision.
       for (int bits : tolerances::escalation_precisions) {
         ++counters_.precision_escalations;
-        for (int it = 0; it < 4 && side == DomainSide::boundary; ++it) {
+        for (int it = 0; it < tolerances::boundary_separation_iterations && side == DomainSide::boundary; ++it) {
           const KrawczykResult k = krawczyk_test_mpfi(system_, params_d_, std::vector<Interval>(R.x, R.x + n_), bits);
           if (k.outcome == KrawczykOutcome::no_root) break;
           std::copy(k.contracted.begin(), k.contracted.end(), R.x);

@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "common/tolerances.h"
 #include "solvers/domain.h"
 #include "solvers/solve_result.h"
 #include "symbolic/compiled_system.h"
@@ -15,7 +16,7 @@
 namespace delmesh {
 
 struct SubdivisionOptions {
-  std::size_t box_budget = 200000;
+  std::size_t box_budget = tolerances::default_box_budget;  //!< boxes visited before status box_limit
   double time_limit_seconds = 0;  //!< 0: none
   //! Over-determined systems (m > n, SurfacePlaneContact): prove that there is no solution, or
   //! return as undecided the boxes that could not be excluded.  Never certifies roots.

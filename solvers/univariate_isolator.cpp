@@ -87,7 +87,7 @@ template <class Evaluator>
 bool refine_root(const Evaluator& e, double lo, double hi, double x, double scale, double& out_lo, double& out_hi) {
   double a = lo, b = hi, fa, dfa;
   e.value_and_derivative(a, fa, dfa);
-  for (int it = 0; it < 100; ++it) {
+  for (int it = 0; it < tolerances::univariate_newton_iterations; ++it) {
     double f, df;
     e.value_and_derivative(x, f, df);
     if (f == 0) break;
@@ -97,7 +97,8 @@ bool refine_root(const Evaluator& e, double lo, double hi, double x, double scal
       b = x;
     double next = x - f / df;
     if (!(next > a && next < b)) next = 0.5 * a + 0.5 * b;
-    const bool done = std::abs(next - x) <= 1e-15 * scale || b - a <= 1e-15 * scale;
+    const double tolerance = tolerances::univariate_newton_relative_tolerance * scale;
+    const bool done = std::abs(next - x) <= tolerance || b - a <= tolerance;
     x = next;
     if (done) break;
   }
@@ -111,7 +112,8 @@ bool refine_root(const Evaluator& e, double lo, double hi, double x, double scal
     const double from_width = 2 * detail::width(e.value(Interval(x))) / std::abs(df);
     if (std::isfinite(from_width)) r = std::max(r, from_width);
   }
-  for (int attempt = 0; attempt < 16; ++attempt, r *= 8) {
+  for (int attempt = 0; attempt < tolerances::univariate_certify_attempts;
+       ++attempt, r *= tolerances::univariate_certify_growth) {
     const double a = std::max(-(r - x), lo), b = std::min(x + r, hi);  // outward under upward rounding
     if (certify_interval(e, a, b, true)) {
       out_lo = a, out_hi = b;
@@ -120,6 +122,20 @@ bool refine_root(const Evaluator& e, double lo, double hi, double x, double scal
     if (a == lo && b == hi) break;
   }
   return false;
+}
+
+//! An interval of relative width w (to t1 − t0) that could be neither excluded nor certified is
+//! not subdivided further when it is narrower than singular_box_relative_width and the derivative
+//! may vanish on it (not monotone), or narrower than min_box_relative_width.
+bool is_leaf(double w, bool monotone) {
+  return (!monotone && w < tolerances::singular_box_relative_width) || w < tolerances::min_box_relative_width;
+}
+
+//! The reason such a leaf is undecided: boundary_root if a zero may lie at t0 or t1 (boundary),
+//! else precision if it is monotone, else singular_root.
+UndecidedReason leaf_reason(bool boundary, bool monotone) {
+  return boundary ? UndecidedReason::boundary_root
+                  : monotone ? UndecidedReason::precision : UndecidedReason::singular_root;
 }
 
 struct Leaf {
@@ -229,13 +245,10 @@ class Isolation {
         continue;
       }
       const bool boundary = (node.sa == 0 && s_left == 0) || (node.sb == 1 && s_right == 0);
-      if ((!monotone && w < tolerances::singular_box_relative_width) || w < tolerances::min_box_relative_width) {
+      if (is_leaf(w, monotone)) {
         double lo, hi;
         t_outer(node.sa, node.sb, lo, hi);
-        const UndecidedReason reason = boundary ? UndecidedReason::boundary_root
-                                       : monotone ? UndecidedReason::precision
-                                                  : UndecidedReason::singular_root;
-        undecided_leaf(lo, hi, reason);
+        undecided_leaf(lo, hi, leaf_reason(boundary, monotone));
         continue;
       }
       // Split, avoiding a split point at which the value is not certainly nonzero.
@@ -338,11 +351,8 @@ class Isolation {
         }
       }
       const bool boundary = (node.a == t0_ && sa == 0) || (node.b == t1_ && sb == 0);
-      if ((!monotone && w < tolerances::singular_box_relative_width) || w < tolerances::min_box_relative_width) {
-        const UndecidedReason reason = boundary ? UndecidedReason::boundary_root
-                                       : monotone ? UndecidedReason::precision
-                                                  : UndecidedReason::singular_root;
-        undecided_leaf(node.a, node.b, reason);
+      if (is_leaf(w, monotone)) {
+        undecided_leaf(node.a, node.b, leaf_reason(boundary, monotone));
         continue;
       }
       double split = midpoint(T);

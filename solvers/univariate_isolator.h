@@ -8,6 +8,7 @@
 #include <array>
 #include <optional>
 
+#include "common/tolerances.h"
 #include "solvers/solve_result.h"
 #include "symbolic/compiled_system.h"
 #include "symbolic/line_polynomial.h"
@@ -15,7 +16,8 @@
 namespace delmesh {
 
 struct UnivariateOptions {
-  std::size_t box_budget = 100000;
+  //! Subintervals visited before the isolation stops with status box_limit.
+  std::size_t box_budget = tolerances::default_univariate_box_budget;
 };
 
 //! The zeros of E(p + t v) for t in the closed interval [t0, t1], certified in the sense of

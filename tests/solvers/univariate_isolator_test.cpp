@@ -31,12 +31,6 @@ const LineProblem& sphere() {
   return problem;
 }
 
-std::vector<double> root_ts(const SolveResult& r) {
-  std::vector<double> ts;
-  for (const auto& root : r.roots) ts.push_back(root.midpoint[0]);
-  return ts;
-}
-
 bool any_reason(const SolveResult& r, UndecidedReason reason) {
   for (const auto& u : r.undecided)
     if (u.reason == reason) return true;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/errors.h"
+#include "solvers/detail/interval_box.h"
 
 namespace delmesh {
 
@@ -62,8 +63,7 @@ DomainSide classify(const Domain& domain, const Interval* box) {
     if (!(box[i].inf() > lo && box[i].sup() < hi)) inside = false;
   }
   for (const HalfSpace& h : domain.half_spaces) {
-    Interval s(-h.offset);
-    for (std::size_t i = 0; i < n; ++i) s += Interval(h.normal[i]) * box[i];
+    const Interval s = detail::half_space_excess(h.normal.data(), h.offset, box, n);
     if (s.inf() > 0) return DomainSide::outside;
     if (!(s.sup() < 0)) inside = false;
   }

@@ -89,11 +89,8 @@ class Subdivision {
   }
 
   bool outside_polytope(const Box& b) const {
-    for (const HalfSpace& h : domain_.half_spaces) {
-      Interval s(-h.offset);
-      for (std::size_t i = 0; i < n_; ++i) s += Interval(h.normal[i]) * b.x[i];
-      if (s.inf() > 0) return true;
-    }
+    for (const HalfSpace& h : domain_.half_spaces)
+      if (detail::half_space_excess(h.normal.data(), h.offset, b.x, n_).inf() > 0) return true;
     return false;
   }
 

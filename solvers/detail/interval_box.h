@@ -38,6 +38,15 @@ inline Interval intersection(const Interval& a, const Interval& b) {
 //! [a.inf() − r, a.sup() + r] for r ≥ 0 (outward under the guard).
 inline Interval inflate(const Interval& a, double r) { return Interval(-(r - a.inf()), a.sup() + r); }
 
+//! An enclosure of ⟨normal, x⟩ − offset over the box x of n intervals (normal: n doubles), the
+//! signed excess of a half-space ⟨normal, u⟩ ≤ offset: inf > 0 proves the box outside it,
+//! sup < 0 strictly inside.
+inline Interval half_space_excess(const double* normal, double offset, const Interval* x, std::size_t n) {
+  Interval s(-offset);
+  for (std::size_t i = 0; i < n; ++i) s += Interval(normal[i]) * x[i];
+  return s;
+}
+
 //! The widest side of a box of n intervals, and its index.
 inline std::size_t widest_side(const Interval* box, std::size_t n, double* w = nullptr) {
   std::size_t best = 0;

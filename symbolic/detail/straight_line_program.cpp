@@ -46,6 +46,9 @@ std::string to_text(const GiNaC::ex& e) {
   throw PreconditionViolation("cannot compile '" + to_text(e) + "': " + why);
 }
 
+//! True for the opcodes whose operand b is a register (for pow, b is the exponent).
+bool is_binary(OpCode op) { return op == OpCode::add || op == OpCode::sub || op == OpCode::mul || op == OpCode::div; }
+
 std::atomic<std::uint64_t> next_serial{1};
 
 //! A value during compilation: an input, a constant or an instruction result, by index.  The
@@ -96,8 +99,7 @@ class StraightLineProgram::Compiler {
     };
     for (Instruction& ins : program_.code_) {
       ins.a = reg(ins.a);
-      if (ins.op == OpCode::add || ins.op == OpCode::sub || ins.op == OpCode::mul || ins.op == OpCode::div)
-        ins.b = reg(ins.b);
+      if (is_binary(ins.op)) ins.b = reg(ins.b);
     }
     for (int ref : output_refs) program_.outputs_.push_back(reg(ref));
   }
@@ -231,7 +233,8 @@ class StraightLineProgram::Compiler {
       const Canon b = canonical(e.op(0));
       const ex& k = e.op(1);
       const bool integer = is_a<numeric>(k) && ex_to<numeric>(k).is_integer();
-      c.hash = mix(mix(5, integer ? b.hash : signed_hash(b, false)), canonical(k).hash ^ (canonical(k).negative ? 7 : 0));
+      const Canon exponent = canonical(k);
+      c.hash = mix(mix(5, integer ? b.hash : signed_hash(b, false)), exponent.hash ^ (exponent.negative ? 7 : 0));
       c.negative = integer && b.negative && ex_to<numeric>(k).is_odd();
     } else {
       c.hash = is_a<function>(e) ? mix(6, std::hash<std::string>()(ex_to<function>(e).get_name()))
@@ -391,10 +394,6 @@ StraightLineProgram::StraightLineProgram(const std::vector<GiNaC::ex>& outputs,
     constants_complex_.push_back(z);
   }
 }
-
-namespace {
-bool is_binary(OpCode op) { return op == OpCode::add || op == OpCode::sub || op == OpCode::mul || op == OpCode::div; }
-}  // namespace
 
 void StraightLineProgram::schedule() {
   // Kahn's algorithm; among the ready instructions prefer the opcode of the previous one, else the

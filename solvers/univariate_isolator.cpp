@@ -296,12 +296,17 @@ class Isolation {
   // ---- any E: interval Newton and bisection on the compiled line system ----
   void run_newton() {
     const LineSystemEvaluator eval{line_, params_, params_d_};
+    // The certain sign of E at an end point is evaluated once and handed to the subintervals
+    // that share the point (unknown_sign until it is needed).
+    constexpr int unknown_sign = 2;
+    const auto sign_at = [&](double t) { return certain_sign(eval.value(Interval(t))); };
     struct Node {
       double a, b;
+      int sa, sb;  // certain signs of E at a and b, or unknown_sign
     };
     static thread_local std::vector<Node> nodes;
     nodes.clear();
-    nodes.push_back({t0_, t1_});
+    nodes.push_back({t0_, t1_, unknown_sign, unknown_sign});
     while (!nodes.empty()) {
       if (stopped_) break;
       Node node = nodes.back();
@@ -320,7 +325,9 @@ class Isolation {
         continue;
       }
       const double w = (node.b - node.a) / scale_;
-      const int sa = certain_sign(eval.value(Interval(node.a))), sb = certain_sign(eval.value(Interval(node.b)));
+      if (node.sa == unknown_sign) node.sa = sign_at(node.a);
+      if (node.sb == unknown_sign) node.sb = sign_at(node.b);
+      const int sa = node.sa, sb = node.sb;
       const bool monotone = certainly_nonzero(df);
       if (monotone && sa != 0 && sb != 0) {
         if (sa == sb) {
@@ -345,7 +352,8 @@ class Isolation {
           }
           const Interval c = detail::intersection(n, T);
           if (detail::width(c) < tolerances::krawczyk_contraction_ratio * detail::width(T) && c.inf() < c.sup()) {
-            nodes.push_back({c.inf(), c.sup()});
+            nodes.push_back({c.inf(), c.sup(), c.inf() == node.a ? sa : unknown_sign,
+                             c.sup() == node.b ? sb : unknown_sign});
             continue;
           }
         }
@@ -356,13 +364,15 @@ class Isolation {
         continue;
       }
       double split = midpoint(T);
+      int s_split = unknown_sign;
       for (double ratio : split_ratios) {
         split = node.a + ratio * (node.b - node.a);
         if (split <= node.a || split >= node.b) split = midpoint(T);
-        if (certainly_nonzero(eval.value(Interval(split)))) break;
+        s_split = sign_at(split);
+        if (s_split != 0) break;
       }
-      nodes.push_back({split, node.b});
-      nodes.push_back({node.a, split});
+      nodes.push_back({split, node.b, s_split, sb});
+      nodes.push_back({node.a, split, sa, s_split});
     }
     for (const Node& node : nodes) leaves_.push_back({node.a, node.b, stop_reason()});
     nodes.clear();

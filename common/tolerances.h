@@ -5,6 +5,7 @@
 //! is done before a region is reported as undecided.
 
 #include <cstddef>
+#include <limits>
 
 namespace delmesh::tolerances {
 
@@ -191,5 +192,10 @@ inline constexpr int univariate_newton_iterations = 100;
 //! univariate_certify_attempts times, until a sign change certifies it.
 inline constexpr double univariate_certify_growth = 8;
 inline constexpr int univariate_certify_attempts = 16;
+
+//! A plane section of a box whose polygon has area below this times the squared box diagonal is
+//! an edge or a corner, not a polygon (solvers/query_geometry.cpp: plane_box_section): rounding
+//! noise at the box's size.
+inline constexpr double degenerate_section_relative_area = std::numeric_limits<double>::epsilon();
 
 }  // namespace delmesh::tolerances

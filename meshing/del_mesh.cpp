@@ -96,6 +96,9 @@ TopologyStatus refine_geometry(Topology& topology, const DelMeshOptions& options
         w = smooth_witness(restricted, e, smooth_threshold);
         if (w) break;
       }
+      // The witness may lie on the dual edge of the other triangle at the rough edge, leaving t
+      // itself unchanged: t goes back on the list so that its remaining edges are examined too.
+      if (w) smooth_list.insert(t);
       topology.add_seconds(CheckKind::smooth,
                            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     } else {

@@ -69,6 +69,11 @@ BOOST_AUTO_TEST_CASE(sphere_meets_theorem_6_1) { check_theorem_6_1("sphere", 0.0
 
 BOOST_AUTO_TEST_CASE(torus_meets_theorem_6_1) { check_theorem_6_1("torus", 0.06); }
 
+// Regression: Smooth used to drop a triangle from its work list after the first rough edge even
+// when the witness left that triangle unchanged, so its other edges were never examined and the
+// output broke the roughness bound (two_blobs at λ = 0.05: 0.670 > 2β = 0.617).
+BOOST_AUTO_TEST_CASE(two_blobs_meets_theorem_6_1_at_lambda_005) { check_theorem_6_1("two_blobs", 0.05); }
+
 BOOST_AUTO_TEST_CASE(statistics_follow_the_contract) {
   const auto result = run("sphere", 0.06);
   const auto& j = result.statistics;

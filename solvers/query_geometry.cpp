@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/errors.h"
+#include "common/tolerances.h"
 
 namespace delmesh {
 
@@ -130,7 +131,7 @@ std::optional<PlaneSection> plane_box_section(const Vec3& origin, const Orthonor
   }
   // A section thinner than rounding noise of the box's size is an edge or a corner, not a polygon.
   const double scale = box.diagonal();
-  if (!(area / 2 > std::numeric_limits<double>::epsilon() * scale * scale)) return std::nullopt;
+  if (!(area / 2 > tolerances::degenerate_section_relative_area * scale * scale)) return std::nullopt;
   section.polygon = std::move(hull);
   return section;
 }

@@ -53,6 +53,7 @@ struct SolverBox {
   std::vector<std::array<double, 2>> bounds;  //!< [lo, hi] per unknown
 };
 
+//! A certified root (item 2 above).
 struct CertifiedRoot {
   SolverBox box;                    //!< contains exactly one root
   std::vector<double> midpoint;     //!< a point of the box (the refined estimate), unknowns
@@ -60,12 +61,14 @@ struct CertifiedRoot {
   bool inside_domain = true;        //!< classification against the polytope (always decided)
 };
 
+//! A region that could be neither excluded nor certified (item 3 above).
 struct UndecidedBox {
-  SolverBox box;
+  SolverBox box;                    //!< the region, in the solver's unknowns
   UndecidedReason reason = UndecidedReason::precision;
   std::array<double, 3> world{};    //!< world point of the box centre (a candidate witness)
 };
 
+//! Work counters of one solve (summed over solves with +=) for the statistics.
 struct SolverCounters {
   std::size_t boxes = 0;                 //!< boxes visited
   std::size_t exclusions = 0;            //!< boxes excluded by interval evaluation
@@ -77,6 +80,7 @@ struct SolverCounters {
   SolverCounters& operator+=(const SolverCounters& other);
 };
 
+//! The certified answer of one solve: roots, undecided regions, status and counters.
 struct [[nodiscard]] SolveResult {
   SolveStatus status = SolveStatus::complete;
   std::vector<CertifiedRoot> roots;      //!< only roots inside the domain

@@ -45,10 +45,11 @@ PrimitiveSystem silhouette_plane_system(const Surface& surface);
 PrimitiveSystem silhouette_critical_system(const Surface& surface);
 
 using PrimitiveBuilder = std::function<PrimitiveSystem(const Surface&)>;
+//! One row of the registry: a primitive of §5.2 and its builder.
 struct PrimitiveInfo {
-  std::string name;
-  PrimitiveBuilder build;
-  std::string summary;
+  std::string name;        //!< e.g. "surface_line" (the builder's name without "_system")
+  PrimitiveBuilder build;  //!< derives the primitive's system for a surface
+  std::string summary;     //!< one line: what it solves, its equations, unknowns and parameters
 };
 //! The registry of primitives, in the order of §5.2.
 const std::vector<PrimitiveInfo>& primitive_registry();

@@ -174,14 +174,23 @@ VoronoiCell voronoi_cell(const Delaunay& del, VertexId site, const Box3& box) {
   VoronoiCell cell;
   cell.site = site;
   const Vec3& p = del.point(site);
-  ConvexPolytope polytope(box);
-  std::vector<std::pair<VertexId, HalfSpace>> planes;
-  for (VertexId s : del.neighbours(site)) {
+  // One polytope per thread, reset for each cell: its buffers outlive the call.
+  thread_local ConvexPolytope polytope;
+  polytope.reset(box);
+  const std::vector<VertexId> neighbours = del.neighbours(site);
+  struct Plane {
+    VertexId s;
+    Vec3 w;
+    double off;
+  };
+  std::vector<Plane> planes;
+  planes.reserve(neighbours.size());
+  for (VertexId s : neighbours) {
     const Vec3& x = del.point(s);
     const Vec3 w = x - p;
     const double off = dot(w, 0.5 * (x + p));
     polytope.clip(w, off, s);
-    planes.push_back({s, HalfSpace{{w[0], w[1], w[2]}, off}});
+    planes.push_back({s, w, off});
     if (polytope.empty()) return cell;
   }
   const auto bb = polytope.bounding_box();
@@ -196,9 +205,9 @@ VoronoiCell voronoi_cell(const Delaunay& del, VertexId site, const Box3& box) {
   std::sort(cell.facet_neighbours.begin(), cell.facet_neighbours.end());
   cell.facet_neighbours.erase(std::unique(cell.facet_neighbours.begin(), cell.facet_neighbours.end()),
                               cell.facet_neighbours.end());
-  for (const auto& [s, h] : planes)
-    if (std::binary_search(cell.facet_neighbours.begin(), cell.facet_neighbours.end(), s))
-      cell.domain.half_spaces.push_back(h);
+  for (const auto& h : planes)
+    if (std::binary_search(cell.facet_neighbours.begin(), cell.facet_neighbours.end(), h.s))
+      cell.domain.half_spaces.push_back(HalfSpace{{h.w[0], h.w[1], h.w[2]}, h.off});
   cell.valid = true;
   return cell;
 }

@@ -18,7 +18,10 @@ struct PolytopeFace {
 
 class ConvexPolytope {
  public:
+  ConvexPolytope() = default;  //!< empty; call reset() before use
   explicit ConvexPolytope(const Box3& box);
+  //! Back to the box (reusing the buffers of earlier clips).
+  void reset(const Box3& box);
   //! Intersects with {x : <n, x> <= c}; the new face (if any) gets `label`.
   void clip(const V3& n, double c, int label);
   bool empty() const { return faces_.empty(); }
@@ -28,6 +31,10 @@ class ConvexPolytope {
 
  private:
   std::vector<PolytopeFace> faces_;
+  // Scratch reused by clip() (no allocation per clip once warmed up).
+  std::vector<PolytopeFace> spare_;
+  std::vector<double> side_;
+  std::vector<V3> cut_;
 };
 
 }  // namespace delmesh::detail

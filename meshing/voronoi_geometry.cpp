@@ -16,9 +16,9 @@ namespace {
 
 using P2 = std::array<double, 2>;
 
-// Sutherland–Hodgman: keeps {w : <n, w> <= c} of a convex polygon.
-std::vector<P2> clip_polygon(const std::vector<P2>& poly, const P2& n, double c) {
-  std::vector<P2> out;
+// Sutherland–Hodgman: keeps {w : <n, w> <= c} of a convex polygon, written to `out`.
+void clip_polygon(const std::vector<P2>& poly, const P2& n, double c, std::vector<P2>& out) {
+  out.clear();
   const std::size_t m = poly.size();
   for (std::size_t i = 0; i < m; ++i) {
     const P2& a = poly[i];
@@ -30,7 +30,6 @@ std::vector<P2> clip_polygon(const std::vector<P2>& poly, const P2& n, double c)
       out.push_back({a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])});
     }
   }
-  return out;
 }
 
 double polygon_area(const std::vector<P2>& poly) {
@@ -137,7 +136,9 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
   f.b = (-s) * section->frame.a + c * section->frame.b;
   f.normal = section->frame.d;
   f.origin = section->origin;
-  std::vector<P2> poly;
+  std::vector<P2> poly, scratch;
+  poly.reserve(section->polygon.size() + 8);
+  scratch.reserve(section->polygon.size() + 8);
   for (const auto& w : section->polygon) poly.push_back({c * w[0] + s * w[1], -s * w[0] + c * w[1]});
   for (VertexId r : del.neighbours(edge[0])) {
     if (r == edge[1]) continue;
@@ -149,7 +150,8 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
       if (off < 0) return f;
       continue;
     }
-    poly = clip_polygon(poly, n, off);
+    clip_polygon(poly, n, off, scratch);
+    poly.swap(scratch);
     if (poly.size() < 3) return f;
   }
   // Drop (numerically) repeated vertices.

@@ -29,6 +29,14 @@ GiNaC::lst coordinates() { return GiNaC::lst{coordinate_x(), coordinate_y(), coo
 // Box3
 // ---------------------------------------------------------------------------------------------
 
+Box3 Box3::cube(double h) {
+  if (!(h > 0)) throw PreconditionViolation("Box3::cube: the half width must be positive");
+  Box3 b;
+  b.lo = {-h, -h, -h};
+  b.hi = {h, h, h};
+  return b;
+}
+
 Box3 Box3::parse(const std::string& text) {
   std::vector<std::string> fields;
   std::string field;

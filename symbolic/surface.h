@@ -23,6 +23,8 @@ struct Box3 {
   std::array<double, 3> hi{};
   //! Parses "x0,x1,y0,y1,z0,z1"; throws InvalidInput on malformed text or an empty box.
   static Box3 parse(const std::string& text);
+  //! The cube [−h, h]³ centred at the origin.  Precondition: h > 0 (else PreconditionViolation).
+  static Box3 cube(double h);
   bool contains(const std::array<double, 3>& p) const;
   double diagonal() const;
 };

@@ -15,16 +15,10 @@ struct CheckFixture {
   Delaunay del;
   RestrictedDelaunay restricted;
   CheckFixture(const std::string& equation, double half_width, const std::vector<Vec3>& points)
-      : box(make_box(half_width)),
+      : box(Box3::cube(half_width)),
         oracle(Surface::parse(equation), box, SolverBackend::subdivision),
         restricted(del, oracle, 1) {
     for (const auto& p : points) del.insert(p, false);
-  }
-  static Box3 make_box(double h) {
-    Box3 b;
-    b.lo = {-h, -h, -h};
-    b.hi = {h, h, h};
-    return b;
   }
 };
 

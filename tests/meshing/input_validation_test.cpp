@@ -10,12 +10,6 @@
 using namespace delmesh;
 
 namespace {
-Box3 cube(double h) {
-  Box3 b;
-  b.lo = {-h, -h, -h};
-  b.hi = {h, h, h};
-  return b;
-}
 
 // del_mesh must throw InvalidInput whose message contains `needle`, within a few seconds.
 void expect_invalid(const std::string& equation, const Box3& box, const std::string& needle) {
@@ -36,15 +30,15 @@ void expect_invalid(const std::string& equation, const Box3& box, const std::str
 
 BOOST_AUTO_TEST_SUITE(input_validation)
 
-BOOST_AUTO_TEST_CASE(empty_surface_is_rejected) { expect_invalid("x^2+y^2+z^2+1", cube(1.5), "empty"); }
+BOOST_AUTO_TEST_CASE(empty_surface_is_rejected) { expect_invalid("x^2+y^2+z^2+1", Box3::cube(1.5), "empty"); }
 
 BOOST_AUTO_TEST_CASE(surface_leaving_the_box_is_rejected) {
-  expect_invalid("x^2+y^2+z^2-4", cube(1.5), "boundary of the box");
-  BOOST_CHECK_THROW(validate_box_faces(Surface::parse("x^2+y^2+z^2-4"), cube(1.5)), InvalidInput);
-  BOOST_CHECK_NO_THROW(validate_box_faces(Surface::parse("x^2+y^2+z^2-1"), cube(1.5)));
+  expect_invalid("x^2+y^2+z^2-4", Box3::cube(1.5), "boundary of the box");
+  BOOST_CHECK_THROW(validate_box_faces(Surface::parse("x^2+y^2+z^2-4"), Box3::cube(1.5)), InvalidInput);
+  BOOST_CHECK_NO_THROW(validate_box_faces(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.5)));
 }
 
-BOOST_AUTO_TEST_CASE(cone_is_rejected) { expect_invalid("x^2+y^2-z^2", cube(1), "box"); }
+BOOST_AUTO_TEST_CASE(cone_is_rejected) { expect_invalid("x^2+y^2-z^2", Box3::cube(1), "box"); }
 
 // Two unit spheres touching at the origin: Σ stays inside the box but ∇E = 0 at the contact.
 BOOST_AUTO_TEST_CASE(singular_point_inside_the_box_is_rejected) {
@@ -59,7 +53,7 @@ BOOST_AUTO_TEST_CASE(singular_point_inside_the_box_is_rejected) {
   } catch (const InvalidInput& e) {
     BOOST_TEST(std::string(e.what()).find("singular") != std::string::npos, e.what());
   }
-  BOOST_CHECK_NO_THROW(validate_regular(Surface::parse("x^2+y^2+z^2-1"), cube(1.5)));
+  BOOST_CHECK_NO_THROW(validate_regular(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.5)));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

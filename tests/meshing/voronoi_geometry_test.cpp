@@ -6,21 +6,12 @@
 
 using namespace delmesh;
 
-namespace {
-Box3 cube(double h) {
-  Box3 b;
-  b.lo = {-h, -h, -h};
-  b.hi = {h, h, h};
-  return b;
-}
-}  // namespace
-
 BOOST_AUTO_TEST_SUITE(voronoi_geometry)
 
 BOOST_AUTO_TEST_CASE(edge_of_a_hull_triangle_is_a_ray_clipped_by_the_box) {
   Delaunay del;
   for (auto p : std::vector<Vec3>{{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, 0, -1}}) del.insert(p, false);
-  const auto e = voronoi_edge(del, {0, 1, 2}, cube(2));
+  const auto e = voronoi_edge(del, {0, 1, 2}, Box3::cube(2));
   BOOST_TEST_REQUIRE(e.valid);
   // The circumcentre of the tetrahedron is the origin; the ray goes to +z up to the box.
   const Vec3 lo = e.at(e.t0), hi = e.at(e.t1);
@@ -34,7 +25,7 @@ BOOST_AUTO_TEST_CASE(edge_of_a_hull_triangle_is_a_ray_clipped_by_the_box) {
 BOOST_AUTO_TEST_CASE(edge_in_dimension_two_is_a_full_line) {
   Delaunay del;
   for (auto p : std::vector<Vec3>{{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}}) del.insert(p, false);
-  const auto e = voronoi_edge(del, {0, 1, 2}, cube(2));
+  const auto e = voronoi_edge(del, {0, 1, 2}, Box3::cube(2));
   BOOST_TEST_REQUIRE(e.valid);
   BOOST_TEST(!e.at_vertex0);
   BOOST_TEST(!e.at_vertex1);
@@ -45,7 +36,7 @@ BOOST_AUTO_TEST_CASE(facet_is_the_bisector_polygon) {
   Delaunay del;
   del.insert({-1, 0, 0}, false);
   del.insert({1, 0, 0}, false);
-  const auto f = voronoi_facet(del, {0, 1}, cube(2), 0.3);
+  const auto f = voronoi_facet(del, {0, 1}, Box3::cube(2), 0.3);
   BOOST_TEST_REQUIRE(f.valid);
   BOOST_TEST(std::abs(f.origin[0]) < 1e-12);
   BOOST_TEST(std::abs(std::abs(f.normal[0]) - 1) < 1e-12);
@@ -67,7 +58,7 @@ BOOST_AUTO_TEST_CASE(cell_is_clipped_by_bisectors) {
   Delaunay del;
   for (auto p : std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}})
     del.insert(p, false);
-  const auto c = voronoi_cell(del, 0, cube(2));
+  const auto c = voronoi_cell(del, 0, Box3::cube(2));
   BOOST_TEST_REQUIRE(c.valid);
   BOOST_TEST(c.facet_neighbours.size() == 6u);
   for (int k = 0; k < 3; ++k) {
@@ -77,7 +68,7 @@ BOOST_AUTO_TEST_CASE(cell_is_clipped_by_bisectors) {
   BOOST_TEST(c.contains({0.4, -0.4, 0.4}, 1e-12));
   BOOST_TEST(!c.contains({0.6, 0, 0}, 1e-12));
   // An unbounded cell is clipped by the box.
-  const auto outer = voronoi_cell(del, 1, cube(2));
+  const auto outer = voronoi_cell(del, 1, Box3::cube(2));
   BOOST_TEST(std::abs(outer.domain.box.bounds[0][1] - 2) < 1e-12);
 }
 

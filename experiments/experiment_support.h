@@ -98,6 +98,16 @@ class CsvWriter {
   std::ofstream out_;
 };
 
+//! The non-empty items of a comma-separated list ("torus,genus2" → {"torus", "genus2"}).
+inline std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ','))
+    if (!part.empty()) parts.push_back(part);
+  return parts;
+}
+
 inline std::string field(double value) {
   if (!std::isfinite(value)) return std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf");
   std::ostringstream out;

@@ -116,15 +116,6 @@ double lfs_integral(const CatalogEntry& entry, const CompiledE& E, const Chart& 
   return total;
 }
 
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> parts;
-  std::stringstream in(text);
-  std::string part;
-  while (std::getline(in, part, ','))
-    if (!part.empty()) parts.push_back(part);
-  return parts;
-}
-
 std::string lambda_tag(double lambda) {
   std::ostringstream out;
   out << lambda;

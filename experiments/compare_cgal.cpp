@@ -279,7 +279,7 @@ int main(int argc, char** argv) {
   app.add_flag("--skip-delmesh", skip_delmesh, "run only the CGAL meshers");
   CLI11_PARSE(app, argc, argv);
 
-  try {
+  return run_guarded([&] {
     Context context;
     context.out_dir = out_dir;
     context.write_meshes = !no_meshes;
@@ -371,12 +371,5 @@ int main(int argc, char** argv) {
     }
     csv.close();
     std::cout << "wrote " << csv.path().string() << std::endl;
-  } catch (const InvalidInput& e) {
-    std::cerr << "error: " << e.what() << std::endl;
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << std::endl;
-    return 1;
-  }
-  return 0;
+  });
 }

@@ -15,6 +15,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -22,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "common/errors.h"
 #include "meshing/mesh_checker.h"
 #include "symbolic/compiled_system.h"
 #include "symbolic/surface.h"
@@ -97,6 +99,22 @@ class CsvWriter {
   std::size_t columns_;
   std::ofstream out_;
 };
+
+//! Runs an experiment's body with the programs' error policy: InvalidInput → `error: …` on stderr
+//! and exit code 2; any other exception → `error: …` and exit code 1; otherwise 0.
+template <class Body>
+int run_guarded(Body&& body) {
+  try {
+    body();
+  } catch (const InvalidInput& e) {
+    std::cerr << "error: " << e.what() << std::endl;
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << std::endl;
+    return 1;
+  }
+  return 0;
+}
 
 //! The non-empty items of a comma-separated list ("torus,genus2" → {"torus", "genus2"}).
 inline std::vector<std::string> split(const std::string& text) {

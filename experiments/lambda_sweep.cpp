@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
   app.add_flag("--no-meshes", no_meshes, "do not write the meshes");
   CLI11_PARSE(app, argc, argv);
 
-  try {
+  return run_guarded([&] {
     std::vector<std::string> columns{"surface", "lambda", "status", "seconds", "expected_genus",
                                      "topology_correct"};
     append(columns, report_columns());
@@ -227,12 +227,5 @@ int main(int argc, char** argv) {
     }
     csv.close();
     std::cout << "wrote " << csv.path().string() << std::endl;
-  } catch (const InvalidInput& e) {
-    std::cerr << "error: " << e.what() << std::endl;
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << std::endl;
-    return 1;
-  }
-  return 0;
+  });
 }

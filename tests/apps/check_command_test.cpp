@@ -7,17 +7,6 @@
 
 using namespace delmesh::test;
 
-namespace {
-
-// The regular octahedron, outward oriented: genus 0, angles 60°, radius-edge ratio 1/√3,
-// dihedral angle acos(-1/3) so roughness π − acos(−1/3) ≈ 1.231 rad.
-const char* const octahedron_off =
-    "OFF\n6 8 0\n"
-    "1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n"
-    "3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n";
-
-}  // namespace
-
 BOOST_AUTO_TEST_SUITE(check_command)
 
 BOOST_AUTO_TEST_CASE(octahedron_has_genus_zero) {

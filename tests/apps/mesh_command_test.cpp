@@ -9,10 +9,6 @@ using namespace delmesh::test;
 
 namespace {
 
-const char* const octahedron_off =
-    "OFF\n6 8 0\n"
-    "1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n"
-    "3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n";
 
 //! Files of the scratch directory other than the runner's own.
 std::vector<std::string> files_in(const ScratchDirectory& dir) {

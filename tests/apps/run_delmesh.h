@@ -17,6 +17,13 @@
 
 namespace delmesh::test {
 
+//! The regular octahedron as an outward-oriented OFF file: genus 0, angles 60°, radius-edge ratio
+//! 1/√3, dihedral angle acos(−1/3), so roughness π − acos(−1/3) ≈ 1.231 rad.
+inline const char* const octahedron_off =
+    "OFF\n6 8 0\n"
+    "1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n"
+    "3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n";
+
 struct RunResult {
   int exit_code = -1;      //!< the program's exit status
   bool signalled = false;  //!< it died by a signal (never allowed)

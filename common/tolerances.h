@@ -198,4 +198,16 @@ inline constexpr int univariate_certify_attempts = 16;
 //! noise at the box's size.
 inline constexpr double degenerate_section_relative_area = std::numeric_limits<double>::epsilon();
 
+// ---- Taylor forms of polynomial systems (symbolic/polynomial_form.h, subdivision_solver.cpp) ----
+//! A system polynomial in its unknowns gets a monomial form (PolynomialForm) only if its expanded
+//! equations have at most this many terms in all: beyond it, evaluating the coefficient program
+//! on every solve would cost more than the tighter Taylor ranges save.
+inline constexpr std::size_t polynomial_form_max_terms = 4000;
+//! TaylorForms::automatic: Taylor forms are used when the compiled values+Jacobian program has at
+//! least this many instructions per Taylor coefficient.  Measured (bench_homotopy, one core):
+//! Kostlan critical systems (506 instructions / 75 coefficients at d = 4, 2982 / 405 at d = 8)
+//! run 4–15× faster on Taylor forms; the catalog's factored surfaces (torus 122 / 75, genus2
+//! 82 / 405, tanglecube 77 / 75) run as fast or faster on their compiled expressions.
+inline constexpr double taylor_form_instruction_ratio = 2;
+
 }  // namespace delmesh::tolerances

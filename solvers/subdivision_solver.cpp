@@ -9,7 +9,9 @@
 #include "common/tolerances.h"
 #include "solvers/detail/interval_box.h"
 #include "solvers/detail/krawczyk_core.h"
+#include "solvers/detail/taylor_form.h"
 #include "solvers/krawczyk.h"
+#include "symbolic/polynomial_form.h"
 #include "symbolic/scalar_traits.h"
 
 namespace delmesh {
@@ -26,6 +28,17 @@ struct Box {
   Interval x[max_unknowns];
 };
 
+//! A work item: the box x and, for a polynomial system solved with Taylor forms, the affine map
+//! x_k = centre_k + radius_k s_k from the cube s ∈ [−1, 1]^n onto the exact box (centre and radius
+//! enclose the exact values; x is their outward image) and the Taylor coefficients of every
+//! equation in s, concatenated as in PolynomialForm.  Without coefficients the box is examined
+//! through the compiled expressions alone.
+struct Item {
+  Box x;
+  Interval centre[max_unknowns], radius[max_unknowns];
+  std::vector<Interval> taylor;
+};
+
 //! A certified root: U is the box in which it is the unique zero, R a tight box containing it.
 struct Found {
   Box uniqueness, tight;
@@ -36,6 +49,14 @@ Interval determinant(std::size_t n, const Interval* a) {
   if (n == 2) return a[0] * a[3] - a[1] * a[2];
   return a[0] * (a[4] * a[8] - a[5] * a[7]) - a[1] * (a[3] * a[8] - a[5] * a[6]) +
          a[2] * (a[3] * a[7] - a[4] * a[6]);
+}
+
+bool use_taylor_forms(const CompiledSystem& system, TaylorForms choice) {
+  const PolynomialForm* form = system.polynomial_form();
+  if (!form || choice == TaylorForms::never) return false;
+  return choice == TaylorForms::always ||
+         static_cast<double>(system.instruction_count()) >=
+             tolerances::taylor_form_instruction_ratio * static_cast<double>(form->n_coefficients());
 }
 
 class Subdivision {
@@ -51,6 +72,15 @@ class Subdivision {
         m_(system.n_equations()),
         exclusion_(options.exclusion_mode),
         start_(std::chrono::steady_clock::now()) {
+    form_ = use_taylor_forms(system, options.taylor_forms) ? system.polynomial_form() : nullptr;
+    if (form_) {
+      int degree = 0;
+      for (std::size_t i = 0; i < m_; ++i) degree = std::max(degree, form_->basis(i).degree());
+      const Interval rho(1 + 2 * tolerances::krawczyk_inflation);
+      cube_powers_.assign(static_cast<std::size_t>(degree) + 1, Interval(1));
+      inflated_powers_.assign(static_cast<std::size_t>(degree) + 1, Interval(1));
+      for (std::size_t j = 1; j < inflated_powers_.size(); ++j) inflated_powers_[j] = inflated_powers_[j - 1] * rho;
+    }
     const double scale = domain.scale();
     singular_width_ = tolerances::singular_box_relative_width * scale;
     min_width_ = tolerances::min_box_relative_width * scale;
@@ -59,26 +89,32 @@ class Subdivision {
   SolveResult run() {
     Box root;
     for (std::size_t i = 0; i < n_; ++i) root.x[i] = Interval(domain_.box.bounds[i][0], domain_.box.bounds[i][1]);
-    work_.push_back(root);
+    if (form_)
+      work_.push_back(taylor_root(root));
+    else
+      push(root);
     std::size_t since_clock = 0;
     while (!work_.empty() && !stopped_) {
-      const Box box = work_.back();
+      Item item = std::move(work_.back());
       work_.pop_back();
       if (counters_.boxes >= options_.box_budget) {
-        work_.push_back(box);
+        work_.push_back(std::move(item));
         stop(SolveStatus::box_limit);
         break;
       }
       if (options_.time_limit_seconds > 0 && ++since_clock >= 16) {
         since_clock = 0;
         if (elapsed() > options_.time_limit_seconds) {
-          work_.push_back(box);
+          work_.push_back(std::move(item));
           stop(SolveStatus::time_limit);
           break;
         }
       }
       ++counters_.boxes;
-      process(box);
+      if (item.taylor.empty())
+        process(item.x);
+      else
+        process_taylor(item);
     }
     return finish();
   }
@@ -86,6 +122,173 @@ class Subdivision {
  private:
   double elapsed() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+  void push(const Box& b) {
+    work_.emplace_back();
+    work_.back().x = b;
+  }
+
+  //! The Taylor item of the domain box: the monomial coefficients at the parameters, re-centred
+  //! on the box's midpoint and scaled to its half-widths (rounded up, so that the cube's image
+  //! contains the box).
+  Item taylor_root(const Box& box) const {
+    Item item;
+    item.taylor.resize(form_->n_coefficients());
+    form_->coefficients(params_.data(), item.taylor.data());
+    for (std::size_t k = 0; k < n_; ++k) {
+      const double c = midpoint(box.x[k]);
+      const double r = std::max(box.x[k].sup() - c, c - box.x[k].inf());  // rounded up under the guard
+      item.centre[k] = Interval(c);
+      item.radius[k] = Interval(r);
+      for (std::size_t i = 0; i < m_; ++i)
+        detail::substitute_affine(form_->basis(i), k, item.centre[k], item.radius[k], coefficients(item, i));
+    }
+    set_box(item);
+    return item;
+  }
+
+  Interval* coefficients(Item& item, std::size_t i) const { return item.taylor.data() + form_->offset(i); }
+  const Interval* coefficients(const Item& item, std::size_t i) const { return item.taylor.data() + form_->offset(i); }
+
+  void set_box(Item& item) const {
+    for (std::size_t k = 0; k < n_; ++k) item.x.x[k] = item.centre[k] + item.radius[k] * Interval(-1, 1);
+  }
+
+  //! Restricts the item to s_axis ∈ μ + ρ[−1, 1] (exact doubles μ, ρ).
+  void restrict_item(Item& item, std::size_t axis, double mu, double rho) const {
+    const Interval m(mu), r(rho);
+    for (std::size_t i = 0; i < m_; ++i) detail::substitute_affine(form_->basis(i), axis, m, r, coefficients(item, i));
+    item.centre[axis] += item.radius[axis] * m;
+    item.radius[axis] *= r;
+  }
+
+  //! jx (row-major m × n) ⊇ {∂g_i/∂s_k (s) : s ∈ [−ρ, ρ]^n} (`powers` holds ρ^j): the Taylor
+  //! gradient intersected with the compiled Jacobian over the world image of the cube, times the
+  //! radii.  The expressions as written (factored, nested: sums of squares) often give the
+  //! tighter Jacobian, the expanded Taylor form the tighter one for dense polynomials; both
+  //! enclose it.
+  void cube_jacobian(const Item& item, const std::vector<Interval>& powers, Interval* jx) const {
+    for (std::size_t i = 0; i < m_; ++i)
+      detail::gradient_on_cube(form_->basis(i), coefficients(item, i), powers.data(), jx + i * n_);
+    const Interval cube(-powers[1].sup(), powers[1].sup());
+    Interval world[max_unknowns], values[max_equations], jacobian[max_equations * max_unknowns];
+    for (std::size_t k = 0; k < n_; ++k) world[k] = item.centre[k] + item.radius[k] * cube;
+    system_.values_and_jacobian(world, params_.data(), values, jacobian);
+    for (std::size_t i = 0; i < m_; ++i)
+      for (std::size_t k = 0; k < n_; ++k) {
+        const Interval scaled = jacobian[i * n_ + k] * item.radius[k];
+        Interval& entry = jx[i * n_ + k];
+        if (detail::is_finite(scaled) && !detail::disjoint(scaled, entry)) entry = detail::intersection(scaled, entry);
+      }
+  }
+
+  //! One box of a polynomial system in Taylor form (the cube coordinates s ∈ [−1, 1]^n):
+  //! exclusion by the domain, by the Taylor range of each equation, and by the mean-value form
+  //! g(0) + J(cube)·s; then (square systems) a Krawczyk step on the inflated cube — no zero →
+  //! excluded; a strong contraction → the contracted box, re-centred; otherwise the widest side
+  //! (in world coordinates) is bisected.  Boxes that need the world coordinates — a unique zero
+  //! to certify, refine and de-duplicate, a box narrower than the singular width, ranges limited
+  //! by rounding (MPFI escalation) — go to process().
+  void process_taylor(Item& item) {
+    const Box& X = item.x;
+    if (outside_polytope(X) || outside_domain_box(X)) {
+      ++counters_.exclusions;
+      return;
+    }
+    bool precision_limited = false;
+    for (std::size_t i = 0; i < m_; ++i) {
+      const Interval* a = coefficients(item, i);
+      const Interval range = detail::range_on_cube(form_->basis(i), a, cube_powers_.data());
+      if (certainly_nonzero(range)) {
+        ++counters_.exclusions;
+        return;
+      }
+      precision_limited = precision_limited || width(a[0]) > tolerances::precision_limited_ratio * width(range);
+    }
+    double w = 0;
+    const std::size_t side = detail::widest_side(X.x, n_, &w);
+    if (precision_limited || w < singular_width_) {
+      process(X);
+      return;
+    }
+    // Over-determined systems: the Jacobian over the cube itself; square ones: over the inflated
+    // cube, for Krawczyk (ε-inflation as in process()).
+    const std::vector<Interval>& powers = exclusion_ ? cube_powers_ : inflated_powers_;
+    Interval fm[max_equations], jm[max_equations * max_unknowns], jx[max_equations * max_unknowns];
+    cube_jacobian(item, powers, jx);
+    for (std::size_t i = 0; i < m_; ++i) {
+      const MonomialBasis& basis = form_->basis(i);
+      const Interval* a = coefficients(item, i);
+      fm[i] = a[0];
+      Interval acc = fm[i];
+      for (std::size_t k = 0; k < n_; ++k) {
+        jm[i * n_ + k] = basis.degree() >= 1 ? a[basis.linear(k)] : Interval(0);
+        acc += jx[i * n_ + k] * Interval(-1, 1);
+      }
+      if (certainly_nonzero(acc)) {
+        ++counters_.exclusions;
+        return;
+      }
+    }
+    if (!exclusion_ && krawczyk_on_cube(item, fm, jm, jx, w)) return;
+    // Bisect the widest side (in world coordinates).
+    Item hi = item;
+    restrict_item(item, side, -0.5, 0.5);
+    restrict_item(hi, side, 0.5, 0.5);
+    set_box(item);
+    set_box(hi);
+    work_.push_back(std::move(hi));
+    work_.push_back(std::move(item));
+  }
+
+  //! The Krawczyk step of process_taylor() on the inflated cube B (midpoint 0, g(0) ∈ fm,
+  //! J(0) ∈ jm, J(B) ⊆ jx); w is the widest world side of the item.  True when it disposed of
+  //! the item (excluded, handed to process() with a unique zero, or contracted and re-queued).
+  bool krawczyk_on_cube(Item& item, const Interval* fm, const Interval* jm, const Interval* jx, double w) {
+    Interval cube[max_unknowns], zero[max_unknowns], contracted[max_unknowns];
+    for (std::size_t k = 0; k < n_; ++k) {
+      cube[k] = Interval(-inflated_powers_[1].sup(), inflated_powers_[1].sup());
+      zero[k] = Interval(0);
+    }
+    KrawczykOutcome outcome;
+    if (!krawczyk(cube, zero, fm, jm, jx, contracted, outcome)) return false;
+    if (outcome == KrawczykOutcome::no_root) {
+      ++counters_.exclusions;
+      return true;
+    }
+    if (outcome == KrawczykOutcome::unique_root) {
+      // Proved in the cube coordinates; certified, refined and de-duplicated in world
+      // coordinates by the compiled expressions.
+      process(item.x);
+      return true;
+    }
+    // Every zero in the cube lies in K ∩ [−1, 1]^n.
+    const Interval unit(-1, 1);
+    double widest = 0;
+    for (std::size_t k = 0; k < n_; ++k) {
+      if (detail::disjoint(contracted[k], unit)) {
+        ++counters_.exclusions;
+        return true;
+      }
+      contracted[k] = detail::intersection(contracted[k], unit);
+      widest = std::max(widest, width(contracted[k]) * item.radius[k].sup());
+    }
+    if (!(widest < tolerances::krawczyk_contraction_ratio * w)) return false;
+    for (std::size_t k = 0; k < n_; ++k) {
+      const double mu = midpoint(contracted[k]);
+      const double rho = std::max(contracted[k].sup() - mu, mu - contracted[k].inf());  // rounded up
+      if (mu != 0 || rho != 1) restrict_item(item, k, mu, rho);
+    }
+    set_box(item);
+    work_.push_back(std::move(item));
+    return true;
+  }
+
+  bool outside_domain_box(const Box& b) const {
+    for (std::size_t k = 0; k < n_; ++k)
+      if (b.x[k].inf() > domain_.box.bounds[k][1] || b.x[k].sup() < domain_.box.bounds[k][0]) return true;
+    return false;
   }
 
   bool outside_polytope(const Box& b) const {
@@ -167,7 +370,7 @@ class Subdivision {
         }
         detail::widest_side(X.x, n_, &after);
         if (after < tolerances::krawczyk_contraction_ratio * before && after >= min_width_) {
-          work_.push_back(X);
+          push(X);
           return;
         }
       }
@@ -195,8 +398,8 @@ class Subdivision {
     Box lo = X, hi = X;
     lo.x[side] = Interval(X.x[side].inf(), split);
     hi.x[side] = Interval(split, X.x[side].sup());
-    work_.push_back(hi);
-    work_.push_back(lo);
+    push(hi);
+    push(lo);
   }
 
   //! One Krawczyk step on the box B (double intervals) from the evaluations mid (a point m ∈ B),
@@ -367,8 +570,8 @@ class Subdivision {
   SolveResult finish() {
     SolveResult result;
     const bool non_isolated = stopped_ && status_ == SolveStatus::non_isolated;
-    for (const Box& b : work_)
-      undecided_.push_back({b, non_isolated ? UndecidedReason::non_isolated : UndecidedReason::budget});
+    for (const Item& item : work_)
+      undecided_.push_back({item.x, non_isolated ? UndecidedReason::non_isolated : UndecidedReason::budget});
     work_.clear();
     for (const auto& [box, reason] : undecided_) {
       UndecidedBox u;
@@ -398,7 +601,9 @@ class Subdivision {
   bool exclusion_;
   std::chrono::steady_clock::time_point start_;
   double singular_width_ = 0, min_width_ = 0;
-  std::vector<Box> work_;
+  const PolynomialForm* form_ = nullptr;
+  std::vector<Interval> cube_powers_, inflated_powers_;  // ρ^j for ρ = 1 and the inflated ρ
+  std::vector<Item> work_;
   std::vector<Found> found_;
   std::vector<CertifiedRoot> roots_;
   std::vector<std::pair<Box, UndecidedReason>> undecided_;
@@ -409,6 +614,15 @@ class Subdivision {
 };
 
 }  // namespace
+
+std::ostream& operator<<(std::ostream& out, TaylorForms choice) {
+  switch (choice) {
+    case TaylorForms::automatic: return out << "automatic";
+    case TaylorForms::always: return out << "always";
+    case TaylorForms::never: return out << "never";
+  }
+  return out << "unknown";
+}
 
 SolveResult solve_subdivision(const CompiledSystem& system, const std::vector<double>& parameters,
                               const Domain& domain, const SubdivisionOptions& options) {

@@ -6,6 +6,7 @@
 //! inside/outside classification of each root, escalation to MPFI for boxes double intervals
 //! cannot decide.  See solve_result.h for what "certified" means.
 
+#include <ostream>
 #include <vector>
 
 #include "common/tolerances.h"
@@ -15,12 +16,24 @@
 
 namespace delmesh {
 
+//! When the subdivision solver works on Taylor forms of a polynomial system (see solve_subdivision).
+enum class TaylorForms {
+  automatic,  //!< when the system has a PolynomialForm and its compiled values+Jacobian program has
+              //!< at least tolerances::taylor_form_instruction_ratio instructions per Taylor
+              //!< coefficient (dense expanded polynomials; factored forms are cheaper as written)
+  always,     //!< whenever the system has a PolynomialForm
+  never       //!< only the compiled expressions
+};
+
+std::ostream& operator<<(std::ostream& out, TaylorForms choice);
+
 struct SubdivisionOptions {
   std::size_t box_budget = tolerances::default_box_budget;  //!< boxes visited before status box_limit
   double time_limit_seconds = 0;  //!< 0: none
   //! Over-determined systems (m > n, SurfacePlaneContact): prove that there is no solution, or
   //! return as undecided the boxes that could not be excluded.  Never certifies roots.
   bool exclusion_mode = false;
+  TaylorForms taylor_forms = TaylorForms::automatic;
 };
 
 //! Solves f(u; parameters) = 0 for u in the polytope `domain` (box ∩ half-spaces), certified in

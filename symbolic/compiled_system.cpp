@@ -4,6 +4,8 @@
 
 #include "common/errors.h"
 #include "symbolic/detail/straight_line_program.h"
+#include "symbolic/polynomial_form.h"
+#include "common/tolerances.h"
 
 namespace delmesh {
 
@@ -64,6 +66,8 @@ CompiledSystem::CompiledSystem(const PrimitiveSystem& system, bool with_hessians
         hessian_outputs(system.jacobian, system.unknowns, n_equations_), inputs);
   world_point_ = std::make_unique<detail::StraightLineProgram>(
       std::vector<GiNaC::ex>(system.world_point.begin(), system.world_point.end()), inputs);
+  polynomial_form_ = PolynomialForm::try_build(system.equations, system.unknowns, system.parameters,
+                                               tolerances::polynomial_form_max_terms);
 }
 
 CompiledSystem::CompiledSystem(const std::vector<GiNaC::ex>& equations, const std::vector<GiNaC::symbol>& unknowns,
@@ -80,6 +84,7 @@ CompiledSystem::CompiledSystem(const std::vector<GiNaC::ex>& equations, const st
   if (n_unknowns_ >= 3)
     world_point_ = std::make_unique<detail::StraightLineProgram>(
         std::vector<GiNaC::ex>{unknowns[0], unknowns[1], unknowns[2]}, inputs);
+  polynomial_form_ = PolynomialForm::try_build(equations, unknowns, parameters, tolerances::polynomial_form_max_terms);
 }
 
 CompiledSystem::~CompiledSystem() = default;

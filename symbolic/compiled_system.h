@@ -35,6 +35,7 @@ namespace delmesh {
 namespace detail {
 class StraightLineProgram;
 }
+class PolynomialForm;
 
 class CompiledSystem {
  public:
@@ -63,6 +64,10 @@ class CompiledSystem {
   bool has_hessians() const { return static_cast<bool>(hessians_); }
   //! True iff world_point() is available (a primitive system, or n ≥ 3 unknowns).
   bool has_world_point() const { return static_cast<bool>(world_point_); }
+  //! The monomial form of the equations (polynomial_form.h) when they are polynomial in n ≤ 3
+  //! unknowns and small enough (tolerances::polynomial_form_max_terms), else null.  Built by both
+  //! constructors; the subdivision solver uses it for Taylor forms.
+  const PolynomialForm* polynomial_form() const { return polynomial_form_.get(); }
   //! Number of arithmetic instructions of the values+Jacobian program (a size measure for reports).
   std::size_t instruction_count() const;
 
@@ -86,6 +91,7 @@ class CompiledSystem {
   std::unique_ptr<detail::StraightLineProgram> values_and_jacobian_;
   std::unique_ptr<detail::StraightLineProgram> hessians_;
   std::unique_ptr<detail::StraightLineProgram> world_point_;
+  std::unique_ptr<PolynomialForm> polynomial_form_;
 };
 
 // Explicitly instantiated in compiled_system.cpp for double, Interval, MpfrReal, MpfiInterval, Complex.

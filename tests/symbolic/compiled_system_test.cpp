@@ -13,8 +13,10 @@
 #include "symbolic/catalog.h"
 #include "symbolic/primitives.h"
 #include "symbolic/scalar_traits.h"
+#include "tests/symbolic/exact_rational.h"
 
 using namespace delmesh;
+using delmesh::testing::exact;
 
 namespace {
 
@@ -60,14 +62,6 @@ Input random_input(const Case& c, std::mt19937_64& rng) {
     in.unknowns.push_back(world ? dyadic(c.entry->box.lo[j], c.entry->box.hi[j]) : dyadic(-1, 1));
   for (std::size_t j = 0; j < c.system.n_parameters(); ++j) in.parameters.push_back(dyadic(-1, 1));
   return in;
-}
-
-//! The exact rational value of a double.
-GiNaC::numeric exact(double d) {
-  int e;
-  const double mantissa = std::frexp(d, &e);  // d = mantissa · 2^e, |mantissa| ∈ [1/2, 1)
-  const auto m = static_cast<long>(std::ldexp(mantissa, 53));
-  return GiNaC::numeric(m) * GiNaC::numeric(2).power(GiNaC::numeric(e - 53));
 }
 
 //! The exact substitution of an input.

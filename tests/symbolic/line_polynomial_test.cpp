@@ -11,18 +11,12 @@
 
 #include "common/errors.h"
 #include "symbolic/catalog.h"
+#include "tests/symbolic/exact_rational.h"
 
 using namespace delmesh;
+using delmesh::testing::exact;
 
 namespace {
-
-//! The exact rational value of a finite double.
-GiNaC::numeric exact(double d) {
-  int exponent = 0;
-  const double mantissa = std::frexp(d, &exponent);  // d = mantissa · 2^exponent, |mantissa| ∈ [1/2, 1)
-  const auto integer = static_cast<long long>(std::ldexp(mantissa, 53));
-  return GiNaC::numeric(std::to_string(integer).c_str()) * GiNaC::numeric(2).power(exponent - 53);
-}
 
 GiNaC::numeric to_numeric(const GiNaC::ex& e) {
   BOOST_REQUIRE(GiNaC::is_a<GiNaC::numeric>(e));

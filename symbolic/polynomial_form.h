@@ -1,0 +1,62 @@
+#pragma once
+//! \file polynomial_form.h
+//! A system f_i(u; q) that is polynomial in its unknowns u (n ≤ 3) written in the monomial basis:
+//! f_i(u; q) = Σ_{|α| ≤ d_i} c_{i,α}(q) u^α, with the coefficients c_{i,α} as exact expressions in
+//! the parameters q compiled once into a straight-line program.  Evaluating the coefficients over
+//! Interval at given parameters gives rigorous enclosures of the exact coefficients; from those the
+//! subdivision solver builds Taylor forms of f on each box (solvers/detail/taylor_form.h), whose
+//! ranges are far tighter than the natural interval form of the expression.
+
+#include <memory>
+#include <vector>
+
+#include <ginac/ginac.h>
+
+#include "symbolic/compiled_system.h"
+#include "symbolic/monomial_basis.h"
+
+namespace delmesh {
+
+class PolynomialForm {
+ public:
+  //! The monomial form of `equations` in `unknowns`, or null when 1 ≤ n ≤ 3 fails, an equation is
+  //! not a polynomial in the unknowns (GiNaC's is_polynomial; e.g. exp(x)), a total degree
+  //! exceeds 64, or the expanded equations have more than `max_terms` terms in all (the
+  //! coefficient program would cost more than it saves).  Coefficients must be expressions that
+  //! CompiledSystem accepts (rational numbers, the parameters, exp/log/sin/cos/sqrt of them).
+  static std::unique_ptr<PolynomialForm> try_build(const std::vector<GiNaC::ex>& equations,
+                                                   const std::vector<GiNaC::symbol>& unknowns,
+                                                   const std::vector<GiNaC::symbol>& parameters,
+                                                   std::size_t max_terms);
+
+  std::size_t n_unknowns() const { return n_; }
+  std::size_t n_equations() const { return bases_.size(); }
+  std::size_t n_parameters() const { return n_parameters_; }
+  //! The basis of equation i: its total degree d_i in the unknowns and the order of its coefficients.
+  const MonomialBasis& basis(std::size_t i) const { return bases_[i]; }
+  //! Equation i's coefficients start at offset(i) in the output of coefficients().
+  std::size_t offset(std::size_t i) const { return offsets_[i]; }
+  //! Σ_i basis(i).size().
+  std::size_t n_coefficients() const { return offsets_.back(); }
+  //! The exact coefficient c_{i,α} (α = basis(i).exponent(k)) as an expression in the parameters.
+  const GiNaC::ex& coefficient_expression(std::size_t i, std::size_t k) const { return expressions_[offsets_[i] + k]; }
+
+  //! out[offset(i) + k] = c_{i,α_k}(parameters), n_coefficients() values.  Over Interval (with a
+  //! live RoundingGuard) each output encloses the exact coefficient at the given parameters.
+  template <class T>
+  void coefficients(const T* parameters, T* out) const {
+    program_.values<T>(nullptr, parameters, out);
+  }
+
+ private:
+  PolynomialForm(std::size_t n, std::size_t n_parameters, std::vector<MonomialBasis> bases,
+                 std::vector<GiNaC::ex> expressions, const std::vector<GiNaC::symbol>& parameters);
+
+  std::size_t n_, n_parameters_;
+  std::vector<MonomialBasis> bases_;
+  std::vector<std::size_t> offsets_;
+  std::vector<GiNaC::ex> expressions_;
+  CompiledSystem program_;  // no unknowns; the parameters are the inputs
+};
+
+}  // namespace delmesh

@@ -1,0 +1,103 @@
+#include "symbolic/polynomial_form.h"
+
+#include <random>
+
+#include <boost/test/unit_test.hpp>
+
+#include "common/tolerances.h"
+#include "symbolic/catalog.h"
+#include "symbolic/primitives.h"
+#include "symbolic/scalar_traits.h"
+#include "tests/symbolic/exact_rational.h"
+
+using namespace delmesh;
+using delmesh::testing::exact;
+
+namespace {
+
+//! Σ_α c_α u^α rebuilt from the form's coefficient expressions for equation i.
+GiNaC::ex rebuild(const PolynomialForm& form, std::size_t i, const std::vector<GiNaC::symbol>& unknowns) {
+  GiNaC::ex sum = 0;
+  const MonomialBasis& basis = form.basis(i);
+  for (std::size_t k = 0; k < basis.size(); ++k) {
+    GiNaC::ex monomial = form.coefficient_expression(i, k);
+    for (std::size_t j = 0; j < unknowns.size(); ++j) monomial *= GiNaC::pow(unknowns[j], basis.exponent(k)[j]);
+    sum += monomial;
+  }
+  return sum;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(polynomial_form)
+
+BOOST_AUTO_TEST_CASE(coefficients_rebuild_every_catalog_primitive_exactly) {
+  // Exact identity: Σ c_α(q) u^α − f_i(u; q) expands to 0, for every primitive of every polynomial
+  // catalog surface whose expansion fits the term budget.
+  int forms = 0;
+  for (const std::string name : {"sphere", "ellipsoid", "torus", "genus2", "tanglecube", "thin_handle"}) {
+    const Surface surface = catalog_entry(name).surface();
+    for (const PrimitiveInfo& info : primitive_registry()) {
+      const PrimitiveSystem system = info.build(surface);
+      const auto form = PolynomialForm::try_build(system.equations, system.unknowns, system.parameters,
+                                                  tolerances::polynomial_form_max_terms);
+      if (!form) continue;
+      ++forms;
+      BOOST_TEST(form->n_equations() == system.n_equations());
+      BOOST_TEST(form->n_unknowns() == system.n_unknowns());
+      for (std::size_t i = 0; i < system.n_equations(); ++i)
+        BOOST_TEST((rebuild(*form, i, system.unknowns) - system.equations[i]).expand().is_zero(),
+                   name << " " << info.name << " equation " << i);
+    }
+  }
+  BOOST_TEST(forms >= 24);  // at least the 4 primitives in 3 unknowns or on lines of each surface
+}
+
+BOOST_AUTO_TEST_CASE(degrees_are_the_total_degrees) {
+  const Surface torus = catalog_entry("torus").surface();
+  const PrimitiveSystem critical = surface_critical_system(torus);
+  const CompiledSystem compiled(critical);
+  const PolynomialForm* form = compiled.polynomial_form();
+  BOOST_REQUIRE(form);
+  BOOST_TEST(form->basis(0).degree() == 4);  // E
+  BOOST_TEST(form->basis(1).degree() == 3);  // ⟨∇E, a⟩
+  BOOST_TEST(form->basis(2).degree() == 3);
+  BOOST_TEST(form->n_coefficients() == 35u + 20u + 20u);
+}
+
+BOOST_AUTO_TEST_CASE(non_polynomial_or_oversized_systems_have_no_form) {
+  const PrimitiveSystem metaball = surface_critical_system(catalog_entry("metaball").surface());
+  BOOST_TEST(!CompiledSystem(metaball).polynomial_form());
+  const PrimitiveSystem torus = surface_critical_system(catalog_entry("torus").surface());
+  BOOST_TEST(!PolynomialForm::try_build(torus.equations, torus.unknowns, torus.parameters, 5));
+  GiNaC::symbol x("x"), y("y"), p("p");
+  BOOST_TEST(!PolynomialForm::try_build({x / y + 1, y - 1}, {x, y}, {p}, 100));
+  BOOST_TEST(!PolynomialForm::try_build({x * y}, {}, {x, y}, 100));  // no unknowns
+}
+
+BOOST_AUTO_TEST_CASE(interval_coefficients_enclose_the_exact_ones) {
+  const PrimitiveSystem system = silhouette_critical_system(catalog_entry("genus2").surface());
+  const CompiledSystem compiled(system);
+  const PolynomialForm* form = compiled.polynomial_form();
+  BOOST_REQUIRE(form);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> uni(-1, 1);
+  for (int trial = 0; trial < 3; ++trial) {
+    std::vector<double> q(system.n_parameters());
+    GiNaC::exmap at;
+    for (std::size_t j = 0; j < q.size(); ++j) q[j] = uni(rng), at[system.parameters[j]] = exact(q[j]);
+    std::vector<Interval> params(q.begin(), q.end()), c(form->n_coefficients());
+    {
+      RoundingGuard guard;
+      form->coefficients(params.data(), c.data());
+    }
+    for (std::size_t i = 0; i < form->n_equations(); ++i)
+      for (std::size_t k = 0; k < form->basis(i).size(); ++k) {
+        const GiNaC::numeric value = GiNaC::ex_to<GiNaC::numeric>(form->coefficient_expression(i, k).subs(at));
+        const Interval& e = c[form->offset(i) + k];
+        BOOST_TEST((exact(e.inf()) <= value && value <= exact(e.sup())));
+      }
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()

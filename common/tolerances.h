@@ -207,7 +207,9 @@ inline constexpr std::size_t polynomial_form_max_terms = 4000;
 //! least this many instructions per Taylor coefficient.  Measured (bench_homotopy, one core):
 //! Kostlan critical systems (506 instructions / 75 coefficients at d = 4, 2982 / 405 at d = 8)
 //! run 4–15× faster on Taylor forms; the catalog's factored surfaces (torus 122 / 75, genus2
-//! 82 / 405, tanglecube 77 / 75) run as fast or faster on their compiled expressions.
+//! 82 / 405, tanglecube 77 / 75) run as fast or faster on their compiled expressions.  (A second
+//! condition, the coefficient program no longer than the compiled program, keeps the plane
+//! primitives — E(o + u a + v b) expanded in nine parameters — on the compiled path.)
 inline constexpr double taylor_form_instruction_ratio = 2;
 
 }  // namespace delmesh::tolerances

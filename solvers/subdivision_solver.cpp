@@ -54,9 +54,10 @@ Interval determinant(std::size_t n, const Interval* a) {
 bool use_taylor_forms(const CompiledSystem& system, TaylorForms choice) {
   const PolynomialForm* form = system.polynomial_form();
   if (!form || choice == TaylorForms::never) return false;
+  const double instructions = static_cast<double>(system.instruction_count());
   return choice == TaylorForms::always ||
-         static_cast<double>(system.instruction_count()) >=
-             tolerances::taylor_form_instruction_ratio * static_cast<double>(form->n_coefficients());
+         (instructions >= tolerances::taylor_form_instruction_ratio * static_cast<double>(form->n_coefficients()) &&
+          static_cast<double>(form->instruction_count()) <= instructions);
 }
 
 class Subdivision {

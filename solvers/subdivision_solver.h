@@ -18,9 +18,10 @@ namespace delmesh {
 
 //! When the subdivision solver works on Taylor forms of a polynomial system (see solve_subdivision).
 enum class TaylorForms {
-  automatic,  //!< when the system has a PolynomialForm and its compiled values+Jacobian program has
+  automatic,  //!< when the system has a PolynomialForm, its compiled values+Jacobian program has
               //!< at least tolerances::taylor_form_instruction_ratio instructions per Taylor
-              //!< coefficient (dense expanded polynomials; factored forms are cheaper as written)
+              //!< coefficient (dense expanded polynomials; factored forms are cheaper as written),
+              //!< and the coefficient program (run once per solve) is no longer than it
   always,     //!< whenever the system has a PolynomialForm
   never       //!< only the compiled expressions
 };

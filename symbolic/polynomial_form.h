@@ -41,6 +41,8 @@ class PolynomialForm {
   //! The exact coefficient c_{i,α} (α = basis(i).exponent(k)) as an expression in the parameters.
   const GiNaC::ex& coefficient_expression(std::size_t i, std::size_t k) const { return expressions_[offsets_[i] + k]; }
 
+  //! Instructions of the coefficient program (its cost per evaluation).
+  std::size_t instruction_count() const { return program_.instruction_count(); }
   //! out[offset(i) + k] = c_{i,α_k}(parameters), n_coefficients() values.  Over Interval (with a
   //! live RoundingGuard) each output encloses the exact coefficient at the given parameters.
   template <class T>

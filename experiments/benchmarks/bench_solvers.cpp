@@ -8,7 +8,7 @@
 //!     a domain the size of a typical Voronoi cell: a box (3-D) or square (plane) of side `side`
 //!     around a random surface point (found by isolating a random line through the catalog box).
 //!
-//!   bench_solvers [--queries N] [--side S] [--seed K] [--csv FILE]
+//!   bench_solvers [--queries N] [--side S] [--seed K] [--taylor-forms automatic|always|never] [--csv FILE]
 
 #include <algorithm>
 #include <chrono>
@@ -89,6 +89,11 @@ int main(int argc, char** argv) {
   double side = 0.25;
   std::uint64_t seed = 1;
   std::string csv;
+  TaylorForms taylor_forms = TaylorForms::automatic;
+  app.add_option("--taylor-forms", taylor_forms, "subdivision on Taylor forms of polynomial systems")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, TaylorForms>{{"automatic", TaylorForms::automatic},
+                                                                             {"always", TaylorForms::always},
+                                                                             {"never", TaylorForms::never}}));
   app.add_option("--queries", queries, "queries per primitive and surface (and lines per degree / 10)");
   app.add_option("--side", side, "side of the Voronoi-cell-sized domain");
   app.add_option("--seed", seed, "random seed");
@@ -181,7 +186,9 @@ int main(int argc, char** argv) {
             params = {frame.a[0], frame.a[1], frame.a[2], frame.b[0], frame.b[1], frame.b[2]};
           else
             params = {d[0], d[1], d[2], d2[0], d2[1], d2[2]};
-          r = solve_subdivision(system, params, domain);
+          SubdivisionOptions options;
+          options.taylor_forms = taylor_forms;
+          r = solve_subdivision(system, params, domain, options);
         } else {
           // A plane through x with normal d, frame (a, b); the square [−h, h]² in (u, v).
           std::vector<double> params = {x[0], x[1], x[2], frame.a[0], frame.a[1], frame.a[2],
@@ -189,6 +196,7 @@ int main(int argc, char** argv) {
           if (primitive.n_parameters() == 12) params.insert(params.end(), {d2[0], d2[1], d2[2]});
           SubdivisionOptions options;
           options.exclusion_mode = !primitive.is_square();
+          options.taylor_forms = taylor_forms;
           r = solve_subdivision(system, params, Domain::from_box({{-h, h}, {-h, h}}), options);
         }
         stats.add(r, std::chrono::duration<double>(Clock::now() - start).count());

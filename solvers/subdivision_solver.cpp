@@ -184,6 +184,13 @@ class Subdivision {
       }
   }
 
+  //! Restricts the item to the half s_axis·side ≥ 0 of its cube (side = ±1).
+  void halve_item(Item& item, std::size_t axis, int side) const {
+    for (std::size_t i = 0; i < m_; ++i) detail::bisect_axis(form_->basis(i), axis, side, coefficients(item, i));
+    item.centre[axis] += item.radius[axis] * Interval(0.5 * side);
+    item.radius[axis] *= Interval(0.5);
+  }
+
   //! One box of a polynomial system in Taylor form (the cube coordinates s ∈ [−1, 1]^n):
   //! exclusion by the domain, by the Taylor range of each equation, and by the mean-value form
   //! g(0) + J(cube)·s; then (square systems) a Krawczyk step on the inflated cube — no zero →
@@ -235,8 +242,8 @@ class Subdivision {
     if (!exclusion_ && krawczyk_on_cube(item, fm, jm, jx, w)) return;
     // Bisect the widest side (in world coordinates).
     Item hi = item;
-    restrict_item(item, side, -0.5, 0.5);
-    restrict_item(hi, side, 0.5, 0.5);
+    halve_item(item, side, -1);
+    halve_item(hi, side, 1);
     set_box(item);
     set_box(hi);
     work_.push_back(std::move(hi));

@@ -22,6 +22,10 @@ namespace delmesh::detail {
 void substitute_affine(const MonomialBasis& basis, std::size_t axis, const Interval& mu, const Interval& rho,
                        Interval* a);
 
+//! The half of the cube on `side` (−1: s_axis ≤ 0, +1: s_axis ≥ 0) as a new cube: substitute_affine
+//! with μ = side/2, ρ = 1/2, computed with exact power-of-two scalings and additions only.
+void bisect_axis(const MonomialBasis& basis, std::size_t axis, int side, Interval* a);
+
 //! An enclosure of {g(s) : s ∈ [−ρ, ρ]^n}, ρ ≥ 1 given by its powers: rho_powers[j] ⊇ ρ^j for
 //! j ≤ basis.degree().
 Interval range_on_cube(const MonomialBasis& basis, const Interval* a, const Interval* rho_powers);

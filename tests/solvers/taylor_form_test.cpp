@@ -75,6 +75,24 @@ BOOST_AUTO_TEST_CASE(affine_substitution_encloses_the_exact_coefficients) {
     }
 }
 
+BOOST_AUTO_TEST_CASE(bisection_encloses_the_exact_halves) {
+  const auto s = symbols();
+  std::mt19937_64 rng(4);
+  RoundingGuard guard;
+  const MonomialBasis basis(3, 6);
+  for (int side : {-1, 1})
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      RandomPolynomial p = random_polynomial(basis, s, rng);
+      detail::bisect_axis(basis, axis, side, p.coefficients.data());
+      const GiNaC::ex half = p.expression.subs(s[axis] == GiNaC::numeric(side, 2) + s[axis] / 2).expand();
+      for (std::size_t i = 0; i < basis.size(); ++i) {
+        GiNaC::ex c = half;
+        for (std::size_t k = 0; k < 3; ++k) c = c.coeff(s[k], basis.exponent(i)[k]);
+        BOOST_TEST(encloses(p.coefficients[i], GiNaC::ex_to<GiNaC::numeric>(c)));
+      }
+    }
+}
+
 BOOST_AUTO_TEST_CASE(ranges_and_gradients_enclose_sampled_values) {
   const auto s = symbols();
   std::mt19937_64 rng(5);

@@ -41,7 +41,11 @@ std::ostream& operator<<(std::ostream& out, SolveStatus status);
 enum class UndecidedReason {
   singular_root,     //!< a multiple root / tangency: Jacobian singular near a zero
   boundary_root,     //!< a zero lies on (or too near) the boundary of the domain
-  cluster,           //!< several roots closer than the minimal box width
+  cluster,           //!< several roots closer than the minimal box width (homotopy: paths meeting
+                     //!< at one ill-conditioned endpoint; the subdivision solvers cannot tell a
+                     //!< cluster of simple roots closer than the singular width from a multiple
+                     //!< root — every Jacobian over a box holding both is singular — and report
+                     //!< either as singular_root)
   non_isolated,      //!< a curve of solutions passes through the region
   precision,         //!< even the highest MPFI precision could not decide
   budget             //!< not examined: a box or time budget ran out

@@ -33,6 +33,7 @@ struct SolveOptions {
   std::string primitive;
   std::string direction, direction2, point, plane_origin, plane_normal;
   std::string solver = "subdivision";
+  std::string taylor_forms = "automatic";
   std::size_t max_boxes = tolerances::default_box_budget;
   double time_limit = 0;
   bool json = false;
@@ -204,6 +205,10 @@ ExitCode run_solve(const SolveOptions& o) {
     throw InvalidInput("--solver: expected subdivision or homotopy, got '" + o.solver + "'");
   }
   if (o.max_boxes < 1) throw InvalidInput("--max-boxes must be at least 1");
+  const std::map<std::string, TaylorForms> taylor_choices{
+      {"automatic", TaylorForms::automatic}, {"always", TaylorForms::always}, {"never", TaylorForms::never}};
+  if (!taylor_choices.count(o.taylor_forms))
+    throw InvalidInput("--taylor-forms: expected automatic, always or never, got '" + o.taylor_forms + "'");
   if (!std::isfinite(o.time_limit) || o.time_limit < 0) {
     throw InvalidInput("--time-limit must be >= 0 seconds (0: none), got " + format_number(o.time_limit));
   }
@@ -238,6 +243,7 @@ ExitCode run_solve(const SolveOptions& o) {
     options.box_budget = o.max_boxes;
     options.time_limit_seconds = o.time_limit;
     options.exclusion_mode = !system.is_square();
+    options.taylor_forms = taylor_choices.at(o.taylor_forms);
     result = solve_subdivision(compiled, query.parameters, query.domain, options);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -330,6 +336,11 @@ Command add_solve_command(CLI::App& parent) {
                   "or homotopy (total-degree homotopy, polynomial E and square systems only)")
       ->capture_default_str()
       ->type_name("SOLVER");
+  sub->add_option("--taylor-forms", o->taylor_forms,
+                  "automatic, always or never: run the subdivision solver on Taylor forms of a polynomial system "
+                  "(automatic: for dense expanded polynomials, where they are faster)")
+      ->capture_default_str()
+      ->type_name("MODE");
   sub->add_option("--max-boxes", o->max_boxes, "box budget of the subdivision solver and the isolator (>= 1)")
       ->capture_default_str()
       ->type_name("N");

@@ -95,6 +95,27 @@ BOOST_AUTO_TEST_CASE(homotopy_backend_agrees_on_the_sphere) {
   for (const auto& p : hits) BOOST_TEST(std::abs(norm(p) - 1) < 1e-9);
 }
 
+BOOST_AUTO_TEST_CASE(taylor_forms_give_the_24_tanglecube_critical_points) {
+  // The 24 critical points of tanglecube in direction z (worked out in the solvers' tests), with
+  // and without Taylor forms; a mode that does not exist is invalid input.
+  Points previous;
+  for (const std::string mode : {"never", "always", "automatic"}) {
+    const Points roots = roots_of(parse_solve_json(run_delmesh(
+        {"solve", "--surface", "tanglecube", "--primitive", "surface_critical", "--taylor-forms", mode, "--json"})));
+    BOOST_TEST(roots.size() == 24u);
+    for (const auto& p : previous) {
+      int matches = 0;
+      for (const auto& q : roots)
+        matches += std::abs(p[0] - q[0]) < 1e-9 && std::abs(p[1] - q[1]) < 1e-9 && std::abs(p[2] - q[2]) < 1e-9;
+      BOOST_TEST(matches == 1, mode);
+    }
+    previous = roots;
+  }
+  require_invalid_input(run_delmesh({"solve", "--surface", "tanglecube", "--primitive", "surface_critical",
+                                     "--taylor-forms", "sometimes"}),
+                        "--taylor-forms");
+}
+
 BOOST_AUTO_TEST_CASE(a_line_missing_the_box_has_no_roots) {
   const nlohmann::json j = parse_solve_json(run_delmesh({"solve", "--surface", "sphere", "--primitive",
                                                          "surface_line", "--point", "0,0,5", "--direction",

@@ -4,6 +4,7 @@
 #include <random>
 
 #include <boost/multiprecision/cpp_bin_float.hpp>
+#include <boost/multiprecision/gmp.hpp>
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
@@ -29,6 +30,24 @@ const LineProblem& torus() {
 const LineProblem& sphere() {
   static const LineProblem problem(catalog_entry("sphere").surface());
   return problem;
+}
+
+using Rational = boost::multiprecision::mpq_rational;
+
+//! q ∈ [lo, hi], exactly (doubles convert exactly to rationals).
+bool holds(double lo, double hi, const Rational& q) { return Rational(lo) <= q && q <= Rational(hi); }
+
+//! Each certified interval holds exactly one of the exact zeros `exact`, and each zero is in one.
+void check_exact_roots(const SolveResult& r, const std::vector<Rational>& exact) {
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_TEST(r.undecided.empty());
+  BOOST_REQUIRE_EQUAL(r.roots.size(), exact.size());
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    int inside = 0;
+    for (const Rational& q : exact) inside += holds(r.roots[i].box.bounds[0][0], r.roots[i].box.bounds[0][1], q);
+    BOOST_TEST(inside == 1);
+    BOOST_TEST(holds(r.roots[i].box.bounds[0][0], r.roots[i].box.bounds[0][1], exact[i]));  // sorted
+  }
 }
 
 bool any_reason(const SolveResult& r, UndecidedReason reason) {
@@ -109,11 +128,89 @@ BOOST_AUTO_TEST_CASE(tangent_line_double_root_is_singular_never_certified) {
     }
     BOOST_TEST(covers);
   }
-  // A torus tangent line that is only nearly tangent in double: x = 1.4 (not representable).
+}
+
+BOOST_AUTO_TEST_CASE(true_tangency_stays_singular_after_mpfi_escalation) {
+  // The escalation is tried (and fails) on the double root: E = (t − 1)² on the sphere, and
+  // E = exp((t − 1)²) − 1 (interval Newton path); both stay singular_root, nothing certified.
+  const auto& S = sphere();
+  for (const LinePolynomial* poly : {&S.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+    const SolveResult r = isolate_line_roots(S.line, poly, {1, 0, -1}, {0, 0, 1}, 0, 2);
+    BOOST_TEST(r.roots.empty());
+    BOOST_TEST(r.status == SolveStatus::undecided);
+    BOOST_TEST(any_reason(r, UndecidedReason::singular_root));
+    BOOST_TEST(r.counters.precision_escalations == 2u);  // one interval, at 106 then 212 bits
+  }
+  const Surface s = Surface::parse("exp(x^2+y^2+z^2-1)-1");
+  const CompiledSystem line(surface_line_system(s));
+  const SolveResult tangent = isolate_line_roots(line, nullptr, {0, 1, -1}, {0, 0, 1}, 0, 2);
+  BOOST_TEST(tangent.roots.empty());
+  BOOST_TEST(any_reason(tangent, UndecidedReason::singular_root));
+  BOOST_TEST(tangent.counters.precision_escalations > 0u);
+}
+
+BOOST_AUTO_TEST_CASE(nearly_tangent_torus_line_is_resolved_in_mpfi) {
+  // x = 1.4 is not a double: the vertical line x = fl(1.4) = 1.4 − δ (δ ≈ 8.9e-17), y = 0 runs
+  // just inside the tube and meets the torus twice, at z = ±√(4/25 − (x − 1)²) ≈ ±8.4e-9.  Double
+  // intervals cannot separate the two zeros (singular_root); 106-bit MPFI must, and certify each
+  // in its own interval.
   const auto& T = torus();
-  const SolveResult r = isolate_line_roots(T.line, &T.polynomial, {1.4, 0, -1}, {0, 0, 1}, 0, 2);
-  BOOST_TEST(r.roots.empty());
-  BOOST_TEST(any_reason(r, UndecidedReason::singular_root));
+  const double x = 1.4;
+  using Real = boost::multiprecision::cpp_bin_float_50;
+  const Real z = sqrt(Real(4) / 25 - (Real(x) - 1) * (Real(x) - 1));
+  BOOST_REQUIRE(z > 8e-9 && z < 9e-9);
+  for (const LinePolynomial* poly : {&T.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+    const SolveResult r = isolate_line_roots(T.line, poly, {x, 0, -1}, {0, 0, 1}, 0, 2);
+    BOOST_TEST(r.status == SolveStatus::complete);
+    BOOST_TEST(r.counters.precision_escalations > 0u);
+    BOOST_REQUIRE_EQUAL(r.roots.size(), 2u);
+    for (int i = 0; i < 2; ++i) {
+      const Real t = 1 + (i == 0 ? -z : z);  // t = z + 1
+      const auto& b = r.roots[i].box.bounds[0];
+      BOOST_TEST((Real(b[0]) <= t && t <= Real(b[1])));
+      BOOST_TEST(b[1] - b[0] < 1e-12);  // far narrower than the 1.7e-8 gap
+    }
+    BOOST_TEST(r.roots[0].box.bounds[0][1] < 1.0);  // one zero on each side of the tube's centre
+    BOOST_TEST(r.roots[1].box.bounds[0][0] > 1.0);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(zeros_1e13_apart_are_separated_in_mpfi) {
+  // E = (x − 3/10)(x − (3/10 + 10⁻¹³)) + y² + z² along the x axis, t ∈ [0, 1]: two simple zeros
+  // 1e-13 apart, where E is ~ −2.5e-27 between them, far below double rounding (~1e-17).  Both
+  // paths (Bernstein and interval Newton) must certify the two zeros separately after escalating.
+  const Surface s = Surface::parse("(x-0.3)*(x-0.3000000000001)+y^2+z^2");
+  const LineProblem problem(s);
+  const std::vector<Rational> exact{Rational(3, 10), Rational(3000000000001LL, 10000000000000LL)};
+  for (const LinePolynomial* poly : {&problem.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+    const SolveResult r = isolate_line_roots(problem.line, poly, {0, 0, 0}, {1, 0, 0}, 0, 1);
+    check_exact_roots(r, exact);
+    BOOST_TEST(r.counters.precision_escalations > 0u);
+    // Tight: each interval is much narrower than the gap.
+    for (const auto& root : r.roots) BOOST_TEST(root.box.bounds[0][1] - root.box.bounds[0][0] < 1e-14);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(zero_within_an_ulp_of_an_end_is_decided_in_mpfi) {
+  // The sphere of radius 3/10 along the x axis: zeros t = ±3/10, not doubles.  fl(0.3) lies
+  // 1.1e-17 below 3/10, so E(fl(0.3)) ≈ −6.7e-18 is inside double rounding (boundary_root without
+  // escalation); in MPFI its sign is certain.
+  const Surface s = Surface::parse("x^2+y^2+z^2-0.09");
+  const LineProblem problem(s);
+  const double lo = 0.3, above = std::nextafter(0.3, 1.0);
+  BOOST_REQUIRE(Rational(lo) < Rational(3, 10) && Rational(3, 10) < Rational(above));
+  for (const LinePolynomial* poly : {&problem.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+    // t0 = fl(0.3) < 3/10: the zero 3/10 is inside [t0, 1], within an ulp of t0, and so is −3/10
+    // in [−1, −fl(0.3)].
+    const SolveResult in = isolate_line_roots(problem.line, poly, {0, 0, 0}, {1, 0, 0}, lo, 1);
+    check_exact_roots(in, {Rational(3, 10)});
+    BOOST_TEST(in.counters.precision_escalations > 0u);
+    const SolveResult negative = isolate_line_roots(problem.line, poly, {0, 0, 0}, {1, 0, 0}, -1, -lo);
+    check_exact_roots(negative, {Rational(-3, 10)});
+    // t0 = the next double above 3/10: no zero in [t0, 1]; proved, not left at the boundary.
+    const SolveResult out = isolate_line_roots(problem.line, poly, {0, 0, 0}, {1, 0, 0}, above, 1);
+    check_exact_roots(out, {});
+  }
 }
 
 BOOST_AUTO_TEST_CASE(root_at_an_end_is_boundary_root) {
@@ -188,6 +285,67 @@ BOOST_AUTO_TEST_CASE(box_budget_returns_the_rest_as_undecided) {
     for (const auto& u : r.undecided) found = found || (u.box.bounds[0][0] <= t && t <= u.box.bounds[0][1]);
     for (const auto& root : r.roots) found = found || (root.box.bounds[0][0] <= t && t <= root.box.bounds[0][1]);
     BOOST_TEST(found);
+  }
+}
+
+namespace {
+
+//! E = Π_{i=1..20} (x − r_i) + y² + z², r_i = (2i − 21)/20 ∈ (−1, 1): along the x axis the zeros
+//! are exactly the r_i, 1/10 apart (a degree-20 line polynomial with 20 simple zeros in [−1, 1]).
+struct TwentyRoots {
+  LineProblem problem;
+  std::vector<Rational> roots;
+  TwentyRoots() : problem(surface()) {
+    for (int i = 1; i <= 20; ++i) roots.push_back(Rational(2 * i - 21, 20));
+  }
+  static Surface surface() {
+    std::string text;
+    for (int i = 1; i <= 20; ++i) text += (i > 1 ? "*" : "") + std::string("(x-(") + std::to_string(2 * i - 21) + "/20))";
+    return Surface::parse(text + "+y^2+z^2");
+  }
+};
+
+const TwentyRoots& twenty_roots() {
+  static const TwentyRoots problem;
+  return problem;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(twenty_roots_without_time_budget) {
+  // Regression: the Bernstein path used to stop with non_isolated here.  The double enclosures of
+  // the Bernstein coefficients on [−1, 1] (Taylor shift of the expanded degree-20 polynomial) are
+  // ~1e-7 wide where E is ~1e-9 (between the middle zeros); such nodes are now escalated to MPFI,
+  // which evaluates the product form.  Interval Newton on the product form decides in double.
+  const auto& P = twenty_roots();
+  for (const LinePolynomial* poly : {&P.problem.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+    const SolveResult r = isolate_line_roots(P.problem.line, poly, {0, 0, 0}, {1, 0, 0}, -1, 1);
+    check_exact_roots(r, P.roots);
+    if (!poly) BOOST_TEST(r.counters.precision_escalations == 0u);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(time_budget_returns_the_rest_as_undecided) {
+  const auto& P = twenty_roots();
+  UnivariateOptions options;
+  options.time_limit_seconds = 1e-9;  // far less than the ≥ 40 subintervals the 20 zeros need
+  for (const LinePolynomial* poly : {&P.problem.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+    const SolveResult r = isolate_line_roots(P.problem.line, poly, {0, 0, 0}, {1, 0, 0}, -1, 1, options);
+    BOOST_TEST((r.status == SolveStatus::time_limit || r.status == SolveStatus::complete));
+    if (r.status == SolveStatus::time_limit) BOOST_TEST(any_reason(r, UndecidedReason::budget));
+    // Nothing dropped, nothing invented: every zero is in a certified or an undecided interval,
+    // and every certified interval holds exactly one zero.
+    for (const Rational& t : P.roots) {
+      bool found = false;
+      for (const auto& u : r.undecided) found = found || holds(u.box.bounds[0][0], u.box.bounds[0][1], t);
+      for (const auto& root : r.roots) found = found || holds(root.box.bounds[0][0], root.box.bounds[0][1], t);
+      BOOST_TEST(found);
+    }
+    for (const auto& root : r.roots) {
+      int inside = 0;
+      for (const Rational& t : P.roots) inside += holds(root.box.bounds[0][0], root.box.bounds[0][1], t);
+      BOOST_TEST(inside == 1);
+    }
   }
 }
 
@@ -278,6 +436,12 @@ BOOST_AUTO_TEST_CASE(invalid_input_throws) {
   BOOST_CHECK_THROW((void)isolate_line_roots(S.line, &S.polynomial, {0, 0, 0}, {0, 0, 0}, 0, 1), InvalidInput);
   const CompiledSystem critical(surface_critical_system(S.surface));
   BOOST_CHECK_THROW((void)isolate_line_roots(critical, nullptr, {0, 0, 0}, {1, 0, 0}, 0, 1), InvalidInput);
+  for (double seconds : {-1.0, std::nan(""), HUGE_VAL}) {
+    UnivariateOptions options;
+    options.time_limit_seconds = seconds;
+    BOOST_CHECK_THROW((void)isolate_line_roots(S.line, &S.polynomial, {0, 0, 0}, {1, 0, 0}, 0, 1, options),
+                      InvalidInput);
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()

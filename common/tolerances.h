@@ -194,20 +194,21 @@ inline constexpr double univariate_certify_growth = 8;
 inline constexpr int univariate_certify_attempts = 16;
 
 //! Univariate isolator, MPFI escalation (at each of escalation_precisions) of an interval that
-//! double intervals left undecided: the interval is subdivided in MPFI, depth first, and the
-//! attempt at that precision is abandoned (the interval stays undecided with its reason) as soon
-//! as a piece narrower than univariate_escalation_min_relative_width (relative to t1 − t0; the
-//! pieces' ends are doubles, so this is a few ulps) can be neither excluded nor certified, or
-//! after univariate_escalation_box_budget pieces.  A double root's piece reaches that width after
-//! ~30 halvings of a singular_box_relative_width interval, so a true tangency costs ~100 MPFI
-//! evaluations per precision.
+//! rounding left undecided: the interval is subdivided in MPFI, depth first, and the attempt at
+//! that precision is abandoned (the interval stays undecided with its reason) as soon as a piece
+//! narrower than univariate_escalation_min_relative_width (relative to t1 − t0; the pieces' ends
+//! are doubles, so this is a few ulps) — or, if E' may vanish on it, narrower than
+//! singular_box_relative_width — can be neither excluded nor certified, or after
+//! univariate_escalation_box_budget pieces.
 inline constexpr double univariate_escalation_min_relative_width = 1e-15;
 inline constexpr std::size_t univariate_escalation_box_budget = 512;
 
-//! Univariate isolator, Bernstein path: a node whose widest Bernstein coefficient enclosure
-//! exceeds this fraction of the largest coefficient magnitude is limited by rounding (the
-//! coefficients' enclosures do not shrink under subdivision): it is escalated to MPFI at once
-//! instead of being subdivided down to min_box_relative_width.
+//! Univariate isolator: a subinterval is limited by rounding, not by its width, and is escalated
+//! to MPFI at once instead of being subdivided down to min_box_relative_width, when
+//!  - (Bernstein path) its widest Bernstein coefficient enclosure exceeds this fraction of the
+//!    largest coefficient magnitude (the enclosures do not shrink under subdivision), or
+//!  - (interval Newton path) the enclosure of E at its midpoint is wider than this fraction of
+//!    the mean-value enclosure of E over the whole subinterval.
 inline constexpr double univariate_precision_limited_ratio = 0.25;
 
 //! A plane section of a box whose polygon has area below this times the squared box diagonal is

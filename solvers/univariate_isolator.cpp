@@ -234,10 +234,13 @@ enum class Escalation {
   timed_out   //!< the time budget ran out first
 };
 
-//! Only intervals that more precision may decide are escalated (never a budget region).
+//! Only leaves that rounding left undecided are escalated: precision (monotone, undecidable at the
+//! minimal width) and boundary_root (an end value's enclosure contains 0).  A singular_root leaf
+//! (E and E' both not excludable on an interval narrower than singular_box_relative_width) is a
+//! tangency or near-tangency — the mesher's candidate witness — and is not; neither is a budget
+//! region.
 bool escalatable(UndecidedReason reason) {
-  return reason == UndecidedReason::precision || reason == UndecidedReason::singular_root ||
-         reason == UndecidedReason::boundary_root;
+  return reason == UndecidedReason::precision || reason == UndecidedReason::boundary_root;
 }
 
 class Isolation {
@@ -419,11 +422,12 @@ class Isolation {
     const auto sign_at = [&](double t) { return certain_sign(eval.value(Interval(t))); };
     struct Node {
       double a, b;
-      int sa, sb;  // certain signs of E at a and b, or unknown_sign
+      int sa, sb;      // certain signs of E at a and b, or unknown_sign
+      bool escalated;  // an MPFI escalation of an ancestor failed: not retried in this subtree
     };
     static thread_local std::vector<Node> nodes;
     nodes.clear();
-    nodes.push_back({t0_, t1_, unknown_sign, unknown_sign});
+    nodes.push_back({t0_, t1_, unknown_sign, unknown_sign, false});
     while (!nodes.empty()) {
       if (stopped_) break;
       if (deadline_.expired()) {
@@ -462,10 +466,17 @@ class Isolation {
         }
         continue;
       }
+      // Mean-value form over T: E(m) + E'(T) (T − m).
+      const double m = midpoint(T);
+      const Interval fm = eval.value(Interval(m));
+      const Interval mean_value = fm + df * (T - Interval(m));
+      if (certainly_nonzero(mean_value)) {
+        ++counters_.exclusions;
+        continue;
+      }
       if (monotone) {
         // Interval Newton: every zero in T lies in m − f(m)/f'(T).
-        const double m = midpoint(T);
-        const Interval n = Interval(m) - eval.value(Interval(m)) / df;
+        const Interval n = Interval(m) - fm / df;
         if (detail::is_finite(n)) {
           if (detail::disjoint(n, T)) {
             ++counters_.exclusions;
@@ -474,14 +485,28 @@ class Isolation {
           const Interval c = detail::intersection(n, T);
           if (detail::width(c) < tolerances::krawczyk_contraction_ratio * detail::width(T) && c.inf() < c.sup()) {
             nodes.push_back({c.inf(), c.sup(), c.inf() == node.a ? sa : unknown_sign,
-                             c.sup() == node.b ? sb : unknown_sign});
+                             c.sup() == node.b ? sb : unknown_sign, node.escalated});
             continue;
           }
         }
       }
+      bool escalated = node.escalated;
+      if (!escalated &&
+          detail::width(fm) > tolerances::univariate_precision_limited_ratio * detail::width(mean_value)) {
+        // The value at one point is nearly as uncertain as the mean-value form over all of T:
+        // rounding, not T's width, limits what doubles can decide here; escalate T to MPFI now.
+        const Escalation outcome = escalate(node.a, node.b);
+        if (outcome == Escalation::decided) continue;
+        if (outcome == Escalation::timed_out) {
+          nodes.push_back(node);
+          stop(SolveStatus::time_limit);
+          break;
+        }
+        escalated = true;
+      }
       const bool boundary = (node.a == t0_ && sa == 0) || (node.b == t1_ && sb == 0);
       if (is_leaf(w, monotone)) {
-        undecided_leaf(node.a, node.b, leaf_reason(boundary, monotone));
+        undecided_leaf(node.a, node.b, leaf_reason(boundary, monotone), escalated);
         continue;
       }
       double split = midpoint(T);
@@ -492,8 +517,8 @@ class Isolation {
         s_split = sign_at(split);
         if (s_split != 0) break;
       }
-      nodes.push_back({split, node.b, s_split, sb});
-      nodes.push_back({node.a, split, sa, s_split});
+      nodes.push_back({split, node.b, s_split, sb, escalated});
+      nodes.push_back({node.a, split, sa, s_split, escalated});
     }
     for (const Node& node : nodes) leaves_.push_back({node.a, node.b, stop_reason(), false});
     nodes.clear();
@@ -520,9 +545,9 @@ class Isolation {
   //! Depth-first subdivision of [lo, hi] at `bits` with exclusion (natural or mean-value
   //! enclosure of E excluding 0, or E monotone with equal certain end signs) and certification (E
   //! monotone with opposite certain end signs, then narrowed by bisection on certain signs).
-  //! Abandoned (undecided) at the first piece that is narrower than the escalation width, or
-  //! whose midpoint is not strictly inside it, and is still undecided, or after the escalation
-  //! budget; then nothing of it is kept.
+  //! Abandoned (undecided) at the first undecided piece that is narrower than the escalation
+  //! width (or whose midpoint is not strictly inside it), or, if E' may vanish on it, narrower
+  //! than the singular width; or after the escalation budget.  Then nothing of it is kept.
   Escalation mpfi_pass(double lo, double hi, int bits, std::vector<Found>& fresh) {
     detail::MpfiPrecisionScope scope(bits);
     MpfiLineEvaluator e(line_, params_d_);  // destroyed before the scope
@@ -532,6 +557,7 @@ class Isolation {
     };
     std::vector<Piece> pieces{{lo, hi, unknown_sign, unknown_sign}};
     const double min_width = tolerances::univariate_escalation_min_relative_width * scale_;
+    const double singular_width = tolerances::singular_box_relative_width * scale_;
     std::size_t visited = 0;
     while (!pieces.empty()) {
       if (deadline_.expired()) return Escalation::timed_out;
@@ -555,6 +581,9 @@ class Isolation {
         }
         continue;
       }
+      // A piece where E' may vanish, narrower than the singular width, is a (near-)double root:
+      // it stays singular_root (the double pass's rule), MPFI does not try to split it.
+      if (!monotone && q.b - q.a < singular_width) return Escalation::undecided;
       if (q.b - q.a < min_width || !(m > q.a && m < q.b)) return Escalation::undecided;
       // Split, avoiding a split point at which the sign is not certain.
       double split = m;

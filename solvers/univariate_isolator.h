@@ -2,9 +2,9 @@
 //! \file univariate_isolator.h
 //! Certified isolation of the zeros of E on a segment p + t v, t ∈ [t0, t1] (SurfaceLine, VorEdge).
 //! Polynomial E: coefficients in t enclosed rigorously (LinePolynomial over Interval), then
-//! Bernstein/Descartes isolation; non-polynomial E: interval Newton on t.  Intervals that double
-//! intervals cannot decide are re-examined in MPFI (tolerances::escalation_precisions).  A double
-//! root (the line tangent to Σ, Lemma 4.7(ii)) is reported as an undecided box with reason
+//! Bernstein/Descartes isolation; non-polynomial E: interval Newton on t.  What rounding keeps
+//! double intervals from deciding is re-examined in MPFI (tolerances::escalation_precisions).  A
+//! double root (the line tangent to Σ, Lemma 4.7(ii)) is reported as an undecided box with reason
 //! singular_root.
 
 #include <array>
@@ -41,21 +41,30 @@ struct UnivariateOptions {
 //! and then narrowed to a tight interval around the Newton-refined zero, re-certified by a sign
 //! change and a derivative excluding 0 inside the isolating interval.  Subdivision avoids split
 //! points where the value is not certainly nonzero.
-//! MPFI escalation: once the double pass is over, every interval it left undecided with reason
-//! singular_root, boundary_root or precision (adjacent ones merged) is re-examined at each of
-//! tolerances::escalation_precisions in turn: E(p + t v) and dE/dt are evaluated over MPFI by the
-//! compiled `line` system (the exact expression, not the double coefficient enclosures), and the
-//! interval is subdivided with the same rules — exclusion by the natural or mean-value enclosure,
-//! or by E' ≠ 0 with equal certain end signs; certification by E' ≠ 0 (MPFI enclosure) with
-//! opposite certain end signs, narrowed by bisection on certain MPFI signs.  The interval is
-//! replaced by its certified zeros only if every piece of it is decided
-//! (tolerances::univariate_escalation_*); otherwise it stays undecided with its reason.  Each
-//! (interval, precision) attempt counts one counters.precision_escalations.  A true double root
-//! is never certified: every interval containing it has E' ∋ 0.  Undecided reasons:
+//! MPFI escalation (tolerances::escalation_precisions, 106 then 212 bits) of what rounding, not
+//! the geometry, leaves undecided:
+//!  - a subinterval limited by rounding (tolerances::univariate_precision_limited_ratio: the
+//!    Bernstein coefficient enclosures, resp. E at the midpoint, are nearly as wide as what they
+//!    must decide) is escalated when it is met;
+//!  - once the double pass is over, every interval left undecided with reason precision or
+//!    boundary_root (adjacent ones merged) is escalated.
+//! In MPFI, E(p + t v) and dE/dt are evaluated by the compiled `line` system (the exact
+//! expression at p, v, not the double coefficient enclosures), and the interval is subdivided
+//! depth first: exclusion by the natural or mean-value enclosure, or by E' ≠ 0 with equal certain
+//! end signs; certification by an MPFI enclosure of E' excluding 0 with opposite certain end
+//! signs, narrowed by bisection on certain MPFI signs.  The interval is replaced by its certified
+//! zeros only if every piece of it is decided (tolerances::univariate_escalation_*; a piece on
+//! which E' may vanish, narrower than the singular width, is not split: that is the singular_root
+//! rule); otherwise it stays undecided with its reason (a rounding-limited subinterval is then
+//! subdivided in double as before, without a second escalation).  Each (interval, precision)
+//! attempt counts one counters.precision_escalations.  Certified intervals that meet and on which
+//! E' ≠ 0 is proved hold the same zero and are reported once.  Undecided reasons:
 //!  - singular_root: E and E' cannot be excluded from 0 on an interval narrower than
-//!    tolerances::singular_box_relative_width·(t1 − t0), in double and then in MPFI down to
-//!    pieces of a few ulps: a double root (the line tangent to Σ, Lemma 4.7(ii)) or two zeros
-//!    that even 212-bit MPFI cannot separate — never certified, never dropped;
+//!    tolerances::singular_box_relative_width·(t1 − t0): a double root (the line tangent to Σ,
+//!    Lemma 4.7(ii)), a near-tangency (two zeros closer than that, or a line missing Σ by less
+//!    than rounding) — never certified, never dropped, not escalated (a double root cannot be
+//!    certified at any precision: every interval containing it has E' ∋ 0; the mesher treats
+//!    such regions as candidate witnesses);
 //!  - boundary_root: a zero at t0 or t1 within the resolution (the end value's enclosure
 //!    contains 0 on the last subinterval, in double and in MPFI);
 //!  - precision: monotone but undecidable at min_box_relative_width, in double and in MPFI;

@@ -49,16 +49,19 @@ KrawczykRecord krawczyk_record(const CancellingQuadratic& q, int bits) {
   return {r.outcome, r.contracted[0].inf(), r.contracted[0].sup()};
 }
 
-//! A univariate isolation that needs MPFI: zeros 3/10 and 3/10 + 1e-13 on the x axis.
-struct CloseRoots {
+//! A univariate isolation that needs MPFI: (x + 10⁸)² − 10¹⁶ − 2·10⁸ x − 1/4 on the x axis, by
+//! interval Newton on the unexpanded expression (every double enclosure is ~4 wide).
+struct CancellingLine {
   Surface surface;
   CompiledSystem line;
-  CloseRoots() : surface(Surface::parse("(x-0.3)*(x-0.3000000000001)+y^2+z^2")), line(surface_line_system(surface)) {}
+  CancellingLine()
+      : surface(Surface::parse("(x+100000000)^2-10000000000000000-200000000*x-0.25+y^2+z^2")),
+        line(surface_line_system(surface)) {}
 };
 
 //! The certified intervals and status of an isolation, bit for bit.
-std::vector<double> isolation_record(const CloseRoots& c) {
-  const SolveResult r = isolate_line_roots(c.line, nullptr, {0, 0, 0}, {1, 0, 0}, 0, 1);
+std::vector<double> isolation_record(const CancellingLine& c) {
+  const SolveResult r = isolate_line_roots(c.line, nullptr, {0, 0, 0}, {1, 0, 0}, -1, 1);
   std::vector<double> out{static_cast<double>(r.status), static_cast<double>(r.undecided.size()),
                           static_cast<double>(r.counters.precision_escalations)};
   for (const auto& root : r.roots) out.insert(out.end(), {root.box.bounds[0][0], root.box.bounds[0][1]});
@@ -122,12 +125,13 @@ BOOST_AUTO_TEST_CASE(concurrent_escalating_solves_match_the_serial_ones) {
   // Two threads each run Krawczyk tests in MPFI at 106 and 212 bits alternately (in opposite
   // phase) and univariate isolations that escalate to MPFI; every result must equal the serial one.
   const CancellingQuadratic quadratic;
-  const CloseRoots close;
+  const CancellingLine cancelling;
   const KrawczykRecord serial_106 = krawczyk_record(quadratic, 106), serial_212 = krawczyk_record(quadratic, 212);
   BOOST_REQUIRE(serial_106.outcome == KrawczykOutcome::inconclusive);  // precision-sensitive case
   BOOST_REQUIRE(serial_212.outcome == KrawczykOutcome::unique_root);
-  const std::vector<double> serial_isolation = isolation_record(close);
-  BOOST_REQUIRE(serial_isolation.size() == 3 + 4);  // complete, two certified zeros
+  const std::vector<double> serial_isolation = isolation_record(cancelling);
+  BOOST_REQUIRE(serial_isolation.size() == 3 + 4);  // two certified zeros, ±1/2
+  BOOST_REQUIRE(serial_isolation[0] == static_cast<double>(SolveStatus::complete));
   BOOST_REQUIRE(serial_isolation[2] > 0);            // it escalated
   std::atomic<int> mismatches{0};
   std::atomic<int> ready{0};
@@ -136,7 +140,7 @@ BOOST_AUTO_TEST_CASE(concurrent_escalating_solves_match_the_serial_ones) {
     for (int i = 0; i < 300; ++i) {
       const int bits = (i + phase) % 2 == 0 ? 106 : 212;
       if (!(krawczyk_record(quadratic, bits) == (bits == 106 ? serial_106 : serial_212))) ++mismatches;
-      if (i % 10 == 0 && isolation_record(close) != serial_isolation) ++mismatches;
+      if (i % 10 == 0 && isolation_record(cancelling) != serial_isolation) ++mismatches;
     }
   };
   std::thread t1(worker, 0), t2(worker, 1);

@@ -128,67 +128,75 @@ BOOST_AUTO_TEST_CASE(tangent_line_double_root_is_singular_never_certified) {
     }
     BOOST_TEST(covers);
   }
+  // A torus tangent line that is only nearly tangent in double: x = 1.4 (not representable).
+  const auto& T = torus();
+  const SolveResult r = isolate_line_roots(T.line, &T.polynomial, {1.4, 0, -1}, {0, 0, 1}, 0, 2);
+  BOOST_TEST(r.roots.empty());
+  BOOST_TEST(any_reason(r, UndecidedReason::singular_root));
 }
 
-BOOST_AUTO_TEST_CASE(true_tangency_stays_singular_after_mpfi_escalation) {
-  // The escalation is tried (and fails) on the double root: E = (t − 1)² on the sphere, and
-  // E = exp((t − 1)²) − 1 (interval Newton path); both stay singular_root, nothing certified.
+BOOST_AUTO_TEST_CASE(tangencies_are_singular_and_not_escalated) {
+  // A double root stays singular_root and is not handed to MPFI (no precision can certify it):
+  // E = (t − 1)² on the sphere, E = exp((t − 1)²) − 1 (interval Newton path), and the
+  // near-tangent torus line x = fl(1.4), which runs ~9e-17 inside the tube and meets the torus
+  // twice, at z = ±8.4e-9: two zeros closer than the singular width are one singular region.
   const auto& S = sphere();
   for (const LinePolynomial* poly : {&S.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
     const SolveResult r = isolate_line_roots(S.line, poly, {1, 0, -1}, {0, 0, 1}, 0, 2);
     BOOST_TEST(r.roots.empty());
-    BOOST_TEST(r.status == SolveStatus::undecided);
     BOOST_TEST(any_reason(r, UndecidedReason::singular_root));
-    BOOST_TEST(r.counters.precision_escalations == 2u);  // one interval, at 106 then 212 bits
+    BOOST_TEST(r.counters.precision_escalations == 0u);
   }
   const Surface s = Surface::parse("exp(x^2+y^2+z^2-1)-1");
   const CompiledSystem line(surface_line_system(s));
   const SolveResult tangent = isolate_line_roots(line, nullptr, {0, 1, -1}, {0, 0, 1}, 0, 2);
   BOOST_TEST(tangent.roots.empty());
   BOOST_TEST(any_reason(tangent, UndecidedReason::singular_root));
-  BOOST_TEST(tangent.counters.precision_escalations > 0u);
-}
-
-BOOST_AUTO_TEST_CASE(nearly_tangent_torus_line_is_resolved_in_mpfi) {
-  // x = 1.4 is not a double: the vertical line x = fl(1.4) = 1.4 − δ (δ ≈ 8.9e-17), y = 0 runs
-  // just inside the tube and meets the torus twice, at z = ±√(4/25 − (x − 1)²) ≈ ±8.4e-9.  Double
-  // intervals cannot separate the two zeros (singular_root); 106-bit MPFI must, and certify each
-  // in its own interval.
+  BOOST_TEST(tangent.counters.precision_escalations == 0u);
   const auto& T = torus();
-  const double x = 1.4;
-  using Real = boost::multiprecision::cpp_bin_float_50;
-  const Real z = sqrt(Real(4) / 25 - (Real(x) - 1) * (Real(x) - 1));
-  BOOST_REQUIRE(z > 8e-9 && z < 9e-9);
   for (const LinePolynomial* poly : {&T.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
-    const SolveResult r = isolate_line_roots(T.line, poly, {x, 0, -1}, {0, 0, 1}, 0, 2);
-    BOOST_TEST(r.status == SolveStatus::complete);
-    BOOST_TEST(r.counters.precision_escalations > 0u);
-    BOOST_REQUIRE_EQUAL(r.roots.size(), 2u);
-    for (int i = 0; i < 2; ++i) {
-      const Real t = 1 + (i == 0 ? -z : z);  // t = z + 1
-      const auto& b = r.roots[i].box.bounds[0];
-      BOOST_TEST((Real(b[0]) <= t && t <= Real(b[1])));
-      BOOST_TEST(b[1] - b[0] < 1e-12);  // far narrower than the 1.7e-8 gap
-    }
-    BOOST_TEST(r.roots[0].box.bounds[0][1] < 1.0);  // one zero on each side of the tube's centre
-    BOOST_TEST(r.roots[1].box.bounds[0][0] > 1.0);
+    const SolveResult r = isolate_line_roots(T.line, poly, {1.4, 0, -1}, {0, 0, 1}, 0, 2);
+    BOOST_TEST(r.roots.empty());
+    BOOST_TEST(r.status == SolveStatus::undecided);
+    for (const auto& u : r.undecided) BOOST_TEST(u.reason == UndecidedReason::singular_root);
+    BOOST_TEST(r.counters.precision_escalations == 0u);
   }
 }
 
-BOOST_AUTO_TEST_CASE(zeros_1e13_apart_are_separated_in_mpfi) {
+BOOST_AUTO_TEST_CASE(zeros_1e13_apart_are_one_singular_region) {
   // E = (x − 3/10)(x − (3/10 + 10⁻¹³)) + y² + z² along the x axis, t ∈ [0, 1]: two simple zeros
-  // 1e-13 apart, where E is ~ −2.5e-27 between them, far below double rounding (~1e-17).  Both
-  // paths (Bernstein and interval Newton) must certify the two zeros separately after escalating.
+  // closer than the singular width.  Neither path may certify one interval for the pair; the
+  // undecided singular_root region must hold both.
   const Surface s = Surface::parse("(x-0.3)*(x-0.3000000000001)+y^2+z^2");
   const LineProblem problem(s);
   const std::vector<Rational> exact{Rational(3, 10), Rational(3000000000001LL, 10000000000000LL)};
   for (const LinePolynomial* poly : {&problem.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
     const SolveResult r = isolate_line_roots(problem.line, poly, {0, 0, 0}, {1, 0, 0}, 0, 1);
-    check_exact_roots(r, exact);
-    BOOST_TEST(r.counters.precision_escalations > 0u);
-    // Tight: each interval is much narrower than the gap.
-    for (const auto& root : r.roots) BOOST_TEST(root.box.bounds[0][1] - root.box.bounds[0][0] < 1e-14);
+    BOOST_TEST(r.roots.empty());
+    BOOST_TEST(r.status == SolveStatus::undecided);
+    for (const Rational& q : exact) {
+      bool covered = false;
+      for (const auto& u : r.undecided)
+        covered = covered || (u.reason == UndecidedReason::singular_root && holds(u.box.bounds[0][0], u.box.bounds[0][1], q));
+      BOOST_TEST(covered);
+    }
   }
+}
+
+BOOST_AUTO_TEST_CASE(huge_cancelling_terms_are_decided_in_mpfi) {
+  // (x + 10⁸)² − 10¹⁶ − 2·10⁸ x − 1/4 + y² + z² = x² − 1/4 + y² + z², written with terms of 1e16
+  // that cancel: along the x axis on [−1, 1] every double enclosure of E is ~4 wide while
+  // |E| ≤ 3/4, so interval Newton on the compiled (unexpanded) expression decides nothing in
+  // double; 106-bit MPFI certifies the zeros ±1/2.  (The Bernstein path works on the expanded,
+  // exact coefficients of x² − 1/4 and needs no MPFI.)
+  const Surface s = Surface::parse("(x+100000000)^2-10000000000000000-200000000*x-0.25+y^2+z^2");
+  const LineProblem problem(s);
+  const SolveResult newton = isolate_line_roots(problem.line, nullptr, {0, 0, 0}, {1, 0, 0}, -1, 1);
+  check_exact_roots(newton, {Rational(-1, 2), Rational(1, 2)});
+  BOOST_TEST(newton.counters.precision_escalations > 0u);
+  BOOST_TEST(newton.counters.boxes < 100u);  // escalated at once, not subdivided to the noise
+  check_exact_roots(isolate_line_roots(problem.line, &problem.polynomial, {0, 0, 0}, {1, 0, 0}, -1, 1),
+                    {Rational(-1, 2), Rational(1, 2)});
 }
 
 BOOST_AUTO_TEST_CASE(zero_within_an_ulp_of_an_end_is_decided_in_mpfi) {
@@ -290,24 +298,41 @@ BOOST_AUTO_TEST_CASE(box_budget_returns_the_rest_as_undecided) {
 
 namespace {
 
-//! E = Π_{i=1..20} (x − r_i) + y² + z², r_i = (2i − 21)/20 ∈ (−1, 1): along the x axis the zeros
-//! are exactly the r_i, 1/10 apart (a degree-20 line polynomial with 20 simple zeros in [−1, 1]).
-struct TwentyRoots {
+//! E = Π_{i=1..n} (x − r_i) + y² + z², r_i = (2i − n − 1)/n ∈ (−1, 1): along the x axis the zeros
+//! are exactly the r_i, 2/n apart (a degree-n line polynomial with n simple zeros in [−1, 1]).
+struct ProductRoots {
   LineProblem problem;
   std::vector<Rational> roots;
-  TwentyRoots() : problem(surface()) {
-    for (int i = 1; i <= 20; ++i) roots.push_back(Rational(2 * i - 21, 20));
+  explicit ProductRoots(int n) : problem(surface(n)) {
+    for (int i = 1; i <= n; ++i) roots.push_back(Rational(2 * i - n - 1, n));
   }
-  static Surface surface() {
+  static Surface surface(int n) {
     std::string text;
-    for (int i = 1; i <= 20; ++i) text += (i > 1 ? "*" : "") + std::string("(x-(") + std::to_string(2 * i - 21) + "/20))";
+    for (int i = 1; i <= n; ++i)
+      text += (i > 1 ? "*" : "") + std::string("(x-(") + std::to_string(2 * i - n - 1) + "/" + std::to_string(n) + "))";
     return Surface::parse(text + "+y^2+z^2");
   }
 };
 
-const TwentyRoots& twenty_roots() {
-  static const TwentyRoots problem;
+const ProductRoots& twenty_roots() {
+  static const ProductRoots problem(20);
   return problem;
+}
+
+//! Every zero is in a certified or an undecided interval (nothing dropped), and every certified
+//! interval holds exactly one zero (nothing invented).
+void check_nothing_dropped(const SolveResult& r, const std::vector<Rational>& zeros) {
+  for (const Rational& t : zeros) {
+    bool found = false;
+    for (const auto& u : r.undecided) found = found || holds(u.box.bounds[0][0], u.box.bounds[0][1], t);
+    for (const auto& root : r.roots) found = found || holds(root.box.bounds[0][0], root.box.bounds[0][1], t);
+    BOOST_TEST(found);
+  }
+  for (const auto& root : r.roots) {
+    int inside = 0;
+    for (const Rational& t : zeros) inside += holds(root.box.bounds[0][0], root.box.bounds[0][1], t);
+    BOOST_TEST(inside == 1);
+  }
 }
 
 }  // namespace
@@ -333,20 +358,24 @@ BOOST_AUTO_TEST_CASE(time_budget_returns_the_rest_as_undecided) {
     const SolveResult r = isolate_line_roots(P.problem.line, poly, {0, 0, 0}, {1, 0, 0}, -1, 1, options);
     BOOST_TEST((r.status == SolveStatus::time_limit || r.status == SolveStatus::complete));
     if (r.status == SolveStatus::time_limit) BOOST_TEST(any_reason(r, UndecidedReason::budget));
-    // Nothing dropped, nothing invented: every zero is in a certified or an undecided interval,
-    // and every certified interval holds exactly one zero.
-    for (const Rational& t : P.roots) {
-      bool found = false;
-      for (const auto& u : r.undecided) found = found || holds(u.box.bounds[0][0], u.box.bounds[0][1], t);
-      for (const auto& root : r.roots) found = found || holds(root.box.bounds[0][0], root.box.bounds[0][1], t);
-      BOOST_TEST(found);
-    }
-    for (const auto& root : r.roots) {
-      int inside = 0;
-      for (const Rational& t : P.roots) inside += holds(root.box.bounds[0][0], root.box.bounds[0][1], t);
-      BOOST_TEST(inside == 1);
-    }
+    check_nothing_dropped(r, P.roots);
   }
+}
+
+BOOST_AUTO_TEST_CASE(time_budget_also_stops_an_mpfi_escalation) {
+  // Degree 30: the Bernstein coefficients on [−1, 1] are rounding-limited from the first node,
+  // which is escalated to MPFI as a whole (~30 certifications in MPFI, tens of milliseconds); a
+  // 1 ms budget stops it there.
+  const ProductRoots P(30);
+  UnivariateOptions options;
+  options.time_limit_seconds = 1e-3;
+  const SolveResult r = isolate_line_roots(P.problem.line, &P.problem.polynomial, {0, 0, 0}, {1, 0, 0}, -1, 1, options);
+  BOOST_TEST((r.status == SolveStatus::time_limit || r.status == SolveStatus::complete));
+  BOOST_TEST(r.counters.precision_escalations > 0u);
+  if (r.status == SolveStatus::time_limit) BOOST_TEST(any_reason(r, UndecidedReason::budget));
+  check_nothing_dropped(r, P.roots);
+  // Without a budget all 30 zeros are certified.
+  check_exact_roots(isolate_line_roots(P.problem.line, &P.problem.polynomial, {0, 0, 0}, {1, 0, 0}, -1, 1), P.roots);
 }
 
 namespace {

@@ -197,10 +197,11 @@ bool is_leaf(double w, bool monotone) {
 //! their largest magnitude: de Casteljau subdivision averages the enclosures and does not shrink
 //! them, so no subnode could decide what this node cannot.
 bool precision_limited(int d, const Interval* b) {
-  double widest = 0, largest = 0;
+  double widest = 0, largest = 0;  // max(sup, −inf) = max(|inf|, |sup|) as inf ≤ sup
   for (int i = 0; i <= d; ++i) {
-    widest = std::max(widest, detail::width(b[i]));
-    largest = std::max(largest, std::max(std::abs(b[i].inf()), std::abs(b[i].sup())));
+    const double lo = b[i].inf(), hi = b[i].sup();
+    widest = std::max(widest, hi - lo);
+    largest = std::max(largest, std::max(hi, -lo));
   }
   return widest > tolerances::univariate_precision_limited_ratio * largest;
 }
@@ -247,7 +248,13 @@ class Isolation {
  public:
   Isolation(const CompiledSystem& line, const std::array<double, 3>& p, const std::array<double, 3>& v, double t0,
             double t1, const UnivariateOptions& options, std::chrono::steady_clock::time_point start)
-      : line_(line), t0_(t0), t1_(t1), options_(options), deadline_(start, options.time_limit_seconds) {
+      : line_(line),
+        t0_(t0),
+        t1_(t1),
+        options_(options),
+        deadline_(start, options.time_limit_seconds),
+        found_(found_buffer()) {
+    found_.clear();
     for (int i = 0; i < 3; ++i) params_d_[i] = p[i], params_d_[i + 3] = v[i];
     for (int i = 0; i < 6; ++i) params_[i] = Interval(params_d_[i]);
     scale_ = t1 - t0;
@@ -262,6 +269,11 @@ class Isolation {
   }
 
  private:
+  static std::vector<Found>& found_buffer() {
+    static thread_local std::vector<Found> buffer;
+    return buffer;
+  }
+
   // ---- polynomial E: Bernstein subdivision ----
   void run_bernstein(const LinePolynomial& polynomial) {
     const int d = polynomial.degree();
@@ -275,13 +287,12 @@ class Isolation {
     const Interval h = Interval(t1_) - Interval(t0_);
     struct Node {
       double sa, sb;
-      bool escalated;  // an MPFI escalation of an ancestor failed: not retried in this subtree
     };
     static thread_local std::vector<Node> nodes;
     nodes.clear();
     pool.resize(block * 64);
     detail::bernstein_from_monomial(d, c.data(), t0_, h, pool.data(), scratch.data());
-    nodes.push_back({0.0, 1.0, false});
+    nodes.push_back({0.0, 1.0});
     // t-enclosure of the point s (s carries ≤ 1 ulp of representation error).
     auto t_of = [&](double s) {
       const double e = 0x1p-52;
@@ -349,8 +360,7 @@ class Isolation {
         }
         continue;
       }
-      bool escalated = node.escalated;
-      if (!escalated && precision_limited(d, b)) {
+      if (precision_limited(d, b) && !inside_failed(node.sa, node.sb)) {
         // Subdividing further in double cannot help: escalate the node's range to MPFI now.
         double lo, hi;
         t_outer(node.sa, node.sb, lo, hi);
@@ -361,13 +371,13 @@ class Isolation {
           stop(SolveStatus::time_limit);
           break;
         }
-        escalated = true;
+        failed_.push_back({node.sa, node.sb});
       }
       const bool boundary = (node.sa == 0 && s_left == 0) || (node.sb == 1 && s_right == 0);
       if (is_leaf(w, monotone)) {
         double lo, hi;
         t_outer(node.sa, node.sb, lo, hi);
-        undecided_leaf(lo, hi, leaf_reason(boundary, monotone), escalated);
+        undecided_leaf(lo, hi, leaf_reason(boundary, monotone), inside_failed(node.sa, node.sb));
         continue;
       }
       // Split, avoiding a split point at which the value is not certainly nonzero.
@@ -381,8 +391,8 @@ class Isolation {
       if (pool.size() < (top + 2) * block) pool.resize(2 * (top + 2) * block);
       std::copy(right.begin(), right.end(), pool.begin() + top * block);
       std::copy(left.begin(), left.end(), pool.begin() + (top + 1) * block);
-      nodes.push_back({sm, node.sb, escalated});
-      nodes.push_back({node.sa, sm, escalated});
+      nodes.push_back({sm, node.sb});
+      nodes.push_back({node.sa, sm});
     }
     for (const Node& node : nodes) {
       double lo, hi;
@@ -422,12 +432,11 @@ class Isolation {
     const auto sign_at = [&](double t) { return certain_sign(eval.value(Interval(t))); };
     struct Node {
       double a, b;
-      int sa, sb;      // certain signs of E at a and b, or unknown_sign
-      bool escalated;  // an MPFI escalation of an ancestor failed: not retried in this subtree
+      int sa, sb;  // certain signs of E at a and b, or unknown_sign
     };
     static thread_local std::vector<Node> nodes;
     nodes.clear();
-    nodes.push_back({t0_, t1_, unknown_sign, unknown_sign, false});
+    nodes.push_back({t0_, t1_, unknown_sign, unknown_sign});
     while (!nodes.empty()) {
       if (stopped_) break;
       if (deadline_.expired()) {
@@ -485,14 +494,13 @@ class Isolation {
           const Interval c = detail::intersection(n, T);
           if (detail::width(c) < tolerances::krawczyk_contraction_ratio * detail::width(T) && c.inf() < c.sup()) {
             nodes.push_back({c.inf(), c.sup(), c.inf() == node.a ? sa : unknown_sign,
-                             c.sup() == node.b ? sb : unknown_sign, node.escalated});
+                             c.sup() == node.b ? sb : unknown_sign});
             continue;
           }
         }
       }
-      bool escalated = node.escalated;
-      if (!escalated &&
-          detail::width(fm) > tolerances::univariate_precision_limited_ratio * detail::width(mean_value)) {
+      if (detail::width(fm) > tolerances::univariate_precision_limited_ratio * detail::width(mean_value) &&
+          !inside_failed(node.a, node.b)) {
         // The value at one point is nearly as uncertain as the mean-value form over all of T:
         // rounding, not T's width, limits what doubles can decide here; escalate T to MPFI now.
         const Escalation outcome = escalate(node.a, node.b);
@@ -502,11 +510,11 @@ class Isolation {
           stop(SolveStatus::time_limit);
           break;
         }
-        escalated = true;
+        failed_.push_back({node.a, node.b});
       }
       const bool boundary = (node.a == t0_ && sa == 0) || (node.b == t1_ && sb == 0);
       if (is_leaf(w, monotone)) {
-        undecided_leaf(node.a, node.b, leaf_reason(boundary, monotone), escalated);
+        undecided_leaf(node.a, node.b, leaf_reason(boundary, monotone), inside_failed(node.a, node.b));
         continue;
       }
       double split = midpoint(T);
@@ -517,8 +525,8 @@ class Isolation {
         s_split = sign_at(split);
         if (s_split != 0) break;
       }
-      nodes.push_back({split, node.b, s_split, sb, escalated});
-      nodes.push_back({node.a, split, sa, s_split, escalated});
+      nodes.push_back({split, node.b, s_split, sb});
+      nodes.push_back({node.a, split, sa, s_split});
     }
     for (const Node& node : nodes) leaves_.push_back({node.a, node.b, stop_reason(), false});
     nodes.clear();
@@ -526,9 +534,18 @@ class Isolation {
 
   // ---- MPFI escalation of undecided intervals ----
 
+  //! [a, b] (s for the Bernstein path, t for interval Newton) lies in a subinterval whose MPFI
+  //! escalation failed: its pieces are not escalated again.
+  bool inside_failed(double a, double b) const {
+    for (const auto& f : failed_)
+      if (f.first <= a && b <= f.second) return true;
+    return false;
+  }
+
   //! Re-examines [lo, hi] (undecided in double intervals) in MPFI at each escalation precision
-  //! in turn; on success its zeros are certified (counted once per precision tried).
-  Escalation escalate(double lo, double hi) {
+  //! in turn; on success its zeros are certified (counted once per precision tried).  Rare: kept
+  //! out of the double loops' code (cold).
+  [[gnu::cold]] Escalation escalate(double lo, double hi) {
     for (int bits : tolerances::escalation_precisions) {
       ++counters_.precision_escalations;
       std::vector<Found> fresh;
@@ -641,20 +658,21 @@ class Isolation {
   //! are replaced by one undecided interval (precision) covering them.
   void deduplicate(std::vector<Leaf>& leaves) {
     std::sort(found_.begin(), found_.end(), [](const Found& a, const Found& b) { return a.lo < b.lo; });
-    std::vector<Found> kept;
-    for (const Found& f : found_) {
-      if (!kept.empty() && kept.back().hi >= f.lo) {
-        Found& last = kept.back();
+    std::size_t kept = 0;  // found_[0, kept) is the deduplicated prefix
+    for (std::size_t i = 0; i < found_.size(); ++i) {
+      const Found f = found_[i];
+      if (kept > 0 && found_[kept - 1].hi >= f.lo) {
+        const Found& last = found_[kept - 1];
         if (last.monotone && f.monotone) continue;  // the same zero, already held by `last`
         if (last.hi > f.lo) {
           leaves.push_back({last.lo, std::max(last.hi, f.hi), UndecidedReason::precision, true});
-          kept.pop_back();
+          --kept;
           continue;
         }
       }
-      kept.push_back(f);
+      found_[kept++] = f;
     }
-    found_.swap(kept);
+    found_.resize(kept);
   }
 
   // ---- bookkeeping ----
@@ -703,7 +721,7 @@ class Isolation {
       line_.world_point(&t, params_d_, box.world.data());
       result.undecided.push_back(std::move(box));
     }
-    std::sort(found_.begin(), found_.end(), [](const Found& a, const Found& b) { return a.lo < b.lo; });
+    result.roots.reserve(found_.size());
     for (const Found& f : found_) {
       CertifiedRoot root;
       root.box.bounds = {{f.lo, f.hi}};
@@ -723,7 +741,8 @@ class Isolation {
   Deadline deadline_;
   double params_d_[6];
   Interval params_[6];
-  std::vector<Found> found_;
+  std::vector<Found>& found_;
+  std::vector<std::pair<double, double>> failed_;  // escalations that failed (see inside_failed)  // a per-thread buffer (no allocation per call; calls do not nest)
   std::vector<Leaf> leaves_;
   SolverCounters counters_;
   std::size_t unresolved_ = 0;

@@ -203,12 +203,13 @@ inline constexpr int univariate_certify_attempts = 16;
 inline constexpr double univariate_escalation_min_relative_width = 1e-15;
 inline constexpr std::size_t univariate_escalation_box_budget = 512;
 
-//! Univariate isolator: a subinterval is limited by rounding, not by its width, and is escalated
-//! to MPFI at once instead of being subdivided down to min_box_relative_width, when
+//! Univariate isolator: a subinterval is limited by rounding, not by its width, when
 //!  - (Bernstein path) its widest Bernstein coefficient enclosure exceeds this fraction of the
-//!    largest coefficient magnitude (the enclosures do not shrink under subdivision), or
+//!    largest coefficient magnitude (the enclosures do not shrink under subdivision): it is
+//!    handed to the interval Newton path (the compiled expression), or
 //!  - (interval Newton path) the enclosure of E at its midpoint is wider than this fraction of
-//!    the mean-value enclosure of E over the whole subinterval.
+//!    the mean-value enclosure of E over the whole subinterval: it is escalated to MPFI at once
+//!    instead of being subdivided down to min_box_relative_width.
 inline constexpr double univariate_precision_limited_ratio = 0.25;
 
 //! A plane section of a box whose polygon has area below this times the squared box diagonal is

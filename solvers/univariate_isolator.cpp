@@ -264,7 +264,7 @@ class Isolation {
     if (polynomial && polynomial->degree() <= detail::max_bernstein_degree)
       run_bernstein(*polynomial);
     else
-      run_newton();
+      run_newton(t0_, t1_);
     return finish();
   }
 
@@ -360,24 +360,21 @@ class Isolation {
         }
         continue;
       }
-      if (precision_limited(d, b) && !inside_failed(node.sa, node.sb)) {
-        // Subdividing further in double cannot help: escalate the node's range to MPFI now.
+      if (precision_limited(d, b)) {
+        // Subdividing the coefficients further cannot help.  The compiled expression is often far
+        // better conditioned than the expanded coefficients (a product of factors, say): isolate
+        // the node's range by interval Newton on it, which escalates to MPFI what it cannot
+        // decide either.
         double lo, hi;
         t_outer(node.sa, node.sb, lo, hi);
-        const Escalation outcome = escalate(lo, hi);
-        if (outcome == Escalation::decided) continue;
-        if (outcome == Escalation::timed_out) {
-          nodes.push_back(node);  // its coefficients are still at pool[top]
-          stop(SolveStatus::time_limit);
-          break;
-        }
-        failed_.push_back({node.sa, node.sb});
+        run_newton(lo, hi);
+        continue;
       }
       const bool boundary = (node.sa == 0 && s_left == 0) || (node.sb == 1 && s_right == 0);
       if (is_leaf(w, monotone)) {
         double lo, hi;
         t_outer(node.sa, node.sb, lo, hi);
-        undecided_leaf(lo, hi, leaf_reason(boundary, monotone), inside_failed(node.sa, node.sb));
+        undecided_leaf(lo, hi, leaf_reason(boundary, monotone));
         continue;
       }
       // Split, avoiding a split point at which the value is not certainly nonzero.
@@ -425,7 +422,8 @@ class Isolation {
   }
 
   // ---- any E: interval Newton and bisection on the compiled line system ----
-  void run_newton() {
+  //! Isolates the zeros in [lo, hi] ⊆ [t0, t1] (the whole segment, or a Bernstein node's range).
+  void run_newton(double lo, double hi) {
     const LineSystemEvaluator eval{line_, params_, params_d_};
     // The certain sign of E at an end point is evaluated once and handed to the subintervals
     // that share the point (unknown_sign until it is needed).
@@ -436,7 +434,7 @@ class Isolation {
     };
     static thread_local std::vector<Node> nodes;
     nodes.clear();
-    nodes.push_back({t0_, t1_, unknown_sign, unknown_sign});
+    nodes.push_back({lo, hi, unknown_sign, unknown_sign});
     while (!nodes.empty()) {
       if (stopped_) break;
       if (deadline_.expired()) {
@@ -499,10 +497,25 @@ class Isolation {
           }
         }
       }
-      if (detail::width(fm) > tolerances::univariate_precision_limited_ratio * detail::width(mean_value) &&
-          !inside_failed(node.a, node.b)) {
-        // The value at one point is nearly as uncertain as the mean-value form over all of T:
-        // rounding, not T's width, limits what doubles can decide here; escalate T to MPFI now.
+      const bool boundary = (node.a == t0_ && sa == 0) || (node.b == t1_ && sb == 0);
+      const bool leaf = is_leaf(w, monotone);
+      // Split, avoiding a split point at which the value is not certainly nonzero.
+      double split = midpoint(T);
+      int s_split = unknown_sign;
+      for (double ratio : split_ratios) {
+        if (leaf) break;
+        split = node.a + ratio * (node.b - node.a);
+        if (split <= node.a || split >= node.b) split = midpoint(T);
+        s_split = sign_at(split);
+        if (s_split != 0) break;
+      }
+      // Rounding, not T's width, limits what doubles can decide on T when the value at one point
+      // is nearly as uncertain as the mean-value form over all of T, or when no candidate split
+      // point has a certain sign: T is escalated to MPFI now (once per region).
+      const bool rounding_limited =
+          detail::width(fm) > tolerances::univariate_precision_limited_ratio * detail::width(mean_value) ||
+          s_split == 0;
+      if (rounding_limited && !inside_failed(node.a, node.b)) {
         const Escalation outcome = escalate(node.a, node.b);
         if (outcome == Escalation::decided) continue;
         if (outcome == Escalation::timed_out) {
@@ -512,18 +525,9 @@ class Isolation {
         }
         failed_.push_back({node.a, node.b});
       }
-      const bool boundary = (node.a == t0_ && sa == 0) || (node.b == t1_ && sb == 0);
-      if (is_leaf(w, monotone)) {
+      if (leaf) {
         undecided_leaf(node.a, node.b, leaf_reason(boundary, monotone), inside_failed(node.a, node.b));
         continue;
-      }
-      double split = midpoint(T);
-      int s_split = unknown_sign;
-      for (double ratio : split_ratios) {
-        split = node.a + ratio * (node.b - node.a);
-        if (split <= node.a || split >= node.b) split = midpoint(T);
-        s_split = sign_at(split);
-        if (s_split != 0) break;
       }
       nodes.push_back({split, node.b, s_split, sb});
       nodes.push_back({node.a, split, sa, s_split});
@@ -534,8 +538,8 @@ class Isolation {
 
   // ---- MPFI escalation of undecided intervals ----
 
-  //! [a, b] (s for the Bernstein path, t for interval Newton) lies in a subinterval whose MPFI
-  //! escalation failed: its pieces are not escalated again.
+  //! [a, b] lies in a subinterval whose MPFI escalation failed: its pieces are not escalated
+  //! again.
   bool inside_failed(double a, double b) const {
     for (const auto& f : failed_)
       if (f.first <= a && b <= f.second) return true;

@@ -41,11 +41,13 @@ struct UnivariateOptions {
 //! and then narrowed to a tight interval around the Newton-refined zero, re-certified by a sign
 //! change and a derivative excluding 0 inside the isolating interval.  Subdivision avoids split
 //! points where the value is not certainly nonzero.
+//! Rounding-limited subintervals (tolerances::univariate_precision_limited_ratio): a Bernstein
+//! node whose coefficient enclosures are nearly as wide as the coefficients (the expanded
+//! coefficients cancel) is isolated by interval Newton on the compiled `line` system instead.
 //! MPFI escalation (tolerances::escalation_precisions, 106 then 212 bits) of what rounding, not
 //! the geometry, leaves undecided:
-//!  - a subinterval limited by rounding (tolerances::univariate_precision_limited_ratio: the
-//!    Bernstein coefficient enclosures, resp. E at the midpoint, are nearly as wide as what they
-//!    must decide) is escalated when it is met;
+//!  - an interval Newton subinterval on which E at the midpoint is nearly as uncertain as the
+//!    mean-value enclosure over it is escalated when it is met;
 //!  - once the double pass is over, every interval left undecided with reason precision or
 //!    boundary_root (adjacent ones merged) is escalated.
 //! In MPFI, E(p + t v) and dE/dt are evaluated by the compiled `line` system (the exact

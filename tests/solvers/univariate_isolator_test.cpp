@@ -337,16 +337,18 @@ void check_nothing_dropped(const SolveResult& r, const std::vector<Rational>& ze
 
 }  // namespace
 
-BOOST_AUTO_TEST_CASE(twenty_roots_without_time_budget) {
-  // Regression: the Bernstein path used to stop with non_isolated here.  The double enclosures of
-  // the Bernstein coefficients on [−1, 1] (Taylor shift of the expanded degree-20 polynomial) are
-  // ~1e-7 wide where E is ~1e-9 (between the middle zeros); such nodes are now escalated to MPFI,
-  // which evaluates the product form.  Interval Newton on the product form decides in double.
-  const auto& P = twenty_roots();
-  for (const LinePolynomial* poly : {&P.problem.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
-    const SolveResult r = isolate_line_roots(P.problem.line, poly, {0, 0, 0}, {1, 0, 0}, -1, 1);
-    check_exact_roots(r, P.roots);
-    if (!poly) BOOST_TEST(r.counters.precision_escalations == 0u);
+BOOST_AUTO_TEST_CASE(many_roots_of_a_product_are_all_certified) {
+  // Regression: the Bernstein path used to stop with non_isolated here (after 9 of 20, 5 of 30
+  // zeros).  The double enclosures of the Bernstein coefficients on [−1, 1] (Taylor shift of the
+  // expanded polynomial) are far wider than E between the middle zeros; such nodes are now handed
+  // to interval Newton on the product form, which decides them in double.
+  for (int n : {20, 30}) {
+    const ProductRoots P(n);
+    for (const LinePolynomial* poly : {&P.problem.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+      const SolveResult r = isolate_line_roots(P.problem.line, poly, {0, 0, 0}, {1, 0, 0}, -1, 1);
+      check_exact_roots(r, P.roots);
+      BOOST_TEST(r.counters.precision_escalations == 0u);
+    }
   }
 }
 
@@ -363,19 +365,29 @@ BOOST_AUTO_TEST_CASE(time_budget_returns_the_rest_as_undecided) {
 }
 
 BOOST_AUTO_TEST_CASE(time_budget_also_stops_an_mpfi_escalation) {
-  // Degree 30: the Bernstein coefficients on [−1, 1] are rounding-limited from the first node,
-  // which is escalated to MPFI as a whole (~30 certifications in MPFI, tens of milliseconds); a
-  // 1 ms budget stops it there.
-  const ProductRoots P(30);
+  // Π_{i=1..8} (x − r_i), r_i = (2i − 9)/8, plus (x + 10⁸)² − 10¹⁶ − 2·10⁸ x − x² (≡ 0, but ~4
+  // wide in double): interval Newton on the compiled expression is rounding-limited on all of
+  // [−1, 1], which goes to MPFI as a whole (eight certifications in MPFI, a few milliseconds); a
+  // 0.5 ms budget stops it there.
+  std::string text;
+  std::vector<Rational> zeros;
+  for (int i = 1; i <= 8; ++i) {
+    text += (i > 1 ? "*" : "") + std::string("(x-(") + std::to_string(2 * i - 9) + "/8))";
+    zeros.push_back(Rational(2 * i - 9, 8));
+  }
+  const Surface s = Surface::parse(text + "+(x+100000000)^2-10000000000000000-200000000*x-x^2+y^2+z^2");
+  const CompiledSystem line(surface_line_system(s));
   UnivariateOptions options;
-  options.time_limit_seconds = 1e-3;
-  const SolveResult r = isolate_line_roots(P.problem.line, &P.problem.polynomial, {0, 0, 0}, {1, 0, 0}, -1, 1, options);
+  options.time_limit_seconds = 5e-4;
+  const SolveResult r = isolate_line_roots(line, nullptr, {0, 0, 0}, {1, 0, 0}, -1, 1, options);
   BOOST_TEST((r.status == SolveStatus::time_limit || r.status == SolveStatus::complete));
   BOOST_TEST(r.counters.precision_escalations > 0u);
   if (r.status == SolveStatus::time_limit) BOOST_TEST(any_reason(r, UndecidedReason::budget));
-  check_nothing_dropped(r, P.roots);
-  // Without a budget all 30 zeros are certified.
-  check_exact_roots(isolate_line_roots(P.problem.line, &P.problem.polynomial, {0, 0, 0}, {1, 0, 0}, -1, 1), P.roots);
+  check_nothing_dropped(r, zeros);
+  // Without a budget all eight zeros are certified (in MPFI).
+  const SolveResult full = isolate_line_roots(line, nullptr, {0, 0, 0}, {1, 0, 0}, -1, 1);
+  check_exact_roots(full, zeros);
+  BOOST_TEST(full.counters.precision_escalations > 0u);
 }
 
 namespace {

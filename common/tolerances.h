@@ -193,6 +193,25 @@ inline constexpr int univariate_newton_iterations = 100;
 inline constexpr double univariate_certify_growth = 8;
 inline constexpr int univariate_certify_attempts = 16;
 
+//! Univariate isolator, MPFI escalation (at each of escalation_precisions) of an interval that
+//! rounding left undecided: the interval is subdivided in MPFI, depth first, and the attempt at
+//! that precision is abandoned (the interval stays undecided with its reason) as soon as a piece
+//! narrower than univariate_escalation_min_relative_width (relative to t1 − t0; the pieces' ends
+//! are doubles, so this is a few ulps) — or, if E' may vanish on it, narrower than
+//! singular_box_relative_width — can be neither excluded nor certified, or after
+//! univariate_escalation_box_budget pieces.
+inline constexpr double univariate_escalation_min_relative_width = 1e-15;
+inline constexpr std::size_t univariate_escalation_box_budget = 512;
+
+//! Univariate isolator: a subinterval is limited by rounding, not by its width, when
+//!  - (Bernstein path) its widest Bernstein coefficient enclosure exceeds this fraction of the
+//!    largest coefficient magnitude (the enclosures do not shrink under subdivision): it is
+//!    handed to the interval Newton path (the compiled expression), or
+//!  - (interval Newton path) the enclosure of E at its midpoint is wider than this fraction of
+//!    the mean-value enclosure of E over the whole subinterval: it is escalated to MPFI at once
+//!    instead of being subdivided down to min_box_relative_width.
+inline constexpr double univariate_precision_limited_ratio = 0.25;
+
 //! A plane section of a box whose polygon has area below this times the squared box diagonal is
 //! an edge or a corner, not a polygon (solvers/query_geometry.cpp: plane_box_section): rounding
 //! noise at the box's size.

@@ -35,7 +35,8 @@ KrawczykResult krawczyk_test(const CompiledSystem& system, const std::vector<dou
                              const std::vector<Interval>& box);
 
 //! The same test in MPFI arithmetic at `precision_bits` (≥ 53; the MPFI default precision is set
-//! for the duration of the call, so it is not safe to call concurrently with other MPFI code);
+//! for the duration of the call by a detail::MpfiPrecisionScope, which holds the process-wide
+//! MPFI precision lock: concurrent calls from several threads are safe and serialized);
 //! Y is still a double matrix.  Returns the contracted box rounded outward to double intervals.
 //! Does not require a RoundingGuard.
 KrawczykResult krawczyk_test_mpfi(const CompiledSystem& system, const std::vector<double>& parameters,

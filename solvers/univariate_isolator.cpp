@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/errors.h"
@@ -24,6 +25,33 @@ constexpr double split_ratios[] = {0.5, 0.4375, 0.5625, 0.375, 0.625};
 
 // Interval sign of a value: +1, −1, or 0 (not certain, including NaN bounds).
 inline int certain_sign(const Interval& a) { return a.inf() > 0 ? 1 : (a.sup() < 0 ? -1 : 0); }
+inline int certain_sign(const MpfiInterval& a) { return certain_sign(detail::to_interval(a)); }
+
+//! Marks an end point whose certain sign has not been evaluated yet.
+constexpr int unknown_sign = 2;
+
+//! The clock is read once every this many checks (a read costs about as much as a subinterval).
+constexpr int clock_check_interval = 16;
+
+//! The time budget of one isolation: expired() is true once more than `seconds` (> 0) have passed
+//! since `start` (checked every clock_check_interval calls; once true it stays true).
+class Deadline {
+ public:
+  Deadline(std::chrono::steady_clock::time_point start, double seconds) : start_(start), seconds_(seconds) {}
+  bool expired() {
+    if (expired_ || seconds_ <= 0) return expired_;
+    if (++calls_ < clock_check_interval) return false;
+    calls_ = 0;
+    expired_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() > seconds_;
+    return expired_;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+  double seconds_;
+  int calls_ = 0;
+  bool expired_ = false;
+};
 
 //! E(p + t v) over the compiled surface_line system (any E).
 struct LineSystemEvaluator {
@@ -41,6 +69,40 @@ struct LineSystemEvaluator {
   void value_and_derivative(double t, double& f, double& df) const {
     line.values_and_jacobian(&t, parameters_d, &f, &df);
   }
+};
+
+//! E(p + t v) and dE/dt over the compiled surface_line system in MPFI at the current default
+//! precision (any E; p and v are exact at every precision).  Construct, use and destroy it inside
+//! one detail::MpfiPrecisionScope.
+class MpfiLineEvaluator {
+ public:
+  MpfiLineEvaluator(const CompiledSystem& line, const double* parameters) : line_(line) {
+    for (int i = 0; i < 6; ++i) p_[i] = detail::to_mpfi(parameters[i], parameters[i]);
+  }
+  //! The certain sign of E(p + t v) at the point t, or 0.
+  int sign_at(double t) {
+    t_ = detail::to_mpfi(t, t);
+    line_.values(&t_, p_, &f_);
+    return certain_sign(f_);
+  }
+  //! True when E has no zero on [a, b]: the natural enclosure of E over [a, b], or the mean-value
+  //! form E(m) + E'([a, b]) ([a, b] − m) at m ∈ [a, b], excludes 0.  Also returns whether the
+  //! enclosure of E' over [a, b] excludes 0 (E strictly monotone there).
+  bool excludes(double a, double b, double m, bool& monotone) {
+    t_ = detail::to_mpfi(a, b);
+    line_.values_and_jacobian(&t_, p_, &f_, &df_);
+    monotone = certainly_nonzero(df_);
+    if (certainly_nonzero(f_)) return true;
+    const MpfiInterval x = t_;
+    t_ = detail::to_mpfi(m, m);
+    line_.values(&t_, p_, &f_);
+    f_ += df_ * (x - t_);
+    return certainly_nonzero(f_);
+  }
+
+ private:
+  const CompiledSystem& line_;
+  MpfiInterval p_[6], t_, f_, df_;
 };
 
 //! E(p + t v) = Σ c_k t^k from the enclosed coefficients (polynomial E).
@@ -131,6 +193,20 @@ bool is_leaf(double w, bool monotone) {
   return (!monotone && w < tolerances::singular_box_relative_width) || w < tolerances::min_box_relative_width;
 }
 
+//! The interval Bernstein coefficients b_0..b_d of a node are limited by rounding, not by the
+//! node's size, when their widest enclosure exceeds univariate_precision_limited_ratio times
+//! their largest magnitude: de Casteljau subdivision averages the enclosures and does not shrink
+//! them, so no subnode could decide what this node cannot.
+bool precision_limited(int d, const Interval* b) {
+  double widest = 0, largest = 0;  // max(sup, −inf) = max(|inf|, |sup|) as inf ≤ sup
+  for (int i = 0; i <= d; ++i) {
+    const double lo = b[i].inf(), hi = b[i].sup();
+    widest = std::max(widest, hi - lo);
+    largest = std::max(largest, std::max(hi, -lo));
+  }
+  return widest > tolerances::univariate_precision_limited_ratio * largest;
+}
+
 //! The reason such a leaf is undecided: boundary_root if a zero may lie at t0 or t1 (boundary),
 //! else precision if it is monotone, else singular_root.
 UndecidedReason leaf_reason(bool boundary, bool monotone) {
@@ -141,13 +217,45 @@ UndecidedReason leaf_reason(bool boundary, bool monotone) {
 struct Leaf {
   double lo, hi;  // t
   UndecidedReason reason;
+  bool escalated = false;  // MPFI already failed on a region containing it: not retried
 };
+
+//! A certified interval [lo, hi] of t: exactly one zero, strictly inside (certain nonzero signs at
+//! the ends or at the ends of its isolating interval).  monotone: E' is proved nonzero on all of
+//! [lo, hi] (then two such intervals that meet hold the same zero: E is strictly monotone on
+//! their union).
+struct Found {
+  double lo, hi;
+  bool monotone;
+};
+
+//! Outcome of an MPFI escalation of an undecided interval.
+enum class Escalation {
+  decided,    //!< every zero in it is certified (possibly none); the interval is not undecided any more
+  undecided,  //!< no precision decided it; it keeps its reason
+  timed_out   //!< the time budget ran out first
+};
+
+//! Only leaves that rounding left undecided are escalated: precision (monotone, undecidable at the
+//! minimal width) and boundary_root (an end value's enclosure contains 0).  A singular_root leaf
+//! (E and E' both not excludable on an interval narrower than singular_box_relative_width) is a
+//! tangency or near-tangency — the mesher's candidate witness — and is not; neither is a budget
+//! region.
+bool escalatable(UndecidedReason reason) {
+  return reason == UndecidedReason::precision || reason == UndecidedReason::boundary_root;
+}
 
 class Isolation {
  public:
   Isolation(const CompiledSystem& line, const std::array<double, 3>& p, const std::array<double, 3>& v, double t0,
-            double t1, const UnivariateOptions& options)
-      : line_(line), t0_(t0), t1_(t1), options_(options) {
+            double t1, const UnivariateOptions& options, std::chrono::steady_clock::time_point start)
+      : line_(line),
+        t0_(t0),
+        t1_(t1),
+        options_(options),
+        deadline_(start, options.time_limit_seconds),
+        found_(found_buffer()) {
+    found_.clear();
     for (int i = 0; i < 3; ++i) params_d_[i] = p[i], params_d_[i + 3] = v[i];
     for (int i = 0; i < 6; ++i) params_[i] = Interval(params_d_[i]);
     scale_ = t1 - t0;
@@ -157,11 +265,16 @@ class Isolation {
     if (polynomial && polynomial->degree() <= detail::max_bernstein_degree)
       run_bernstein(*polynomial);
     else
-      run_newton();
+      run_newton(t0_, t1_);
     return finish();
   }
 
  private:
+  static std::vector<Found>& found_buffer() {
+    static thread_local std::vector<Found> buffer;
+    return buffer;
+  }
+
   // ---- polynomial E: Bernstein subdivision ----
   void run_bernstein(const LinePolynomial& polynomial) {
     const int d = polynomial.degree();
@@ -196,6 +309,10 @@ class Isolation {
       if (stopped_) break;
       const Node node = nodes.back();
       const std::size_t top = nodes.size() - 1;
+      if (deadline_.expired()) {
+        stop(SolveStatus::time_limit);
+        break;
+      }
       nodes.pop_back();
       const Interval* b = pool.data() + top * block;
       ++counters_.boxes;
@@ -225,7 +342,7 @@ class Isolation {
       const double w = node.sb - node.sa;
       const int s_left = certain_sign(b[0]), s_right = certain_sign(b[d]);
       if (all_certain && variations == 1) {
-        isolated(eval, node.sa, node.sb, t_of, t_outer);
+        isolated(eval, node.sa, node.sb, t_of, t_outer, false);
         continue;
       }
       // Monotone piece: the derivative's Bernstein coefficients d (b_{i+1} − b_i) of one sign.
@@ -240,8 +357,18 @@ class Isolation {
         if (s_left == s_right) {
           ++counters_.exclusions;
         } else {
-          isolated(eval, node.sa, node.sb, t_of, t_outer);
+          isolated(eval, node.sa, node.sb, t_of, t_outer, true);
         }
+        continue;
+      }
+      if (precision_limited(d, b)) {
+        // Subdividing the coefficients further cannot help.  The compiled expression is often far
+        // better conditioned than the expanded coefficients (a product of factors, say): isolate
+        // the node's range by interval Newton on it, which escalates to MPFI what it cannot
+        // decide either.
+        double lo, hi;
+        t_outer(node.sa, node.sb, lo, hi);
+        run_newton(lo, hi);
         continue;
       }
       const bool boundary = (node.sa == 0 && s_left == 0) || (node.sb == 1 && s_right == 0);
@@ -268,37 +395,39 @@ class Isolation {
     for (const Node& node : nodes) {
       double lo, hi;
       t_outer(node.sa, node.sb, lo, hi);
-      leaves_.push_back({lo, hi, stop_reason()});
+      leaves_.push_back({lo, hi, stop_reason(), false});
     }
     nodes.clear();
   }
 
+  //! The node [sa, sb] holds exactly one zero; monotone: E is proved monotone on it.
   template <class TOf, class TOuter>
-  void isolated(const PolynomialEvaluator& eval, double sa, double sb, const TOf& t_of, const TOuter& t_outer) {
+  void isolated(const PolynomialEvaluator& eval, double sa, double sb, const TOf& t_of, const TOuter& t_outer,
+                bool monotone) {
     // The unique root lies in (t(sa), t(sb)); [inner_lo, inner_hi] is inside that range.
     const double inner_lo = sa == 0 ? t0_ : t_of(sa).sup();
     const double inner_hi = sb == 1 ? t1_ : t_of(sb).inf();
     double lo, hi;
     if (inner_lo < inner_hi &&
         refine_root(eval, inner_lo, inner_hi, midpoint(Interval(inner_lo, inner_hi)), scale_, lo, hi)) {
-      certified(lo, hi);
+      certified(lo, hi, monotone);
       return;
     }
     // Rigorous but not tight: keep the isolating interval as a certified box when its outer
     // enclosure still proves a single root (sign change and monotone), else report it undecided.
     t_outer(sa, sb, lo, hi);
-    if (certify_interval(eval, lo, hi))
-      certified(lo, hi);
+    if (certify_interval(eval, lo, hi))  // proves E' ≠ 0 on [lo, hi]
+      certified(lo, hi, true);
     else
       undecided_leaf(lo, hi, UndecidedReason::precision);
   }
 
   // ---- any E: interval Newton and bisection on the compiled line system ----
-  void run_newton() {
+  //! Isolates the zeros in [lo, hi] ⊆ [t0, t1] (the whole segment, or a Bernstein node's range).
+  void run_newton(double lo, double hi) {
     const LineSystemEvaluator eval{line_, params_, params_d_};
     // The certain sign of E at an end point is evaluated once and handed to the subintervals
     // that share the point (unknown_sign until it is needed).
-    constexpr int unknown_sign = 2;
     const auto sign_at = [&](double t) { return certain_sign(eval.value(Interval(t))); };
     struct Node {
       double a, b;
@@ -306,9 +435,13 @@ class Isolation {
     };
     static thread_local std::vector<Node> nodes;
     nodes.clear();
-    nodes.push_back({t0_, t1_, unknown_sign, unknown_sign});
+    nodes.push_back({lo, hi, unknown_sign, unknown_sign});
     while (!nodes.empty()) {
       if (stopped_) break;
+      if (deadline_.expired()) {
+        stop(SolveStatus::time_limit);
+        break;
+      }
       Node node = nodes.back();
       nodes.pop_back();
       ++counters_.boxes;
@@ -335,16 +468,23 @@ class Isolation {
         } else {
           double lo, hi;
           if (refine_root(eval, node.a, node.b, midpoint(T), scale_, lo, hi))
-            certified(lo, hi);
+            certified(lo, hi, true);  // inside [a, b], where E' ≠ 0
           else
             undecided_leaf(node.a, node.b, UndecidedReason::precision);
         }
         continue;
       }
+      // Mean-value form over T: E(m) + E'(T) (T − m).
+      const double m = midpoint(T);
+      const Interval fm = eval.value(Interval(m));
+      const Interval mean_value = fm + df * (T - Interval(m));
+      if (certainly_nonzero(mean_value)) {
+        ++counters_.exclusions;
+        continue;
+      }
       if (monotone) {
         // Interval Newton: every zero in T lies in m − f(m)/f'(T).
-        const double m = midpoint(T);
-        const Interval n = Interval(m) - eval.value(Interval(m)) / df;
+        const Interval n = Interval(m) - fm / df;
         if (detail::is_finite(n)) {
           if (detail::disjoint(n, T)) {
             ++counters_.exclusions;
@@ -359,38 +499,195 @@ class Isolation {
         }
       }
       const bool boundary = (node.a == t0_ && sa == 0) || (node.b == t1_ && sb == 0);
-      if (is_leaf(w, monotone)) {
-        undecided_leaf(node.a, node.b, leaf_reason(boundary, monotone));
-        continue;
-      }
+      const bool leaf = is_leaf(w, monotone);
+      // Split, avoiding a split point at which the value is not certainly nonzero.
       double split = midpoint(T);
       int s_split = unknown_sign;
       for (double ratio : split_ratios) {
+        if (leaf) break;
         split = node.a + ratio * (node.b - node.a);
         if (split <= node.a || split >= node.b) split = midpoint(T);
         s_split = sign_at(split);
         if (s_split != 0) break;
       }
+      // Rounding, not T's width, limits what doubles can decide on T when the value at one point
+      // is nearly as uncertain as the mean-value form over all of T, or when no candidate split
+      // point has a certain sign: T is escalated to MPFI now (once per region).
+      const bool rounding_limited =
+          detail::width(fm) > tolerances::univariate_precision_limited_ratio * detail::width(mean_value) ||
+          s_split == 0;
+      if (rounding_limited && !inside_failed(node.a, node.b)) {
+        const Escalation outcome = escalate(node.a, node.b);
+        if (outcome == Escalation::decided) continue;
+        if (outcome == Escalation::timed_out) {
+          nodes.push_back(node);
+          stop(SolveStatus::time_limit);
+          break;
+        }
+        failed_.push_back({node.a, node.b});
+      }
+      if (leaf) {
+        undecided_leaf(node.a, node.b, leaf_reason(boundary, monotone), inside_failed(node.a, node.b));
+        continue;
+      }
       nodes.push_back({split, node.b, s_split, sb});
       nodes.push_back({node.a, split, sa, s_split});
     }
-    for (const Node& node : nodes) leaves_.push_back({node.a, node.b, stop_reason()});
+    for (const Node& node : nodes) leaves_.push_back({node.a, node.b, stop_reason(), false});
     nodes.clear();
   }
 
-  // ---- bookkeeping ----
-  void certified(double lo, double hi) {
-    ++counters_.krawczyk_successes;
-    CertifiedRoot root;
-    root.box.bounds = {{lo, hi}};
-    const double t = 0.5 * lo + 0.5 * hi;
-    root.midpoint = {t};
-    line_.world_point(&t, params_d_, root.world.data());
-    roots_.push_back(std::move(root));
+  // ---- MPFI escalation of undecided intervals ----
+
+  //! [a, b] lies in a subinterval whose MPFI escalation failed: its pieces are not escalated
+  //! again.
+  bool inside_failed(double a, double b) const {
+    for (const auto& f : failed_)
+      if (f.first <= a && b <= f.second) return true;
+    return false;
   }
 
-  void undecided_leaf(double lo, double hi, UndecidedReason reason) {
-    leaves_.push_back({lo, hi, reason});
+  //! Re-examines [lo, hi] (undecided in double intervals) in MPFI at each escalation precision
+  //! in turn; on success its zeros are certified (counted once per precision tried).  Rare: kept
+  //! out of the double loops' code (cold).
+  [[gnu::cold]] Escalation escalate(double lo, double hi) {
+    for (int bits : tolerances::escalation_precisions) {
+      ++counters_.precision_escalations;
+      std::vector<Found> fresh;
+      const Escalation outcome = mpfi_pass(lo, hi, bits, fresh);
+      if (outcome == Escalation::timed_out) return outcome;
+      if (outcome == Escalation::decided) {
+        for (const Found& f : fresh) certified(f.lo, f.hi, f.monotone);
+        return outcome;
+      }
+    }
+    return Escalation::undecided;
+  }
+
+  //! Depth-first subdivision of [lo, hi] at `bits` with exclusion (natural or mean-value
+  //! enclosure of E excluding 0, or E monotone with equal certain end signs) and certification (E
+  //! monotone with opposite certain end signs, then narrowed by bisection on certain signs).
+  //! Abandoned (undecided) at the first undecided piece that is narrower than the escalation
+  //! width (or whose midpoint is not strictly inside it), or, if E' may vanish on it, narrower
+  //! than the singular width; or after the escalation budget.  Then nothing of it is kept.
+  Escalation mpfi_pass(double lo, double hi, int bits, std::vector<Found>& fresh) {
+    detail::MpfiPrecisionScope scope(bits);
+    MpfiLineEvaluator e(line_, params_d_);  // destroyed before the scope
+    struct Piece {
+      double a, b;
+      int sa, sb;
+    };
+    std::vector<Piece> pieces{{lo, hi, unknown_sign, unknown_sign}};
+    const double min_width = tolerances::univariate_escalation_min_relative_width * scale_;
+    const double singular_width = tolerances::singular_box_relative_width * scale_;
+    std::size_t visited = 0;
+    while (!pieces.empty()) {
+      if (deadline_.expired()) return Escalation::timed_out;
+      if (++visited > tolerances::univariate_escalation_box_budget) return Escalation::undecided;
+      Piece q = pieces.back();
+      pieces.pop_back();
+      const double m = midpoint(Interval(q.a, q.b));
+      bool monotone = false;
+      if (e.excludes(q.a, q.b, m, monotone)) {
+        ++counters_.exclusions;
+        continue;
+      }
+      if (q.sa == unknown_sign) q.sa = e.sign_at(q.a);
+      if (q.sb == unknown_sign) q.sb = e.sign_at(q.b);
+      if (monotone && q.sa != 0 && q.sb != 0) {
+        if (q.sa == q.sb) {
+          ++counters_.exclusions;
+        } else {
+          narrow(e, q.a, q.b, q.sa);
+          fresh.push_back({q.a, q.b, true});
+        }
+        continue;
+      }
+      // A piece where E' may vanish, narrower than the singular width, is a (near-)double root:
+      // it stays singular_root (the double pass's rule), MPFI does not try to split it.
+      if (!monotone && q.b - q.a < singular_width) return Escalation::undecided;
+      if (q.b - q.a < min_width || !(m > q.a && m < q.b)) return Escalation::undecided;
+      // Split, avoiding a split point at which the sign is not certain.
+      double split = m;
+      int s_split = 0;
+      for (double ratio : split_ratios) {
+        split = q.a + ratio * (q.b - q.a);
+        if (!(split > q.a && split < q.b)) split = m;
+        s_split = e.sign_at(split);
+        if (s_split != 0) break;
+      }
+      pieces.push_back({split, q.b, s_split, q.sb});
+      pieces.push_back({q.a, split, q.sa, s_split});
+    }
+    return Escalation::decided;
+  }
+
+  //! [a, b] holds exactly one zero, E is monotone on it, sa is E's certain sign at a (and −sa at
+  //! b): halves it, keeping the half with a certain sign change, until it is as tight as
+  //! refine_root's intervals or a midpoint's sign is not certain.
+  void narrow(MpfiLineEvaluator& e, double& a, double& b, int sa) const {
+    const double target = 2 * tolerances::univariate_root_relative_radius * std::max(std::abs(a), scale_);
+    while (b - a > target) {
+      const double m = midpoint(Interval(a, b));
+      if (!(m > a && m < b)) break;
+      const int s = e.sign_at(m);
+      if (s == 0) break;
+      (s == sa ? a : b) = m;
+    }
+  }
+
+  //! Escalates every leaf that more precision may decide; a decided leaf is removed.  Leaves left
+  //! when the time budget runs out get reason budget (their MPFI examination did not happen).
+  void escalate_leaves(std::vector<Leaf>& leaves) {
+    std::vector<Leaf> kept;
+    for (Leaf leaf : leaves) {
+      if (escalatable(leaf.reason) && !leaf.escalated) {
+        const Escalation outcome = escalate(leaf.lo, leaf.hi);
+        if (outcome == Escalation::decided) continue;
+        if (outcome == Escalation::timed_out) {
+          leaf.reason = UndecidedReason::budget;
+          if (!stopped_) stop(SolveStatus::time_limit);
+        }
+      }
+      kept.push_back(leaf);
+    }
+    leaves.swap(kept);
+  }
+
+  //! Certified intervals from different sources (double isolation, MPFI escalation of adjacent
+  //! regions whose outward-rounded ranges share a few ulps) may hold the same zero.  Two that meet
+  //! and are both monotone do (E is strictly monotone on their connected union): the second is
+  //! dropped.  Two that touch only at an end point hold different zeros (each zero is strictly
+  //! inside its interval).  Two that overlap by more than a point without both being monotone
+  //! cannot be told apart (the isolation's construction excludes this; kept as a safeguard): both
+  //! are replaced by one undecided interval (precision) covering them.
+  void deduplicate(std::vector<Leaf>& leaves) {
+    std::sort(found_.begin(), found_.end(), [](const Found& a, const Found& b) { return a.lo < b.lo; });
+    std::size_t kept = 0;  // found_[0, kept) is the deduplicated prefix
+    for (std::size_t i = 0; i < found_.size(); ++i) {
+      const Found f = found_[i];
+      if (kept > 0 && found_[kept - 1].hi >= f.lo) {
+        const Found& last = found_[kept - 1];
+        if (last.monotone && f.monotone) continue;  // the same zero, already held by `last`
+        if (last.hi > f.lo) {
+          leaves.push_back({last.lo, std::max(last.hi, f.hi), UndecidedReason::precision, true});
+          --kept;
+          continue;
+        }
+      }
+      found_[kept++] = f;
+    }
+    found_.resize(kept);
+  }
+
+  // ---- bookkeeping ----
+  void certified(double lo, double hi, bool monotone) {
+    ++counters_.krawczyk_successes;
+    found_.push_back({lo, hi, monotone});
+  }
+
+  void undecided_leaf(double lo, double hi, UndecidedReason reason, bool escalated = false) {
+    leaves_.push_back({lo, hi, reason, escalated});
     if (reason == UndecidedReason::singular_root || reason == UndecidedReason::boundary_root ||
         reason == UndecidedReason::precision)
       if (++unresolved_ > tolerances::non_isolated_box_count) stop(SolveStatus::non_isolated);
@@ -412,11 +709,15 @@ class Isolation {
     for (const Leaf& leaf : leaves_) {
       Leaf l = leaf;
       if (status_ == SolveStatus::non_isolated) l.reason = UndecidedReason::non_isolated;
-      if (!merged.empty() && merged.back().reason == l.reason && merged.back().hi >= l.lo)
+      if (!merged.empty() && merged.back().reason == l.reason && merged.back().hi >= l.lo) {
         merged.back().hi = std::max(merged.back().hi, l.hi);
-      else
+        merged.back().escalated = merged.back().escalated && l.escalated;
+      } else
         merged.push_back(l);
     }
+    if (status_ != SolveStatus::non_isolated) escalate_leaves(merged);
+    deduplicate(merged);
+    std::sort(merged.begin(), merged.end(), [](const Leaf& a, const Leaf& b) { return a.lo < b.lo; });
     for (const Leaf& leaf : merged) {
       UndecidedBox box;
       box.box.bounds = {{leaf.lo, leaf.hi}};
@@ -425,9 +726,15 @@ class Isolation {
       line_.world_point(&t, params_d_, box.world.data());
       result.undecided.push_back(std::move(box));
     }
-    std::sort(roots_.begin(), roots_.end(),
-              [](const CertifiedRoot& a, const CertifiedRoot& b) { return a.midpoint[0] < b.midpoint[0]; });
-    result.roots = std::move(roots_);
+    result.roots.reserve(found_.size());
+    for (const Found& f : found_) {
+      CertifiedRoot root;
+      root.box.bounds = {{f.lo, f.hi}};
+      const double t = 0.5 * f.lo + 0.5 * f.hi;
+      root.midpoint = {t};
+      line_.world_point(&t, params_d_, root.world.data());
+      result.roots.push_back(std::move(root));
+    }
     result.counters = counters_;
     result.status = stopped_ ? status_ : (result.undecided.empty() ? SolveStatus::complete : SolveStatus::undecided);
     return result;
@@ -436,9 +743,11 @@ class Isolation {
   const CompiledSystem& line_;
   double t0_, t1_, scale_;
   UnivariateOptions options_;
+  Deadline deadline_;
   double params_d_[6];
   Interval params_[6];
-  std::vector<CertifiedRoot> roots_;
+  std::vector<Found>& found_;
+  std::vector<std::pair<double, double>> failed_;  // escalations that failed (see inside_failed)  // a per-thread buffer (no allocation per call; calls do not nest)
   std::vector<Leaf> leaves_;
   SolverCounters counters_;
   std::size_t unresolved_ = 0;
@@ -464,9 +773,11 @@ SolveResult isolate_line_roots(const CompiledSystem& line, const LinePolynomial*
     nonzero = nonzero || v[i] != 0;
   }
   if (!finite || !nonzero) throw InvalidInput("isolate_line_roots: p and v must be finite and v non-zero");
+  if (!(options.time_limit_seconds >= 0) || !std::isfinite(options.time_limit_seconds))
+    throw InvalidInput("isolate_line_roots: time_limit_seconds must be finite and >= 0");
   const auto start = std::chrono::steady_clock::now();
   RoundingGuard guard;
-  Isolation isolation(line, p, v, t0, t1, options);
+  Isolation isolation(line, p, v, t0, t1, options, start);
   SolveResult result = isolation.run(polynomial);
   result.counters.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

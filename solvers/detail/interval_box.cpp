@@ -5,8 +5,18 @@
 
 namespace delmesh::detail {
 
+namespace {
+//! The lock that every MpfiPrecisionScope holds (see interval_box.h: Boost's default precision
+//! is one process-wide variable).
+std::recursive_mutex& mpfi_precision_mutex() {
+  static std::recursive_mutex mutex;
+  return mutex;
+}
+}  // namespace
+
 MpfiPrecisionScope::MpfiPrecisionScope(int bits)
-    : old_interval_digits_(MpfiInterval::default_precision()), old_real_digits_(MpfrReal::default_precision()) {
+    : lock_(mpfi_precision_mutex()),
+      old_interval_digits_(MpfiInterval::default_precision()), old_real_digits_(MpfrReal::default_precision()) {
   // Boost expresses precision in decimal digits: the smallest digit count carrying ≥ bits bits.
   const unsigned digits = static_cast<unsigned>(std::ceil(bits * 0.30102999566398120)) + 1;
   MpfiInterval::default_precision(digits);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <mutex>
 
 #include "symbolic/scalar_types.h"
 
@@ -61,6 +62,18 @@ inline std::size_t widest_side(const Interval* box, std::size_t n, double* w = n
 
 //! The MPFI default precision (Boost's default_precision(), a process-wide setting that the
 //! compiled programs use for their temporaries) set to `bits` for the lifetime of the scope.
+//!
+//! Thread safety.  Boost 1.74 keeps that default in one process-wide variable (there is no
+//! thread-local default), so the scope also holds a process-wide std::recursive_mutex from
+//! construction to destruction: while a scope is alive on one thread, a scope on any other thread
+//! waits, and the precision it reads is the one its own scope set.  Scopes nest on one thread (the
+//! inner one sets, then restores, the precision; the mutex is recursive).  Consequences:
+//!  - every MpfiInterval / MpfrReal that is created, or computed into (CompiledSystem evaluation
+//!    over MPFI included), must be created and used inside a scope, and destroyed before the
+//!    scope ends or after it (destruction reads no precision); code outside any scope must not
+//!    touch them, since another thread may be changing the default precision;
+//!  - MPFI work of concurrent solves is serialized (escalations are rare, so this costs little);
+//!  - code inside a scope must not wait for another thread that may itself open a scope.
 class MpfiPrecisionScope {
  public:
   explicit MpfiPrecisionScope(int bits);
@@ -69,6 +82,7 @@ class MpfiPrecisionScope {
   MpfiPrecisionScope& operator=(const MpfiPrecisionScope&) = delete;
 
  private:
+  std::unique_lock<std::recursive_mutex> lock_;  // first member: taken before the precision is read
   unsigned old_interval_digits_, old_real_digits_;
 };
 

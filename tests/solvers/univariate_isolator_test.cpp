@@ -4,6 +4,7 @@
 #include <random>
 
 #include <boost/multiprecision/cpp_bin_float.hpp>
+#include <boost/multiprecision/gmp.hpp>
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
@@ -29,6 +30,24 @@ const LineProblem& torus() {
 const LineProblem& sphere() {
   static const LineProblem problem(catalog_entry("sphere").surface());
   return problem;
+}
+
+using Rational = boost::multiprecision::mpq_rational;
+
+//! q ∈ [lo, hi], exactly (doubles convert exactly to rationals).
+bool holds(double lo, double hi, const Rational& q) { return Rational(lo) <= q && q <= Rational(hi); }
+
+//! Each certified interval holds exactly one of the exact zeros `exact`, and each zero is in one.
+void check_exact_roots(const SolveResult& r, const std::vector<Rational>& exact) {
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_TEST(r.undecided.empty());
+  BOOST_REQUIRE_EQUAL(r.roots.size(), exact.size());
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    int inside = 0;
+    for (const Rational& q : exact) inside += holds(r.roots[i].box.bounds[0][0], r.roots[i].box.bounds[0][1], q);
+    BOOST_TEST(inside == 1);
+    BOOST_TEST(holds(r.roots[i].box.bounds[0][0], r.roots[i].box.bounds[0][1], exact[i]));  // sorted
+  }
 }
 
 bool any_reason(const SolveResult& r, UndecidedReason reason) {
@@ -116,6 +135,92 @@ BOOST_AUTO_TEST_CASE(tangent_line_double_root_is_singular_never_certified) {
   BOOST_TEST(any_reason(r, UndecidedReason::singular_root));
 }
 
+BOOST_AUTO_TEST_CASE(tangencies_are_singular_and_not_escalated) {
+  // A double root stays singular_root and is not handed to MPFI (no precision can certify it):
+  // E = (t − 1)² on the sphere, E = exp((t − 1)²) − 1 (interval Newton path), and the
+  // near-tangent torus line x = fl(1.4), which runs ~9e-17 inside the tube and meets the torus
+  // twice, at z = ±8.4e-9: two zeros closer than the singular width are one singular region.
+  const auto& S = sphere();
+  for (const LinePolynomial* poly : {&S.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+    const SolveResult r = isolate_line_roots(S.line, poly, {1, 0, -1}, {0, 0, 1}, 0, 2);
+    BOOST_TEST(r.roots.empty());
+    BOOST_TEST(any_reason(r, UndecidedReason::singular_root));
+    BOOST_TEST(r.counters.precision_escalations == 0u);
+  }
+  const Surface s = Surface::parse("exp(x^2+y^2+z^2-1)-1");
+  const CompiledSystem line(surface_line_system(s));
+  const SolveResult tangent = isolate_line_roots(line, nullptr, {0, 1, -1}, {0, 0, 1}, 0, 2);
+  BOOST_TEST(tangent.roots.empty());
+  BOOST_TEST(any_reason(tangent, UndecidedReason::singular_root));
+  BOOST_TEST(tangent.counters.precision_escalations == 0u);
+  const auto& T = torus();
+  for (const LinePolynomial* poly : {&T.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+    const SolveResult r = isolate_line_roots(T.line, poly, {1.4, 0, -1}, {0, 0, 1}, 0, 2);
+    BOOST_TEST(r.roots.empty());
+    BOOST_TEST(r.status == SolveStatus::undecided);
+    for (const auto& u : r.undecided) BOOST_TEST(u.reason == UndecidedReason::singular_root);
+    BOOST_TEST(r.counters.precision_escalations == 0u);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(zeros_1e13_apart_are_one_singular_region) {
+  // E = (x − 3/10)(x − (3/10 + 10⁻¹³)) + y² + z² along the x axis, t ∈ [0, 1]: two simple zeros
+  // closer than the singular width.  Neither path may certify one interval for the pair; the
+  // undecided singular_root region must hold both.
+  const Surface s = Surface::parse("(x-0.3)*(x-0.3000000000001)+y^2+z^2");
+  const LineProblem problem(s);
+  const std::vector<Rational> exact{Rational(3, 10), Rational(3000000000001LL, 10000000000000LL)};
+  for (const LinePolynomial* poly : {&problem.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+    const SolveResult r = isolate_line_roots(problem.line, poly, {0, 0, 0}, {1, 0, 0}, 0, 1);
+    BOOST_TEST(r.roots.empty());
+    BOOST_TEST(r.status == SolveStatus::undecided);
+    for (const Rational& q : exact) {
+      bool covered = false;
+      for (const auto& u : r.undecided)
+        covered = covered || (u.reason == UndecidedReason::singular_root && holds(u.box.bounds[0][0], u.box.bounds[0][1], q));
+      BOOST_TEST(covered);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(huge_cancelling_terms_are_decided_in_mpfi) {
+  // (x + 10⁸)² − 10¹⁶ − 2·10⁸ x − 1/4 + y² + z² = x² − 1/4 + y² + z², written with terms of 1e16
+  // that cancel: along the x axis on [−1, 1] every double enclosure of E is ~4 wide while
+  // |E| ≤ 3/4, so interval Newton on the compiled (unexpanded) expression decides nothing in
+  // double; 106-bit MPFI certifies the zeros ±1/2.  (The Bernstein path works on the expanded,
+  // exact coefficients of x² − 1/4 and needs no MPFI.)
+  const Surface s = Surface::parse("(x+100000000)^2-10000000000000000-200000000*x-0.25+y^2+z^2");
+  const LineProblem problem(s);
+  const SolveResult newton = isolate_line_roots(problem.line, nullptr, {0, 0, 0}, {1, 0, 0}, -1, 1);
+  check_exact_roots(newton, {Rational(-1, 2), Rational(1, 2)});
+  BOOST_TEST(newton.counters.precision_escalations > 0u);
+  BOOST_TEST(newton.counters.boxes < 100u);  // escalated at once, not subdivided to the noise
+  check_exact_roots(isolate_line_roots(problem.line, &problem.polynomial, {0, 0, 0}, {1, 0, 0}, -1, 1),
+                    {Rational(-1, 2), Rational(1, 2)});
+}
+
+BOOST_AUTO_TEST_CASE(zero_within_an_ulp_of_an_end_is_decided_in_mpfi) {
+  // The sphere of radius 3/10 along the x axis: zeros t = ±3/10, not doubles.  fl(0.3) lies
+  // 1.1e-17 below 3/10, so E(fl(0.3)) ≈ −6.7e-18 is inside double rounding (boundary_root without
+  // escalation); in MPFI its sign is certain.
+  const Surface s = Surface::parse("x^2+y^2+z^2-0.09");
+  const LineProblem problem(s);
+  const double lo = 0.3, above = std::nextafter(0.3, 1.0);
+  BOOST_REQUIRE(Rational(lo) < Rational(3, 10) && Rational(3, 10) < Rational(above));
+  for (const LinePolynomial* poly : {&problem.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+    // t0 = fl(0.3) < 3/10: the zero 3/10 is inside [t0, 1], within an ulp of t0, and so is −3/10
+    // in [−1, −fl(0.3)].
+    const SolveResult in = isolate_line_roots(problem.line, poly, {0, 0, 0}, {1, 0, 0}, lo, 1);
+    check_exact_roots(in, {Rational(3, 10)});
+    BOOST_TEST(in.counters.precision_escalations > 0u);
+    const SolveResult negative = isolate_line_roots(problem.line, poly, {0, 0, 0}, {1, 0, 0}, -1, -lo);
+    check_exact_roots(negative, {Rational(-3, 10)});
+    // t0 = the next double above 3/10: no zero in [t0, 1]; proved, not left at the boundary.
+    const SolveResult out = isolate_line_roots(problem.line, poly, {0, 0, 0}, {1, 0, 0}, above, 1);
+    check_exact_roots(out, {});
+  }
+}
+
 BOOST_AUTO_TEST_CASE(root_at_an_end_is_boundary_root) {
   const auto& S = sphere();
   for (const LinePolynomial* poly : {&S.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
@@ -189,6 +294,100 @@ BOOST_AUTO_TEST_CASE(box_budget_returns_the_rest_as_undecided) {
     for (const auto& root : r.roots) found = found || (root.box.bounds[0][0] <= t && t <= root.box.bounds[0][1]);
     BOOST_TEST(found);
   }
+}
+
+namespace {
+
+//! E = Π_{i=1..n} (x − r_i) + y² + z², r_i = (2i − n − 1)/n ∈ (−1, 1): along the x axis the zeros
+//! are exactly the r_i, 2/n apart (a degree-n line polynomial with n simple zeros in [−1, 1]).
+struct ProductRoots {
+  LineProblem problem;
+  std::vector<Rational> roots;
+  explicit ProductRoots(int n) : problem(surface(n)) {
+    for (int i = 1; i <= n; ++i) roots.push_back(Rational(2 * i - n - 1, n));
+  }
+  static Surface surface(int n) {
+    std::string text;
+    for (int i = 1; i <= n; ++i)
+      text += (i > 1 ? "*" : "") + std::string("(x-(") + std::to_string(2 * i - n - 1) + "/" + std::to_string(n) + "))";
+    return Surface::parse(text + "+y^2+z^2");
+  }
+};
+
+const ProductRoots& twenty_roots() {
+  static const ProductRoots problem(20);
+  return problem;
+}
+
+//! Every zero is in a certified or an undecided interval (nothing dropped), and every certified
+//! interval holds exactly one zero (nothing invented).
+void check_nothing_dropped(const SolveResult& r, const std::vector<Rational>& zeros) {
+  for (const Rational& t : zeros) {
+    bool found = false;
+    for (const auto& u : r.undecided) found = found || holds(u.box.bounds[0][0], u.box.bounds[0][1], t);
+    for (const auto& root : r.roots) found = found || holds(root.box.bounds[0][0], root.box.bounds[0][1], t);
+    BOOST_TEST(found);
+  }
+  for (const auto& root : r.roots) {
+    int inside = 0;
+    for (const Rational& t : zeros) inside += holds(root.box.bounds[0][0], root.box.bounds[0][1], t);
+    BOOST_TEST(inside == 1);
+  }
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(many_roots_of_a_product_are_all_certified) {
+  // Regression: the Bernstein path used to stop with non_isolated here (after 9 of 20, 5 of 30
+  // zeros).  The double enclosures of the Bernstein coefficients on [−1, 1] (Taylor shift of the
+  // expanded polynomial) are far wider than E between the middle zeros; such nodes are now handed
+  // to interval Newton on the product form, which decides them in double.
+  for (int n : {20, 30}) {
+    const ProductRoots P(n);
+    for (const LinePolynomial* poly : {&P.problem.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+      const SolveResult r = isolate_line_roots(P.problem.line, poly, {0, 0, 0}, {1, 0, 0}, -1, 1);
+      check_exact_roots(r, P.roots);
+      BOOST_TEST(r.counters.precision_escalations == 0u);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(time_budget_returns_the_rest_as_undecided) {
+  const auto& P = twenty_roots();
+  UnivariateOptions options;
+  options.time_limit_seconds = 1e-9;  // far less than the ≥ 40 subintervals the 20 zeros need
+  for (const LinePolynomial* poly : {&P.problem.polynomial, static_cast<const LinePolynomial*>(nullptr)}) {
+    const SolveResult r = isolate_line_roots(P.problem.line, poly, {0, 0, 0}, {1, 0, 0}, -1, 1, options);
+    BOOST_TEST((r.status == SolveStatus::time_limit || r.status == SolveStatus::complete));
+    if (r.status == SolveStatus::time_limit) BOOST_TEST(any_reason(r, UndecidedReason::budget));
+    check_nothing_dropped(r, P.roots);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(time_budget_also_stops_an_mpfi_escalation) {
+  // Π_{i=1..8} (x − r_i), r_i = (2i − 9)/8, plus (x + 10⁸)² − 10¹⁶ − 2·10⁸ x − x² (≡ 0, but ~4
+  // wide in double): interval Newton on the compiled expression is rounding-limited on all of
+  // [−1, 1], which goes to MPFI as a whole (eight certifications in MPFI, a few milliseconds); a
+  // 0.5 ms budget stops it there.
+  std::string text;
+  std::vector<Rational> zeros;
+  for (int i = 1; i <= 8; ++i) {
+    text += (i > 1 ? "*" : "") + std::string("(x-(") + std::to_string(2 * i - 9) + "/8))";
+    zeros.push_back(Rational(2 * i - 9, 8));
+  }
+  const Surface s = Surface::parse(text + "+(x+100000000)^2-10000000000000000-200000000*x-x^2+y^2+z^2");
+  const CompiledSystem line(surface_line_system(s));
+  UnivariateOptions options;
+  options.time_limit_seconds = 5e-4;
+  const SolveResult r = isolate_line_roots(line, nullptr, {0, 0, 0}, {1, 0, 0}, -1, 1, options);
+  BOOST_TEST((r.status == SolveStatus::time_limit || r.status == SolveStatus::complete));
+  BOOST_TEST(r.counters.precision_escalations > 0u);
+  if (r.status == SolveStatus::time_limit) BOOST_TEST(any_reason(r, UndecidedReason::budget));
+  check_nothing_dropped(r, zeros);
+  // Without a budget all eight zeros are certified (in MPFI).
+  const SolveResult full = isolate_line_roots(line, nullptr, {0, 0, 0}, {1, 0, 0}, -1, 1);
+  check_exact_roots(full, zeros);
+  BOOST_TEST(full.counters.precision_escalations > 0u);
 }
 
 namespace {
@@ -278,6 +477,12 @@ BOOST_AUTO_TEST_CASE(invalid_input_throws) {
   BOOST_CHECK_THROW((void)isolate_line_roots(S.line, &S.polynomial, {0, 0, 0}, {0, 0, 0}, 0, 1), InvalidInput);
   const CompiledSystem critical(surface_critical_system(S.surface));
   BOOST_CHECK_THROW((void)isolate_line_roots(critical, nullptr, {0, 0, 0}, {1, 0, 0}, 0, 1), InvalidInput);
+  for (double seconds : {-1.0, std::nan(""), HUGE_VAL}) {
+    UnivariateOptions options;
+    options.time_limit_seconds = seconds;
+    BOOST_CHECK_THROW((void)isolate_line_roots(S.line, &S.polynomial, {0, 0, 0}, {1, 0, 0}, 0, 1, options),
+                      InvalidInput);
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()

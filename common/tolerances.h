@@ -98,8 +98,10 @@ inline constexpr double trig_extremum_margin = 1e-10;
 
 //! Below this width (relative to the domain's widest side, or to t1 − t0 for the univariate
 //! isolator) a region that can be neither excluded nor certified and on which the derivative
-//! (the interval Jacobian determinant) is not excludable from 0 is not bisected further: it is
-//! escalated to MPFI once and then reported undecided (singular_root / boundary_root).  A double
+//! (the interval Jacobian determinant) is not excludable from 0 is not bisected further: the
+//! subdivision solver escalates it to MPFI once, then reports it undecided (singular_root /
+//! boundary_root); the univariate isolator reports it singular_root at once (escalating a
+//! tangency would only turn a double root on a rounded Voronoi edge into "no crossing").  A double
 //! root's undecidable zone has width ~ sqrt(unit roundoff) ≈ 1e-8, so it ends here in a handful of
 //! boxes instead of millions; two simple roots closer than this are reported undecided, never
 //! certified as one.

@@ -7,6 +7,7 @@
 
 #include "common/errors.h"
 #include "common/tolerances.h"
+#include "solvers/detail/deadline.h"
 #include "solvers/detail/interval_box.h"
 #include "solvers/detail/krawczyk_core.h"
 #include "solvers/detail/taylor_form.h"
@@ -72,7 +73,8 @@ class Subdivision {
         n_(system.n_unknowns()),
         m_(system.n_equations()),
         exclusion_(options.exclusion_mode),
-        start_(std::chrono::steady_clock::now()) {
+        start_(std::chrono::steady_clock::now()),
+        deadline_(start_, options.time_limit_seconds) {
     form_ = use_taylor_forms(system, options.taylor_forms) ? system.polynomial_form() : nullptr;
     if (form_) {
       int degree = 0;
@@ -94,7 +96,6 @@ class Subdivision {
       work_.push_back(taylor_root(root));
     else
       push(root);
-    std::size_t since_clock = 0;
     while (!work_.empty() && !stopped_) {
       Item item = std::move(work_.back());
       work_.pop_back();
@@ -103,13 +104,10 @@ class Subdivision {
         stop(SolveStatus::box_limit);
         break;
       }
-      if (options_.time_limit_seconds > 0 && ++since_clock >= 16) {
-        since_clock = 0;
-        if (elapsed() > options_.time_limit_seconds) {
-          work_.push_back(std::move(item));
-          stop(SolveStatus::time_limit);
-          break;
-        }
+      if (deadline_.expired()) {
+        work_.push_back(std::move(item));
+        stop(SolveStatus::time_limit);
+        break;
       }
       ++counters_.boxes;
       if (item.taylor.empty())
@@ -608,6 +606,7 @@ class Subdivision {
   std::size_t n_, m_;
   bool exclusion_;
   std::chrono::steady_clock::time_point start_;
+  detail::Deadline deadline_;
   double singular_width_ = 0, min_width_ = 0;
   const PolynomialForm* form_ = nullptr;
   std::vector<Interval> cube_powers_, inflated_powers_;  // ρ^j for ρ = 1 and the inflated ρ

@@ -10,6 +10,7 @@
 #include "common/errors.h"
 #include "common/tolerances.h"
 #include "solvers/detail/bernstein.h"
+#include "solvers/detail/deadline.h"
 #include "solvers/detail/interval_box.h"
 #include "symbolic/scalar_traits.h"
 
@@ -29,29 +30,6 @@ inline int certain_sign(const MpfiInterval& a) { return certain_sign(detail::to_
 
 //! Marks an end point whose certain sign has not been evaluated yet.
 constexpr int unknown_sign = 2;
-
-//! The clock is read once every this many checks (a read costs about as much as a subinterval).
-constexpr int clock_check_interval = 16;
-
-//! The time budget of one isolation: expired() is true once more than `seconds` (> 0) have passed
-//! since `start` (checked every clock_check_interval calls; once true it stays true).
-class Deadline {
- public:
-  Deadline(std::chrono::steady_clock::time_point start, double seconds) : start_(start), seconds_(seconds) {}
-  bool expired() {
-    if (expired_ || seconds_ <= 0) return expired_;
-    if (++calls_ < clock_check_interval) return false;
-    calls_ = 0;
-    expired_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() > seconds_;
-    return expired_;
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_;
-  double seconds_;
-  int calls_ = 0;
-  bool expired_ = false;
-};
 
 //! E(p + t v) over the compiled surface_line system (any E).
 struct LineSystemEvaluator {
@@ -743,7 +721,7 @@ class Isolation {
   const CompiledSystem& line_;
   double t0_, t1_, scale_;
   UnivariateOptions options_;
-  Deadline deadline_;
+  detail::Deadline deadline_;
   double params_d_[6];
   Interval params_[6];
   std::vector<Found>& found_;

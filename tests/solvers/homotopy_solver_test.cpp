@@ -34,11 +34,38 @@ PrimitiveSystem make_system(std::vector<ex> equations, std::vector<symbol> unkno
 }
 
 SolveResult solve(const PrimitiveSystem& system, const std::vector<double>& parameters, const Domain& domain,
-                  std::uint64_t seed = 1) {
+                  std::uint64_t seed = 1, HomotopyStatistics* statistics = nullptr) {
   const CompiledSystem compiled(system);
   HomotopyOptions options;
   options.seed = seed;
+  options.statistics = statistics;
   return solve_homotopy(compiled, equation_degrees(system), parameters, domain, options);
+}
+
+//! Every path of the total-degree homotopy of `system` (no parameters), tracked with a fixed γ and
+//! patch and the default settings.
+std::vector<detail::PathEndpoint> track_all(const PrimitiveSystem& system) {
+  const CompiledSystem compiled(system);
+  const auto degrees = equation_degrees(system);
+  std::vector<Complex> patch;
+  for (std::size_t j = 0; j <= degrees.size(); ++j)
+    patch.push_back(std::polar(1.0 / std::sqrt(degrees.size() + 1.0), 0.37 + 1.91 * static_cast<double>(j)));
+  const detail::HomotopyTracker tracker(compiled, degrees, {}, std::polar(1.0, 2.2), patch);
+  std::vector<detail::PathEndpoint> ends;
+  for (const auto& start : total_degree_start_solutions(degrees))
+    ends.push_back(tracker.track(start, detail::TrackerSettings::defaults()));
+  return ends;
+}
+
+std::size_t count(const std::vector<detail::PathEndpoint>& ends, detail::PathOutcome outcome) {
+  return static_cast<std::size_t>(
+      std::count_if(ends.begin(), ends.end(), [&](const auto& end) { return end.outcome == outcome; }));
+}
+
+double distance_to(const std::vector<Complex>& u, const std::vector<double>& expected) {
+  double d = 0;
+  for (std::size_t i = 0; i < expected.size(); ++i) d = std::max(d, std::abs(u[i] - expected[i]));
+  return d;
 }
 
 //! The certified root matching `expected` (max-norm distance ≤ 1e-10), checking it lies in its box.
@@ -286,6 +313,78 @@ BOOST_AUTO_TEST_CASE(invalid_input_throws) {
   BOOST_CHECK_THROW((void)solve_homotopy(compiled, {2, 1}, {}, Domain::from_box({{{-2.0, 2.0}}})), InvalidInput);
   const auto over = make_system({X() * X() + Y() * Y() - 1, Y() - X(), X()}, {X(), Y()});
   BOOST_CHECK_THROW((void)solve_homotopy(CompiledSystem(over), {2, 1, 1}, {}, box2), InvalidInput);
+}
+
+BOOST_AUTO_TEST_CASE(cauchy_endgame_finds_a_triple_root_with_winding_number_three) {
+  // (2x − 1)³ (x + 2): the three paths to the triple root x = 1/2 form one cycle (c = 3); Newton
+  // would only reach |x − 1/2| ~ ε^{1/3} there, the Cauchy estimate is far better.  (Not (x − 1)³:
+  // x = 1 also solves the start equation x⁴ = 1, so one path would stay at x = 1 and c = 2.)
+  const auto s = make_system({GiNaC::pow(2 * X() - 1, 3) * (X() + 2)}, {X()});
+  const auto ends = track_all(s);
+  BOOST_REQUIRE(ends.size() == 4u);
+  BOOST_TEST(count(ends, detail::PathOutcome::singular) == 3u);
+  BOOST_TEST(count(ends, detail::PathOutcome::finite) == 1u);
+  for (const auto& end : ends) {
+    BOOST_TEST_MESSAGE(end.outcome << " c = " << end.winding << " u = " << end.point[0] << " steps " << end.steps
+                                   << " + " << end.rejections << " rejected");
+    if (end.outcome == detail::PathOutcome::singular) {
+      BOOST_TEST(end.winding == 3);
+      BOOST_TEST(distance_to(end.point, {0.5}) <= 1e-6);
+      BOOST_TEST(end.last_correction <= 1e-6);  // its own accuracy estimate
+    } else {
+      BOOST_TEST(end.winding == 1);
+      BOOST_TEST(distance_to(end.point, {-2.0}) <= 1e-12);
+    }
+  }
+  // the solver: −2 certified, 1/2 undecided (singular_root), never certified
+  HomotopyStatistics statistics;
+  const auto r = solve(s, {}, Domain::from_box({{{-3.0, 3.0}}}), 1, &statistics);
+  BOOST_TEST(r.status == SolveStatus::undecided);
+  BOOST_REQUIRE(r.roots.size() == 1u);
+  BOOST_TEST(has_root(r, {-2.0}));
+  BOOST_REQUIRE(r.undecided.size() == 1u);
+  BOOST_TEST(r.undecided[0].reason == UndecidedReason::singular_root);
+  BOOST_TEST(r.undecided[0].box.bounds[0][0] <= 0.5);
+  BOOST_TEST(r.undecided[0].box.bounds[0][1] >= 0.5);
+  BOOST_TEST(r.undecided[0].box.bounds[0][1] - r.undecided[0].box.bounds[0][0] <= 1e-3);
+  BOOST_TEST(statistics.singular == 3u);
+  BOOST_TEST(statistics.finite == 1u);
+  BOOST_TEST(statistics.max_winding == 3);
+}
+
+BOOST_AUTO_TEST_CASE(cauchy_endgame_at_tangent_circles_and_the_circular_points) {
+  // x² + y² = 1 and (x − 2)² + y² = 1 touch at (1, 0) (multiplicity 2, one cycle of c = 2);
+  // the other two paths go to the circular points at infinity (1 : ±i : 0).
+  const auto s = make_system({X() * X() + Y() * Y() - 1, (X() - 2) * (X() - 2) + Y() * Y() - 1}, {X(), Y()});
+  const auto ends = track_all(s);
+  BOOST_REQUIRE(ends.size() == 4u);
+  BOOST_TEST(count(ends, detail::PathOutcome::diverging) == 2u);
+  BOOST_TEST(count(ends, detail::PathOutcome::singular) == 2u);
+  for (const auto& end : ends) {
+    BOOST_TEST_MESSAGE(end.outcome << " c = " << end.winding << " u = (" << end.point[0] << ", " << end.point[1]
+                                   << ") steps " << end.steps << " + " << end.rejections << " rejected");
+    if (end.outcome != detail::PathOutcome::singular) continue;
+    BOOST_TEST(end.winding == 2);
+    BOOST_TEST(distance_to(end.point, {1.0, 0.0}) <= 1e-6);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(three_paths_to_a_singular_point_at_infinity) {
+  // y = x² and y = x² + x − 1 meet at (1, 1) only: of the 4 Bézout paths, 3 go to the point
+  // (0 : 1 : 0) at infinity, where the homogenised curves YW = X² and YW = X² + XW − W² meet with
+  // intersection multiplicity 3.
+  const auto s = make_system({Y() - X() * X(), Y() - X() * X() - X() + 1}, {X(), Y()});
+  const auto ends = track_all(s);
+  BOOST_TEST(count(ends, detail::PathOutcome::diverging) == 3u);
+  BOOST_TEST(count(ends, detail::PathOutcome::finite) == 1u);
+  HomotopyStatistics statistics;
+  const auto r = solve(s, {}, Domain::from_box({{{-3.0, 3.0}}, {{-3.0, 3.0}}}), 1, &statistics);
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_REQUIRE(r.roots.size() == 1u);
+  BOOST_TEST(has_root(r, {1.0, 1.0}));
+  BOOST_TEST(statistics.diverging == 3u);
+  BOOST_TEST(statistics.finite == 1u);
+  BOOST_TEST(statistics.failed == 0u);
 }
 
 BOOST_AUTO_TEST_CASE(path_outcome_prints) {

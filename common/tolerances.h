@@ -95,6 +95,13 @@ inline constexpr double homotopy_endgame_tolerance = 1e-10;
 inline constexpr int homotopy_endgame_max_winding = 16;
 inline constexpr double homotopy_endgame_min_t = 1e-12;
 inline constexpr double homotopy_endgame_closure = 0.1;
+//! Homotopy endgame, valuations ν_j = lim t X_j'/X_j of the homogeneous coordinates (X_j ~ t^{ν_j}),
+//! estimated at each t_k and shifted so that the smallest is 0: the loops start once no estimate
+//! changed by more than homotopy_endgame_valuation_stable from t_{k−1} to t_k (the path is in its
+//! Puiseux regime); a path whose ν_0 is at least homotopy_endgame_valuation_infinity with the
+//! estimates stable at two successive levels goes to infinity (diverging).
+inline constexpr double homotopy_endgame_valuation_stable = 0.05;
+inline constexpr double homotopy_endgame_valuation_infinity = 0.05;
 
 //! Outward widening, in ulps, of each endpoint of an Interval exp, log, sin or cos (see
 //! symbolic/scalar_traits.h).  glibc's libm test suite fails any of these functions whose error

@@ -30,7 +30,8 @@ TrackerSettings TrackerSettings::defaults() {
           tol::homotopy_singular_condition,  tol::homotopy_max_steps_per_path,
           tol::homotopy_endgame_samples,     tol::homotopy_endgame_ratio,
           tol::homotopy_endgame_tolerance,   tol::homotopy_endgame_max_winding,
-          tol::homotopy_endgame_min_t,       tol::homotopy_endgame_closure};
+          tol::homotopy_endgame_min_t,       tol::homotopy_endgame_closure,
+          tol::homotopy_endgame_valuation_stable, tol::homotopy_endgame_valuation_infinity};
 }
 
 TrackerSettings TrackerSettings::stricter() const {
@@ -85,6 +86,7 @@ class PathTracker {
   using Mat = Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic, 0, MaxH, MaxH>;
   using AffineVec = Eigen::Matrix<Complex, Eigen::Dynamic, 1, 0, MaxN, 1>;
   using AffineMat = Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic, 0, MaxN, MaxN>;
+  using RealVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, MaxH, 1>;
 
   PathTracker(const CompiledSystem& f, const std::vector<int>& degrees, const std::vector<Complex>& parameters,
               Complex gamma, const std::vector<Complex>& patch, const TrackerSettings& settings)
@@ -306,6 +308,33 @@ class PathTracker {
     return LoopOutcome::failed;
   }
 
+  //! The valuations ν_j = Re(t X_j'(t) / X_j(t)) of the homogeneous coordinates at real t (along a
+  //! Puiseux series X_j ~ a_j t^{ν_j}, this tends to ν_j), shifted so that the smallest is 0; a
+  //! coordinate below 1e-10 ‖X‖∞ gets NaN (too small to estimate).  False if the velocity is not finite.
+  bool valuations(const Vec& X, double t, RealVec& nu) {
+    Vec v;
+    if (!velocity(X, TPath{t, -1.0, true}, 0, v)) return false;  // v = dX/dτ = −t X'(t)
+    const double scale = norm(X);
+    nu.resize(n_ + 1);
+    double smallest = std::numeric_limits<double>::infinity();
+    for (int j = 0; j <= n_; ++j) {
+      nu[j] = std::abs(X[j]) > 1e-10 * scale ? -(v[j] / X[j]).real() : std::numeric_limits<double>::quiet_NaN();
+      if (nu[j] < smallest) smallest = nu[j];
+    }
+    nu.array() -= smallest;
+    return true;
+  }
+
+  //! The limit of a sequence ν_0, ν_1, ν_2 converging geometrically (Aitken's Δ²), or NaN when
+  //! the last two differences do not look geometric with ratio in (0, 0.9].
+  static double aitken(const double (&h)[3]) {
+    const double d1 = h[1] - h[0], d2 = h[2] - h[1];
+    if (std::abs(d2) <= 1e-3) return h[2];
+    const double r = d2 / d1;
+    if (!(r > 0 && r <= 0.9)) return std::numeric_limits<double>::quiet_NaN();
+    return h[2] + d2 * r / (1 - r);
+  }
+
   //! The Cauchy endgame from X at t_0 = 1 − endgame_start (see homotopy_tracker.h).
   void cauchy_endgame(Vec X, PathEndpoint& end) {
     const double radial = -std::log(settings_.endgame_ratio);  // τ length from t_k to t_{k+1}
@@ -313,38 +342,61 @@ class PathTracker {
     double loop_h = 2 * M_PI / settings_.endgame_samples, radial_h = radial;
     Vec previous, estimate;
     bool have_previous = false;
+    RealVec nu, nu_previous;
+    double nu0[3] = {0, 0, 0};  // ν_0 at the last three levels
+    int stable_levels = 0;
     const auto fail = [&](const Vec& at) {
       end.outcome = PathOutcome::failed;
       end.point = affine(at);
     };
-    for (;;) {
+    const auto diverging = [&](const Vec& at) {
+      end.outcome = PathOutcome::diverging;
+      end.point = affine(at);
+    };
+    for (int level = 0;; ++level) {
       end.s = 1 - t;
       refine(X, t);
       if (!finite(X)) return fail(X);
-      if (at_infinity(X)) {
-        end.outcome = PathOutcome::diverging;
-        end.point = affine(X);
-        return;
+      if (at_infinity(X)) return diverging(X);
+      // valuations: how far into the Puiseux regime the path is, and whether X_0 → 0
+      if (!valuations(X, t, nu)) return fail(X);
+      double change = std::numeric_limits<double>::infinity();
+      if (level > 0) {
+        change = 0;
+        for (int j = 0; j <= n_; ++j)
+          if (!std::isnan(nu[j]) && !std::isnan(nu_previous[j]))
+            change = std::max(change, std::abs(nu[j] - nu_previous[j]));
       }
-      int c = 0;
-      switch (loops(X, t, loop_h, end, c, estimate)) {
-        case LoopOutcome::failed: return fail(X);
-        case LoopOutcome::diverging:
-          end.outcome = PathOutcome::diverging;
-          end.point = affine(X);
-          return;
-        case LoopOutcome::closed: break;
+      nu_previous = nu;
+      stable_levels = change <= settings_.endgame_valuation_stable ? stable_levels + 1 : 0;
+      nu0[0] = nu0[1];
+      nu0[1] = nu0[2];
+      nu0[2] = std::isnan(nu[0]) ? std::numeric_limits<double>::infinity() : nu[0];  // X_0 ≈ 0
+      const double v = settings_.endgame_valuation_infinity;
+      if (stable_levels >= 2 && nu0[2] >= v && aitken(nu0) >= v) return diverging(X);
+      // the loops, where X_0 does not visibly go to 0 and the valuations have settled
+      if (nu0[2] < v && (level == 0 || stable_levels >= 1)) {
+        int c = 0;
+        switch (loops(X, t, loop_h, end, c, estimate)) {
+          case LoopOutcome::failed:
+            if (end.steps + end.rejections >= settings_.max_steps) return fail(X);
+            have_previous = false;  // not closed: not in the endgame's operating zone yet
+            break;
+          case LoopOutcome::diverging: return diverging(X);
+          case LoopOutcome::closed:
+            end.winding = c;
+            if (!finite(estimate)) return fail(X);
+            if (have_previous) {
+              const double delta = norm(Vec(estimate - previous));
+              if (delta <= settings_.endgame_tolerance * norm(estimate)) return classify(estimate, delta, end);
+            }
+            previous = estimate;
+            have_previous = true;
+            break;
+        }
       }
-      end.winding = c;
-      if (!finite(estimate)) return fail(X);
-      if (have_previous) {
-        const double change = norm(Vec(estimate - previous));
-        if (change <= settings_.endgame_tolerance * norm(estimate)) return classify(estimate, change, end);
-      }
-      previous = estimate;
-      have_previous = true;
       const TPath inward{t, -1.0, true};
-      if (t * settings_.endgame_ratio < settings_.endgame_min_t) return fail(estimate);
+      if (t * settings_.endgame_ratio < settings_.endgame_min_t) return fail(have_previous ? estimate : X);
       if (!run(inward, radial, radial, X, radial_h, end)) return fail(X);
       t = inward.at(radial).real();
     }

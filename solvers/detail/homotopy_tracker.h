@@ -19,20 +19,33 @@
 //! singular one).  In the patch chart X stays analytic in τ whether the endpoint is finite or at
 //! infinity, so the Cauchy integral formula gives the endpoint as the mean of X over the circle
 //! |τ| = t_k^{1/c}, i.e. over c loops of |t| = t_k, and the trapezoid rule with M equally spaced
-//! samples per loop converges geometrically (error O(t_k^M) for fixed c).  The endgame tracks to
-//! t_k = t_0 q^k (k = 0, 1, …), tracks the loops around each t_k until the path closes up (that
-//! count is c; at most endgame_max_winding loops), takes the mean of the samples, and stops when
-//! two successive estimates agree to endgame_tolerance.  The loops stay at |t| = t_k, away from
-//! the singular endpoint, so the estimate is accurate even where the Jacobian at t = 0 is
-//! singular.  The estimate is then classified: at infinity (|X_0| ≤ ‖X‖ / divergence_norm) →
+//! samples per loop converges geometrically (error O(t_k^M) for fixed c).
+//!
+//! The endgame tracks t_k = t_0 q^k (k = 0, 1, …) along the real axis in log t.  At each t_k it
+//! estimates the valuations ν_j = Re(t X_j'/X_j) → ord_t X_j of the homogeneous coordinates (from
+//! the path's velocity, shifted so that the smallest is 0), and then:
+//!  - a point with |X_0| ≤ ‖X‖ / divergence_norm, or a ν_0 ≥ endgame_valuation_infinity whose
+//!    estimates changed by at most endgame_valuation_stable over the last two levels and whose
+//!    Aitken-extrapolated limit is also ≥ endgame_valuation_infinity, goes to infinity (diverging:
+//!    X_0 → 0 like t^{ν_0}).  Aitken's Δ² maps a ν_0 that decays like t^{1/c} (a finite endpoint)
+//!    to about 0, or declines (ratio of differences above 0.9), so a slowly settling finite
+//!    endpoint is not taken for one at infinity;
+//!  - otherwise, if ν_0 < endgame_valuation_infinity, at t_0 or once the valuations have settled
+//!    (a change ≤ endgame_valuation_stable),
+//!    the loops around t_k are tracked until the path closes up (that count is c; at most
+//!    endgame_max_winding loops — if they do not close, the path is not in its Puiseux regime yet
+//!    and the endgame moves on to t_{k+1}); the mean of the samples is the estimate, and the
+//!    endgame stops when two successive estimates agree to endgame_tolerance.
+//! The loops stay at |t| = t_k, away from the singular endpoint, so the estimate is accurate even
+//! where the Jacobian at t = 0 is singular.  The estimate is then classified: at infinity →
 //! diverging; c > 1 → singular; c = 1 → Newton on f in the affine chart, regular if the Jacobian
-//! there is well conditioned, singular otherwise.  An endgame that does not converge (winding
-//! number above the cap, t_k below endgame_min_t, a loop whose steps underflow, the step budget)
-//! makes the path failed: it is reported, never dropped.
+//! there is well conditioned, singular otherwise.  An endgame that does not conclude before t_k
+//! falls below endgame_min_t, or runs out of the step budget, or whose steps underflow, makes the
+//! path failed: it is reported, never dropped.
 //!
 //! Nothing here is certified: path tracking in double precision may jump between paths, and the
-//! endgame's closure test and agreement test are numerical.  Certification happens afterwards
-//! (Krawczyk on the regular real endpoints, homotopy_solver.cpp).
+//! endgame's closure, agreement and valuation tests are numerical (so is the test |u| > 1e8).
+//! Certification happens afterwards (Krawczyk on the regular real endpoints, homotopy_solver.cpp).
 
 #include <cstddef>
 #include <ostream>
@@ -70,6 +83,8 @@ struct TrackerSettings {
   int endgame_max_winding;     //!< the largest winding number c tried
   double endgame_min_t;        //!< no convergence before t_k < this: the path failed
   double endgame_closure;      //!< a loop closes: back to its start up to this · sample spacing
+  double endgame_valuation_stable;    //!< valuation estimates stable: change per level ≤ this
+  double endgame_valuation_infinity;  //!< stable valuation of X_0 ≥ this: the path diverges
   static TrackerSettings defaults();
   //! Smaller steps and a tighter trust region, for re-tracking paths suspected of jumping.
   TrackerSettings stricter() const;

@@ -43,8 +43,9 @@ SolveResult solve(const PrimitiveSystem& system, const std::vector<double>& para
 }
 
 //! Every path of the total-degree homotopy of `system` (no parameters), tracked with a fixed γ and
-//! patch and the default settings.
-std::vector<detail::PathEndpoint> track_all(const PrimitiveSystem& system) {
+//! patch.
+std::vector<detail::PathEndpoint> track_all(const PrimitiveSystem& system,
+                                            const detail::TrackerSettings& settings = detail::TrackerSettings::defaults()) {
   const CompiledSystem compiled(system);
   const auto degrees = equation_degrees(system);
   std::vector<Complex> patch;
@@ -53,7 +54,7 @@ std::vector<detail::PathEndpoint> track_all(const PrimitiveSystem& system) {
   const detail::HomotopyTracker tracker(compiled, degrees, {}, std::polar(1.0, 2.2), patch);
   std::vector<detail::PathEndpoint> ends;
   for (const auto& start : total_degree_start_solutions(degrees))
-    ends.push_back(tracker.track(start, detail::TrackerSettings::defaults()));
+    ends.push_back(tracker.track(start, settings));
   return ends;
 }
 
@@ -352,6 +353,20 @@ BOOST_AUTO_TEST_CASE(cauchy_endgame_finds_a_triple_root_with_winding_number_thre
   BOOST_TEST(statistics.max_winding == 3);
 }
 
+BOOST_AUTO_TEST_CASE(an_endgame_whose_loops_do_not_close_fails_the_path) {
+  // the triple root needs c = 3 loops; allowing at most 2 the three paths must come back failed
+  const auto s = make_system({GiNaC::pow(2 * X() - 1, 3) * (X() + 2)}, {X()});
+  auto settings = detail::TrackerSettings::defaults();
+  settings.endgame_max_winding = 2;
+  const auto ends = track_all(s, settings);
+  BOOST_TEST(count(ends, detail::PathOutcome::failed) == 3u);
+  BOOST_TEST(count(ends, detail::PathOutcome::finite) == 1u);
+  // and one that must converge before t = 0.1: none can, every path fails
+  settings = detail::TrackerSettings::defaults();
+  settings.endgame_min_t = 0.09;
+  BOOST_TEST(count(track_all(s, settings), detail::PathOutcome::failed) == 4u);
+}
+
 BOOST_AUTO_TEST_CASE(cauchy_endgame_at_tangent_circles_and_the_circular_points) {
   // x² + y² = 1 and (x − 2)² + y² = 1 touch at (1, 0) (multiplicity 2, one cycle of c = 2);
   // the other two paths go to the circular points at infinity (1 : ±i : 0).
@@ -385,6 +400,31 @@ BOOST_AUTO_TEST_CASE(three_paths_to_a_singular_point_at_infinity) {
   BOOST_TEST(statistics.diverging == 3u);
   BOOST_TEST(statistics.finite == 1u);
   BOOST_TEST(statistics.failed == 0u);
+}
+
+BOOST_AUTO_TEST_CASE(torus_critical_points_and_its_paths_to_infinity) {
+  // E = (x² + y² + z² + 0.84)² − 4(x² + y²), direction d ∥ (3, −5, 8): 4 · 3 · 3 = 36 paths.  The
+  // affine solutions number 8 with multiplicity (dimension of the quotient ring, Gröbner basis in
+  // sympy for this direction): the 4 real critical points of the height ⟨d, ·⟩ on the torus, and
+  // the singular points (0, 0, ±i√0.84) of the complexified torus (∇E = 0 there), 2 each, so 28
+  // paths go to infinity, where the solution set is singular.
+  const auto system = surface_critical_system(catalog_entry("torus").surface());
+  const auto frame = orthonormal_frame(unit_vector({3, -5, 8}));
+  const std::vector<double> parameters{frame.a[0], frame.a[1], frame.a[2], frame.b[0], frame.b[1], frame.b[2]};
+  for (std::uint64_t seed : {1, 2}) {
+    HomotopyStatistics statistics;
+    const auto r = solve(system, parameters, box_domain(catalog_entry("torus").box), seed, &statistics);
+    BOOST_TEST_MESSAGE("seed " << seed << ": finite " << statistics.finite << " singular " << statistics.singular
+                               << " diverging " << statistics.diverging << " failed " << statistics.failed
+                               << ", steps per path " << (statistics.steps + statistics.rejections) / 36.0
+                               << ", max winding " << statistics.max_winding);
+    BOOST_TEST(r.status == SolveStatus::complete);
+    BOOST_TEST(r.roots.size() == 4u);
+    BOOST_TEST(statistics.diverging == 28u);
+    BOOST_TEST(statistics.finite == 4u);
+    BOOST_TEST(statistics.singular == 4u);
+    BOOST_TEST(statistics.failed == 0u);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(path_outcome_prints) {

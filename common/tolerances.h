@@ -102,6 +102,9 @@ inline constexpr double homotopy_endgame_closure = 0.1;
 //! estimates stable at two successive levels goes to infinity (diverging).
 inline constexpr double homotopy_endgame_valuation_stable = 0.05;
 inline constexpr double homotopy_endgame_valuation_infinity = 0.05;
+//! Homotopy endgame: after a loop closes with winding number 1, the path may finish by tracking
+//! straight to t = 0 in at most this many steps (accepted only at a regular, well-conditioned zero).
+inline constexpr std::size_t homotopy_endgame_direct_steps = 8;
 
 //! Outward widening, in ulps, of each endpoint of an Interval exp, log, sin or cos (see
 //! symbolic/scalar_traits.h).  glibc's libm test suite fails any of these functions whose error

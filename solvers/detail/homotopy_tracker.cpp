@@ -31,7 +31,8 @@ TrackerSettings TrackerSettings::defaults() {
           tol::homotopy_endgame_samples,     tol::homotopy_endgame_ratio,
           tol::homotopy_endgame_tolerance,   tol::homotopy_endgame_max_winding,
           tol::homotopy_endgame_min_t,       tol::homotopy_endgame_closure,
-          tol::homotopy_endgame_valuation_stable, tol::homotopy_endgame_valuation_infinity};
+          tol::homotopy_endgame_valuation_stable, tol::homotopy_endgame_valuation_infinity,
+          tol::homotopy_endgame_direct_steps};
 }
 
 TrackerSettings TrackerSettings::stricter() const {
@@ -237,14 +238,16 @@ class PathTracker {
 
   //! Tracks X along t = path(τ) from τ = 0 to τ = length with adaptive steps of at most max_step
   //! (h: the current step, carried from call to call).  False if a step underflows or the step
-  //! budget runs out; *reached (if given) is the τ reached.
+  //! budget (settings.max_steps per path, and at most `budget` steps in this call) runs out;
+  //! *reached (if given) is the τ reached.
   bool run(const TPath& path, double length, double max_step, Vec& X, double& h, PathEndpoint& end,
-           double* reached = nullptr) {
+           double* reached = nullptr, std::size_t budget = std::numeric_limits<std::size_t>::max()) {
+    const std::size_t limit = std::min(settings_.max_steps, end.steps + end.rejections + std::min(budget, settings_.max_steps));
     double tau = 0;
     int successes = 0;
     bool ok = true;
     while (tau < length) {
-      if (end.steps + end.rejections >= settings_.max_steps) {
+      if (end.steps + end.rejections >= limit) {
         ok = false;
         break;
       }
@@ -345,6 +348,7 @@ class PathTracker {
     RealVec nu, nu_previous;
     double nu0[3] = {0, 0, 0};  // ν_0 at the last three levels
     int stable_levels = 0;
+    bool tried_direct = false;
     const auto fail = [&](const Vec& at) {
       end.outcome = PathOutcome::failed;
       end.point = affine(at);
@@ -386,6 +390,10 @@ class PathTracker {
           case LoopOutcome::closed:
             end.winding = c;
             if (!finite(estimate)) return fail(X);
+            if (c == 1 && !tried_direct) {  // no branching around |t| ≤ t_k: try to finish directly
+              tried_direct = true;
+              if (direct_finish(X, t, end)) return;
+            }
             if (have_previous) {
               const double delta = norm(Vec(estimate - previous));
               if (delta <= settings_.endgame_tolerance * norm(estimate)) return classify(estimate, delta, end);
@@ -442,6 +450,34 @@ class PathTracker {
     return smallest > 0 ? sigma[0] / smallest : std::numeric_limits<double>::infinity();
   }
 
+  //! Newton on f from u (newton()); if the Jacobian there is well conditioned the endpoint is
+  //! regular: fills end (finite) and returns true.
+  bool regular_endpoint(AffineVec u, PathEndpoint& end) {
+    const double last = newton(u);
+    const double kappa = condition(u);
+    if (!(kappa <= settings_.singular_condition)) return false;
+    end.outcome = PathOutcome::finite;
+    end.point.assign(u.data(), u.data() + n_);
+    end.condition = kappa;
+    end.last_correction = last;
+    return true;
+  }
+
+  //! After a loop around |t| = t_k closed with c = 1: tracks the segment from t_k straight to t = 0
+  //! (at most endgame_direct_steps steps) and accepts its end if it is a regular zero of f.  At a
+  //! regular endpoint this replaces the further levels of the Cauchy endgame; otherwise (steps
+  //! fail near a singular endpoint, or the end is ill conditioned) the endgame goes on from X.
+  bool direct_finish(const Vec& X, double t, PathEndpoint& end) {
+    Vec Y = X;
+    double h = 1;
+    if (!run(TPath{t, -t, false}, 1.0, 1.0, Y, h, end, nullptr, settings_.endgame_direct_steps)) return false;
+    if (!finite(Y) || at_infinity(Y)) return false;
+    const std::vector<Complex> u = affine(Y);
+    if (!regular_endpoint(Eigen::Map<const AffineVec>(u.data(), n_), end)) return false;
+    end.s = 1;
+    return true;
+  }
+
   //! Classifies a converged Cauchy estimate X̂ (change: the last change of the estimate).
   void classify(const Vec& estimate, double change, PathEndpoint& end) {
     end.point = affine(estimate);
@@ -453,18 +489,7 @@ class PathTracker {
     for (int j = 0; j < n_; ++j) u[j] = end.point[j];
     // u = X'/X_0: an error δ in X̂ is an error of about δ (1 + ‖u‖) / |X_0| in u
     const double accuracy = change * (1 + norm(u)) / std::abs(estimate[0]);
-    if (end.winding == 1) {
-      AffineVec polished = u;
-      const double last = newton(polished);
-      const double kappa = condition(polished);
-      if (kappa <= settings_.singular_condition) {
-        end.outcome = PathOutcome::finite;
-        end.point.assign(polished.data(), polished.data() + n_);
-        end.condition = kappa;
-        end.last_correction = last;
-        return;
-      }
-    }
+    if (end.winding == 1 && regular_endpoint(u, end)) return;
     // c > 1 (a branch point: the endpoint is singular) or an ill-conditioned Jacobian: the Cauchy
     // estimate, more accurate than Newton (only linear at a singular zero)
     end.outcome = PathOutcome::singular;

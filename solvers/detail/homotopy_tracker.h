@@ -36,6 +36,10 @@
 //!    endgame_max_winding loops — if they do not close, the path is not in its Puiseux regime yet
 //!    and the endgame moves on to t_{k+1}); the mean of the samples is the estimate, and the
 //!    endgame stops when two successive estimates agree to endgame_tolerance.
+//!    Shortcut at regular endpoints: after the first loop that closes with c = 1 (the path does
+//!    not branch around |t| ≤ t_k), the segment from t_k to 0 is tracked directly (at most
+//!    endgame_direct_steps steps) and its end accepted if Newton on f converges there to a zero
+//!    with a well-conditioned Jacobian — the same test as for a Cauchy estimate with c = 1.
 //! The loops stay at |t| = t_k, away from the singular endpoint, so the estimate is accurate even
 //! where the Jacobian at t = 0 is singular.  The estimate is then classified: at infinity →
 //! diverging; c > 1 → singular; c = 1 → Newton on f in the affine chart, regular if the Jacobian
@@ -85,6 +89,7 @@ struct TrackerSettings {
   double endgame_closure;      //!< a loop closes: back to its start up to this · sample spacing
   double endgame_valuation_stable;    //!< valuation estimates stable: change per level ≤ this
   double endgame_valuation_infinity;  //!< stable valuation of X_0 ≥ this: the path diverges
+  std::size_t endgame_direct_steps;  //!< steps allowed to finish from t_k to 0 after a loop with c = 1
   static TrackerSettings defaults();
   //! Smaller steps and a tighter trust region, for re-tracking paths suspected of jumping.
   TrackerSettings stricter() const;

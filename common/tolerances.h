@@ -98,12 +98,17 @@ inline constexpr double homotopy_endgame_closure = 0.1;
 //! Homotopy endgame, valuations ν_j = lim t X_j'/X_j of the homogeneous coordinates (X_j ~ t^{ν_j}),
 //! estimated at each t_k and shifted so that the smallest is 0: the loops start once no estimate
 //! changed by more than homotopy_endgame_valuation_stable from t_{k−1} to t_k (the path is in its
-//! Puiseux regime); a path whose ν_0 is at least homotopy_endgame_valuation_infinity with the
-//! estimates stable at two successive levels goes to infinity (diverging).
+//! Puiseux regime); a path whose ν_0 and its Aitken extrapolation are at least
+//! homotopy_endgame_valuation_infinity, with the estimates stable over three successive levels,
+//! goes to infinity (diverging).
 inline constexpr double homotopy_endgame_valuation_stable = 0.05;
 inline constexpr double homotopy_endgame_valuation_infinity = 0.05;
-//! Homotopy endgame: after a loop closes with winding number 1, the path may finish by tracking
-//! straight to t = 0 in at most this many steps (accepted only at a regular, well-conditioned zero).
+//! Homotopy endgame: the valuation test for infinity is applied only at t_k ≤ this (paths can
+//! look like going to infinity for a while and turn back to a finite endpoint).
+inline constexpr double homotopy_endgame_valuation_max_t = 1e-4;
+//! Homotopy endgame: at t_0, and after a loop closes with winding number 1, the path may finish by
+//! tracking straight to t = 0 in at most this many steps (accepted only at a regular,
+//! well-conditioned zero).
 inline constexpr std::size_t homotopy_endgame_direct_steps = 8;
 
 //! Outward widening, in ulps, of each endpoint of an Interval exp, log, sin or cos (see

@@ -32,7 +32,7 @@ TrackerSettings TrackerSettings::defaults() {
           tol::homotopy_endgame_tolerance,   tol::homotopy_endgame_max_winding,
           tol::homotopy_endgame_min_t,       tol::homotopy_endgame_closure,
           tol::homotopy_endgame_valuation_stable, tol::homotopy_endgame_valuation_infinity,
-          tol::homotopy_endgame_direct_steps};
+          tol::homotopy_endgame_direct_steps,  tol::homotopy_endgame_valuation_max_t};
 }
 
 TrackerSettings TrackerSettings::stricter() const {
@@ -281,6 +281,8 @@ class PathTracker {
   //! From X at t = t_k (real): the loops t = t_k e^{iθ}, M samples per loop, until the path closes
   //! up.  closed: c is the winding number, estimate the mean of the c·M samples (the trapezoid
   //! rule for the Cauchy integral) and X is back at θ = 0.  diverging: a sample is at infinity.
+  //! failed (no closure within the cap, or a step failed): X is reset to where the loops started
+  //! (after unclosed loops the tracked point is on another path).
   LoopOutcome loops(Vec& X, double t, double& h, PathEndpoint& end, int& c, Vec& estimate) {
     const int samples = settings_.endgame_samples;
     const double arc = 2 * M_PI / samples;
@@ -292,9 +294,15 @@ class PathTracker {
         sum += X;
         const Vec previous = X;
         const TPath path{std::polar(t, arc * ((loop - 1) * samples + j)), Complex(0, 1), true};
-        if (!run(path, arc, arc, X, h, end)) return LoopOutcome::failed;
+        if (!run(path, arc, arc, X, h, end)) {
+          X = first;
+          return LoopOutcome::failed;
+        }
         refine(X, path.at(arc));
-        if (!finite(X)) return LoopOutcome::failed;
+        if (!finite(X)) {
+          X = first;
+          return LoopOutcome::failed;
+        }
         if (at_infinity(X)) return LoopOutcome::diverging;
         spacing = std::min(spacing, norm(Vec(X - previous)));
       }
@@ -308,6 +316,7 @@ class PathTracker {
         return LoopOutcome::closed;
       }
     }
+    X = first;
     return LoopOutcome::failed;
   }
 
@@ -377,9 +386,15 @@ class PathTracker {
       nu0[1] = nu0[2];
       nu0[2] = std::isnan(nu[0]) ? std::numeric_limits<double>::infinity() : nu[0];  // X_0 ≈ 0
       const double v = settings_.endgame_valuation_infinity;
-      if (stable_levels >= 2 && nu0[2] >= v && aitken(nu0) >= v) return diverging(X);
-      // the loops, where X_0 does not visibly go to 0 and the valuations have settled
-      if (nu0[2] < v && (level == 0 || stable_levels >= 1)) {
+      if (t <= settings_.endgame_valuation_max_t && stable_levels >= 3 && nu0[2] >= v && aitken(nu0) >= v)
+        return diverging(X);
+      // where X_0 does not visibly go to 0: first try to finish directly (a regular endpoint), then
+      // the loops once the valuations have settled
+      if (nu0[2] < v && level == 0 && !tried_direct) {
+        tried_direct = true;
+        if (direct_finish(X, t, end)) return;
+      }
+      if (nu0[2] < v && stable_levels >= 1) {
         int c = 0;
         switch (loops(X, t, loop_h, end, c, estimate)) {
           case LoopOutcome::failed:
@@ -463,10 +478,10 @@ class PathTracker {
     return true;
   }
 
-  //! After a loop around |t| = t_k closed with c = 1: tracks the segment from t_k straight to t = 0
-  //! (at most endgame_direct_steps steps) and accepts its end if it is a regular zero of f.  At a
-  //! regular endpoint this replaces the further levels of the Cauchy endgame; otherwise (steps
-  //! fail near a singular endpoint, or the end is ill conditioned) the endgame goes on from X.
+  //! Tracks the segment from t_k straight to t = 0 (at most endgame_direct_steps steps) and accepts
+  //! its end if it is a regular zero of f.  At a regular endpoint this replaces the further levels
+  //! of the Cauchy endgame; otherwise (steps fail near a singular endpoint, or the end is ill
+  //! conditioned) the endgame goes on from X.
   bool direct_finish(const Vec& X, double t, PathEndpoint& end) {
     Vec Y = X;
     double h = 1;

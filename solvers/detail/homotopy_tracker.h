@@ -25,7 +25,8 @@
 //! estimates the valuations ν_j = Re(t X_j'/X_j) → ord_t X_j of the homogeneous coordinates (from
 //! the path's velocity, shifted so that the smallest is 0), and then:
 //!  - a point with |X_0| ≤ ‖X‖ / divergence_norm, or a ν_0 ≥ endgame_valuation_infinity whose
-//!    estimates changed by at most endgame_valuation_stable over the last two levels and whose
+//!    estimates changed by at most endgame_valuation_stable over the last three levels, at
+//!    t_k ≤ endgame_valuation_max_t, and whose
 //!    Aitken-extrapolated limit is also ≥ endgame_valuation_infinity, goes to infinity (diverging:
 //!    X_0 → 0 like t^{ν_0}).  Aitken's Δ² maps a ν_0 that decays like t^{1/c} (a finite endpoint)
 //!    to about 0, or declines (ratio of differences above 0.9), so a slowly settling finite
@@ -36,10 +37,11 @@
 //!    endgame_max_winding loops — if they do not close, the path is not in its Puiseux regime yet
 //!    and the endgame moves on to t_{k+1}); the mean of the samples is the estimate, and the
 //!    endgame stops when two successive estimates agree to endgame_tolerance.
-//!    Shortcut at regular endpoints: after the first loop that closes with c = 1 (the path does
-//!    not branch around |t| ≤ t_k), the segment from t_k to 0 is tracked directly (at most
+//!    Shortcut at regular endpoints: at t_0 (if ν_0 < endgame_valuation_infinity), and after the
+//!    first loop that closes with c = 1, the segment from t_k to 0 is tracked directly (at most
 //!    endgame_direct_steps steps) and its end accepted if Newton on f converges there to a zero
-//!    with a well-conditioned Jacobian — the same test as for a Cauchy estimate with c = 1.
+//!    with a well-conditioned Jacobian — the same test as for a Cauchy estimate with c = 1 (and
+//!    what this tracker did for every path before it had an endgame).
 //! The loops stay at |t| = t_k, away from the singular endpoint, so the estimate is accurate even
 //! where the Jacobian at t = 0 is singular.  The estimate is then classified: at infinity →
 //! diverging; c > 1 → singular; c = 1 → Newton on f in the affine chart, regular if the Jacobian
@@ -89,7 +91,8 @@ struct TrackerSettings {
   double endgame_closure;      //!< a loop closes: back to its start up to this · sample spacing
   double endgame_valuation_stable;    //!< valuation estimates stable: change per level ≤ this
   double endgame_valuation_infinity;  //!< stable valuation of X_0 ≥ this: the path diverges
-  std::size_t endgame_direct_steps;  //!< steps allowed to finish from t_k to 0 after a loop with c = 1
+  std::size_t endgame_direct_steps;  //!< steps allowed to finish directly from t_k to 0
+  double endgame_valuation_max_t;    //!< the valuation test for infinity only at t_k ≤ this
   static TrackerSettings defaults();
   //! Smaller steps and a tighter trust region, for re-tracking paths suspected of jumping.
   TrackerSettings stricter() const;
@@ -105,7 +108,7 @@ struct PathEndpoint {
   //! Accuracy estimate of point in u: the last Newton correction (regular), or the change between
   //! the last two Cauchy estimates (singular).
   double last_correction = 0;
-  int winding = 0;             //!< winding number c found by the endgame (0: endgame not completed)
+  int winding = 0;             //!< winding number c found by the endgame loops (0: no loop closed)
   std::size_t steps = 0;       //!< accepted steps (endgame included)
   std::size_t rejections = 0;  //!< rejected steps
 };

@@ -333,7 +333,7 @@ BOOST_AUTO_TEST_CASE(cauchy_endgame_finds_a_triple_root_with_winding_number_thre
       BOOST_TEST(distance_to(end.point, {0.5}) <= 1e-6);
       BOOST_TEST(end.last_correction <= 1e-6);  // its own accuracy estimate
     } else {
-      BOOST_TEST(end.winding == 1);
+      BOOST_TEST(end.winding <= 1);  // 0: finished directly, without a loop
       BOOST_TEST(distance_to(end.point, {-2.0}) <= 1e-12);
     }
   }
@@ -362,7 +362,7 @@ BOOST_AUTO_TEST_CASE(an_endgame_whose_loops_do_not_close_fails_the_path) {
   BOOST_TEST(count(ends, detail::PathOutcome::failed) == 3u);
   BOOST_TEST(count(ends, detail::PathOutcome::finite) == 1u);
   // and one that must conclude before t = 0.1: the Cauchy estimates at the triple root need two
-  // levels, so those three paths fail; the regular one finishes directly after its first loop
+  // levels, so those three paths fail; the regular one finishes directly
   settings = detail::TrackerSettings::defaults();
   settings.endgame_min_t = 0.09;
   const auto early = track_all(s, settings);

@@ -32,7 +32,8 @@ TrackerSettings TrackerSettings::defaults() {
           tol::homotopy_endgame_tolerance,   tol::homotopy_endgame_max_winding,
           tol::homotopy_endgame_min_t,       tol::homotopy_endgame_closure,
           tol::homotopy_endgame_valuation_stable, tol::homotopy_endgame_valuation_infinity,
-          tol::homotopy_endgame_direct_steps,  tol::homotopy_endgame_valuation_max_t};
+          tol::homotopy_endgame_direct_steps,  tol::homotopy_endgame_valuation_max_t,
+          tol::homotopy_cluster_condition};
 }
 
 TrackerSettings TrackerSettings::stricter() const {
@@ -283,11 +284,12 @@ class PathTracker {
   //! rule for the Cauchy integral) and X is back at θ = 0.  diverging: a sample is at infinity.
   //! failed (no closure within the cap, or a step failed): X is reset to where the loops started
   //! (after unclosed loops the tracked point is on another path).
-  LoopOutcome loops(Vec& X, double t, double& h, PathEndpoint& end, int& c, Vec& estimate) {
+  LoopOutcome loops(Vec& X, double t, double& h, PathEndpoint& end, int& c, Vec& estimate, double& spread) {
     const int samples = settings_.endgame_samples;
     const double arc = 2 * M_PI / samples;
     const Vec first = X;
     Vec sum = Vec::Zero(n_ + 1);
+    spread = 0;
     for (int loop = 1; loop <= settings_.endgame_max_winding; ++loop) {
       double spacing = std::numeric_limits<double>::infinity();
       for (int j = 0; j < samples; ++j) {
@@ -305,6 +307,7 @@ class PathTracker {
         }
         if (at_infinity(X)) return LoopOutcome::diverging;
         spacing = std::min(spacing, norm(Vec(X - previous)));
+        spread = std::max(spread, norm(Vec(X - first)));
       }
       // Closed: back at the first sample, up to a small fraction of the distance between two
       // successive samples (one loop short of closing, the path is on another branch, at least
@@ -358,6 +361,8 @@ class PathTracker {
     double nu0[3] = {0, 0, 0};  // ν_0 at the last three levels
     int stable_levels = 0;
     bool tried_direct = false;
+    int previous_c = 0;
+    double previous_spread = 0;
     const auto fail = [&](const Vec& at) {
       end.outcome = PathOutcome::failed;
       end.point = affine(at);
@@ -396,7 +401,8 @@ class PathTracker {
       }
       if (nu0[2] < v && stable_levels >= 1) {
         int c = 0;
-        switch (loops(X, t, loop_h, end, c, estimate)) {
+        double spread = 0;
+        switch (loops(X, t, loop_h, end, c, estimate, spread)) {
           case LoopOutcome::failed:
             if (end.steps + end.rejections >= settings_.max_steps) return fail(X);
             have_previous = false;  // not closed: not in the endgame's operating zone yet
@@ -411,9 +417,19 @@ class PathTracker {
             }
             if (have_previous) {
               const double delta = norm(Vec(estimate - previous));
-              if (delta <= settings_.endgame_tolerance * norm(estimate)) return classify(estimate, delta, end);
+              // c > 1: the c sheets must also be closing in on one point, their spread shrinking
+              // like t^{1/c}; a spread that does not shrink means the loops still enclose a branch
+              // point away from t = 0 (the "estimate" is then a mean of distinct endpoints)
+              const bool shrinking =
+                  c == 1 || (c == previous_c &&
+                             spread <= 0.5 * (1 + std::pow(settings_.endgame_ratio, 1.0 / c)) * previous_spread);
+              if (shrinking && delta <= settings_.endgame_tolerance * norm(estimate) &&
+                  (c == 1 || branches_meet(estimate)))
+                return classify(estimate, delta, end);
             }
             previous = estimate;
+            previous_c = c;
+            previous_spread = spread;
             have_previous = true;
             break;
         }
@@ -491,6 +507,17 @@ class PathTracker {
     if (!regular_endpoint(Eigen::Map<const AffineVec>(u.data(), n_), end)) return false;
     end.s = 1;
     return true;
+  }
+
+  //! For an estimate X̂ from c > 1 loops: true if X̂ is at infinity or J_f is ill conditioned at it
+  //! (condition ≥ cluster_condition), as at a zero where c paths meet.  Loops that still enclose a
+  //! branch point away from t = 0, where two paths to distinct regular zeros swap, also close after
+  //! c > 1 loops, and their mean (the centroid of those zeros) converges too, but J_f is well
+  //! conditioned there: the endgame must then go on to smaller t.
+  bool branches_meet(const Vec& estimate) {
+    if (at_infinity(estimate)) return true;
+    const std::vector<Complex> u = affine(estimate);
+    return condition(Eigen::Map<const AffineVec>(u.data(), n_)) >= settings_.cluster_condition;
   }
 
   //! Classifies a converged Cauchy estimate X̂ (change: the last change of the estimate).

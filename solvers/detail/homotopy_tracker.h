@@ -36,7 +36,10 @@
 //!    the loops around t_k are tracked until the path closes up (that count is c; at most
 //!    endgame_max_winding loops — if they do not close, the path is not in its Puiseux regime yet
 //!    and the endgame moves on to t_{k+1}); the mean of the samples is the estimate, and the
-//!    endgame stops when two successive estimates agree to endgame_tolerance.
+//!    endgame stops when two successive estimates agree to endgame_tolerance (for c > 1, also with
+//!    the spread of the samples shrinking and J_f ill conditioned at the estimate, condition ≥
+//!    cluster_condition: loops around a branch point away from 0, where two paths to distinct
+//!    regular zeros swap, close after 2 loops too, and their mean is then the zeros' centroid).
 //!    Shortcut at regular endpoints: at t_0 (if ν_0 < endgame_valuation_infinity), and after the
 //!    first loop that closes with c = 1, the segment from t_k to 0 is tracked directly (at most
 //!    endgame_direct_steps steps) and its end accepted if Newton on f converges there to a zero
@@ -93,6 +96,7 @@ struct TrackerSettings {
   double endgame_valuation_infinity;  //!< stable valuation of X_0 ≥ this: the path diverges
   std::size_t endgame_direct_steps;  //!< steps allowed to finish directly from t_k to 0
   double endgame_valuation_max_t;    //!< the valuation test for infinity only at t_k ≤ this
+  double cluster_condition;          //!< c > 1 estimate accepted only where cond J_f ≥ this (or at ∞)
   static TrackerSettings defaults();
   //! Smaller steps and a tighter trust region, for re-tracking paths suspected of jumping.
   TrackerSettings stricter() const;

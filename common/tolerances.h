@@ -99,8 +99,8 @@ inline constexpr double homotopy_endgame_closure = 0.1;
 //! estimated at each t_k and shifted so that the smallest is 0: the loops start once no estimate
 //! changed by more than homotopy_endgame_valuation_stable from t_{k−1} to t_k (the path is in its
 //! Puiseux regime); a path whose ν_0 and its Aitken extrapolation are at least
-//! homotopy_endgame_valuation_infinity, with the estimates stable over three successive levels,
-//! goes to infinity (diverging).
+//! homotopy_endgame_valuation_infinity, with the estimates stable at three successive steps
+//! t_{k−1} → t_k, goes to infinity (diverging).
 inline constexpr double homotopy_endgame_valuation_stable = 0.05;
 inline constexpr double homotopy_endgame_valuation_infinity = 0.05;
 //! Homotopy endgame: the valuation test for infinity is applied only at t_k ≤ this (paths can

@@ -25,8 +25,8 @@
 //! estimates the valuations ν_j = Re(t X_j'/X_j) → ord_t X_j of the homogeneous coordinates (from
 //! the path's velocity, shifted so that the smallest is 0), and then:
 //!  - a point with |X_0| ≤ ‖X‖ / divergence_norm, or a ν_0 ≥ endgame_valuation_infinity whose
-//!    estimates changed by at most endgame_valuation_stable over the last three levels, at
-//!    t_k ≤ endgame_valuation_max_t, and whose
+//!    estimates changed by at most endgame_valuation_stable at each of the last three steps
+//!    t_{k−1} → t_k, at t_k ≤ endgame_valuation_max_t, and whose
 //!    Aitken-extrapolated limit is also ≥ endgame_valuation_infinity, goes to infinity (diverging:
 //!    X_0 → 0 like t^{ν_0}).  Aitken's Δ² maps a ν_0 that decays like t^{1/c} (a finite endpoint)
 //!    to about 0, or declines (ratio of differences above 0.9), so a slowly settling finite

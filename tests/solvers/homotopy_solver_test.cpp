@@ -8,6 +8,7 @@
 #include "common/errors.h"
 #include "solvers/detail/homotopy_tracker.h"
 #include "solvers/homotopy_solver.h"
+#include "solvers/kostlan_system.h"
 #include "solvers/query_geometry.h"
 #include "symbolic/catalog.h"
 #include "symbolic/primitives.h"
@@ -427,6 +428,32 @@ BOOST_AUTO_TEST_CASE(torus_critical_points_and_its_paths_to_infinity) {
     BOOST_TEST(statistics.finite == 4u);
     BOOST_TEST(statistics.singular == 4u);
     BOOST_TEST(statistics.failed == 0u);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(two_close_roots_are_not_merged_by_the_endgame) {
+  // Kostlan degrees (6, 5, 6), seed 104: two real roots 0.07 apart (found and certified by the
+  // subdivision solver in the cross-check).  Their paths swap around a branch point close to t = 0,
+  // so loops at larger |t| close after 2 loops and their mean converges to the centroid; that
+  // must not be taken for a singular endpoint (both roots must be certified).
+  const CompiledSystem compiled(kostlan_system({6, 5, 6}, 104));
+  HomotopyOptions options;
+  options.seed = 104;
+  HomotopyStatistics statistics;
+  options.statistics = &statistics;
+  const auto r = solve_homotopy(compiled, {6, 5, 6}, {}, Domain::from_box({{{-1.0, 1.0}}, {{-1.0, 1.0}}, {{-1.0, 1.0}}}),
+                                options);
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_TEST(statistics.singular == 0u);
+  for (const std::vector<double> root : {std::vector<double>{-0.402875, 0.186436, 0.832277},
+                                         std::vector<double>{-0.360289, 0.170589, 0.760149}}) {
+    bool found = false;
+    for (const auto& certified : r.roots) {
+      double d = 0;
+      for (std::size_t i = 0; i < 3; ++i) d = std::max(d, std::abs(certified.midpoint[i] - root[i]));
+      found = found || d <= 1e-6;
+    }
+    BOOST_TEST(found, "root " << root[0] << " " << root[1] << " " << root[2]);
   }
 }
 

@@ -445,7 +445,7 @@ BOOST_AUTO_TEST_CASE(two_close_roots_are_not_merged_by_the_endgame) {
                                 options);
   BOOST_TEST(r.status == SolveStatus::complete);
   BOOST_TEST(statistics.singular == 0u);
-  for (const std::vector<double> root : {std::vector<double>{-0.402875, 0.186436, 0.832277},
+  for (const std::vector<double>& root : {std::vector<double>{-0.402875, 0.186436, 0.832277},
                                          std::vector<double>{-0.360289, 0.170589, 0.760149}}) {
     bool found = false;
     for (const auto& certified : r.roots) {

@@ -6,11 +6,13 @@
 //! predictor, Newton corrector with a trust bound, step halving on failure and doubling after two
 //! successes), in homogeneous coordinates on a random affine patch so that paths going to infinity
 //! stay bounded; the Cauchy endgame near t = 0 (loops around t = 0 at geometrically shrinking |t|,
-//! endpoint = mean of the loop samples; detail/homotopy_tracker.h), which computes endpoints at
-//! infinity and singular endpoints as accurately as regular ones and finds each path's winding
-//! number; classification of each endpoint as at infinity (diverging), singular (winding number
-//! > 1, or ill-conditioned Jacobian) or regular; then Krawczyk certification of each real regular
-//! endpoint inside the domain.  Independent oracle for the subdivision solver and a backend
+//! endpoint = mean of the loop samples; detail/homotopy_tracker.h), which computes singular
+//! endpoints (and points at infinity) as accurately as regular ones and finds each path's winding
+//! number, with valuation estimates (X_0 ~ t^{ν_0}, ν_0 > 0) to recognise paths to infinity that
+//! the loops cannot resolve cheaply, and a direct finish for regular endpoints; classification of
+//! each endpoint as at infinity (diverging), singular (winding number > 1, or ill-conditioned
+//! Jacobian) or regular; then Krawczyk certification of each real regular endpoint inside the
+//! domain.  Independent oracle for the subdivision solver and a backend
 //! (--solver homotopy).  Roots not certified (singular, diverging near the domain) come back
 //! undecided; a path failure (tracking or endgame) is reported, never dropped.
 

@@ -50,9 +50,10 @@ inline constexpr int homotopy_corrector_iterations = 3;
 //! (relative to 1 + ‖u‖∞); a larger one means the step was too long (guards against path jumping).
 inline constexpr double homotopy_corrector_trust = 1e-3;
 
-//! Homotopy endgame: a path whose ‖u‖∞ exceeds this once s ≥ homotopy_endgame_start goes to a
-//! solution at infinity (diverging); a path whose step underflows before homotopy_endgame_start
-//! has failed (and makes the solve undecided).
+//! Homotopy endgame: a path whose ‖u‖∞ exceeds this (|X_0| ‖X‖∞⁻¹ below its inverse) at a point of
+//! the endgame (s ≥ homotopy_endgame_start), or whose endgame estimate does, goes to a solution at
+//! infinity (diverging); a path whose step underflows before homotopy_endgame_start has failed
+//! (and makes the solve undecided).
 inline constexpr double homotopy_divergence_norm = 1e8;
 inline constexpr double homotopy_endgame_start = 0.9;
 
@@ -79,6 +80,36 @@ inline constexpr double homotopy_domain_margin = 1e-6;
 
 //! Homotopy: the most predictor–corrector steps one path may take before it is declared failed.
 inline constexpr std::size_t homotopy_max_steps_per_path = 20000;
+
+//! Homotopy Cauchy endgame (solvers/detail/homotopy_tracker.h), from t = 1 − homotopy_endgame_start:
+//! loops |t| = t_k with homotopy_endgame_samples samples each (the trapezoid rule's error is
+//! O(t_k^samples)), t_{k+1} = homotopy_endgame_ratio · t_k; the endpoint estimate is accepted when two
+//! successive estimates agree to homotopy_endgame_tolerance (relative, max norm of the projective
+//! point); a path that needs more than homotopy_endgame_max_winding loops to close up, or that has
+//! not converged when t_k would fall below homotopy_endgame_min_t, has failed.  A loop has closed
+//! when its end is within homotopy_endgame_closure times the smallest distance between two successive
+//! samples of its start (an unclosed loop ends on another branch, about a sample spacing away or more).
+inline constexpr int homotopy_endgame_samples = 8;
+inline constexpr double homotopy_endgame_ratio = 0.5;
+inline constexpr double homotopy_endgame_tolerance = 1e-10;
+inline constexpr int homotopy_endgame_max_winding = 16;
+inline constexpr double homotopy_endgame_min_t = 1e-12;
+inline constexpr double homotopy_endgame_closure = 0.1;
+//! Homotopy endgame, valuations ν_j = lim t X_j'/X_j of the homogeneous coordinates (X_j ~ t^{ν_j}),
+//! estimated at each t_k and shifted so that the smallest is 0: the loops start once no estimate
+//! changed by more than homotopy_endgame_valuation_stable from t_{k−1} to t_k (the path is in its
+//! Puiseux regime); a path whose ν_0 and its Aitken extrapolation are at least
+//! homotopy_endgame_valuation_infinity, with the estimates stable at three successive steps
+//! t_{k−1} → t_k, goes to infinity (diverging).
+inline constexpr double homotopy_endgame_valuation_stable = 0.05;
+inline constexpr double homotopy_endgame_valuation_infinity = 0.05;
+//! Homotopy endgame: the valuation test for infinity is applied only at t_k ≤ this (paths can
+//! look like going to infinity for a while and turn back to a finite endpoint).
+inline constexpr double homotopy_endgame_valuation_max_t = 1e-4;
+//! Homotopy endgame: at t_0, and after a loop closes with winding number 1, the path may finish by
+//! tracking straight to t = 0 in at most this many steps (accepted only at a regular,
+//! well-conditioned zero).
+inline constexpr std::size_t homotopy_endgame_direct_steps = 8;
 
 //! Outward widening, in ulps, of each endpoint of an Interval exp, log, sin or cos (see
 //! symbolic/scalar_traits.h).  glibc's libm test suite fails any of these functions whose error

@@ -289,6 +289,15 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
   settings.max_steps = options.max_steps_per_path;
 
   SolveResult result;
+  HomotopyStatistics statistics;
+  const auto track = [&](const std::vector<Complex>& start, const detail::TrackerSettings& with) {
+    PathEndpoint end = tracker.track(start, with);
+    ++result.counters.paths;
+    statistics.steps += end.steps;
+    statistics.rejections += end.rejections;
+    statistics.max_winding = std::max(statistics.max_winding, end.winding);
+    return end;
+  };
   const auto starts = total_degree_start_solutions(degrees);
   std::vector<PathEndpoint> ends;
   ends.reserve(starts.size());
@@ -298,8 +307,7 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
       out_of_time = true;
       break;
     }
-    ends.push_back(tracker.track(start, settings));
-    ++result.counters.paths;
+    ends.push_back(track(start, settings));
   }
 
   // Two paths at the same regular root: one of them jumped (a regular root is the end of exactly
@@ -316,10 +324,7 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
         if (std::max(ends[i].condition, ends[j].condition) > tol::homotopy_cluster_condition) {
           ends[i].outcome = ends[j].outcome = PathOutcome::singular;
         } else if (retrack) {
-          for (std::size_t k : {i, j}) {
-            ends[k] = tracker.track(starts[k], settings.stricter());
-            ++result.counters.paths;
-          }
+          for (std::size_t k : {i, j}) ends[k] = track(starts[k], settings.stricter());
         } else {
           jumped = true;
         }
@@ -338,14 +343,15 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
     return true;
   };
 
-  std::size_t failed = 0;
   std::vector<Certified> certified;
   for (const auto& end : ends) {
-    if (end.outcome == PathOutcome::failed) {
-      ++failed;
-      continue;
+    switch (end.outcome) {
+      case PathOutcome::finite: ++statistics.finite; break;
+      case PathOutcome::singular: ++statistics.singular; break;
+      case PathOutcome::diverging: ++statistics.diverging; break;
+      case PathOutcome::failed: ++statistics.failed; break;
     }
-    if (end.outcome == PathOutcome::diverging) continue;
+    if (end.outcome == PathOutcome::failed || end.outcome == PathOutcome::diverging) continue;
     const double scale = 1 + max_abs(end.point);
     std::vector<double> x(n);
     for (std::size_t i = 0; i < n; ++i) x[i] = end.point[i].real();
@@ -413,13 +419,14 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
   if (out_of_time) {
     add_undecided(result.undecided, domain_box(domain), UndecidedReason::budget, certifier);
     result.status = SolveStatus::time_limit;
-  } else if (failed > 0 || jumped) {
+  } else if (statistics.failed > 0 || jumped) {
     add_undecided(result.undecided, domain_box(domain), UndecidedReason::precision, certifier);
     result.status = SolveStatus::undecided;
   } else {
     result.status = result.undecided.empty() ? SolveStatus::complete : SolveStatus::undecided;
   }
   result.counters.seconds = elapsed();
+  if (options.statistics) *options.statistics = statistics;
   return result;
 }
 

@@ -4,8 +4,9 @@
 //     direction, over [−1, 1]³.  Targets (issue 3): subdivision ≤ 5 ms at d = 4, ≤ 200 ms at d = 8.
 //  2. surface_critical of the catalog surfaces torus, genus2, tanglecube over their catalog box,
 //     in a generic (seeded) direction.
-// Reports medians of the thread CPU time per system (one core), box counts, paths, roots and the time ratio
-// homotopy / subdivision; optionally writes CSV (with the git revision and the parameters).
+// Reports medians of the thread CPU time per system (one core), box counts, paths, mean predictor–corrector
+// steps per path (accepted + rejected, endgame included), roots and the time ratio homotopy / subdivision;
+// optionally writes CSV (with the git revision and the parameters).
 
 #include <algorithm>
 #include <ctime>
@@ -67,7 +68,7 @@ double seconds_of(F&& f) {
 struct Row {
   std::string name;
   std::size_t systems = 0;
-  std::vector<double> sub_seconds, hom_seconds, ratio, boxes, paths, roots_sub, roots_hom;
+  std::vector<double> sub_seconds, hom_seconds, ratio, boxes, paths, steps_per_path, roots_sub, roots_hom;
   std::size_t sub_complete = 0, hom_complete = 0, both_complete = 0, count_mismatch = 0;
 };
 
@@ -76,8 +77,10 @@ void measure(Row& row, const CompiledSystem& compiled, const std::vector<int>& d
              const std::vector<double>& parameters, const Domain& domain, std::uint64_t seed, int repeats) {
   std::vector<double> ts, th;
   SolveResult sub, hom;
+  HomotopyStatistics statistics;
   HomotopyOptions options;
   options.seed = seed;
+  options.statistics = &statistics;
   for (int r = 0; r < repeats; ++r) {
     ts.push_back(seconds_of([&] { sub = solve_subdivision(compiled, parameters, domain); }));
     th.push_back(seconds_of([&] { hom = solve_homotopy(compiled, degrees, parameters, domain, options); }));
@@ -88,6 +91,8 @@ void measure(Row& row, const CompiledSystem& compiled, const std::vector<int>& d
   row.ratio.push_back(median(th) / median(ts));
   row.boxes.push_back(static_cast<double>(sub.counters.boxes));
   row.paths.push_back(static_cast<double>(hom.counters.paths));
+  row.steps_per_path.push_back(static_cast<double>(statistics.steps + statistics.rejections) /
+                               static_cast<double>(std::max<std::size_t>(hom.counters.paths, 1)));
   row.roots_sub.push_back(static_cast<double>(sub.roots.size()));
   row.roots_hom.push_back(static_cast<double>(hom.roots.size()));
   row.sub_complete += sub.is_complete();
@@ -101,15 +106,15 @@ void measure(Row& row, const CompiledSystem& compiled, const std::vector<int>& d
 void print(const Row& row, std::ostream* csv, const std::string& revision) {
   std::cout << fmt::format(
       "{:<26} {:>4} | subdiv {:>9.3f} ms  boxes {:>7.0f} complete {:>3}/{} | homotopy {:>9.3f} ms  paths {:>5.0f} "
-      "complete {:>3}/{} | ratio hom/sub {:>6.2f} | roots {:>4.1f}/{:>4.1f} | count mismatches {}\n",
+      "steps/path {:>6.1f} complete {:>3}/{} | ratio hom/sub {:>6.2f} | roots {:>4.1f}/{:>4.1f} | count mismatches {}\n",
       row.name, row.systems, 1e3 * median(row.sub_seconds), median(row.boxes), row.sub_complete, row.systems,
-      1e3 * median(row.hom_seconds), median(row.paths), row.hom_complete, row.systems, median(row.ratio),
-      median(row.roots_sub), median(row.roots_hom), row.count_mismatch);
+      1e3 * median(row.hom_seconds), median(row.paths), median(row.steps_per_path), row.hom_complete, row.systems,
+      median(row.ratio), median(row.roots_sub), median(row.roots_hom), row.count_mismatch);
   if (csv)
-    *csv << fmt::format("{},{},{},{:.6f},{:.0f},{},{:.6f},{:.0f},{},{:.4f},{},{}\n", revision, row.name, row.systems,
-                        1e3 * median(row.sub_seconds), median(row.boxes), row.sub_complete,
-                        1e3 * median(row.hom_seconds), median(row.paths), row.hom_complete, median(row.ratio),
-                        row.both_complete, row.count_mismatch);
+    *csv << fmt::format("{},{},{},{:.6f},{:.0f},{},{:.6f},{:.0f},{:.2f},{},{:.4f},{},{}\n", revision, row.name,
+                        row.systems, 1e3 * median(row.sub_seconds), median(row.boxes), row.sub_complete,
+                        1e3 * median(row.hom_seconds), median(row.paths), median(row.steps_per_path),
+                        row.hom_complete, median(row.ratio), row.both_complete, row.count_mismatch);
 }
 
 }  // namespace
@@ -139,7 +144,7 @@ int main(int argc, char** argv) {
     *csv << "# bench_homotopy revision " << revision << " systems " << systems << " repeats " << repeats << " seed "
          << seed << "\n";
     *csv << "revision,name,systems,subdivision_ms_median,boxes_median,subdivision_complete,homotopy_ms_median,"
-            "paths_median,homotopy_complete,ratio_median,both_complete,count_mismatches\n";
+            "paths_median,steps_per_path_median,homotopy_complete,ratio_median,both_complete,count_mismatches\n";
   }
   std::cout << "bench_homotopy revision " << revision << " (medians over systems of the thread CPU time, each the median of "
             << repeats << " runs; one core)\n";

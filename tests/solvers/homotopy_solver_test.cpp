@@ -8,6 +8,7 @@
 #include "common/errors.h"
 #include "solvers/detail/homotopy_tracker.h"
 #include "solvers/homotopy_solver.h"
+#include "solvers/kostlan_system.h"
 #include "solvers/query_geometry.h"
 #include "symbolic/catalog.h"
 #include "symbolic/primitives.h"
@@ -34,11 +35,39 @@ PrimitiveSystem make_system(std::vector<ex> equations, std::vector<symbol> unkno
 }
 
 SolveResult solve(const PrimitiveSystem& system, const std::vector<double>& parameters, const Domain& domain,
-                  std::uint64_t seed = 1) {
+                  std::uint64_t seed = 1, HomotopyStatistics* statistics = nullptr) {
   const CompiledSystem compiled(system);
   HomotopyOptions options;
   options.seed = seed;
+  options.statistics = statistics;
   return solve_homotopy(compiled, equation_degrees(system), parameters, domain, options);
+}
+
+//! Every path of the total-degree homotopy of `system` (no parameters), tracked with a fixed γ and
+//! patch.
+std::vector<detail::PathEndpoint> track_all(const PrimitiveSystem& system,
+                                            const detail::TrackerSettings& settings = detail::TrackerSettings::defaults()) {
+  const CompiledSystem compiled(system);
+  const auto degrees = equation_degrees(system);
+  std::vector<Complex> patch;
+  for (std::size_t j = 0; j <= degrees.size(); ++j)
+    patch.push_back(std::polar(1.0 / std::sqrt(degrees.size() + 1.0), 0.37 + 1.91 * static_cast<double>(j)));
+  const detail::HomotopyTracker tracker(compiled, degrees, {}, std::polar(1.0, 2.2), patch);
+  std::vector<detail::PathEndpoint> ends;
+  for (const auto& start : total_degree_start_solutions(degrees))
+    ends.push_back(tracker.track(start, settings));
+  return ends;
+}
+
+std::size_t count(const std::vector<detail::PathEndpoint>& ends, detail::PathOutcome outcome) {
+  return static_cast<std::size_t>(
+      std::count_if(ends.begin(), ends.end(), [&](const auto& end) { return end.outcome == outcome; }));
+}
+
+double distance_to(const std::vector<Complex>& u, const std::vector<double>& expected) {
+  double d = 0;
+  for (std::size_t i = 0; i < expected.size(); ++i) d = std::max(d, std::abs(u[i] - expected[i]));
+  return d;
 }
 
 //! The certified root matching `expected` (max-norm distance ≤ 1e-10), checking it lies in its box.
@@ -286,6 +315,146 @@ BOOST_AUTO_TEST_CASE(invalid_input_throws) {
   BOOST_CHECK_THROW((void)solve_homotopy(compiled, {2, 1}, {}, Domain::from_box({{{-2.0, 2.0}}})), InvalidInput);
   const auto over = make_system({X() * X() + Y() * Y() - 1, Y() - X(), X()}, {X(), Y()});
   BOOST_CHECK_THROW((void)solve_homotopy(CompiledSystem(over), {2, 1, 1}, {}, box2), InvalidInput);
+}
+
+BOOST_AUTO_TEST_CASE(cauchy_endgame_finds_a_triple_root_with_winding_number_three) {
+  // (2x − 1)³ (x + 2): the three paths to the triple root x = 1/2 form one cycle (c = 3); Newton
+  // would only reach |x − 1/2| ~ ε^{1/3} there, the Cauchy estimate is far better.  (Not (x − 1)³:
+  // x = 1 also solves the start equation x⁴ = 1, so one path would stay at x = 1 and c = 2.)
+  const auto s = make_system({GiNaC::pow(2 * X() - 1, 3) * (X() + 2)}, {X()});
+  const auto ends = track_all(s);
+  BOOST_REQUIRE(ends.size() == 4u);
+  BOOST_TEST(count(ends, detail::PathOutcome::singular) == 3u);
+  BOOST_TEST(count(ends, detail::PathOutcome::finite) == 1u);
+  for (const auto& end : ends) {
+    BOOST_TEST_MESSAGE(end.outcome << " c = " << end.winding << " u = " << end.point[0] << " steps " << end.steps
+                                   << " + " << end.rejections << " rejected");
+    if (end.outcome == detail::PathOutcome::singular) {
+      BOOST_TEST(end.winding == 3);
+      BOOST_TEST(distance_to(end.point, {0.5}) <= 1e-6);
+      BOOST_TEST(end.last_correction <= 1e-6);  // its own accuracy estimate
+    } else {
+      BOOST_TEST(end.winding <= 1);  // 0: finished directly, without a loop
+      BOOST_TEST(distance_to(end.point, {-2.0}) <= 1e-12);
+    }
+  }
+  // the solver: −2 certified, 1/2 undecided (singular_root), never certified
+  HomotopyStatistics statistics;
+  const auto r = solve(s, {}, Domain::from_box({{{-3.0, 3.0}}}), 1, &statistics);
+  BOOST_TEST(r.status == SolveStatus::undecided);
+  BOOST_REQUIRE(r.roots.size() == 1u);
+  BOOST_TEST(has_root(r, {-2.0}));
+  BOOST_REQUIRE(r.undecided.size() == 1u);
+  BOOST_TEST(r.undecided[0].reason == UndecidedReason::singular_root);
+  BOOST_TEST(r.undecided[0].box.bounds[0][0] <= 0.5);
+  BOOST_TEST(r.undecided[0].box.bounds[0][1] >= 0.5);
+  BOOST_TEST(r.undecided[0].box.bounds[0][1] - r.undecided[0].box.bounds[0][0] <= 1e-3);
+  BOOST_TEST(statistics.singular == 3u);
+  BOOST_TEST(statistics.finite == 1u);
+  BOOST_TEST(statistics.max_winding == 3);
+}
+
+BOOST_AUTO_TEST_CASE(an_endgame_whose_loops_do_not_close_fails_the_path) {
+  // the triple root needs c = 3 loops; allowing at most 2 the three paths must come back failed
+  const auto s = make_system({GiNaC::pow(2 * X() - 1, 3) * (X() + 2)}, {X()});
+  auto settings = detail::TrackerSettings::defaults();
+  settings.endgame_max_winding = 2;
+  const auto ends = track_all(s, settings);
+  BOOST_TEST(count(ends, detail::PathOutcome::failed) == 3u);
+  BOOST_TEST(count(ends, detail::PathOutcome::finite) == 1u);
+  // and one that must conclude before t = 0.1: the Cauchy estimates at the triple root need two
+  // levels, so those three paths fail; the regular one finishes directly
+  settings = detail::TrackerSettings::defaults();
+  settings.endgame_min_t = 0.09;
+  const auto early = track_all(s, settings);
+  BOOST_TEST(count(early, detail::PathOutcome::failed) == 3u);
+  BOOST_TEST(count(early, detail::PathOutcome::finite) == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(cauchy_endgame_at_tangent_circles_and_the_circular_points) {
+  // x² + y² = 1 and (x − 2)² + y² = 1 touch at (1, 0) (multiplicity 2, one cycle of c = 2);
+  // the other two paths go to the circular points at infinity (1 : ±i : 0).
+  const auto s = make_system({X() * X() + Y() * Y() - 1, (X() - 2) * (X() - 2) + Y() * Y() - 1}, {X(), Y()});
+  const auto ends = track_all(s);
+  BOOST_REQUIRE(ends.size() == 4u);
+  BOOST_TEST(count(ends, detail::PathOutcome::diverging) == 2u);
+  BOOST_TEST(count(ends, detail::PathOutcome::singular) == 2u);
+  for (const auto& end : ends) {
+    BOOST_TEST_MESSAGE(end.outcome << " c = " << end.winding << " u = (" << end.point[0] << ", " << end.point[1]
+                                   << ") steps " << end.steps << " + " << end.rejections << " rejected");
+    if (end.outcome != detail::PathOutcome::singular) continue;
+    BOOST_TEST(end.winding == 2);
+    BOOST_TEST(distance_to(end.point, {1.0, 0.0}) <= 1e-6);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(three_paths_to_a_singular_point_at_infinity) {
+  // y = x² and y = x² + x − 1 meet at (1, 1) only: of the 4 Bézout paths, 3 go to the point
+  // (0 : 1 : 0) at infinity, where the homogenised curves YW = X² and YW = X² + XW − W² meet with
+  // intersection multiplicity 3.
+  const auto s = make_system({Y() - X() * X(), Y() - X() * X() - X() + 1}, {X(), Y()});
+  const auto ends = track_all(s);
+  BOOST_TEST(count(ends, detail::PathOutcome::diverging) == 3u);
+  BOOST_TEST(count(ends, detail::PathOutcome::finite) == 1u);
+  HomotopyStatistics statistics;
+  const auto r = solve(s, {}, Domain::from_box({{{-3.0, 3.0}}, {{-3.0, 3.0}}}), 1, &statistics);
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_REQUIRE(r.roots.size() == 1u);
+  BOOST_TEST(has_root(r, {1.0, 1.0}));
+  BOOST_TEST(statistics.diverging == 3u);
+  BOOST_TEST(statistics.finite == 1u);
+  BOOST_TEST(statistics.failed == 0u);
+}
+
+BOOST_AUTO_TEST_CASE(torus_critical_points_and_its_paths_to_infinity) {
+  // E = (x² + y² + z² + 0.84)² − 4(x² + y²), direction d ∥ (3, −5, 8): 4 · 3 · 3 = 36 paths.  The
+  // affine solutions number 8 with multiplicity (dimension of the quotient ring, Gröbner basis in
+  // sympy for this direction): the 4 real critical points of the height ⟨d, ·⟩ on the torus, and
+  // the singular points (0, 0, ±i√0.84) of the complexified torus (∇E = 0 there), 2 each, so 28
+  // paths go to infinity, where the solution set is singular.
+  const auto system = surface_critical_system(catalog_entry("torus").surface());
+  const auto frame = orthonormal_frame(unit_vector({3, -5, 8}));
+  const std::vector<double> parameters{frame.a[0], frame.a[1], frame.a[2], frame.b[0], frame.b[1], frame.b[2]};
+  for (std::uint64_t seed : {1, 2}) {
+    HomotopyStatistics statistics;
+    const auto r = solve(system, parameters, box_domain(catalog_entry("torus").box), seed, &statistics);
+    BOOST_TEST_MESSAGE("seed " << seed << ": finite " << statistics.finite << " singular " << statistics.singular
+                               << " diverging " << statistics.diverging << " failed " << statistics.failed
+                               << ", steps per path " << (statistics.steps + statistics.rejections) / 36.0
+                               << ", max winding " << statistics.max_winding);
+    BOOST_TEST(r.status == SolveStatus::complete);
+    BOOST_TEST(r.roots.size() == 4u);
+    BOOST_TEST(statistics.diverging == 28u);
+    BOOST_TEST(statistics.finite == 4u);
+    BOOST_TEST(statistics.singular == 4u);
+    BOOST_TEST(statistics.failed == 0u);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(two_close_roots_are_not_merged_by_the_endgame) {
+  // Kostlan degrees (6, 5, 6), seed 104: two real roots 0.07 apart (found and certified by the
+  // subdivision solver in the cross-check).  Their paths swap around a branch point close to t = 0,
+  // so loops at larger |t| close after 2 loops and their mean converges to the centroid; that
+  // must not be taken for a singular endpoint (both roots must be certified).
+  const CompiledSystem compiled(kostlan_system({6, 5, 6}, 104));
+  HomotopyOptions options;
+  options.seed = 104;
+  HomotopyStatistics statistics;
+  options.statistics = &statistics;
+  const auto r = solve_homotopy(compiled, {6, 5, 6}, {}, Domain::from_box({{{-1.0, 1.0}}, {{-1.0, 1.0}}, {{-1.0, 1.0}}}),
+                                options);
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_TEST(statistics.singular == 0u);
+  for (const std::vector<double>& root : {std::vector<double>{-0.402875, 0.186436, 0.832277},
+                                         std::vector<double>{-0.360289, 0.170589, 0.760149}}) {
+    bool found = false;
+    for (const auto& certified : r.roots) {
+      double d = 0;
+      for (std::size_t i = 0; i < 3; ++i) d = std::max(d, std::abs(certified.midpoint[i] - root[i]));
+      found = found || d <= 1e-6;
+    }
+    BOOST_TEST(found, "root " << root[0] << " " << root[1] << " " << root[2]);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(path_outcome_prints) {

@@ -12,7 +12,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from paper_common import output_path, read_csv, read_off, render_mesh  # noqa: E402
+from paper_common import read_csv, read_off, render_mesh, save_figure  # noqa: E402
 
 
 def mesh_file(out, row):
@@ -57,9 +57,7 @@ def main():
     fig.suptitle("Coarse CGAL settings vs delmesh: topology found by the independent checker "
                  "(expected: thin_handle genus 1; two_blobs, near_sheets two spheres)", fontsize=11)
     fig.subplots_adjust(left=0, right=1, bottom=0, top=0.86, wspace=0, hspace=0.12)
-    target = output_path(args.out, "figures", "topology_demo.png")
-    fig.savefig(target, dpi=130)
-    print("wrote", target)
+    save_figure(fig, args.out, "topology_demo.png", dpi=130)
 
 
 if __name__ == "__main__":

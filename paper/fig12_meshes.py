@@ -12,7 +12,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from paper_common import output_path, read_csv, read_off, render_mesh  # noqa: E402
+from paper_common import read_csv, read_off, render_mesh, save_figure  # noqa: E402
 
 
 def main():
@@ -43,9 +43,7 @@ def main():
         render_mesh(ax, points, triangles, caption)
     fig.suptitle("DelMesh on implicit surfaces (cf. Fig. 12)", fontsize=11)
     fig.subplots_adjust(left=0, right=1, bottom=0, top=0.86, wspace=0, hspace=0.12)
-    target = output_path(args.out, "figures", "fig12.png")
-    fig.savefig(target, dpi=150)
-    print("wrote", target)
+    save_figure(fig, args.out, "fig12.png")
 
 
 if __name__ == "__main__":

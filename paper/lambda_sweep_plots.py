@@ -14,7 +14,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from paper_common import loglog_slope, output_path, read_csv, surface_color  # noqa: E402
+from paper_common import loglog_slope, read_csv, save_figure, surface_color  # noqa: E402
 
 
 def completed(rows):
@@ -67,9 +67,7 @@ def main():
     axes[0].legend(fontsize=8)
     fig.suptitle(f"Measured quality vs Theorem 6.1 (git {meta.get('git', '?')})", fontsize=11)
     fig.tight_layout()
-    target = output_path(args.out, "figures", "lambda_bounds.png")
-    fig.savefig(target, dpi=150)
-    print("wrote", target)
+    save_figure(fig, args.out, "lambda_bounds.png")
 
     sized = [r for r in rows if isinstance(r["lfs_integral"], float) and not math.isnan(r["lfs_integral"])]
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
@@ -101,9 +99,7 @@ def main():
     axes[1].legend(fontsize=8)
     fig.suptitle("Size: Theorem 6.1(iii)", fontsize=11)
     fig.tight_layout()
-    target = output_path(args.out, "figures", "lambda_size.png")
-    fig.savefig(target, dpi=150)
-    print("wrote", target)
+    save_figure(fig, args.out, "lambda_size.png")
 
 
 if __name__ == "__main__":

@@ -123,3 +123,11 @@ def output_path(out_dir, *parts):
     path = os.path.join(out_dir, *parts)
     os.makedirs(os.path.dirname(path), exist_ok=True)
     return path
+
+
+def save_figure(fig, out_dir, name, dpi=150):
+    """Writes fig as <out_dir>/figures/<name> and reports the path."""
+    target = output_path(out_dir, "figures", name)
+    fig.savefig(target, dpi=dpi)
+    print("wrote", target)
+    return target

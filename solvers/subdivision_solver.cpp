@@ -79,10 +79,8 @@ class Subdivision {
     if (form_) {
       int degree = 0;
       for (std::size_t i = 0; i < m_; ++i) degree = std::max(degree, form_->basis(i).degree());
-      const Interval rho(1 + 2 * tolerances::krawczyk_inflation);
-      cube_powers_.assign(static_cast<std::size_t>(degree) + 1, Interval(1));
-      inflated_powers_.assign(static_cast<std::size_t>(degree) + 1, Interval(1));
-      for (std::size_t j = 1; j < inflated_powers_.size(); ++j) inflated_powers_[j] = inflated_powers_[j - 1] * rho;
+      cube_powers_ = detail::radius_powers(1, degree);
+      inflated_powers_ = detail::radius_powers(1 + 2 * tolerances::krawczyk_inflation, degree);
     }
     const double scale = domain.scale();
     singular_width_ = tolerances::singular_box_relative_width * scale;

@@ -62,6 +62,12 @@ void bisect_axis(const MonomialBasis& basis, std::size_t axis, int side, Interva
   }
 }
 
+std::vector<Interval> radius_powers(double rho, int degree) {
+  std::vector<Interval> powers(static_cast<std::size_t>(degree) + 1, Interval(1));
+  for (std::size_t j = 1; j < powers.size(); ++j) powers[j] = powers[j - 1] * Interval(rho);
+  return powers;
+}
+
 Interval range_on_cube(const MonomialBasis& basis, const Interval* a, const Interval* rho_powers) {
   CubeSum sum;
   for (std::size_t i = 1; i < basis.size(); ++i)

@@ -11,6 +11,7 @@
 //! under a live RoundingGuard, so each result encloses the exact one.
 
 #include <cstddef>
+#include <vector>
 
 #include "symbolic/monomial_basis.h"
 #include "symbolic/scalar_types.h"
@@ -25,6 +26,9 @@ void substitute_affine(const MonomialBasis& basis, std::size_t axis, const Inter
 //! The half of the cube on `side` (−1: s_axis ≤ 0, +1: s_axis ≥ 0) as a new cube: substitute_affine
 //! with μ = side/2, ρ = 1/2, computed with exact power-of-two scalings and additions only.
 void bisect_axis(const MonomialBasis& basis, std::size_t axis, int side, Interval* a);
+
+//! Enclosures of ρ^0, …, ρ^degree for a cube of half-width ρ ≥ 1 (the `rho_powers` below).
+std::vector<Interval> radius_powers(double rho, int degree);
 
 //! An enclosure of {g(s) : s ∈ [−ρ, ρ]^n}, ρ ≥ 1 given by its powers: rho_powers[j] ⊇ ρ^j for
 //! j ≤ basis.degree().

@@ -40,12 +40,6 @@ RandomPolynomial random_polynomial(const MonomialBasis& basis, const std::vector
 
 std::vector<GiNaC::symbol> symbols() { return {GiNaC::symbol("s0"), GiNaC::symbol("s1"), GiNaC::symbol("s2")}; }
 
-std::vector<Interval> powers(double rho, int degree) {
-  std::vector<Interval> out(static_cast<std::size_t>(degree) + 1, Interval(1));
-  for (std::size_t j = 1; j < out.size(); ++j) out[j] = out[j - 1] * Interval(rho);
-  return out;
-}
-
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(taylor_form)
@@ -100,7 +94,7 @@ BOOST_AUTO_TEST_CASE(ranges_and_gradients_enclose_sampled_values) {
   RoundingGuard guard;
   for (double rho : {1.0, 1.125}) {
     const MonomialBasis basis(3, 5);
-    const std::vector<Interval> rho_powers = powers(rho, 5);
+    const std::vector<Interval> rho_powers = detail::radius_powers(rho, 5);
     const RandomPolynomial p = random_polynomial(basis, s, rng);
     const Interval range = detail::range_on_cube(basis, p.coefficients.data(), rho_powers.data());
     Interval gradient[3];
@@ -119,8 +113,8 @@ BOOST_AUTO_TEST_CASE(monomial_ranges_are_exact) {
   // s0² s1⁴ ranges over [0, 1] and s0 s1 over [−1, 1] on the unit cube: each monomial's range is
   // exact, so the range of a single monomial is not overestimated at all.
   const MonomialBasis basis(2, 6);
-  const std::vector<Interval> unit = powers(1, 6);
   RoundingGuard guard;
+  const std::vector<Interval> unit = detail::radius_powers(1, 6);
   std::vector<Interval> even(basis.size(), Interval(0)), odd(basis.size(), Interval(0));
   even[basis.index({2, 4, 0})] = Interval(3);
   odd[basis.index({1, 1, 0})] = Interval(-2);

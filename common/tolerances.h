@@ -190,6 +190,10 @@ inline constexpr double face_membership_relative_tolerance = 1e-7;
 //! A witness closer than this fraction of the box diagonal to an existing sample is a duplicate
 //! and is not inserted (it is counted as rejected).
 inline constexpr double duplicate_sample_relative_distance = 1e-9;
+//! Box budget of one gradient-cone certificate (solvers/gradient_cone.h) over a Voronoi facet or
+//! cell; the full solvers run when it does not suffice.  Small, because a certificate that needs
+//! many boxes rarely succeeds and the solve is then needed anyway.
+inline constexpr std::size_t gradient_cone_box_budget = 48;
 //! Interval subdivision of a box face to certify E ≠ 0 on it: maximal depth of the quadtree.
 inline constexpr int box_face_max_depth = 14;
 //! The mesher reports progress at most this often (seconds).

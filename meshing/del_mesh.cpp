@@ -1,9 +1,9 @@
 // DelMesh (§6.2): the entry point of the mesher.  See del_mesh.h.
 //
 // Choices (beyond the paper):
-// - Quality and Smooth examine the triangles whose dual Voronoi edges changed (a local work list
-//   fed by Topology::take_changed_triangles), Quality's list before Smooth's, so the order of
-//   steps 2 and 3 holds; after every insertion Topology runs again on its local queues.
+// - SampleTopology, then the same refinement driver with Quality and Smooth turned on
+//   (meshing/refinement.h): its table runs the topology checks before Quality, Quality before
+//   Smooth, and every witness sends it back to step (a).
 // - λ ≥ 1/6 leaves β(λ) undefined: Smooth is then skipped (statistics: "smooth_enabled": false).
 // - Output vertices are sorted by insertion id and triangles by their sorted ids, so a given
 //   surface, box and seed give the same mesh byte for byte.
@@ -24,7 +24,7 @@
 #include "meshing/smooth.h"
 #include "meshing/surface_oracle.h"
 #include "meshing/theorem_bounds.h"
-#include "meshing/topology.h"
+#include "meshing/refinement.h"
 
 namespace delmesh {
 
@@ -47,73 +47,10 @@ std::ostream& operator<<(std::ostream& out, MeshStatus status) {
 
 namespace {
 
-MeshStatus to_mesh_status(TopologyStatus s) {
-  switch (s) {
-    case TopologyStatus::complete: return MeshStatus::complete;
-    case TopologyStatus::point_limit: return MeshStatus::point_limit;
-    case TopologyStatus::time_limit: return MeshStatus::time_limit;
-  }
-  return MeshStatus::complete;
-}
-
-// Steps 2–3 of DelMesh with local work lists.
-TopologyStatus refine_geometry(Topology& topology, const DelMeshOptions& options, double smooth_threshold,
-                               bool smooth_enabled) {
-  auto& restricted = topology.restricted();
-  std::set<TriangleKey> quality_list, smooth_list;
-  auto absorb = [&] {
-    for (const auto& t : topology.take_changed_triangles()) {
-      quality_list.insert(t);
-      smooth_list.insert(t);
-    }
-  };
-  // Initially every restricted triangle is examined.
-  topology.take_changed_triangles();
-  for (const auto& t : restricted.triangles()) {
-    quality_list.insert(t);
-    smooth_list.insert(t);
-  }
-  while (true) {
-    if (auto s = topology.limit_reached("geometry")) return *s;
-    absorb();
-    std::optional<Witness> w;
-    if (!quality_list.empty()) {
-      const auto t = *quality_list.begin();
-      quality_list.erase(quality_list.begin());
-      if (!topology.delaunay().is_triangle(t)) continue;
-      const auto start = std::chrono::steady_clock::now();
-      w = quality_witness(restricted, t, options.lambda);
-      if (!w && options.size_bound) w = size_witness(restricted, t, *options.size_bound);
-      topology.add_seconds(CheckKind::quality,
-                           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    } else if (!smooth_list.empty()) {
-      const auto t = *smooth_list.begin();
-      smooth_list.erase(smooth_list.begin());
-      if (!smooth_enabled || !topology.delaunay().is_triangle(t)) continue;
-      if (!restricted.edge_record(t).restricted) continue;
-      const auto start = std::chrono::steady_clock::now();
-      for (const auto& e : {make_edge_key(t[0], t[1]), make_edge_key(t[0], t[2]), make_edge_key(t[1], t[2])}) {
-        w = smooth_witness(restricted, e, smooth_threshold);
-        if (w) break;
-      }
-      // The witness may lie on the dual edge of the other triangle at the rough edge, leaving t
-      // itself unchanged: t goes back on the list so that its remaining edges are examined too.
-      if (w) smooth_list.insert(t);
-      topology.add_seconds(CheckKind::smooth,
-                           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    } else {
-      return TopologyStatus::complete;
-    }
-    if (!w) continue;
-    if (!topology.insert(*w)) continue;
-    if (const auto s = topology.run(); s != TopologyStatus::complete) return s;
-  }
-}
-
 // Tri S|Σ as an outward-oriented Surface_mesh with vertices sorted by id.
-SurfaceMesh output_mesh(Topology& topology, std::size_t& flipped_inconsistent, std::size_t& not_added) {
-  auto& restricted = topology.restricted();
-  const auto& del = topology.delaunay();
+SurfaceMesh output_mesh(Refinement& refinement, std::size_t& flipped_inconsistent, std::size_t& not_added) {
+  auto& restricted = refinement.restricted();
+  const auto& del = refinement.delaunay();
   const auto triangles = restricted.triangles();
   std::set<VertexId> used;
   for (const auto& t : triangles) used.insert(t.begin(), t.end());
@@ -128,7 +65,7 @@ SurfaceMesh output_mesh(Topology& topology, std::size_t& flipped_inconsistent, s
   for (const auto& t : triangles) {
     const Vec3 &p = del.point(t[0]), &q = del.point(t[1]), &r = del.point(t[2]);
     const Vec3 n = cross(q - p, r - p);
-    const Vec3 g = topology.oracle().gradient(restricted.edge_record(t).dual_point);
+    const Vec3 g = refinement.oracle().gradient(restricted.edge_record(t).dual_point);
     std::array<VertexId, 3> f = dot(n, g) >= 0 ? std::array<VertexId, 3>{t[0], t[1], t[2]}
                                                 : std::array<VertexId, 3>{t[0], t[2], t[1]};
     oriented.push_back(f);
@@ -159,27 +96,28 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
 
   validate_input(surface, box);
   SurfaceOracle oracle(surface, box, options.solver);
-  TopologyLimits limits;
+  RefinementLimits limits;
   limits.max_points = options.max_points;
   if (options.time_limit_seconds > 0)
     limits.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                   std::chrono::duration<double>(options.time_limit_seconds));
   limits.progress = options.progress;
-  Topology topology(oracle, options.seed, limits);
+  Refinement refinement(oracle, options.seed, limits);
 
   SeedReport seeds;
-  TopologyStatus status = sample_topology(topology, seeds);
-  const std::size_t topology_vertices = topology.delaunay().size();
+  MeshStatus status = sample_topology(refinement, seeds);
+  const std::size_t topology_vertices = refinement.delaunay().size();
   const double topology_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const bool smooth_enabled = options.lambda < 1.0 / 6.0;
-  const double smooth_threshold = smooth_enabled ? 2 * beta(options.lambda) : 0;
-  if (status == TopologyStatus::complete && options.phase == MeshPhase::all)
-    status = refine_geometry(topology, options, smooth_threshold, smooth_enabled);
+  if (status == MeshStatus::complete && options.phase == MeshPhase::all) {
+    refinement.enable_geometry(options.lambda, options.size_bound);
+    status = refinement.run();
+  }
 
   DelMeshResult result;
-  result.status = to_mesh_status(status);
+  result.status = status;
   std::size_t inconsistent = 0, not_added = 0;
-  result.mesh = output_mesh(topology, inconsistent, not_added);
+  result.mesh = output_mesh(refinement, inconsistent, not_added);
 
   const MeshReport report = check_mesh(result.mesh);
   auto& j = result.statistics;
@@ -216,23 +154,26 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
     j["bounds"] = nlohmann::json::object();
   }
   j["smooth_enabled"] = smooth_enabled;
-  j["insertions"] = topology.insertions_json();
+  j["insertions"] = refinement.insertions_json();
   j["solver"] = oracle.statistics_json();
-  j["solver"]["unresolved_edge_regions"] = topology.restricted().unresolved();
+  j["solver"]["unresolved_edge_regions"] = refinement.restricted().unresolved();
   nlohmann::json per_check = nlohmann::json::object();
   for (CheckKind k : {CheckKind::vor_edge, CheckKind::facet_contact, CheckKind::topo_disk, CheckKind::facet_cycle,
                       CheckKind::silhouette, CheckKind::quality, CheckKind::smooth}) {
     std::ostringstream name;
     name << k;
-    per_check[name.str()] = topology.seconds(k);
+    per_check[name.str()] = refinement.seconds(k);
   }
   j["seconds_per_check"] = per_check;
+  j["checks"] = refinement.checks_json();
+  j["edge_records"] = {{"solved", refinement.restricted().records_solved()},
+                       {"restricted", refinement.restricted().records_restricted()}};
   j["height_direction"] = seeds.height_direction;
   j["height_direction_attempts"] = seeds.attempts;
   j["seed_undecided"] = seeds.undecided;
   j["seed"] = options.seed;
   j["topology_phase"] = {{"vertices", topology_vertices}, {"seconds", topology_seconds}};
-  j["points"] = topology.delaunay().size();
+  j["points"] = refinement.delaunay().size();
   j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

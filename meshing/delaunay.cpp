@@ -54,12 +54,78 @@ Delaunay::~Delaunay() = default;
 Delaunay::Delaunay(Delaunay&&) noexcept = default;
 Delaunay& Delaunay::operator=(Delaunay&&) noexcept = default;
 
+namespace {
+
+// The sorted key of facet (c, i), or nothing if it has the infinite vertex.
+template <class Dt>
+std::optional<TriangleKey> facet_key(const Dt& dt, const typename Dt::Facet& f) {
+  std::array<VertexId, 3> ids{};
+  for (int k = 1; k <= 3; ++k) {
+    const auto v = f.first->vertex((f.second + k) & 3);
+    if (dt.is_infinite(v)) return std::nullopt;
+    ids[k - 1] = v->info().id;
+  }
+  return make_triangle_key(ids[0], ids[1], ids[2]);
+}
+
+template <class Key>
+void sort_unique(std::vector<Key>& keys) {
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+}
+
+}  // namespace
+
 std::optional<VertexId> Delaunay::insert(const std::array<double, 3>& p, bool is_seed) {
+  return insert_point(p, is_seed, nullptr);
+}
+
+std::optional<VertexId> Delaunay::insert(const std::array<double, 3>& p, bool is_seed, InsertionChange& change) {
+  return insert_point(p, is_seed, &change);
+}
+
+std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, bool is_seed,
+                                               InsertionChange* change) {
   for (double c : p)
     if (!std::isfinite(c)) throw PreconditionViolation("Delaunay::insert: non-finite point");
-  const std::size_t before = impl_->dt.number_of_vertices();
-  auto v = impl_->dt.insert(Point3(p[0], p[1], p[2]));
-  if (impl_->dt.number_of_vertices() == before) return std::nullopt;  // coincides with a vertex
+  auto& dt = impl_->dt;
+  const Point3 point(p[0], p[1], p[2]);
+  if (change) *change = InsertionChange{};
+  detail::Dt::Vertex_handle v;
+  if (dt.dimension() == 3) {
+    detail::Dt::Locate_type lt;
+    int li = 0, lj = 0;
+    const auto cell = dt.locate(point, lt, li, lj);
+    if (lt == detail::Dt::VERTEX) return std::nullopt;
+    if (change) {
+      // The cavity: its internal facets are destroyed, its boundary facets shrink.
+      std::vector<detail::Dt::Facet> boundary, internal;
+      dt.find_conflicts(point, cell, std::back_inserter(boundary), CGAL::Emptyset_iterator(),
+                        std::back_inserter(internal));
+      std::vector<EdgeKey> internal_edges;
+      for (const auto& [facets, triangles, edges] :
+           {std::tie(boundary, change->shrunk_triangles, change->shrunk_edges),
+            std::tie(internal, change->destroyed_triangles, internal_edges)})
+        for (const auto& f : facets)
+          if (const auto t = facet_key(dt, f)) {
+            triangles.push_back(*t);
+            edges.insert(edges.end(), {EdgeKey{(*t)[0], (*t)[1]}, EdgeKey{(*t)[0], (*t)[2]}, EdgeKey{(*t)[1], (*t)[2]}});
+          }
+      sort_unique(change->shrunk_triangles);
+      sort_unique(change->destroyed_triangles);
+      sort_unique(change->shrunk_edges);
+      sort_unique(internal_edges);
+      // An edge of the cavity is destroyed unless it lies on the cavity's boundary.
+      std::set_difference(internal_edges.begin(), internal_edges.end(), change->shrunk_edges.begin(),
+                          change->shrunk_edges.end(), std::back_inserter(change->destroyed_edges));
+      change->local = true;
+    }
+    v = dt.insert(point, lt, cell, li, lj);
+  } else {
+    const std::size_t before = dt.number_of_vertices();
+    v = dt.insert(point);
+    if (dt.number_of_vertices() == before) return std::nullopt;  // coincides with a vertex
+  }
   const VertexId id = static_cast<VertexId>(impl_->handles.size());
   v->info().id = id;
   v->info().is_seed = is_seed;
@@ -137,6 +203,34 @@ std::vector<TriangleKey> Delaunay::incident_triangles(VertexId id) const {
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::vector<TriangleKey> Delaunay::edge_triangles(const EdgeKey& e) const {
+  std::vector<TriangleKey> out;
+  const auto& dt = impl_->dt;
+  if (!contains(e[0]) || !contains(e[1])) return out;
+  if (dt.dimension() == 3) {
+    detail::Dt::Cell_handle c;
+    int i = 0, j = 0;
+    if (!dt.is_edge(impl_->handles[e[0]], impl_->handles[e[1]], c, i, j)) return out;
+    auto start = dt.incident_facets(detail::Dt::Edge(c, i, j));
+    auto f = start;
+    do {
+      if (const auto t = facet_key(dt, *f)) out.push_back(*t);
+    } while (++f != start);
+  } else {
+    for (const auto& t : incident_triangles(e[0]))
+      if (std::find(t.begin(), t.end(), e[1]) != t.end()) out.push_back(t);
+  }
+  sort_unique(out);
+  return out;
+}
+
+std::vector<EdgeKey> Delaunay::incident_edges(VertexId id) const {
+  std::vector<EdgeKey> out;
+  for (VertexId w : neighbours(id)) out.push_back(make_edge_key(id, w));
+  std::sort(out.begin(), out.end());
   return out;
 }
 

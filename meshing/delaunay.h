@@ -11,6 +11,8 @@
 //! cell in dimension 2, none below), a Delaunay edge a finite 1-face.
 
 #include <array>
+#include <cstddef>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -26,6 +28,36 @@ using EdgeKey = std::array<VertexId, 2>;      //!< sorted ascending
 TriangleKey make_triangle_key(VertexId a, VertexId b, VertexId c);
 EdgeKey make_edge_key(VertexId a, VertexId b);
 
+//! Hashes of the simplex keys, for the mesher's per-simplex tables.
+struct SimplexKeyHash {
+  std::size_t operator()(const TriangleKey& t) const noexcept {
+    std::size_t h = static_cast<std::size_t>(static_cast<unsigned>(t[0])) * 0x9E3779B97F4A7C15ULL;
+    h ^= static_cast<std::size_t>(static_cast<unsigned>(t[1])) + 0x7F4A7C159E3779B9ULL + (h << 6) + (h >> 2);
+    h ^= static_cast<std::size_t>(static_cast<unsigned>(t[2])) + 0x94D049BB133111EBULL + (h << 6) + (h >> 2);
+    return h;
+  }
+  std::size_t operator()(const EdgeKey& e) const noexcept {
+    std::size_t h = static_cast<std::size_t>(static_cast<unsigned>(e[0])) * 0x9E3779B97F4A7C15ULL;
+    h ^= static_cast<std::size_t>(static_cast<unsigned>(e[1])) + 0x7F4A7C159E3779B9ULL + (h << 6) + (h >> 2);
+    return h;
+  }
+};
+
+//! What one insertion changed in Del S (Bowyer–Watson: the cells in conflict with x form a
+//! star-shaped cavity, replaced by the cone from x over its boundary).
+//! - destroyed: the triangles and edges strictly inside the cavity; they are no longer in Del S.
+//! - shrunk: the triangles and edges on the cavity boundary; they stay in Del S, and their dual
+//!   Voronoi edges and facets are now subsets of what they were (V_x took a part of them).
+//! - every triangle and edge containing x is new.
+//! Every other simplex keeps its dual Voronoi face unchanged.  `local` is false when this could not
+//! be described locally (Del S had dimension < 3 before or after the insertion): then every dual
+//! face may have changed.
+struct InsertionChange {
+  bool local = false;
+  std::vector<TriangleKey> destroyed_triangles, shrunk_triangles;
+  std::vector<EdgeKey> destroyed_edges, shrunk_edges;
+};
+
 namespace detail {
 struct DelaunayImpl;
 }
@@ -39,6 +71,8 @@ class Delaunay {
 
   //! Inserts p.  Returns the new vertex id, or nothing if p coincides with an existing vertex.
   std::optional<VertexId> insert(const std::array<double, 3>& p, bool is_seed);
+  //! The same, and describes in `change` what the insertion changed (see InsertionChange).
+  std::optional<VertexId> insert(const std::array<double, 3>& p, bool is_seed, InsertionChange& change);
   //! Removes the vertex; its id is never reused.  Precondition: contains(id).
   void remove(VertexId id);
 
@@ -53,6 +87,10 @@ class Delaunay {
   std::vector<VertexId> neighbours(VertexId id) const;
   //! Delaunay triangles incident to id (sorted keys, ascending).
   std::vector<TriangleKey> incident_triangles(VertexId id) const;
+  //! Delaunay triangles that contain the edge e (sorted keys, ascending; empty if e is not an edge).
+  std::vector<TriangleKey> edge_triangles(const EdgeKey& e) const;
+  //! Delaunay edges incident to id (sorted keys, ascending).
+  std::vector<EdgeKey> incident_edges(VertexId id) const;
   //! All Delaunay triangles (ascending).
   std::vector<TriangleKey> triangles() const;
   bool is_triangle(const TriangleKey& t) const;
@@ -61,6 +99,8 @@ class Delaunay {
   std::pair<VertexId, double> nearest(const std::array<double, 3>& x) const;
 
  private:
+  std::optional<VertexId> insert_point(const std::array<double, 3>& p, bool is_seed, InsertionChange* change);
+
   std::unique_ptr<detail::DelaunayImpl> impl_;
 };
 

@@ -6,7 +6,7 @@ namespace delmesh {
 
 std::optional<Witness> facet_contact_witness(RestrictedDelaunay& restricted, const EdgeKey& pq) {
   const VoronoiFacet& f = restricted.facet(pq);
-  if (!f.valid) return std::nullopt;
+  if (!f.valid || restricted.facet_section_certified(pq)) return std::nullopt;
   auto& oracle = restricted.oracle();
   const auto result = oracle.surface_plane_contact(f.origin, f.a, f.b, f.domain);
   std::vector<Vec3> points;

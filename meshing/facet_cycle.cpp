@@ -12,7 +12,7 @@ using namespace detail;
 
 std::optional<Witness> facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& pq) {
   const VoronoiFacet& f = restricted.facet(pq);
-  if (!f.valid) return std::nullopt;
+  if (!f.valid || restricted.facet_section_certified(pq)) return std::nullopt;
   auto& oracle = restricted.oracle();
   const auto critical = oracle.curve_critical(f.origin, f.a, f.b, f.domain);
   std::vector<std::array<double, 2>> starts;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "common/tolerances.h"
 #include "meshing/detail/vec3.h"
@@ -31,17 +32,92 @@ double RestrictedDelaunay::facet_rotation(const EdgeKey& e) const {
 
 const EdgeRecord& RestrictedDelaunay::edge_record(const TriangleKey& t) {
   auto it = edges_.find(t);
-  if (it != edges_.end()) return it->second;
-  return edges_.emplace(t, compute(t)).first->second;
+  if (it == edges_.end()) return edges_.emplace(t, compute(t)).first->second;
+  if (it->second.shrunk) {
+    const VoronoiEdge edge = voronoi_edge(del_, t, oracle_.box());
+    if (auto restricted = restrict_record(it->second, edge)) {
+      ++records_restricted_;
+      it->second = std::move(*restricted);
+    } else {
+      it->second = compute(t);
+    }
+  }
+  return it->second;
+}
+
+const EdgeRecord* RestrictedDelaunay::cached_record(const TriangleKey& t) const {
+  const auto it = edges_.find(t);
+  return it == edges_.end() ? nullptr : &it->second;
+}
+
+std::optional<EdgeRecord> RestrictedDelaunay::restrict_record(const EdgeRecord& old, const VoronoiEdge& edge) const {
+  const VoronoiEdge& e = old.edge;
+  if (old.unresolved > 0 || !e.valid || !edge.valid) return std::nullopt;
+  if (edge.point != e.point || edge.direction != e.direction) return std::nullopt;
+  // e′ ⊆ e as computed; the new ends are those of e′ clamped into e (exact as sets).
+  const double t0 = std::max(edge.t0, e.t0), t1 = std::min(edge.t1, e.t1);
+  if (!(t0 < t1)) return std::nullopt;
+  const double margin = tolerances::duplicate_sample_relative_distance * oracle_.diagonal();
+  // 1: inside e′ away from its ends, 0: outside e′, −1: undecided.
+  auto side = [&](const std::array<double, 2>& range) {
+    if (range[1] < t0 - margin || range[0] > t1 + margin) return 0;
+    if (range[0] > t0 + margin && range[1] < t1 - margin) return 1;
+    return -1;
+  };
+  EdgeRecord r;
+  r.edge = edge;
+  r.edge.t0 = t0;
+  r.edge.t1 = t1;
+  for (std::size_t i = 0; i < old.crossings.size(); ++i) {
+    const int s = side(old.crossing_range[i]);
+    if (s < 0) return std::nullopt;
+    if (s == 0) continue;
+    r.crossings.push_back(old.crossings[i]);
+    r.crossing_range.push_back(old.crossing_range[i]);
+  }
+  for (std::size_t i = 0; i < old.candidates.size(); ++i) {
+    const int s = side(old.candidate_range[i]);
+    if (s < 0) return std::nullopt;
+    if (s == 0) continue;
+    r.candidates.push_back(old.candidates[i]);
+    r.candidate_range.push_back(old.candidate_range[i]);
+  }
+  // No crossing is at a Voronoi vertex of e′, so the §5.1 rule keeps every crossing.
+  r.restricted = !r.crossings.empty();
+  if (r.restricted) r.dual_point = r.crossings.front();
+  return r;
 }
 
 const VoronoiFacet& RestrictedDelaunay::facet(const EdgeKey& e) {
   auto it = facets_.find(e);
-  if (it != facets_.end()) return it->second;
-  return facets_.emplace(e, voronoi_facet(del_, e, oracle_.box(), facet_rotation(e))).first->second;
+  if (it != facets_.end()) return it->second.facet;
+  return facets_.emplace(e, FacetEntry{voronoi_facet(del_, e, oracle_.box(), facet_rotation(e))}).first->second.facet;
+}
+
+bool RestrictedDelaunay::facet_section_certified(const EdgeKey& e) {
+  const VoronoiFacet& f = facet(e);
+  auto& entry = facets_.find(e)->second;
+  if (entry.section_certified >= 0) return entry.section_certified == 1;
+  bool proved = false;
+  if (f.valid) {
+    // The in-plane part of ∇E at the midpoint of pq (the plane's origin before clipping): it
+    // depends on p and q only, so a facet that shrinks keeps its direction (refinement.h).
+    const Vec3 midpoint = 0.5 * (del_.point(e[0]) + del_.point(e[1]));
+    const Vec3 g = oracle_.gradient(midpoint);
+    const Vec3 m = normalized(f.normal);
+    Vec3 w = g - dot(g, m) * m;
+    if (!(norm(w) > 0)) w = f.a;
+    AffineChart chart;
+    chart.origin = f.origin;
+    chart.columns = {f.a, f.b};
+    proved = oracle_.prove_gradient_cone(chart, f.domain, normalized(w));
+  }
+  entry.section_certified = proved ? 1 : 0;
+  return proved;
 }
 
 EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t) {
+  ++records_solved_;
   EdgeRecord r;
   r.edge = voronoi_edge(del_, t, oracle_.box());
   if (!r.edge.valid) return r;
@@ -57,6 +133,7 @@ EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t) {
     const bool at0 = e.at_vertex0 && std::abs(t - e.t0) <= vertex_tol;
     const bool at1 = e.at_vertex1 && std::abs(t - e.t1) <= vertex_tol;
     r.crossings.push_back(root.world);
+    r.crossing_range.push_back({root.box.bounds[0][0], root.box.bounds[0][1]});
     if (at0 || at1) {
       const Vec3 into = at0 ? e.direction : (-1.0) * e.direction;
       vertex_root_excluded.push_back(dot(into, oracle_.normal(root.world)) > 0);
@@ -70,6 +147,7 @@ EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t) {
       const Vec3 v = e.at(near0 ? e.t0 : e.t1);
       const Vec3 into = near0 ? e.direction : (-1.0) * e.direction;  // direction of u − v
       r.crossings.push_back(v);
+      r.crossing_range.push_back({lo, hi});
       vertex_root_excluded.push_back(dot(into, oracle_.normal(v)) > 0);
       continue;
     }
@@ -80,6 +158,7 @@ EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t) {
       const double off = distance(*x, e.at(tx));
       if (off <= tol && tx >= e.t0 - tol && tx <= e.t1 + tol) {
         r.candidates.push_back(*x);
+        r.candidate_range.push_back({std::min(lo, tx - tol), std::max(hi, tx + tol)});
         continue;
       }
     }
@@ -96,38 +175,29 @@ EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t) {
 void RestrictedDelaunay::invalidate(const std::vector<VertexId>& vertices) {
   auto in = [&](VertexId v) { return std::binary_search(vertices.begin(), vertices.end(), v); };
   for (VertexId v : vertices) {
-    const bool removed = !del_.contains(v);
-    for (auto it = edges_.lower_bound({v, std::numeric_limits<VertexId>::min(), 0});
-         it != edges_.end() && it->first[0] == v;) {
-      if (removed || (in(it->first[1]) && in(it->first[2])))
-        it = edges_.erase(it);
-      else
-        ++it;
-    }
-    for (auto it = facets_.lower_bound({v, std::numeric_limits<VertexId>::min()});
-         it != facets_.end() && it->first[0] == v;) {
-      if (removed || in(it->first[1]))
-        it = facets_.erase(it);
-      else
-        ++it;
-    }
+    if (!del_.contains(v)) continue;
+    for (const auto& t : del_.incident_triangles(v))
+      if (t[0] == v && in(t[1]) && in(t[2])) edges_.erase(t);
+    for (VertexId w : del_.neighbours(v))
+      if (v < w && in(w)) facets_.erase(EdgeKey{v, w});
   }
-  // Records whose smallest vertex is outside the set but that contain a removed vertex.
-  for (VertexId v : vertices) {
-    if (del_.contains(v)) continue;
-    for (auto it = edges_.begin(); it != edges_.end();) {
-      if (it->first[1] == v || it->first[2] == v)
-        it = edges_.erase(it);
-      else
-        ++it;
-    }
-    for (auto it = facets_.begin(); it != facets_.end();) {
-      if (it->first[1] == v)
-        it = facets_.erase(it);
-      else
-        ++it;
-    }
+}
+
+void RestrictedDelaunay::forget(const std::vector<TriangleKey>& triangles, const std::vector<EdgeKey>& edges) {
+  for (const auto& t : triangles) edges_.erase(t);
+  for (const auto& e : edges) facets_.erase(e);
+}
+
+void RestrictedDelaunay::shrink(const InsertionChange& change) {
+  if (!change.local) {
+    edges_.clear();
+    facets_.clear();
+    return;
   }
+  forget(change.destroyed_triangles, change.destroyed_edges);
+  forget({}, change.shrunk_edges);
+  for (const auto& t : change.shrunk_triangles)
+    if (auto it = edges_.find(t); it != edges_.end()) it->second.shrunk = true;
 }
 
 std::vector<TriangleKey> RestrictedDelaunay::star(VertexId p) {

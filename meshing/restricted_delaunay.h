@@ -5,9 +5,20 @@
 //! ⟨u − v, n_v⟩ > 0 and uv meets Σ nowhere else, the triangle is excluded; otherwise it is kept.
 //!
 //! The intersections of every Voronoi edge with Σ are computed once (SurfaceLine on the clipped
-//! edge) and cached per Delaunay triangle (keyed by sorted vertex ids) until the triangle is
-//! dirtied by an insertion or removal (invalidate()).  Facet geometry (Voronoi facets with their
-//! seeded generic frames) is cached per Delaunay edge in the same way.
+//! edge) and cached per Delaunay triangle (a hash table keyed by sorted vertex ids) until the
+//! triangle's dual edge changes.  Facet geometry (Voronoi facets with their seeded generic
+//! frames) is cached per Delaunay edge in the same way.  The driver reports every change:
+//! forget() and invalidate() drop records, shrink() marks the records of an insertion's cavity
+//! boundary.
+//!
+//! Shrunk edges (update by restriction).  After an insertion the dual edge e′ of a cavity-boundary
+//! triangle lies on the same line as its old edge e and e′ ⊆ e.  The record of e holds, for every
+//! crossing and candidate, the parameter interval the solver enclosed it in; the roots of E on e′
+//! are exactly the roots on e that lie in e′.  So when every enclosure lies either outside e′ or
+//! inside e′ at distance more than the Voronoi-vertex tolerance from its ends (and the old record
+//! has no unresolved region), the new record is the old one restricted to e′, with no solve.  Any
+//! enclosure near an end of e′ (a zero at a new Voronoi vertex, the §5.1 case) makes the record be
+//! solved again.
 //!
 //! Zeros at a Voronoi vertex are reported by the isolator as undecided boundary_root regions at an
 //! endpoint of the edge; they are resolved here by the rule above (this is the one kind of
@@ -16,9 +27,9 @@
 //! onto Σ and kept as a candidate witness for VorEdge.
 
 #include <array>
-#include <map>
 #include <memory>
-#include <set>
+#include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "meshing/delaunay.h"
@@ -32,6 +43,9 @@ struct EdgeRecord {
   VoronoiEdge edge;
   std::vector<Vec3> crossings;   //!< all points of e ∩ Σ (certified, and zeros at Voronoi vertices)
   std::vector<Vec3> candidates;  //!< projected undecided regions (tangency candidates)
+  //! The solver's enclosure [t_lo, t_hi] of each crossing and each candidate, on edge's line.
+  std::vector<std::array<double, 2>> crossing_range, candidate_range;
+  bool shrunk = false;           //!< the dual edge shrank since: restrict or solve again on use
   std::size_t unresolved = 0;    //!< undecided regions whose projection failed or left the edge
   bool restricted = false;       //!< the triangle is in Tri S|Σ (with the §5.1 rule)
   Vec3 dual_point{};             //!< a counted point of e ∩ Σ when restricted
@@ -43,14 +57,28 @@ class RestrictedDelaunay {
 
   //! The record of a current Delaunay triangle (computed on first use, then cached).
   const EdgeRecord& edge_record(const TriangleKey& t);
+  //! The cached record of t as it stands (possibly marked shrunk), or nullptr; computes nothing.
+  const EdgeRecord* cached_record(const TriangleKey& t) const;
   //! The facet of a current Delaunay edge (computed on first use, then cached).
   const VoronoiFacet& facet(const EdgeKey& e);
+  //! Whether Σ ∩ F is proved to be a regular curve with no critical point in some in-plane
+  //! direction (solvers/gradient_cone.h, with w the in-plane part of ∇E at the midpoint of pq): then
+  //! FacetContact and FacetCycle have no witness in F.  Computed once per facet.
+  bool facet_section_certified(const EdgeKey& e);
   //! The seeded rotation of the frame of facet e (generic in-plane direction d = a).
   double facet_rotation(const EdgeKey& e) const;
 
-  //! Forgets every cached record of a simplex all of whose vertices are in `vertices` (sorted),
-  //! and of every simplex incident to a removed vertex.
+  //! Forgets the cached record of every current Delaunay triangle and edge all of whose vertices
+  //! are in `vertices` (sorted ascending).
   void invalidate(const std::vector<VertexId>& vertices);
+  //! Forgets the records of these simplices (e.g. the star of a vertex about to be removed).
+  void forget(const std::vector<TriangleKey>& triangles, const std::vector<EdgeKey>& edges);
+  //! Applies an insertion's change: destroyed simplices are forgotten, shrunk facets forgotten,
+  //! shrunk edge records kept for restriction.  A non-local change forgets everything.
+  void shrink(const InsertionChange& change);
+  //! Number of edge records solved, and of those obtained by restriction (statistics).
+  std::size_t records_solved() const { return records_solved_; }
+  std::size_t records_restricted() const { return records_restricted_; }
 
   //! Restricted triangles incident to p (current Delaunay triangles only).
   std::vector<TriangleKey> star(VertexId p);
@@ -64,13 +92,19 @@ class RestrictedDelaunay {
 
  private:
   EdgeRecord compute(const TriangleKey& t);
+  //! The record of the shrunk edge `edge` restricted from `old`, or nothing if it must be solved.
+  std::optional<EdgeRecord> restrict_record(const EdgeRecord& old, const VoronoiEdge& edge) const;
 
   const Delaunay& del_;
   SurfaceOracle& oracle_;
   std::uint64_t seed_;
-  std::map<TriangleKey, EdgeRecord> edges_;
-  std::map<EdgeKey, VoronoiFacet> facets_;
-  std::size_t unresolved_ = 0;
+  std::unordered_map<TriangleKey, EdgeRecord, SimplexKeyHash> edges_;
+  struct FacetEntry {
+    VoronoiFacet facet;
+    int section_certified = -1;  //!< −1 not tried, 0 failed, 1 proved
+  };
+  std::unordered_map<EdgeKey, FacetEntry, SimplexKeyHash> facets_;
+  std::size_t unresolved_ = 0, records_solved_ = 0, records_restricted_ = 0;
 };
 
 //! A deterministic pseudo-random number in [0, 1) from a seed and up to three integers

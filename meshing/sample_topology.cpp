@@ -17,14 +17,14 @@ Vec3 generic_direction(std::uint64_t seed, int k) {
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
-SeedReport insert_seeds(Topology& topology) {
-  auto& oracle = topology.oracle();
+SeedReport insert_seeds(Refinement& refinement) {
+  auto& oracle = refinement.oracle();
   const Box3& box = oracle.box();
   const Domain domain =
       Domain::from_box({{box.lo[0], box.hi[0]}, {box.lo[1], box.hi[1]}, {box.lo[2], box.hi[2]}});
   SeedReport report;
   for (int k = 0; k < tolerances::mesher_height_direction_retries; ++k) {
-    const Vec3 d = generic_direction(topology.seed(), k);
+    const Vec3 d = generic_direction(refinement.seed(), k);
     ++report.attempts;
     const auto result = oracle.surface_critical(d, domain, tolerances::mesher_box_budget_global);
     if (result.status == SolveStatus::non_isolated) continue;
@@ -37,21 +37,21 @@ SeedReport insert_seeds(Topology& topology) {
     if (points.empty())
       throw InvalidInput("the surface is empty in the box: no critical point of E = 0 was found");
     for (const auto& x : points)
-      if (topology.insert(Witness{x, CheckKind::seed, -1, false})) ++report.seeds;
+      if (refinement.insert(Witness{x, CheckKind::seed, -1, false})) ++report.seeds;
     return report;
   }
   throw InvalidInput("cannot find a generic height direction: every direction tried gave non-isolated critical points");
 }
 
-TopologyStatus sample_topology(Topology& topology, SeedReport& report) {
-  report = insert_seeds(topology);
-  if (const auto status = topology.run(); status != TopologyStatus::complete) return status;
-  for (VertexId id : topology.delaunay().vertices()) {
-    if (!topology.delaunay().contains(id) || !topology.delaunay().is_seed(id)) continue;
-    topology.remove(id);
-    if (const auto status = topology.run(); status != TopologyStatus::complete) return status;
+MeshStatus sample_topology(Refinement& refinement, SeedReport& report) {
+  report = insert_seeds(refinement);
+  if (const auto status = refinement.run(); status != MeshStatus::complete) return status;
+  for (VertexId id : refinement.delaunay().vertices()) {
+    if (!refinement.delaunay().contains(id) || !refinement.delaunay().is_seed(id)) continue;
+    refinement.remove(id);
+    if (const auto status = refinement.run(); status != MeshStatus::complete) return status;
   }
-  return TopologyStatus::complete;
+  return MeshStatus::complete;
 }
 
 }  // namespace delmesh

@@ -1,8 +1,8 @@
 #pragma once
 //! \file sample_topology.h
 //! SampleTopology(Σ) (§5.4): seeds S₀ = SurfaceCritical(Σ) in a generic height direction;
-//! Topology(S₀); then delete the seeds one at a time, re-running Topology after each deletion
-//! (Lemma 5.4, Corollary 5.2).
+//! Topology(S₀) (the refinement driver with Quality and Smooth off); then delete the seeds one at
+//! a time, re-running Topology after each deletion (Lemma 5.4, Corollary 5.2).
 //!
 //! Choices: the height direction is a seeded pseudo-random unit vector (the paper's x3 is not
 //! generic for e.g. a torus with axis x3, whose critical points form circles).  If the solver
@@ -13,7 +13,7 @@
 
 #include <cstdint>
 
-#include "meshing/topology.h"
+#include "meshing/refinement.h"
 
 namespace delmesh {
 
@@ -27,11 +27,11 @@ struct SeedReport {
 //! The k-th seeded generic unit direction (k = 0, 1, …).
 Vec3 generic_direction(std::uint64_t seed, int k);
 
-//! Step 1: inserts the seeds into topology.  Throws InvalidInput if Σ is empty in the box (no
+//! Step 1: inserts the seeds into S.  Throws InvalidInput if Σ is empty in the box (no
 //! critical point) or no generic height direction is found.
-SeedReport insert_seeds(Topology& topology);
+SeedReport insert_seeds(Refinement& refinement);
 
 //! Steps 1–3.  Returns the status of the last Topology run (a limit stops it early).
-[[nodiscard]] TopologyStatus sample_topology(Topology& topology, SeedReport& report);
+[[nodiscard]] MeshStatus sample_topology(Refinement& refinement, SeedReport& report);
 
 }  // namespace delmesh

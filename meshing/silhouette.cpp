@@ -25,6 +25,8 @@ std::optional<Witness> silhouette_witness(RestrictedDelaunay& restricted, Vertex
   if (!(norm(n_p) > 0)) return std::nullopt;
   const VoronoiCell cell = voronoi_cell(del, p, oracle.box());
   if (!cell.valid) return std::nullopt;
+  // J_{n_p} ∩ V_p = ∅ proved by the gradient cone (solvers/gradient_cone.h): nothing to solve.
+  if (oracle.prove_gradient_cone(AffineChart::identity(), cell.domain, n_p)) return std::nullopt;
   const Vec3 d2 = silhouette_direction(restricted, p, n_p);
   {
     const auto result = oracle.silhouette_critical(n_p, d2, cell.domain);

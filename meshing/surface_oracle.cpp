@@ -148,6 +148,16 @@ SolveResult SurfaceOracle::silhouette_critical(const Vec3& d, const Vec3& d2, co
                 solve_square(5, params, domain, tolerances::mesher_box_budget_3d), start);
 }
 
+bool SurfaceOracle::prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto r = delmesh::prove_gradient_cone(*impl_->gradient, chart, domain, w, tolerances::gradient_cone_box_budget);
+  ++cone_stats_.attempts;
+  cone_stats_.proved += r.proved ? 1 : 0;
+  cone_stats_.boxes += r.boxes;
+  cone_stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r.proved;
+}
+
 double SurfaceOracle::E(const Vec3& x) const {
   double value = 0;
   impl_->gradient->values<double>(x.data(), nullptr, &value);
@@ -197,7 +207,10 @@ nlohmann::json SurfaceOracle::statistics_json() const {
   }
   return {{"systems", total.calls}, {"certified_roots", total.certified_roots},
           {"undecided", total.undecided}, {"boxes", total.boxes}, {"seconds", total.seconds},
-          {"per_primitive", per}};
+          {"per_primitive", per},
+          {"cone_certificates",
+           {{"attempts", cone_stats_.attempts}, {"proved", cone_stats_.proved}, {"boxes", cone_stats_.boxes},
+            {"seconds", cone_stats_.seconds}}}};
 }
 
 }  // namespace delmesh

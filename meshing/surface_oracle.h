@@ -22,6 +22,7 @@
 
 #include "meshing/del_mesh.h"
 #include "solvers/domain.h"
+#include "solvers/gradient_cone.h"
 #include "solvers/solve_result.h"
 #include "symbolic/surface.h"
 
@@ -74,6 +75,10 @@ class SurfaceOracle {
   //! SilhouetteCritical: critical points of J_d in direction d2 over a 3-D polytope.
   SolveResult silhouette_critical(const Vec3& d, const Vec3& d2, const Domain& domain);
 
+  //! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P, P = domain in the chart (solvers/gradient_cone.h):
+  //! true is a proof, false proves nothing.  Counted under `cone_certificates`.
+  bool prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w);
+
   //! E(x) in double.
   double E(const Vec3& x) const;
   //! ∇E(x) in double.
@@ -85,7 +90,8 @@ class SurfaceOracle {
   std::optional<Vec3> project(const Vec3& x) const;
 
   const std::array<PrimitiveStatistics, primitive_count>& statistics() const { return stats_; }
-  //! {systems, certified_roots, undecided, boxes, seconds, per_primitive: {...}}
+  //! {systems, certified_roots, undecided, boxes, seconds, per_primitive: {...},
+  //!  cone_certificates: {attempts, proved, boxes, seconds}}
   nlohmann::json statistics_json() const;
 
  private:
@@ -98,6 +104,10 @@ class SurfaceOracle {
   Box3 box_;
   SolverBackend backend_;
   std::array<PrimitiveStatistics, primitive_count> stats_{};
+  struct ConeStatistics {
+    std::size_t attempts = 0, proved = 0, boxes = 0;
+    double seconds = 0;
+  } cone_stats_;
 };
 
 }  // namespace delmesh

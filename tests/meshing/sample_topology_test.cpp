@@ -24,7 +24,7 @@ BOOST_AUTO_TEST_CASE(seeds_are_the_critical_points) {
   for (const auto& [name, count] : std::vector<std::pair<std::string, std::size_t>>{{"sphere", 2}, {"torus", 4}}) {
     const auto& entry = catalog_entry(name);
     SurfaceOracle oracle(entry.surface(), entry.box, SolverBackend::subdivision);
-    Topology topology(oracle, 5, TopologyLimits{});
+    Refinement topology(oracle, 5, RefinementLimits{});
     const auto report = insert_seeds(topology);
     BOOST_TEST(report.seeds == count, name);
     BOOST_TEST(topology.insertions(CheckKind::seed) == count);
@@ -37,7 +37,7 @@ BOOST_AUTO_TEST_CASE(empty_surface_throws) {
   box.lo = {-1, -1, -1};
   box.hi = {1, 1, 1};
   SurfaceOracle oracle(Surface::parse("x^2+y^2+z^2+1"), box, SolverBackend::subdivision);
-  Topology topology(oracle, 1, TopologyLimits{});
+  Refinement topology(oracle, 1, RefinementLimits{});
   BOOST_CHECK_THROW(insert_seeds(topology), InvalidInput);
 }
 

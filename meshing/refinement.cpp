@@ -1,0 +1,260 @@
+#include "meshing/refinement.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "common/errors.h"
+#include "common/tolerances.h"
+#include "meshing/facet_contact.h"
+#include "meshing/facet_cycle.h"
+#include "meshing/quality.h"
+#include "meshing/silhouette.h"
+#include "meshing/smooth.h"
+#include "meshing/theorem_bounds.h"
+#include "meshing/topo_disk.h"
+#include "meshing/vor_edge.h"
+
+namespace delmesh {
+
+namespace {
+
+TriangleKey as_triangle(const std::array<VertexId, 3>& s) { return s; }
+EdgeKey as_edge(const std::array<VertexId, 3>& s) { return {s[0], s[1]}; }
+
+}  // namespace
+
+std::vector<Refinement::Step> Refinement::make_table() {
+  std::vector<Step> table(step_count);
+  table[vor_edge_step] = {CheckKind::vor_edge, "vor_edge", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
+                            const TriangleKey t = as_triangle(s);
+                            if (!r.del_.is_triangle(t)) return std::nullopt;
+                            return vor_edge_witness(r.restricted_, t);
+                          }};
+  table[facet_contact_step] = {CheckKind::facet_contact, "facet_contact",
+                               [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
+                                 const EdgeKey e = as_edge(s);
+                                 if (!r.del_.is_edge(e)) return std::nullopt;
+                                 return facet_contact_witness(r.restricted_, e);
+                               }};
+  table[topo_disk_step] = {CheckKind::topo_disk, "topo_disk", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
+                             if (!r.del_.contains(s[0])) return std::nullopt;
+                             return topo_disk_witness(r.restricted_, s[0]);
+                           }};
+  table[facet_cycle_step] = {CheckKind::facet_cycle, "facet_cycle",
+                             [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
+                               const EdgeKey e = as_edge(s);
+                               if (!r.del_.is_edge(e)) return std::nullopt;
+                               return facet_cycle_witness(r.restricted_, e);
+                             }};
+  // Step (e) runs only once (a)–(d) have nothing queued: the facets of V_p are clean.
+  table[silhouette_step] = {CheckKind::silhouette, "silhouette",
+                            [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
+                              if (!r.del_.contains(s[0])) return std::nullopt;
+                              return silhouette_witness(r.restricted_, s[0], /*facets_clean=*/true);
+                            }};
+  table[quality_step] = {CheckKind::quality, "quality", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
+                           const TriangleKey t = as_triangle(s);
+                           if (!r.del_.is_triangle(t)) return std::nullopt;
+                           if (auto w = quality_witness(r.restricted_, t, r.lambda_)) return w;
+                           if (r.size_bound_) return size_witness(r.restricted_, t, *r.size_bound_);
+                           return std::nullopt;
+                         }};
+  table[smooth_step] = {CheckKind::smooth, "smooth", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
+                          const TriangleKey t = as_triangle(s);
+                          if (!r.del_.is_triangle(t) || !r.restricted_.edge_record(t).restricted)
+                            return std::nullopt;
+                          for (const auto& e : {make_edge_key(t[0], t[1]), make_edge_key(t[0], t[2]),
+                                                make_edge_key(t[1], t[2])})
+                            if (auto w = smooth_witness(r.restricted_, e, r.smooth_threshold_)) return w;
+                          return std::nullopt;
+                        }};
+  table[quality_step].enabled = false;
+  table[smooth_step].enabled = false;
+  return table;
+}
+
+Refinement::Refinement(SurfaceOracle& oracle, std::uint64_t seed, RefinementLimits limits, RecheckPolicy policy)
+    : oracle_(oracle), seed_(seed), limits_(std::move(limits)), policy_(policy), restricted_(del_, oracle, seed),
+      steps_(make_table()), last_progress_(std::chrono::steady_clock::now()) {}
+
+void Refinement::enable_geometry(double lambda, std::optional<double> size_bound) {
+  if (!(lambda > 0 && lambda < 1.0 / 3.0)) throw PreconditionViolation("enable_geometry: lambda out of (0, 1/3)");
+  if (size_bound && !(*size_bound > 0)) throw PreconditionViolation("enable_geometry: size bound not positive");
+  lambda_ = lambda;
+  size_bound_ = size_bound;
+  smooth_enabled_ = lambda < 1.0 / 6.0;
+  smooth_threshold_ = smooth_enabled_ ? 2 * beta(lambda) : 0;
+  steps_[quality_step].enabled = true;
+  steps_[smooth_step].enabled = smooth_enabled_;
+  for (const auto& t : restricted_.triangles()) queue_triangle(t, false);
+}
+
+void Refinement::queue_triangle(const TriangleKey& t, bool topology_checks) {
+  if (topology_checks) steps_[vor_edge_step].queue.push(t);
+  for (int k : {quality_step, smooth_step})
+    if (steps_[k].enabled) steps_[k].queue.push(t);
+}
+
+void Refinement::queue_edge(const EdgeKey& e) {
+  const Simplex s{e[0], e[1], -1};
+  steps_[facet_contact_step].queue.push(s);
+  steps_[facet_cycle_step].queue.push(s);
+}
+
+void Refinement::queue_everything_within(const std::vector<VertexId>& vs) {
+  auto in = [&](VertexId v) { return std::binary_search(vs.begin(), vs.end(), v); };
+  for (VertexId v : vs) {
+    if (!del_.contains(v)) continue;
+    for (const auto& t : del_.incident_triangles(v))
+      if (t[0] == v && in(t[1]) && in(t[2])) queue_triangle(t, true);
+    for (VertexId w : del_.neighbours(v))
+      if (v < w && in(w)) queue_edge({v, w});
+    steps_[topo_disk_step].queue.push({v, -1, -1});
+    steps_[silhouette_step].queue.push({v, -1, -1});
+  }
+}
+
+std::optional<VertexId> Refinement::insert(const Witness& w) {
+  InsertionRecord record;
+  record.point = w.point;
+  record.kind = w.kind;
+  record.from_undecided = w.from_undecided;
+  if (del_.size() > 0) {
+    const auto [nearest, d] = del_.nearest(w.point);
+    record.nearest = nearest;
+    record.nearest_distance = d;
+    if (d <= tolerances::duplicate_sample_relative_distance * oracle_.diagonal()) {
+      ++rejected_;
+      return std::nullopt;
+    }
+  }
+  InsertionChange change;
+  const auto id = del_.insert(w.point, w.kind == CheckKind::seed, change);
+  if (!id) {
+    ++rejected_;
+    return std::nullopt;
+  }
+  const VertexId x = *id;
+  record.id = x;
+  log_.push_back(record);
+  ++insertions_[static_cast<int>(w.kind)];
+  if (!change.local) {
+    restricted_.shrink(change);
+    std::vector<VertexId> around = del_.neighbours(x);
+    around.push_back(x);
+    std::sort(around.begin(), around.end());
+    queue_everything_within(around);
+    return id;
+  }
+  // TopoDisk(p) depends only on the restricted star of p: it is queued for x and for the
+  // vertices of every triangle that entered or left Tri S|Σ (a triangle never solved counts).
+  std::vector<VertexId> star_changed{x};
+  auto star_change = [&](const TriangleKey& t) { star_changed.insert(star_changed.end(), t.begin(), t.end()); };
+  for (const auto& t : change.destroyed_triangles) {
+    const EdgeRecord* before = restricted_.cached_record(t);
+    if (!before || before->restricted || before->shrunk) star_change(t);
+  }
+  // Shrunk faces keep their clean results (the lemma in refinement.h); their records are brought
+  // up to date now, and a triangle whose dual point changed goes to Quality and Smooth again.
+  std::vector<std::pair<TriangleKey, std::optional<std::pair<bool, Vec3>>>> shrunk;
+  for (const auto& t : change.shrunk_triangles) {
+    const EdgeRecord* before = restricted_.cached_record(t);
+    shrunk.push_back({t, before && !before->shrunk ? std::optional<std::pair<bool, Vec3>>({before->restricted, before->dual_point})
+                                                   : std::nullopt});
+  }
+  restricted_.shrink(change);
+  for (const auto& [t, before] : shrunk) {
+    const EdgeRecord& r = restricted_.edge_record(t);
+    const bool status_changed = !before || before->first != r.restricted;
+    if (status_changed) star_change(t);
+    if (status_changed || before->second != r.dual_point)
+      queue_triangle(t, policy_ == RecheckPolicy::changed_faces);
+    else if (policy_ == RecheckPolicy::changed_faces)
+      steps_[vor_edge_step].queue.push(t);
+  }
+  // The faces dual to simplices containing x are new: all their checks run.
+  for (const auto& t : del_.incident_triangles(x)) {
+    if (restricted_.edge_record(t).restricted) star_change(t);
+    queue_triangle(t, true);
+  }
+  const auto neighbours = del_.neighbours(x);
+  for (VertexId q : neighbours) queue_edge(make_edge_key(x, q));
+  steps_[silhouette_step].queue.push({x, -1, -1});
+  std::sort(star_changed.begin(), star_changed.end());
+  star_changed.erase(std::unique(star_changed.begin(), star_changed.end()), star_changed.end());
+  for (VertexId v : star_changed) steps_[topo_disk_step].queue.push({v, -1, -1});
+  if (policy_ == RecheckPolicy::changed_faces) {
+    for (const auto& e : change.shrunk_edges) queue_edge(e);
+    for (VertexId v : neighbours) {
+      steps_[topo_disk_step].queue.push({v, -1, -1});
+      steps_[silhouette_step].queue.push({v, -1, -1});
+    }
+  }
+  return id;
+}
+
+void Refinement::remove(VertexId p) {
+  // The star of p goes; the hole is re-triangulated among N(p), whose faces grow.
+  const auto star = del_.incident_triangles(p);
+  const auto edges = del_.incident_edges(p);
+  const std::vector<VertexId> around = del_.neighbours(p);
+  del_.remove(p);
+  ++seeds_deleted_;
+  restricted_.forget(star, edges);
+  restricted_.invalidate(around);
+  queue_everything_within(around);
+}
+
+std::optional<MeshStatus> Refinement::limit_reached() {
+  const auto now = std::chrono::steady_clock::now();
+  if (limits_.progress &&
+      std::chrono::duration<double>(now - last_progress_).count() >= tolerances::progress_interval_seconds) {
+    last_progress_ = now;
+    std::ostringstream s;
+    s << (steps_[quality_step].enabled ? "geometry" : "topology") << ": points " << del_.size() << ", queued";
+    for (const auto& step : steps_)
+      if (step.enabled) s << ' ' << step.name << '=' << step.queue.size();
+    limits_.progress(s.str());
+  }
+  if (del_.size() >= limits_.max_points) return MeshStatus::point_limit;
+  if (limits_.deadline && now >= *limits_.deadline) return MeshStatus::time_limit;
+  return std::nullopt;
+}
+
+MeshStatus Refinement::run() {
+  while (true) {
+    if (auto status = limit_reached()) return *status;
+    auto step = std::find_if(steps_.begin(), steps_.end(),
+                             [](const Step& s) { return s.enabled && !s.queue.empty(); });
+    if (step == steps_.end()) return MeshStatus::complete;
+    const Simplex item = step->queue.pop();
+    const auto start = std::chrono::steady_clock::now();
+    const auto w = step->check(*this, item);
+    const auto k = static_cast<int>(step->kind);
+    seconds_[k] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ++checks_[k];
+    // A face that gave a witness is not clean: it is examined again once the witness is in S
+    // (e.g. V_p keeps other points of J_{n_p} after the furthest one is inserted).
+    if (w && insert(*w)) step->queue.push(item);
+  }
+}
+
+nlohmann::json Refinement::insertions_json() const {
+  nlohmann::json j = nlohmann::json::object();
+  for (int k = 0; k < check_kind_count; ++k) {
+    std::ostringstream name;
+    name << static_cast<CheckKind>(k);
+    j[name.str() == "seed" ? "seeds" : name.str()] = insertions_[k];
+  }
+  j["seeds_deleted"] = seeds_deleted_;
+  j["rejected_witnesses"] = rejected_;
+  return j;
+}
+
+nlohmann::json Refinement::checks_json() const {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& step : steps_) j[step.name] = checks_[static_cast<int>(step.kind)];
+  return j;
+}
+
+}  // namespace delmesh

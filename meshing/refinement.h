@@ -1,0 +1,197 @@
+#pragma once
+//! \file refinement.h
+//! The refinement driver of DelMesh: Topology(S) (§5.4, steps (a)–(e)), Quality and Smooth
+//! (§6.2, steps 2–3) and the optional size bound, as one loop over an ordered table of steps
+//!
+//!   | step            | work queue holds                               | check (§)              |
+//!   |-----------------|------------------------------------------------|------------------------|
+//!   | (a) VorEdge     | triangles whose dual Voronoi edge is new       | vor_edge_witness       |
+//!   | (b) FacetContact| edges whose dual Voronoi facet is new          | facet_contact_witness  |
+//!   | (c) TopoDisk    | samples whose restricted star may have changed | topo_disk_witness      |
+//!   | (d) FacetCycle  | edges whose dual Voronoi facet is new          | facet_cycle_witness    |
+//!   | (e) Silhouette  | samples whose Voronoi cell is new              | silhouette_witness     |
+//!   | Quality + size  | restricted triangles whose dual edge changed   | quality/size_witness   |
+//!   | Smooth          | restricted triangles whose dual edge changed   | smooth_witness         |
+//!
+//! Each iteration takes one item of the first non-empty queue; a witness is inserted, the item
+//! goes back on its queue (its face has not been shown clean) and the loop starts again at (a),
+//! so the paper's order holds (Quality before Smooth, a topology witness
+//! before any geometric one).  Quality and Smooth run only after enable_geometry() (DelMesh
+//! step 2 starts after SampleTopology).  run() returns complete when every queue is empty.
+//!
+//! **Lemma (recheck only new faces).**  Let x be inserted into S (no deletion), Del S of
+//! dimension 3 before and after.  Then:
+//!  1. (Bowyer–Watson) the Delaunay simplices that do not contain x and survive are exactly those
+//!     not strictly inside the cavity; the dual Voronoi face of a surviving simplex σ is
+//!     V(σ) ∩ {y : |y − s| ≤ |y − x|} for any vertex s of σ, a subset of the old face in the same
+//!     affine hull (equal unless σ is on the cavity boundary).
+//!  2. Each topology check's witness set W(f) of a face f is monotone: f′ ⊆ f ⇒ W(f′) ⊆ W(f)
+//!     restricted to f′, provided the check's generic directions depend only on the face's
+//!     defining sites.  VorEdge: tangencies of Σ with e′ ⊆ e, and |e′ ∩ Σ| ≤ |e ∩ Σ| ≤ 1.
+//!     FacetContact: contacts of Σ with F′ ⊆ F.  FacetCycle: the critical points of Σ ∩ F′ in
+//!     direction d are those of Σ ∩ F lying in F′, and ℓ_y ∩ Σ ∩ F′ ⊆ ℓ_y ∩ Σ ∩ F (d is seeded by
+//!     the edge's ids).  Silhouette: J_{n_p} ∩ V′_p ⊆ J_{n_p} ∩ V_p = ∅ (n_p, d′ depend on p only),
+//!     and the facets of V′_p are subsets of V_p.
+//!  3. Hence a face whose check found no witness still has none, and only the faces dual to
+//!     simplices containing x need their topology checks: VorEdge on the triangles xqr,
+//!     FacetContact and FacetCycle on the edges xq, Silhouette on V_x.
+//!  4. TopoDisk(p) is a function of the restricted star of p (and, for its witness, of the
+//!     crossings of p's triangles): it is re-queued for x and for the vertices of every triangle
+//!     that entered or left Tri S|Σ (new, destroyed, or shrunk with a lost crossing).  Quality,
+//!     size and Smooth read a triangle's restricted status and dual point (Smooth also its
+//!     neighbours across its edges, which are then re-queued themselves): they are re-queued for
+//!     the new triangles and the shrunk triangles whose status or dual point changed.
+//! Conditions: the checks' generic choices depend only on the face's sites (so it is for the
+//! seeded frames of restricted_delaunay.h and silhouette.h, and for the in-plane direction of the
+//! facet certificate), and only a clean result is kept (an undecided region is a candidate
+//! witness, not a clean result; a face that gave a witness is queued again).  A deletion (seed deletion,
+//! Lemma 5.4) grows faces, so after deleting p every face dual to a simplex within N(p) is
+//! checked again; so is everything when the change is not local (dimension < 3).
+//! RecheckPolicy::changed_faces re-queues the shrunk faces too (for testing the lemma).
+//!
+//! Witnesses within tolerances::duplicate_sample_relative_distance of an existing sample are not
+//! inserted (counted as `rejected_witnesses`), so the loop cannot cycle on a degenerate answer.
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <functional>
+#include <optional>
+#include <string>
+#include <unordered_set>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "meshing/del_mesh.h"
+#include "meshing/delaunay.h"
+#include "meshing/restricted_delaunay.h"
+#include "meshing/surface_oracle.h"
+#include "meshing/witness.h"
+
+namespace delmesh {
+
+//! One insertion, as the mesher saw it (for Lemma 5.1 / Theorem 6.1 experiments).
+struct InsertionRecord {
+  Vec3 point{};
+  CheckKind kind = CheckKind::seed;
+  VertexId id = -1;
+  VertexId nearest = -1;           //!< nearest sample at insertion time (−1 for the first point)
+  double nearest_distance = 0;     //!< |point − nearest|
+  bool from_undecided = false;
+};
+
+struct RefinementLimits {
+  std::size_t max_points = 200000;
+  //! Absolute deadline; none if empty.
+  std::optional<std::chrono::steady_clock::time_point> deadline;
+  std::function<void(const std::string&)> progress;
+};
+
+//! Which faces are checked again after an insertion (see the lemma above).
+enum class RecheckPolicy {
+  new_faces,     //!< the faces dual to simplices containing the new sample (the default)
+  changed_faces  //!< also every face that shrank (the lemma says this finds nothing more)
+};
+
+class Refinement {
+ public:
+  Refinement(SurfaceOracle& oracle, std::uint64_t seed, RefinementLimits limits,
+             RecheckPolicy policy = RecheckPolicy::new_faces);
+
+  //! Inserts the witness into S (unless it duplicates a sample), logs it, and queues the faces
+  //! it created or changed.  Returns the new id, or nothing if rejected.
+  std::optional<VertexId> insert(const Witness& witness);
+  //! Deletes p from S (a seed, Lemma 5.4) and queues every face within its former neighbours.
+  void remove(VertexId p);
+
+  //! Turns on Quality (with the size bound H if given) and Smooth (skipped for λ ≥ 1/6, where
+  //! β(λ) is undefined), and queues every current restricted triangle for them.
+  //! Precondition: 0 < lambda < 1/3, size_bound > 0 if given.
+  void enable_geometry(double lambda, std::optional<double> size_bound);
+  bool smooth_enabled() const { return smooth_enabled_; }
+
+  //! Runs the table until every queue is empty (complete) or a limit is reached.
+  [[nodiscard]] MeshStatus run();
+
+  Delaunay& delaunay() { return del_; }
+  const Delaunay& delaunay() const { return del_; }
+  RestrictedDelaunay& restricted() { return restricted_; }
+  SurfaceOracle& oracle() { return oracle_; }
+  std::uint64_t seed() const { return seed_; }
+
+  const std::vector<InsertionRecord>& insertion_log() const { return log_; }
+  std::size_t insertions(CheckKind kind) const { return insertions_[static_cast<int>(kind)]; }
+  std::size_t seeds_deleted() const { return seeds_deleted_; }
+  std::size_t rejected_witnesses() const { return rejected_; }
+  //! Seconds spent in each check, and the number of items each step examined.
+  double seconds(CheckKind kind) const { return seconds_[static_cast<int>(kind)]; }
+  std::size_t checks(CheckKind kind) const { return checks_[static_cast<int>(kind)]; }
+
+  //! {seeds, vor_edge, …, size, seeds_deleted, rejected_witnesses}
+  nlohmann::json insertions_json() const;
+  //! {vor_edge: n, …}: items examined per step.
+  nlohmann::json checks_json() const;
+
+ private:
+  //! A queued simplex: a vertex {v, −1, −1}, an edge {p, q, −1} or a triangle {p, q, r}, sorted.
+  using Simplex = std::array<VertexId, 3>;
+  //! A set of distinct simplices, taken smallest key first.  The order depends only on what is
+  //! queued, not on when, so re-queuing an item that waits changes nothing (the lemma's test
+  //! relies on this).
+  class WorkQueue {
+   public:
+    void push(const Simplex& s) {
+      if (!members_.insert(s).second) return;
+      heap_.push_back(s);
+      std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+    }
+    Simplex pop() {
+      std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
+      const Simplex s = heap_.back();
+      heap_.pop_back();
+      members_.erase(s);
+      return s;
+    }
+    bool empty() const { return heap_.empty(); }
+    std::size_t size() const { return heap_.size(); }
+
+   private:
+    std::vector<Simplex> heap_;
+    std::unordered_set<Simplex, SimplexKeyHash> members_;
+  };
+  //! One row of the table: the check, who it is counted for, what it examines.
+  struct Step {
+    CheckKind kind;
+    const char* name;
+    std::function<std::optional<Witness>(Refinement&, const Simplex&)> check;
+    WorkQueue queue;
+    bool enabled = true;
+  };
+  enum StepIndex { vor_edge_step, facet_contact_step, topo_disk_step, facet_cycle_step, silhouette_step,
+                   quality_step, smooth_step, step_count };
+
+  static std::vector<Step> make_table();
+  void queue_triangle(const TriangleKey& t, bool topology_checks);
+  void queue_edge(const EdgeKey& e);
+  void queue_everything_within(const std::vector<VertexId>& sorted_vertices);
+  std::optional<MeshStatus> limit_reached();
+
+  SurfaceOracle& oracle_;
+  std::uint64_t seed_;
+  RefinementLimits limits_;
+  RecheckPolicy policy_;
+  Delaunay del_;
+  RestrictedDelaunay restricted_;
+  std::vector<Step> steps_;
+  double lambda_ = 0, smooth_threshold_ = 0;
+  std::optional<double> size_bound_;
+  bool smooth_enabled_ = false;
+  std::vector<InsertionRecord> log_;
+  std::array<std::size_t, check_kind_count> insertions_{}, checks_{};
+  std::array<double, check_kind_count> seconds_{};
+  std::size_t seeds_deleted_ = 0, rejected_ = 0;
+  std::chrono::steady_clock::time_point last_progress_;
+};
+
+}  // namespace delmesh

@@ -1,0 +1,79 @@
+#include "solvers/gradient_cone.h"
+
+#include <algorithm>
+
+#include "common/errors.h"
+#include "symbolic/scalar_traits.h"
+#include "symbolic/scalar_types.h"
+
+namespace delmesh {
+
+AffineChart AffineChart::identity() {
+  AffineChart chart;
+  chart.columns = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  return chart;
+}
+
+GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChart& chart, const Domain& domain,
+                                       const std::array<double, 3>& w, std::size_t box_budget) {
+  const std::size_t n = domain.dimension();
+  if (chart.columns.size() != n || n < 1 || n > 3)
+    throw PreconditionViolation("prove_gradient_cone: the chart's columns must match the domain's dimension");
+  if (E.n_equations() != 1 || E.n_unknowns() != 3 || E.n_parameters() != 0)
+    throw PreconditionViolation("prove_gradient_cone: E must be one equation in (x, y, z) without parameters");
+
+  RoundingGuard guard;
+  GradientConeResult result;
+  using Box = std::array<Interval, 3>;
+  std::vector<Box> stack(1);
+  for (std::size_t j = 0; j < n; ++j) stack[0][j] = Interval(domain.box.bounds[j][0], domain.box.bounds[j][1]);
+  // The world enclosure of chart points: origin + Σ_j u_j c_j, with u_j an interval or a point.
+  auto to_world = [&](const Interval* u, Interval* x) {
+    for (int k = 0; k < 3; ++k) {
+      x[k] = Interval(chart.origin[k]);
+      for (std::size_t j = 0; j < n; ++j) x[k] += u[j] * chart.columns[j][k];
+    }
+  };
+  while (!stack.empty()) {
+    const Box u = stack.back();
+    stack.pop_back();
+    if (result.boxes >= box_budget) return result;
+    ++result.boxes;
+    if (classify(domain, u.data()) == DomainSide::outside) continue;  // (i)
+    Interval x[3], value, gradient[3];
+    to_world(u.data(), x);
+    E.values_and_jacobian<Interval>(x, nullptr, &value, gradient);
+    // (iii) first: on most boxes that meet Σ the functional is what decides.
+    const Interval functional = gradient[0] * w[0] + gradient[1] * w[1] + gradient[2] * w[2];
+    if (certainly_nonzero(functional)) continue;
+    if (!certainly_nonzero(value)) {
+      // (ii) mean-value form around the box centre.
+      Interval centre[3], centre_world[3], centre_value;
+      for (std::size_t j = 0; j < n; ++j) centre[j] = Interval(CGAL::to_double(u[j]));
+      to_world(centre, centre_world);
+      E.values<Interval>(centre_world, nullptr, &centre_value);
+      Interval mean_value = centre_value;
+      for (std::size_t j = 0; j < n; ++j) {
+        const auto& c = chart.columns[j];
+        mean_value += (gradient[0] * c[0] + gradient[1] * c[1] + gradient[2] * c[2]) * (u[j] - centre[j]);
+      }
+      if (!certainly_nonzero(mean_value)) {
+        // Bisect along the widest side; a side that no longer splits ends the attempt.
+        std::size_t widest = 0;
+        for (std::size_t j = 1; j < n; ++j)
+          if (u[j].sup() - u[j].inf() > u[widest].sup() - u[widest].inf()) widest = j;
+        const double lo = u[widest].inf(), hi = u[widest].sup(), mid = 0.5 * (lo + hi);
+        if (!(lo < mid && mid < hi)) return result;
+        Box left = u, right = u;
+        left[widest] = Interval(lo, mid);
+        right[widest] = Interval(mid, hi);
+        stack.push_back(right);
+        stack.push_back(left);
+      }
+    }
+  }
+  result.proved = true;
+  return result;
+}
+
+}  // namespace delmesh

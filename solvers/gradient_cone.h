@@ -1,0 +1,62 @@
+#pragma once
+//! \file gradient_cone.h
+//! A cheap certificate that a linear functional of the gradient does not vanish on the part of a
+//! surface inside a polytope:
+//!
+//!     prove  ⟨∇E(x), w⟩ ≠ 0  for every x ∈ Σ ∩ P,   Σ = {E = 0},
+//!
+//! where P is a convex polytope (solvers/domain.h) in chart coordinates u ∈ ℝⁿ (n = 2 or 3) and
+//! x = origin + Σ_j u_j c_j is an affine chart into ℝ³ (a Voronoi facet in its plane frame, or a
+//! Voronoi cell with the identity chart).
+//!
+//! Method.  Subdivide P's bounding box; a box U (in interval arithmetic, X its world enclosure) is
+//! dropped when
+//!  (i)   it lies outside P (classify() proves it), or
+//!  (ii)  0 ∉ E(X) ∩ [E(c) + Σ_j ⟨∇E(X), c_j⟩ (U_j − u_c,j)]  (natural and mean-value forms,
+//!        c the box centre): then U contains no point of Σ, or
+//!  (iii) 0 ∉ ⟨∇E(X), w⟩: then the functional is non-zero on all of U.
+//! A box that none of these drops is bisected along its widest side; when the budget or the depth
+//! runs out the certificate fails.  Proof: every point of Σ ∩ P lies in some box of the final
+//! cover that was not dropped by (i) or (ii), i.e. one dropped by (iii), where the functional is
+//! non-zero.  Each test is a rigorous interval enclosure (a RoundingGuard is taken), so `proved`
+//! is a proof; a failure proves nothing and the caller must solve the full system.
+//!
+//! Uses by the mesher (each a sufficient condition for its check to find no witness):
+//!  - Silhouette (Lemma 4.14): w = n_p over V_p proves J_{n_p} ∩ V_p = ∅, which is what
+//!    SilhouetteCritical and SilhouettePlane look for.
+//!  - FacetContact and FacetCycle on a facet F with unit normal m: for w ⟂ m, ⟨∇E, w⟩ ≠ 0 on
+//!    Σ ∩ F proves (a) ∇E ∦ m there, so Σ touches the plane nowhere in F (no SurfacePlaneContact
+//!    point), and (b) with d = w × m, the tangent t = ∇E × m of the curve Σ ∩ Π satisfies
+//!    ⟨t, d⟩ = ⟨∇E, m × d⟩ = ⟨∇E, w⟩ ≠ 0, so the curve has no critical point in direction d
+//!    inside F: FacetCycle in direction d has no critical point to shoot a line from, and no
+//!    closed curve of Σ ∩ Π lies in F (it would have one).
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "solvers/domain.h"
+#include "symbolic/compiled_system.h"
+
+namespace delmesh {
+
+//! x = origin + Σ_j u_j columns[j], j < columns.size() = the domain's dimension.
+struct AffineChart {
+  std::array<double, 3> origin{};
+  std::vector<std::array<double, 3>> columns;
+  //! The identity chart of ℝ³.
+  static AffineChart identity();
+};
+
+struct GradientConeResult {
+  bool proved = false;     //!< ⟨∇E, w⟩ ≠ 0 on Σ ∩ P is proved
+  std::size_t boxes = 0;   //!< boxes examined
+};
+
+//! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P (see the file comment).  `E` has one equation E in the
+//! unknowns (x, y, z) and no parameters; its Jacobian is ∇E.  Throws PreconditionViolation if
+//! the chart's columns do not match domain.dimension() or E is not of that shape.
+GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChart& chart, const Domain& domain,
+                                       const std::array<double, 3>& w, std::size_t box_budget);
+
+}  // namespace delmesh

@@ -206,6 +206,21 @@ std::vector<TriangleKey> Delaunay::incident_triangles(VertexId id) const {
   return out;
 }
 
+std::optional<std::array<VertexId, 2>> Delaunay::triangle_apexes(const TriangleKey& t) const {
+  const auto& dt = impl_->dt;
+  if (dt.dimension() != 3) return std::nullopt;
+  for (VertexId id : t)
+    if (!contains(id)) return std::nullopt;
+  detail::Dt::Cell_handle c;
+  int i = 0, j = 0, k = 0;
+  if (!dt.is_facet(impl_->handles[t[0]], impl_->handles[t[1]], impl_->handles[t[2]], c, i, j, k))
+    return std::nullopt;
+  const int opposite = 6 - i - j - k;
+  const auto other = c->neighbor(opposite);
+  const auto apex = [&](detail::Dt::Vertex_handle v) { return dt.is_infinite(v) ? VertexId(-1) : v->info().id; };
+  return std::array<VertexId, 2>{apex(c->vertex(opposite)), apex(other->vertex(other->index(c)))};
+}
+
 std::vector<TriangleKey> Delaunay::edge_triangles(const EdgeKey& e) const {
   std::vector<TriangleKey> out;
   const auto& dt = impl_->dt;

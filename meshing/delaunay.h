@@ -87,6 +87,9 @@ class Delaunay {
   std::vector<VertexId> neighbours(VertexId id) const;
   //! Delaunay triangles incident to id (sorted keys, ascending).
   std::vector<TriangleKey> incident_triangles(VertexId id) const;
+  //! In dimension 3: the vertices opposite the Delaunay triangle t in its two cells (−1 for the
+  //! infinite vertex), or nothing if t is not a triangle of Del S.  Below dimension 3: nothing.
+  std::optional<std::array<VertexId, 2>> triangle_apexes(const TriangleKey& t) const;
   //! Delaunay triangles that contain the edge e (sorted keys, ascending; empty if e is not an edge).
   std::vector<TriangleKey> edge_triangles(const EdgeKey& e) const;
   //! Delaunay edges incident to id (sorted keys, ascending).

@@ -27,13 +27,13 @@ std::vector<Refinement::Step> Refinement::make_table() {
   std::vector<Step> table(step_count);
   table[vor_edge_step] = {CheckKind::vor_edge, "vor_edge", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
                             const TriangleKey t = as_triangle(s);
-                            if (!r.del_.is_triangle(t)) return std::nullopt;
+                            if (!r.current(t)) return std::nullopt;
                             return vor_edge_witness(r.restricted_, t);
                           }};
   table[facet_contact_step] = {CheckKind::facet_contact, "facet_contact",
                                [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
                                  const EdgeKey e = as_edge(s);
-                                 if (!r.del_.is_edge(e)) return std::nullopt;
+                                 if (!r.current(e)) return std::nullopt;
                                  return facet_contact_witness(r.restricted_, e);
                                }};
   table[topo_disk_step] = {CheckKind::topo_disk, "topo_disk", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
@@ -43,7 +43,7 @@ std::vector<Refinement::Step> Refinement::make_table() {
   table[facet_cycle_step] = {CheckKind::facet_cycle, "facet_cycle",
                              [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
                                const EdgeKey e = as_edge(s);
-                               if (!r.del_.is_edge(e)) return std::nullopt;
+                               if (!r.current(e)) return std::nullopt;
                                return facet_cycle_witness(r.restricted_, e);
                              }};
   // Step (e) runs only once (a)–(d) have nothing queued: the facets of V_p are clean.
@@ -54,14 +54,14 @@ std::vector<Refinement::Step> Refinement::make_table() {
                             }};
   table[quality_step] = {CheckKind::quality, "quality", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
                            const TriangleKey t = as_triangle(s);
-                           if (!r.del_.is_triangle(t)) return std::nullopt;
+                           if (!r.current(t)) return std::nullopt;
                            if (auto w = quality_witness(r.restricted_, t, r.lambda_)) return w;
                            if (r.size_bound_) return size_witness(r.restricted_, t, *r.size_bound_);
                            return std::nullopt;
                          }};
   table[smooth_step] = {CheckKind::smooth, "smooth", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
                           const TriangleKey t = as_triangle(s);
-                          if (!r.del_.is_triangle(t) || !r.restricted_.edge_record(t).restricted)
+                          if (!r.current(t) || !r.restricted_.edge_record(t).restricted)
                             return std::nullopt;
                           for (const auto& e : {make_edge_key(t[0], t[1]), make_edge_key(t[0], t[2]),
                                                 make_edge_key(t[1], t[2])})
@@ -72,6 +72,12 @@ std::vector<Refinement::Step> Refinement::make_table() {
   table[smooth_step].enabled = false;
   return table;
 }
+
+bool Refinement::current(const TriangleKey& t) const {
+  return restricted_.cached_record(t) != nullptr || del_.is_triangle(t);
+}
+
+bool Refinement::current(const EdgeKey& e) const { return restricted_.has_facet(e) || del_.is_edge(e); }
 
 Refinement::Refinement(SurfaceOracle& oracle, std::uint64_t seed, RefinementLimits limits, RecheckPolicy policy)
     : oracle_(oracle), seed_(seed), limits_(std::move(limits)), policy_(policy), restricted_(del_, oracle, seed),

@@ -58,7 +58,6 @@
 #include <functional>
 #include <optional>
 #include <string>
-#include <unordered_set>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -136,29 +135,30 @@ class Refinement {
  private:
   //! A queued simplex: a vertex {v, −1, −1}, an edge {p, q, −1} or a triangle {p, q, r}, sorted.
   using Simplex = std::array<VertexId, 3>;
-  //! A set of distinct simplices, taken smallest key first.  The order depends only on what is
-  //! queued, not on when, so re-queuing an item that waits changes nothing (the lemma's test
-  //! relies on this).
+  //! Simplices taken smallest key first, each distinct simplex once however often it was queued
+  //! (a binary heap; equal entries come out together and are merged).  The order depends only on
+  //! what is queued, not on when, so re-queuing an item that waits changes nothing (the lemma's
+  //! test relies on this).
   class WorkQueue {
    public:
     void push(const Simplex& s) {
-      if (!members_.insert(s).second) return;
       heap_.push_back(s);
       std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
     }
     Simplex pop() {
-      std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
-      const Simplex s = heap_.back();
-      heap_.pop_back();
-      members_.erase(s);
+      const Simplex s = heap_.front();
+      while (!heap_.empty() && heap_.front() == s) {
+        std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
+        heap_.pop_back();
+      }
       return s;
     }
     bool empty() const { return heap_.empty(); }
+    //! Entries waiting, counting repeats.
     std::size_t size() const { return heap_.size(); }
 
    private:
     std::vector<Simplex> heap_;
-    std::unordered_set<Simplex, SimplexKeyHash> members_;
   };
   //! One row of the table: the check, who it is counted for, what it examines.
   struct Step {
@@ -172,6 +172,9 @@ class Refinement {
                    quality_step, smooth_step, step_count };
 
   static std::vector<Step> make_table();
+  //! Whether t / e is in Del S now (a cached record or facet proves it: see restricted_delaunay.h).
+  bool current(const TriangleKey& t) const;
+  bool current(const EdgeKey& e) const;
   void queue_triangle(const TriangleKey& t, bool topology_checks);
   void queue_edge(const EdgeKey& e);
   void queue_everything_within(const std::vector<VertexId>& sorted_vertices);

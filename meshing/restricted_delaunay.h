@@ -58,7 +58,11 @@ class RestrictedDelaunay {
   //! The record of a current Delaunay triangle (computed on first use, then cached).
   const EdgeRecord& edge_record(const TriangleKey& t);
   //! The cached record of t as it stands (possibly marked shrunk), or nullptr; computes nothing.
+  //! Invariant: while every change of Del S is reported (shrink(), forget() before a removal),
+  //! records and facets are cached only for current Delaunay triangles and edges.
   const EdgeRecord* cached_record(const TriangleKey& t) const;
+  //! Whether the facet of e is cached (then e is a current Delaunay edge).
+  bool has_facet(const EdgeKey& e) const { return facets_.count(e) != 0; }
   //! The facet of a current Delaunay edge (computed on first use, then cached).
   const VoronoiFacet& facet(const EdgeKey& e);
   //! Whether Σ ∩ F is proved to be a regular curve with no critical point in some in-plane

@@ -50,6 +50,45 @@ Vec3 circumcentre(const Vec3& p, const Vec3& q, const Vec3& r) {
   return p + (1.0 / d) * num;
 }
 
+// Circumcentre of the tetrahedron pqrs (floating point).
+Vec3 circumcentre(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
+  const Vec3 a = q - p, b = r - p, c = s - p;
+  const double d = 2 * dot(a, cross(b, c));
+  const Vec3 num = dot(a, a) * cross(b, c) + dot(b, b) * cross(c, a) + dot(c, c) * cross(a, b);
+  return p + (1.0 / d) * num;
+}
+
+// The edge of t in dimension 3 from the circumcentres of its two cells: a segment between them,
+// or (one cell infinite) a ray from the finite one away from its apex, clipped by the box.
+void edge_from_cells(const Delaunay& del, const std::array<VertexId, 2>& apexes, const Box3& box, VoronoiEdge& e) {
+  const auto clipped = clip_line_to_box(e.point, e.direction, box);
+  if (!clipped) return;
+  const Vec3& p = del.point(e.triangle[0]);
+  const Vec3& q = del.point(e.triangle[1]);
+  const Vec3& r = del.point(e.triangle[2]);
+  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  if (apexes[0] >= 0 && apexes[1] >= 0) {
+    const double s0 = dot(circumcentre(p, q, r, del.point(apexes[0])) - e.point, e.direction);
+    const double s1 = dot(circumcentre(p, q, r, del.point(apexes[1])) - e.point, e.direction);
+    lo = std::min(s0, s1);
+    hi = std::max(s0, s1);
+  } else {
+    const VertexId apex = apexes[0] >= 0 ? apexes[0] : apexes[1];
+    const Vec3& o = del.point(apex);
+    const double s = dot(circumcentre(p, q, r, o) - e.point, e.direction);
+    // The ray leaves the hull on the side of t away from the finite cell's apex.
+    if (dot(o - p, e.direction) > 0)
+      hi = s;
+    else
+      lo = s;
+  }
+  e.at_vertex0 = lo > (*clipped)[0];
+  e.at_vertex1 = hi < (*clipped)[1];
+  e.t0 = std::max(lo, (*clipped)[0]);
+  e.t1 = std::min(hi, (*clipped)[1]);
+  e.valid = e.t0 < e.t1;
+}
+
 }  // namespace
 
 bool half_spaces_contain(const Domain& domain, const std::vector<double>& u, double tolerance) {
@@ -93,6 +132,10 @@ VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& t, const Box3& 
   if (!(norm(n) > 0)) return e;
   e.point = circumcentre(p, q, r);
   e.direction = normalized(n);
+  if (const auto apexes = del.triangle_apexes(t)) {
+    edge_from_cells(del, *apexes, box, e);
+    return e;
+  }
   const auto clipped = clip_line_to_box(e.point, e.direction, box);
   if (!clipped) return e;
   double t0 = (*clipped)[0], t1 = (*clipped)[1];

@@ -13,8 +13,10 @@
 //!   mesher passes a seeded pseudo-random angle, so that d = a is a generic in-plane direction
 //!   for CurveCritical); F = Π ∩ V_p, computed by clipping the polygon Π ∩ B.
 //! - The edge of a Delaunay triangle pqr is its support line c + t n (c the circumcentre, n the
-//!   unit normal (q−p)×(r−p)/|…| of pqr with p < q < r by id) intersected with V_p: a segment
-//!   between two Voronoi vertices, or a ray clipped by B, or (in dimension 2) a line clipped by B.
+//!   unit normal (q−p)×(r−p)/|…| of pqr with p < q < r by id) intersected with V_p: in dimension
+//!   3 the segment between the circumcentres of pqr's two cells, or the ray from the finite one
+//!   away from its apex (pqr on the hull), clipped by B; in dimension 2 the line clipped by B
+//!   and by the bisectors of p's neighbours.
 //! Constructions are floating point; the combinatorics come from CGAL's exact predicates.
 
 #include <array>

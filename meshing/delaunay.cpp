@@ -221,6 +221,30 @@ std::optional<std::array<VertexId, 2>> Delaunay::triangle_apexes(const TriangleK
   return std::array<VertexId, 2>{apex(c->vertex(opposite)), apex(other->vertex(other->index(c)))};
 }
 
+std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x) const {
+  std::vector<StarTriangle> out;
+  const auto& dt = impl_->dt;
+  if (dt.dimension() != 3) return out;
+  const auto v = impl_->handle(x);
+  std::vector<detail::Dt::Cell_handle> cells;
+  dt.incident_cells(v, std::back_inserter(cells));
+  const auto id = [&](detail::Dt::Vertex_handle w) { return dt.is_infinite(w) ? VertexId(-1) : w->info().id; };
+  for (const auto& c : cells) {
+    const int ix = c->index(v);
+    for (int j = 0; j < 4; ++j) {
+      const auto t = facet_key(dt, detail::Dt::Facet(c, j));
+      if (!t) continue;
+      // A facet containing x is met from both of its cells; keep it from the one with j < its mirror.
+      const auto other = c->neighbor(j);
+      const int mirror = other->index(c);
+      if (j != ix && other->has_vertex(v) && &*other < &*c) continue;
+      out.push_back({*t, {id(c->vertex(j)), id(other->vertex(mirror))}, j != ix});
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const StarTriangle& a, const StarTriangle& b) { return a.key < b.key; });
+  return out;
+}
+
 std::vector<TriangleKey> Delaunay::edge_triangles(const EdgeKey& e) const {
   std::vector<TriangleKey> out;
   const auto& dt = impl_->dt;

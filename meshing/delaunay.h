@@ -43,6 +43,14 @@ struct SimplexKeyHash {
   }
 };
 
+//! Equality of simplex keys, element by element (std::array's operator== goes through memcmp).
+struct SimplexKeyEqual {
+  bool operator()(const TriangleKey& s, const TriangleKey& t) const noexcept {
+    return s[0] == t[0] && s[1] == t[1] && s[2] == t[2];
+  }
+  bool operator()(const EdgeKey& e, const EdgeKey& f) const noexcept { return e[0] == f[0] && e[1] == f[1]; }
+};
+
 //! What one insertion changed in Del S (Bowyer–Watson: the cells in conflict with x form a
 //! star-shaped cavity, replaced by the cone from x over its boundary).
 //! - destroyed: the triangles and edges strictly inside the cavity; they are no longer in Del S.
@@ -90,6 +98,16 @@ class Delaunay {
   //! In dimension 3: the vertices opposite the Delaunay triangle t in its two cells (−1 for the
   //! infinite vertex), or nothing if t is not a triangle of Del S.  Below dimension 3: nothing.
   std::optional<std::array<VertexId, 2>> triangle_apexes(const TriangleKey& t) const;
+  //! One triangle of the closed star of a vertex x: its key, its apexes (as triangle_apexes), and
+  //! whether it contains x (otherwise it is opposite x in one of x's cells: a link triangle).
+  struct StarTriangle {
+    TriangleKey key;
+    std::array<VertexId, 2> apexes;
+    bool contains_vertex;
+  };
+  //! In dimension 3: every finite triangle of the cells incident to x, once each, ascending by
+  //! key.  Below dimension 3: empty.
+  std::vector<StarTriangle> closed_star(VertexId x) const;
   //! Delaunay triangles that contain the edge e (sorted keys, ascending; empty if e is not an edge).
   std::vector<TriangleKey> edge_triangles(const EdgeKey& e) const;
   //! Delaunay edges incident to id (sorted keys, ascending).

@@ -162,26 +162,28 @@ std::optional<VertexId> Refinement::insert(const Witness& w) {
   }
   // Shrunk faces keep their clean results (the lemma in refinement.h); their records are brought
   // up to date now, and a triangle whose dual point changed goes to Quality and Smooth again.
-  std::vector<std::pair<TriangleKey, std::optional<std::pair<bool, Vec3>>>> shrunk;
-  for (const auto& t : change.shrunk_triangles) {
-    const EdgeRecord* before = restricted_.cached_record(t);
-    shrunk.push_back({t, before && !before->shrunk ? std::optional<std::pair<bool, Vec3>>({before->restricted, before->dual_point})
-                                                   : std::nullopt});
+  const auto star = del_.closed_star(x);
+  std::vector<std::optional<std::pair<bool, Vec3>>> before(star.size());
+  for (std::size_t i = 0; i < star.size(); ++i) {
+    const EdgeRecord* r = star[i].contains_vertex ? nullptr : restricted_.cached_record(star[i].key);
+    if (r && !r->shrunk) before[i] = std::make_pair(r->restricted, r->dual_point);
   }
   restricted_.shrink(change);
-  for (const auto& [t, before] : shrunk) {
-    const EdgeRecord& r = restricted_.edge_record(t);
-    const bool status_changed = !before || before->first != r.restricted;
+  for (std::size_t i = 0; i < star.size(); ++i) {
+    const auto& [t, apexes, contains_x] = star[i];
+    const EdgeRecord& r = restricted_.edge_record(t, &apexes);
+    if (contains_x) {
+      // The faces dual to simplices containing x are new: all their checks run.
+      if (r.restricted) star_change(t);
+      queue_triangle(t, true);
+      continue;
+    }
+    const bool status_changed = !before[i] || before[i]->first != r.restricted;
     if (status_changed) star_change(t);
-    if (status_changed || before->second != r.dual_point)
+    if (status_changed || before[i]->second != r.dual_point)
       queue_triangle(t, policy_ == RecheckPolicy::changed_faces);
     else if (policy_ == RecheckPolicy::changed_faces)
       steps_[vor_edge_step].queue.push(t);
-  }
-  // The faces dual to simplices containing x are new: all their checks run.
-  for (const auto& t : del_.incident_triangles(x)) {
-    if (restricted_.edge_record(t).restricted) star_change(t);
-    queue_triangle(t, true);
   }
   const auto neighbours = del_.neighbours(x);
   for (VertexId q : neighbours) queue_edge(make_edge_key(x, q));

@@ -30,16 +30,16 @@ double RestrictedDelaunay::facet_rotation(const EdgeKey& e) const {
   return 2 * M_PI * seeded_uniform(seed_, e[0], e[1], 17);
 }
 
-const EdgeRecord& RestrictedDelaunay::edge_record(const TriangleKey& t) {
+const EdgeRecord& RestrictedDelaunay::edge_record(const TriangleKey& t, const std::array<VertexId, 2>* apexes) {
   auto it = edges_.find(t);
-  if (it == edges_.end()) return edges_.emplace(t, compute(t)).first->second;
+  if (it == edges_.end()) return edges_.emplace(t, compute(t, apexes)).first->second;
   if (it->second.shrunk) {
-    const VoronoiEdge edge = voronoi_edge(del_, t, oracle_.box());
+    const VoronoiEdge edge = voronoi_edge(del_, t, oracle_.box(), apexes);
     if (auto restricted = restrict_record(it->second, edge)) {
       ++records_restricted_;
       it->second = std::move(*restricted);
     } else {
-      it->second = compute(t);
+      it->second = compute(t, apexes);
     }
   }
   return it->second;
@@ -116,10 +116,10 @@ bool RestrictedDelaunay::facet_section_certified(const EdgeKey& e) {
   return proved;
 }
 
-EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t) {
+EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes) {
   ++records_solved_;
   EdgeRecord r;
-  r.edge = voronoi_edge(del_, t, oracle_.box());
+  r.edge = voronoi_edge(del_, t, oracle_.box(), apexes);
   if (!r.edge.valid) return r;
   const auto& e = r.edge;
   const auto result = oracle_.surface_line(e.point, e.direction, e.t0, e.t1);

@@ -55,8 +55,9 @@ class RestrictedDelaunay {
  public:
   RestrictedDelaunay(const Delaunay& del, SurfaceOracle& oracle, std::uint64_t seed);
 
-  //! The record of a current Delaunay triangle (computed on first use, then cached).
-  const EdgeRecord& edge_record(const TriangleKey& t);
+  //! The record of a current Delaunay triangle (computed on first use, then cached).  `apexes`,
+  //! if given, are Delaunay::triangle_apexes(t) (saves looking them up).
+  const EdgeRecord& edge_record(const TriangleKey& t, const std::array<VertexId, 2>* apexes = nullptr);
   //! The cached record of t as it stands (possibly marked shrunk), or nullptr; computes nothing.
   //! Invariant: while every change of Del S is reported (shrink(), forget() before a removal),
   //! records and facets are cached only for current Delaunay triangles and edges.
@@ -95,19 +96,19 @@ class RestrictedDelaunay {
   std::size_t unresolved() const { return unresolved_; }
 
  private:
-  EdgeRecord compute(const TriangleKey& t);
+  EdgeRecord compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes);
   //! The record of the shrunk edge `edge` restricted from `old`, or nothing if it must be solved.
   std::optional<EdgeRecord> restrict_record(const EdgeRecord& old, const VoronoiEdge& edge) const;
 
   const Delaunay& del_;
   SurfaceOracle& oracle_;
   std::uint64_t seed_;
-  std::unordered_map<TriangleKey, EdgeRecord, SimplexKeyHash> edges_;
+  std::unordered_map<TriangleKey, EdgeRecord, SimplexKeyHash, SimplexKeyEqual> edges_;
   struct FacetEntry {
     VoronoiFacet facet;
     int section_certified = -1;  //!< −1 not tried, 0 failed, 1 proved
   };
-  std::unordered_map<EdgeKey, FacetEntry, SimplexKeyHash> facets_;
+  std::unordered_map<EdgeKey, FacetEntry, SimplexKeyHash, SimplexKeyEqual> facets_;
   std::size_t unresolved_ = 0, records_solved_ = 0, records_restricted_ = 0;
 };
 

@@ -122,7 +122,8 @@ bool VoronoiCell::contains(const Vec3& x, double tolerance) const {
   return half_spaces_contain(domain, {x[0], x[1], x[2]}, tolerance);
 }
 
-VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& t, const Box3& box) {
+VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& t, const Box3& box,
+                         const std::array<VertexId, 2>* known_apexes) {
   VoronoiEdge e;
   e.triangle = t;
   const Vec3& p = del.point(t[0]);
@@ -132,6 +133,10 @@ VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& t, const Box3& 
   if (!(norm(n) > 0)) return e;
   e.point = circumcentre(p, q, r);
   e.direction = normalized(n);
+  if (known_apexes) {
+    edge_from_cells(del, *known_apexes, box, e);
+    return e;
+  }
   if (const auto apexes = del.triangle_apexes(t)) {
     edge_from_cells(del, *apexes, box, e);
     return e;
@@ -183,7 +188,18 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
   poly.reserve(section->polygon.size() + 8);
   scratch.reserve(section->polygon.size() + 8);
   for (const auto& w : section->polygon) poly.push_back({c * w[0] + s * w[1], -s * w[0] + c * w[1]});
-  for (VertexId r : del.neighbours(edge[0])) {
+  // F = Π ∩ V_p ∩ B is cut out by the bisectors of p and the third vertices r of the triangles
+  // pqr (each edge of the convex polygon F is the Voronoi edge of one pqr, and a convex polygon
+  // is the intersection of the half-planes of its edges); other neighbours of p are redundant.
+  std::vector<VertexId> cutting;
+  if (del.dimension() == 3) {
+    for (const auto& t : del.edge_triangles(edge))
+      for (VertexId r : t)
+        if (r != edge[0] && r != edge[1]) cutting.push_back(r);
+  } else {
+    cutting = del.neighbours(edge[0]);
+  }
+  for (VertexId r : cutting) {
     if (r == edge[1]) continue;
     const Vec3& x = del.point(r);
     const Vec3 w = x - p;

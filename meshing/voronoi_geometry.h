@@ -11,7 +11,8 @@
 //! - The facet F of a Delaunay edge pq lies in the bisector plane Π of pq with frame
 //!   (o = (p+q)/2, a, b), a, b orthonormal ⟂ q−p, rotated in Π by a caller-supplied angle (the
 //!   mesher passes a seeded pseudo-random angle, so that d = a is a generic in-plane direction
-//!   for CurveCritical); F = Π ∩ V_p, computed by clipping the polygon Π ∩ B.
+//!   for CurveCritical); F = Π ∩ V_p, computed by clipping the polygon Π ∩ B by the bisectors of
+//!   p and the third vertices of the triangles pqr (in dimension 3; by all of N(p) below).
 //! - The edge of a Delaunay triangle pqr is its support line c + t n (c the circumcentre, n the
 //!   unit normal (q−p)×(r−p)/|…| of pqr with p < q < r by id) intersected with V_p: in dimension
 //!   3 the segment between the circumcentres of pqr's two cells, or the ray from the finite one
@@ -65,7 +66,10 @@ struct VoronoiCell {
   bool contains(const Vec3& x, double tolerance) const;
 };
 
-VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& triangle, const Box3& box);
+//! `apexes`, if given, are Delaunay::triangle_apexes(triangle) (known to the caller, e.g. from
+//! Delaunay::closed_star); otherwise they are looked up.
+VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& triangle, const Box3& box,
+                         const std::array<VertexId, 2>* apexes = nullptr);
 VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3& box, double rotation);
 VoronoiCell voronoi_cell(const Delaunay& del, VertexId p, const Box3& box);
 

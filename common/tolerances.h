@@ -196,6 +196,24 @@ inline constexpr double duplicate_sample_relative_distance = 1e-9;
 inline constexpr std::size_t gradient_cone_box_budget = 48;
 //! Interval subdivision of a box face to certify E ≠ 0 on it: maximal depth of the quadtree.
 inline constexpr int box_face_max_depth = 14;
+//! Input validation (meshing/input_validation.h): a box of the regularity check narrower than this
+//! (relative to the widest side of the domain) that is neither excluded nor proved free of
+//! critical points is not bisected further; it is undecided, and looked at for evidence of a
+//! singular point.  A singular point's undecided zone shrinks with the box (the gradient grows
+//! linearly away from it), so only O(1) boxes per level reach this width.
+inline constexpr double validation_min_box_relative_width = 1e-6;
+//! Input validation: the surface is called singular near an undecided box only if a point is
+//! found there where |E| and ‖∇E‖∞ are at most this fraction of their largest values over the
+//! domain's 3 × 3 × 3 grid (or a Krawczyk-certified critical point of E whose tight box has an
+//! enclosure of E containing 0 and narrower than this fraction); the point is sought by at most
+//! singular_evidence_iterations damped Gauss–Newton steps on (E, ∇E) = 0 (degenerate singular
+//! points converge linearly, so the count must allow a few dozen halvings of the distance).
+inline constexpr double singular_evidence_relative_residual = 1e-10;
+inline constexpr int singular_evidence_iterations = 100;
+//! Input validation: Krawczyk is tried on ∇E = 0 around that point on boxes of radius w, w/16,
+//! w/16², … (w the undecided box's width), at most this many times: near a nearly degenerate
+//! critical point the interval Hessian is contractive only on boxes much smaller than w.
+inline constexpr int singular_evidence_krawczyk_attempts = 8;
 //! The mesher reports progress at most this often (seconds).
 inline constexpr double progress_interval_seconds = 0.5;
 

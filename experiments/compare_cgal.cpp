@@ -1,10 +1,11 @@
 //! \file compare_cgal.cpp
 //! delmesh against CGAL 5.5.1's Surface_mesher (make_surface_mesh) and Mesh_3 (make_mesh_3 with
 //! facet criteria only), in one process run, on catalog surfaces given by their compiled E:
-//!  1. benchmark: torus and genus2 with delmesh (λ = 0.06, size bound 0.05), Surface_mesher (angle
-//!     30°, radius 0.05, distance 0.005) and Mesh_3 (facet_angle 30, facet_size 0.05,
-//!     facet_distance 0.005, no perturb, no exude); the ratio of delmesh's seconds per output
-//!     vertex to Mesh_3's (issue 5 target ≤ 3);
+//!  1. benchmark: for each case SURFACE:H (default torus and genus2 at 0.05, torus at 0.02),
+//!     delmesh (λ = 0.06, size bound H), Surface_mesher (angle 30°, radius H, distance H/10) and
+//!     Mesh_3 (facet_angle 30, facet_size H, facet_distance H/10, no perturb, no exude); the ratio
+//!     of delmesh's seconds per output vertex to Mesh_3's (target ≤ 3), the growth of delmesh's
+//!     seconds per vertex with the mesh, and its solver calls per vertex by primitive;
 //!  2. coarsest: delmesh at λ = 0.06 without size bound against CGAL at the coarsest of a ladder of
 //!     settings that still gives the right topology;
 //!  3. demo: CGAL at coarse settings on thin_handle / two_blobs / near_sheets, where it loses a
@@ -249,7 +250,8 @@ int main(int argc, char** argv) {
                "comparison and the topology demo); writes <out-dir>/compare_cgal.csv"};
   std::string surfaces = "torus,genus2", demo_surfaces = "thin_handle,two_blobs,near_sheets";
   std::string experiments_to_run = "benchmark,coarsest,demo";
-  double lambda = 0.06, size_bound = 0.05;
+  double lambda = 0.06;
+  std::string cases = "torus:0.05,genus2:0.05,torus:0.02";
   CgalSettings fine;
   std::vector<double> coarse_radii{0.5, 1.0};
   std::vector<double> ladder{0.8, 0.4, 0.2, 0.1, 0.05};
@@ -261,10 +263,11 @@ int main(int argc, char** argv) {
   app.add_option("--demo-surfaces", demo_surfaces, "demo surfaces")->capture_default_str();
   app.add_option("--experiments", experiments_to_run, "any of benchmark,coarsest,demo")->capture_default_str();
   app.add_option("--lambda", lambda, "delmesh lambda")->capture_default_str();
-  app.add_option("--size-bound", size_bound, "delmesh size bound H in the benchmark")->capture_default_str();
-  app.add_option("--angle", fine.angle_deg, "CGAL facet angle bound (deg), benchmark")->capture_default_str();
-  app.add_option("--radius", fine.radius, "CGAL facet radius / size bound, benchmark")->capture_default_str();
-  app.add_option("--distance", fine.distance, "CGAL facet distance bound, benchmark")->capture_default_str();
+  app.add_option("--cases", cases,
+                 "benchmark cases SURFACE:H, comma separated: delmesh with size bound H against CGAL with "
+                 "facet size H and facet distance H/10")
+      ->capture_default_str();
+  app.add_option("--angle", fine.angle_deg, "CGAL facet angle bound (deg)")->capture_default_str();
   app.add_option("--coarse-radii", coarse_radii, "CGAL radius bounds of the demo (distance = radius/10)")
       ->capture_default_str();
   app.add_option("--ladder", ladder, "CGAL radius bounds tried by 'coarsest' (distance = radius/10), coarse first")
@@ -285,8 +288,8 @@ int main(int argc, char** argv) {
     context.write_meshes = !no_meshes;
     CsvWriter csv(fs::path(out_dir) / "compare_cgal.csv", "compare_cgal",
                   {{"lambda", field(lambda)},
-                   {"size_bound", field(size_bound)},
-                   {"benchmark_cgal", fine.text()},
+                   {"benchmark_cases", cases},
+                   {"cgal_angle", field(fine.angle_deg)},
                    {"demo_radii", field_list(coarse_radii)},
                    {"ladder_radii", field_list(ladder)},
                    {"seed", field(static_cast<long long>(base.seed))},
@@ -314,17 +317,39 @@ int main(int argc, char** argv) {
     };
 
     if (wants("benchmark")) {
-      for (const std::string& name : split(surfaces)) {
+      // Seconds per vertex of delmesh over Mesh_3's per case, and how delmesh's seconds per vertex
+      // grow with the mesh (relative to the surface's first case).
+      std::map<std::string, double> first_per_vertex;
+      for (const std::string& item : split(cases)) {
+        const auto colon = item.find(':');
+        if (colon == std::string::npos) throw InvalidInput("--cases: expected SURFACE:H, got '" + item + "'");
+        const std::string name = item.substr(0, colon);
+        const double h = std::stod(item.substr(colon + 1));
+        if (!(h > 0)) throw InvalidInput("--cases: H must be positive in '" + item + "'");
         const Prepared s = prepare(name);
-        Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, fine);
+        const CgalSettings settings{fine.angle_deg, h, h / 10};
+        Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, settings);
         record(context, "benchmark", *s.entry, sm, s.E);
-        Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, fine);
+        Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings);
         record(context, "benchmark", *s.entry, m3, s.E);
-        if (!skip_delmesh) {
-          Run dm = run_delmesh(*s.entry, lambda, size_bound, base);
-          record(context, "benchmark", *s.entry, dm, s.E);
-          std::cout << "benchmark " << name << ": delmesh seconds per vertex / Mesh_3's = "
-                    << seconds_per_vertex(dm) / seconds_per_vertex(m3) << " (target <= 3)" << std::endl;
+        if (skip_delmesh) continue;
+        Run dm = run_delmesh(*s.entry, lambda, h, base);
+        const MeshReport report = record(context, "benchmark", *s.entry, dm, s.E);
+        const double per_vertex = seconds_per_vertex(dm);
+        const auto [first, inserted] = first_per_vertex.emplace(name, per_vertex);
+        std::cout << "benchmark " << name << " H=" << h << ": delmesh " << per_vertex * 1e6
+                  << " us/vertex, Mesh_3 " << seconds_per_vertex(m3) * 1e6
+                  << " us/vertex, ratio " << per_vertex / seconds_per_vertex(m3) << " (target <= 3)";
+        if (!inserted) std::cout << ", delmesh us/vertex relative to the first " << name << " case " << per_vertex / first->second;
+        std::cout << std::endl;
+        if (!dm.statistics.is_null() && report.vertices) {
+          const double n = static_cast<double>(report.vertices);
+          std::cout << "  solver calls per vertex:";
+          for (const auto& [primitive, p] : dm.statistics["solver"]["per_primitive"].items())
+            std::cout << " " << primitive << " " << p["calls"].get<double>() / n;
+          const auto& cone = dm.statistics["solver"]["cone_certificates"];
+          std::cout << "; cone certificates per vertex " << cone["attempts"].get<double>() / n << " ("
+                    << cone["proved"].get<double>() / n << " proved)" << std::endl;
         }
       }
     }

@@ -94,7 +94,7 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
   for (int k = 0; k < 3; ++k)
     if (!(box.lo[k] < box.hi[k])) throw InvalidInput("the box is empty");
 
-  validate_input(surface, box);
+  const ValidationReport validation = validate_input(surface, box);
   SurfaceOracle oracle(surface, box, options.solver);
   RefinementLimits limits;
   limits.max_points = options.max_points;
@@ -173,6 +173,7 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
   j["seed_undecided"] = seeds.undecided;
   j["seed"] = options.seed;
   j["topology_phase"] = {{"vertices", topology_vertices}, {"seconds", topology_seconds}};
+  j["seconds_validation"] = validation.seconds;
   j["points"] = refinement.delaunay().size();
   j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

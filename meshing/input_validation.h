@@ -1,26 +1,90 @@
 #pragma once
 //! \file input_validation.h
-//! Checks made before meshing (issue 4, part 6), each failing with InvalidInput and a clear
-//! message.  Every check has a budget; none can hang.  (The third input condition, Σ non-empty in
-//! the box, is checked by SampleTopology: no critical point in the height direction means no
-//! component of Σ, since a compact component has a maximum.)
+//! Checks made before meshing, each failing with InvalidInput and a clear message.  Every check
+//! has a budget; none can hang.  (The third input condition, Σ non-empty in the box, is checked
+//! by SampleTopology: no critical point in the height direction means no component of Σ, since a
+//! compact component has a maximum.)
+//!
+//! ## Method
+//! Both checks are exclusion proofs by interval subdivision (depth first, bisecting the widest
+//! side), with the enclosures of CompiledSystem over {E, ∂xE, ∂yE, ∂zE}: on a box B it gives
+//! enclosures E(B), ∇E(B) and, from its Jacobian, the Hessian H(B); at the centre c (a double
+//! point of B) it gives E(c) and ∇E(c).  All interval work runs under a RoundingGuard.
+//!
+//! ## Why every dropped box is sound
+//! Interval evaluation encloses (compiled_system.h): for every x ∈ B, E(x) ∈ E(B), ∇E(x) ∈ ∇E(B),
+//! Hess E(x) ∈ H(B).  An enclosure with a NaN or infinite bound never drops a box
+//! (certainly_nonzero() is false for it), and the mean-value forms below are used only when the
+//! derivative enclosures they rely on are finite, i.e. when every operation of the compiled
+//! derivative program is defined (log and sqrt of positive arguments, non-zero divisors) on B, so
+//! that E is C² on B and the mean-value theorem applies along every segment [c, x] ⊂ B.
+//! 1. *E excludes 0 on B* (validate_box_faces on a face rectangle, validate_regular on a box):
+//!    E(x) lies in the natural enclosure E(B) and, by the mean-value theorem (ξ ∈ [c, x] ⊂ B),
+//!    E(x) = E(c) + ⟨∇E(ξ), x − c⟩ ∈ E(c) + Σᵢ ∂ᵢE(B)(Bᵢ − cᵢ).  So E(x) lies in the
+//!    intersection of the two enclosures; if it excludes 0, E has no zero on B (on a face, the
+//!    sum runs over the two free coordinates only, the fixed one has Bᵢ − cᵢ = 0).
+//! 2. *∇E ≠ 0 on B* (validate_regular): for a fixed vector g (any doubles; we take g ≈ ∇E(c), and
+//!    also the three axis vectors), ⟨∇E(x), g⟩ ≠ 0 implies ∇E(x) ≠ 0.  ⟨∇E(x), g⟩ lies in the
+//!    natural enclosure Σᵢ ∂ᵢE(B) gᵢ and, by the mean-value theorem applied to x ↦ ⟨∇E(x), g⟩
+//!    (whose gradient is Hess E · g), in ⟨∇E(c), g⟩ + Σⱼ (Σᵢ H(B)ᵢⱼ gᵢ)(Bⱼ − cⱼ).  If their
+//!    intersection excludes 0, ∇E has no zero on B (the cone of gradients over B stays in an open
+//!    half-space), so B holds no point of Σ where ∇E = 0.
+//! A box that is not dropped is bisected; the union of the dropped boxes is the whole domain when
+//! the check passes, which proves the claim on every point of it.
+//!
+//! ## Undecided boxes are not called singular without evidence
+//! A box narrower than tolerances::validation_min_box_relative_width (relative to the widest side
+//! of the domain) that is not dropped is undecided.  validate_regular calls the surface singular
+//! only with evidence found near such a box (evidence, not a proof).  From the box's centre,
+//! damped Gauss–Newton on (E, ∇E) = 0 reaches a point p; p must lie within one box width of the
+//! box.  Then Krawczyk on ∇E = 0 is tried on boxes p ± r (tolerances::
+//! singular_evidence_krawczyk_attempts radii, from the box width down by factors of 16):
+//!  - it proves no zero of ∇E in p ± r: no evidence (∇E(p) ≠ 0, however small);
+//!  - it certifies a unique critical point x* of E in p ± r, refined to a tight box X: if E(X)
+//!    excludes 0, x* is off Σ and there is no evidence; if E(X) contains 0 and is narrower than
+//!    tolerances::singular_evidence_relative_residual times the scale of E, this is evidence;
+//!  - otherwise (a degenerate critical point, e.g. two spheres touching, where Krawczyk cannot
+//!    apply) the evidence is |E(p)| and ‖∇E(p)‖∞ below tolerances::
+//!    singular_evidence_relative_residual times their scales.
+//! The scales are the largest |E| and ‖∇E‖∞ at the 27 points of the domain's 3 × 3 × 3 grid
+//! (corners, edge and face centres, centre).  Without evidence the message is "cannot certify",
+//! never "singular".  So a smooth surface is called singular only where (E, ∇E) vanish to within
+//! that relative threshold and Krawczyk can neither certify nor exclude a critical point (two
+//! spheres 2e-7 apart in a box of size 2.6 get "cannot certify": Krawczyk puts the critical point
+//! between them off Σ).
+
+#include <cstddef>
 
 #include "symbolic/surface.h"
 
 namespace delmesh {
 
+//! Work done by validate_input.
+struct [[nodiscard]] ValidationReport {
+  double seconds = 0;              //!< wall-clock time of both checks (including compilation of E)
+  std::size_t face_boxes = 0;      //!< rectangles examined by validate_box_faces (all six faces)
+  std::size_t regular_boxes = 0;   //!< boxes examined by validate_regular
+};
+
 //! Certifies E ≠ 0 on each of the six faces of the box by interval subdivision of the face
-//! (quadtree, bounded number of boxes).  Throws InvalidInput naming the face if E changes sign
-//! (or vanishes) at sample points of a face — Σ meets the box boundary — or "cannot certify" if
-//! the budget runs out undecided.
-void validate_box_faces(const Surface& surface, const Box3& box);
+//! (quadtree; natural and mean-value enclosures, see the file comment; depth at most
+//! tolerances::box_face_max_depth, at most tolerances::mesher_box_budget_global rectangles per
+//! face).  Throws InvalidInput naming the face if E changes sign (or vanishes) at the centres of
+//! its rectangles — Σ meets the box boundary — or "cannot certify" if some rectangle stays
+//! undecided.  Returns the number of rectangles examined.
+std::size_t validate_box_faces(const Surface& surface, const Box3& box);
 
-//! Certifies that ∇E does not vanish on Σ ∩ box: exclusion-mode subdivision of
-//! {E, ∂xE, ∂yE, ∂zE} over the box.  Throws InvalidInput with the location of a region that
-//! cannot be excluded (a singular point such as a cone's apex), or if the budget runs out.
-void validate_regular(const Surface& surface, const Box3& box);
+//! Certifies that ∇E does not vanish on Σ ∩ box: no zero of {E, ∂xE, ∂yE, ∂zE} in the box, by
+//! the subdivision of the file comment (at most tolerances::mesher_box_budget_global boxes).
+//! Throws InvalidInput:
+//!  - "the surface is singular: the gradient of E vanishes on it near (x, y, z)" when an
+//!    undecided box comes with evidence of a singular point (file comment);
+//!  - "cannot certify that the gradient of E is non-zero on the surface ..." when boxes stay
+//!    undecided without such evidence or the budget runs out.
+//! Returns the number of boxes examined.
+std::size_t validate_regular(const Surface& surface, const Box3& box);
 
-//! Both checks above.
-void validate_input(const Surface& surface, const Box3& box);
+//! Both checks above (faces first), timed.  Precondition: box.lo < box.hi componentwise.
+ValidationReport validate_input(const Surface& surface, const Box3& box);
 
 }  // namespace delmesh

@@ -34,11 +34,13 @@ struct SurfaceOracle::Impl {
   Surface surface;
   std::vector<PrimitiveSystem> systems;   // in Primitive order
   std::vector<CompiledSystem> compiled;   // in Primitive order
-  std::vector<std::vector<int>> degrees;  // for homotopy (square polynomial systems)
+  std::vector<std::vector<int>> degrees;  // for homotopy (square polynomial systems), else empty
   std::unique_ptr<LinePolynomial> line_polynomial;
   std::unique_ptr<CompiledSystem> gradient;  // E with its Jacobian = ∇E
 
-  explicit Impl(const Surface& s) : surface(s) {
+  // The degrees cost a symbolic expansion of every system (minutes for a degree-12 E), so they
+  // are computed only for the homotopy backend, the one that reads them.
+  Impl(const Surface& s, bool with_degrees) : surface(s) {
     systems.push_back(surface_critical_system(s));
     systems.push_back(surface_line_system(s));
     systems.push_back(surface_plane_contact_system(s));
@@ -48,7 +50,7 @@ struct SurfaceOracle::Impl {
     for (const auto& sys : systems) {
       compiled.emplace_back(sys);
       std::vector<int> deg;
-      if (s.is_polynomial() && sys.is_square()) {
+      if (with_degrees && s.is_polynomial() && sys.is_square()) {
         try {
           deg = equation_degrees(sys);
         } catch (const InvalidInput&) {
@@ -65,7 +67,7 @@ struct SurfaceOracle::Impl {
 };
 
 SurfaceOracle::SurfaceOracle(const Surface& surface, const Box3& box, SolverBackend backend)
-    : impl_(std::make_unique<Impl>(surface)), box_(box), backend_(backend) {}
+    : impl_(std::make_unique<Impl>(surface, backend == SolverBackend::homotopy)), box_(box), backend_(backend) {}
 SurfaceOracle::~SurfaceOracle() = default;
 SurfaceOracle::SurfaceOracle(SurfaceOracle&&) noexcept = default;
 SurfaceOracle& SurfaceOracle::operator=(SurfaceOracle&&) noexcept = default;

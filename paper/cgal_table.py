@@ -35,7 +35,17 @@ def main():
                       str(r["expected_genus"]), "ok" if r["topology_correct"] == 1 else "**wrong**",
                       fmt(float(r["seconds"]), 3), fmt(float(per_vertex) * 1e6, 3)])
     ratios = []
-    for experiment in ("benchmark", "coarsest"):
+    # benchmark: each case is a Surface_mesher, a Mesh_3 and a delmesh row, in that order.
+    last_m3 = None
+    for r in rows:
+        if r["experiment"] != "benchmark":
+            continue
+        if r["method"] == "mesh_3":
+            last_m3 = r
+        elif r["method"] == "delmesh" and r["vertices"] and last_m3 and last_m3["vertices"]:
+            ratio = float(r["seconds_per_vertex"]) / float(last_m3["seconds_per_vertex"])
+            ratios.append(("benchmark", r["surface"], last_m3["parameters"], ratio))
+    for experiment in ("coarsest",):
         for surface in sorted({r["surface"] for r in rows if r["experiment"] == experiment}):
             sel = [r for r in rows if r["experiment"] == experiment and r["surface"] == surface]
             dm = [r for r in sel if r["method"] == "delmesh" and r["vertices"]]

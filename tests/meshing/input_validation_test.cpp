@@ -4,8 +4,10 @@
 #include <string>
 
 #include "common/errors.h"
+#include "common/tolerances.h"
 #include "meshing/del_mesh.h"
 #include "meshing/input_validation.h"
+#include "symbolic/catalog.h"
 
 using namespace delmesh;
 
@@ -26,6 +28,20 @@ void expect_invalid(const std::string& equation, const Box3& box, const std::str
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   BOOST_TEST(seconds < 20.0);
 }
+
+// validate_regular must throw InvalidInput whose message contains `needle`.
+void expect_regular_rejected(const std::string& equation, const Box3& box, const std::string& needle) {
+  try {
+    (void)validate_regular(Surface::parse(equation), box);
+    BOOST_ERROR(equation << ": no error");
+  } catch (const InvalidInput& e) {
+    BOOST_TEST_MESSAGE(equation << ": " << e.what());
+    BOOST_TEST(std::string(e.what()).find(needle) != std::string::npos, e.what());
+  }
+}
+
+const char* const orthocircle =
+    "((x^2+y^2-1)^2+z^2)*((y^2+z^2-1)^2+x^2)*((z^2+x^2-1)^2+y^2)-0.075^2*(1+3*(x^2+y^2+z^2))";
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(input_validation)
@@ -54,6 +70,71 @@ BOOST_AUTO_TEST_CASE(singular_point_inside_the_box_is_rejected) {
     BOOST_TEST(std::string(e.what()).find("singular") != std::string::npos, e.what());
   }
   BOOST_CHECK_NO_THROW(validate_regular(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.5)));
+}
+
+// The orthocircle is smooth but its three rings nearly touch: the regularity proof needs the
+// mean-value and gradient-cone exclusions to stay in the fast tier.
+BOOST_AUTO_TEST_CASE(orthocircle_validates) {
+  const ValidationReport report = validate_input(Surface::parse(orthocircle), Box3::cube(1.5));
+  BOOST_TEST(report.face_boxes > 0u);
+  BOOST_TEST(report.regular_boxes > 0u);
+  BOOST_TEST(report.regular_boxes < tolerances::mesher_box_budget_global);
+  BOOST_TEST(report.seconds >= 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(catalog_surfaces_validate) {
+  for (const char* name : {"torus", "genus2", "tanglecube"}) {
+    BOOST_TEST_CONTEXT(name) {
+      const CatalogEntry& entry = catalog_entry(name);
+      BOOST_CHECK_NO_THROW((void)validate_input(entry.surface(), entry.box));
+    }
+  }
+}
+
+// The cone's apex is a non-degenerate critical point of E on Σ: certified by Krawczyk.
+BOOST_AUTO_TEST_CASE(cone_apex_is_singular) {
+  expect_regular_rejected("x^2+y^2-z^2", Box3::cube(1), "the surface is singular");
+  expect_regular_rejected("x^2+y^2-z^2", Box3::cube(1), "Krawczyk");
+  // Off-centre apex (not a dyadic point of the subdivision).
+  Box3 box;
+  box.lo = {-1.3, -0.9, -1.1};
+  box.hi = {0.7, 1.2, 0.8};
+  expect_regular_rejected("(x-0.1)^2+(y+0.2)^2-(z-0.3)^2", box, "singular");
+}
+
+// E = f² vanishes to second order on the whole sphere f = 0: every point of Σ is singular.
+BOOST_AUTO_TEST_CASE(squared_sphere_is_singular) {
+  expect_regular_rejected("(x^2+y^2+z^2-1)^2", Box3::cube(1.5), "singular");
+}
+
+// Two spheres 2e-7 apart: smooth, but the gap is below the smallest box, so regularity cannot be
+// certified; it must not be reported as a singular point either.
+BOOST_AUTO_TEST_CASE(nearly_touching_spheres_are_not_called_singular) {
+  try {
+    (void)validate_regular(Surface::parse("((x-0.5)^2+y^2+z^2-0.2499999)*((x+0.5)^2+y^2+z^2-0.2499999)"),
+                           Box3::cube(1.3));
+    BOOST_ERROR("no error although the gap is below the smallest box");
+  } catch (const InvalidInput& e) {
+    BOOST_TEST(std::string(e.what()).find("cannot certify") != std::string::npos, e.what());
+    BOOST_TEST(std::string(e.what()).find("singular:") == std::string::npos, e.what());
+  }
+}
+
+// A sphere tangent to the face x = 1.1 at (1.1, 0.3, -0.2), not at a subdivision centre.
+BOOST_AUTO_TEST_CASE(surface_touching_the_box_is_rejected) {
+  Box3 box;
+  box.lo = {-1.0, -1.0, -1.5};
+  box.hi = {1.1, 1.5, 1.0};
+  const auto s = Surface::parse("(x-0.1)^2+(y-0.3)^2+(z+0.2)^2-1");
+  try {
+    (void)validate_box_faces(s, box);
+    BOOST_ERROR("no error for a surface touching the face x = 1.1");
+  } catch (const InvalidInput& e) {
+    BOOST_TEST(std::string(e.what()).find("face x = 1.1") != std::string::npos, e.what());
+  }
+  BOOST_CHECK_THROW((void)validate_input(s, box), InvalidInput);
+  // Moved inwards by 0.01 it validates.
+  BOOST_CHECK_NO_THROW((void)validate_input(Surface::parse("(x-0.09)^2+(y-0.3)^2+(z+0.2)^2-1"), box));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

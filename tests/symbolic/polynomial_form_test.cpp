@@ -75,6 +75,31 @@ BOOST_AUTO_TEST_CASE(non_polynomial_or_oversized_systems_have_no_form) {
   BOOST_TEST(!PolynomialForm::try_build({x * y}, {}, {x, y}, 100));  // no unknowns
 }
 
+// try_build rejects some systems from a partial expansion (parameters fixed to numbers) before
+// expanding them fully; the outcome must be exactly "more than max_terms terms in all".
+BOOST_AUTO_TEST_CASE(early_rejection_agrees_with_the_full_term_count) {
+  int rejected = 0, accepted = 0;
+  for (const std::string name : {"torus", "genus2", "tanglecube"}) {
+    for (const PrimitiveInfo& info : primitive_registry()) {
+      const PrimitiveSystem system = info.build(catalog_entry(name).surface());
+      if (system.n_unknowns() < 1 || system.n_unknowns() > 3) continue;
+      std::size_t terms = 0;
+      for (const GiNaC::ex& e : system.equations) {
+        const GiNaC::ex x = e.expand();
+        terms += GiNaC::is_a<GiNaC::add>(x) ? x.nops() : 1;
+      }
+      for (const std::size_t max_terms : {terms - 1, terms}) {
+        const bool built = static_cast<bool>(
+            PolynomialForm::try_build(system.equations, system.unknowns, system.parameters, max_terms));
+        BOOST_TEST(built == (terms <= max_terms), name << " " << info.name << " max_terms " << max_terms);
+        (built ? accepted : rejected) += 1;
+      }
+    }
+  }
+  BOOST_TEST(accepted >= 12);
+  BOOST_TEST(rejected >= 12);
+}
+
 BOOST_AUTO_TEST_CASE(interval_coefficients_enclose_the_exact_ones) {
   const PrimitiveSystem system = silhouette_critical_system(catalog_entry("genus2").surface());
   const CompiledSystem compiled(system);

@@ -185,8 +185,28 @@ std::optional<VertexId> Refinement::insert(const Witness& w) {
     else if (policy_ == RecheckPolicy::changed_faces)
       steps_[vor_edge_step].queue.push(t);
   }
-  const auto neighbours = del_.neighbours(x);
-  for (VertexId q : neighbours) queue_edge(make_edge_key(x, q));
+  // The facets of the new edges xq, each cut by the third vertices of the triangles xqr of the
+  // star (all of them are there); building them now also marks the edges as current.
+  std::vector<VertexId> neighbours;
+  std::vector<std::pair<VertexId, VertexId>> ring_pairs;  // (q, r) for each triangle xqr, both ways
+  for (const auto& s : star) {
+    if (!s.contains_vertex) continue;
+    VertexId q = -1, r = -1;
+    for (VertexId v : s.key)
+      if (v != x) (q < 0 ? q : r) = v;
+    ring_pairs.push_back({q, r});
+    ring_pairs.push_back({r, q});
+  }
+  std::sort(ring_pairs.begin(), ring_pairs.end());
+  std::vector<VertexId> ring;
+  for (std::size_t i = 0; i < ring_pairs.size();) {
+    const VertexId q = ring_pairs[i].first;
+    ring.clear();
+    for (; i < ring_pairs.size() && ring_pairs[i].first == q; ++i) ring.push_back(ring_pairs[i].second);
+    neighbours.push_back(q);
+    restricted_.facet(make_edge_key(x, q), &ring);
+    queue_edge(make_edge_key(x, q));
+  }
   steps_[silhouette_step].queue.push({x, -1, -1});
   std::sort(star_changed.begin(), star_changed.end());
   star_changed.erase(std::unique(star_changed.begin(), star_changed.end()), star_changed.end());

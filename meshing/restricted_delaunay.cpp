@@ -88,10 +88,11 @@ std::optional<EdgeRecord> RestrictedDelaunay::restrict_record(const EdgeRecord& 
   return r;
 }
 
-const VoronoiFacet& RestrictedDelaunay::facet(const EdgeKey& e) {
+const VoronoiFacet& RestrictedDelaunay::facet(const EdgeKey& e, const std::vector<VertexId>* ring) {
   auto it = facets_.find(e);
   if (it != facets_.end()) return it->second.facet;
-  return facets_.emplace(e, FacetEntry{voronoi_facet(del_, e, oracle_.box(), facet_rotation(e))}).first->second.facet;
+  return facets_.emplace(e, FacetEntry{voronoi_facet(del_, e, oracle_.box(), facet_rotation(e), ring)})
+      .first->second.facet;
 }
 
 bool RestrictedDelaunay::facet_section_certified(const EdgeKey& e) {

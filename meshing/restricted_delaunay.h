@@ -64,8 +64,9 @@ class RestrictedDelaunay {
   const EdgeRecord* cached_record(const TriangleKey& t) const;
   //! Whether the facet of e is cached (then e is a current Delaunay edge).
   bool has_facet(const EdgeKey& e) const { return facets_.count(e) != 0; }
-  //! The facet of a current Delaunay edge (computed on first use, then cached).
-  const VoronoiFacet& facet(const EdgeKey& e);
+  //! The facet of a current Delaunay edge (computed on first use, then cached).  `ring`, if
+  //! given, holds the third vertices of the triangles containing e (saves looking them up).
+  const VoronoiFacet& facet(const EdgeKey& e, const std::vector<VertexId>* ring = nullptr);
   //! Whether Σ ∩ F is proved to be a regular curve with no critical point in some in-plane
   //! direction (solvers/gradient_cone.h, with w the in-plane part of ∇E at the midpoint of pq): then
   //! FacetContact and FacetCycle have no witness in F.  Computed once per facet.

@@ -171,7 +171,8 @@ VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& t, const Box3& 
   return e;
 }
 
-VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3& box, double rotation) {
+VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3& box, double rotation,
+                           const std::vector<VertexId>* ring) {
   VoronoiFacet f;
   f.edge = edge;
   const Vec3& p = del.point(edge[0]);
@@ -192,7 +193,9 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
   // pqr (each edge of the convex polygon F is the Voronoi edge of one pqr, and a convex polygon
   // is the intersection of the half-planes of its edges); other neighbours of p are redundant.
   std::vector<VertexId> cutting;
-  if (del.dimension() == 3) {
+  if (ring && del.dimension() == 3) {
+    cutting = *ring;
+  } else if (del.dimension() == 3) {
     for (const auto& t : del.edge_triangles(edge))
       for (VertexId r : t)
         if (r != edge[0] && r != edge[1]) cutting.push_back(r);

@@ -70,7 +70,10 @@ struct VoronoiCell {
 //! Delaunay::closed_star); otherwise they are looked up.
 VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& triangle, const Box3& box,
                          const std::array<VertexId, 2>* apexes = nullptr);
-VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3& box, double rotation);
+//! `ring`, if given, holds the third vertices of the triangles pqr (Delaunay::edge_triangles,
+//! known to the caller); otherwise they are looked up.
+VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3& box, double rotation,
+                           const std::vector<VertexId>* ring = nullptr);
 VoronoiCell voronoi_cell(const Delaunay& del, VertexId p, const Box3& box);
 
 //! Whether the point u (solver unknowns) satisfies every half-space of the domain up to tolerance

@@ -77,15 +77,16 @@ void sort_unique(std::vector<Key>& keys) {
 }  // namespace
 
 std::optional<VertexId> Delaunay::insert(const std::array<double, 3>& p, bool is_seed) {
-  return insert_point(p, is_seed, nullptr);
+  return insert_point(p, is_seed, nullptr, -1);
 }
 
-std::optional<VertexId> Delaunay::insert(const std::array<double, 3>& p, bool is_seed, InsertionChange& change) {
-  return insert_point(p, is_seed, &change);
+std::optional<VertexId> Delaunay::insert(const std::array<double, 3>& p, bool is_seed, InsertionChange& change,
+                                         VertexId hint) {
+  return insert_point(p, is_seed, &change, hint);
 }
 
 std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, bool is_seed,
-                                               InsertionChange* change) {
+                                               InsertionChange* change, VertexId hint) {
   for (double c : p)
     if (!std::isfinite(c)) throw PreconditionViolation("Delaunay::insert: non-finite point");
   auto& dt = impl_->dt;
@@ -95,7 +96,8 @@ std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, b
   if (dt.dimension() == 3) {
     detail::Dt::Locate_type lt;
     int li = 0, lj = 0;
-    const auto cell = dt.locate(point, lt, li, lj);
+    const auto cell = contains(hint) ? dt.locate(point, lt, li, lj, impl_->handles[hint]->cell())
+                                     : dt.locate(point, lt, li, lj);
     if (lt == detail::Dt::VERTEX) return std::nullopt;
     if (change) {
       // The cavity: its internal facets are destroyed, its boundary facets shrink.
@@ -319,9 +321,11 @@ bool Delaunay::is_edge(const EdgeKey& e) const {
   return dt.is_edge(impl_->handles[e[0]], impl_->handles[e[1]], c, i, j);
 }
 
-std::pair<VertexId, double> Delaunay::nearest(const std::array<double, 3>& x) const {
+std::pair<VertexId, double> Delaunay::nearest(const std::array<double, 3>& x, VertexId hint) const {
   if (impl_->alive == 0) throw PreconditionViolation("Delaunay::nearest: empty triangulation");
-  auto v = impl_->dt.nearest_vertex(Point3(x[0], x[1], x[2]));
+  const Point3 point(x[0], x[1], x[2]);
+  auto v = contains(hint) ? impl_->dt.nearest_vertex(point, impl_->handles[hint]->cell())
+                          : impl_->dt.nearest_vertex(point);
   const auto& p = impl_->points[v->info().id];
   const double d = std::sqrt((p[0] - x[0]) * (p[0] - x[0]) + (p[1] - x[1]) * (p[1] - x[1]) +
                              (p[2] - x[2]) * (p[2] - x[2]));

@@ -80,7 +80,10 @@ class Delaunay {
   //! Inserts p.  Returns the new vertex id, or nothing if p coincides with an existing vertex.
   std::optional<VertexId> insert(const std::array<double, 3>& p, bool is_seed);
   //! The same, and describes in `change` what the insertion changed (see InsertionChange).
-  std::optional<VertexId> insert(const std::array<double, 3>& p, bool is_seed, InsertionChange& change);
+  //! `hint`, if a current vertex near p, starts the point location there (the result does not
+  //! depend on it; the cost of the walk does).
+  std::optional<VertexId> insert(const std::array<double, 3>& p, bool is_seed, InsertionChange& change,
+                                 VertexId hint = -1);
   //! Removes the vertex; its id is never reused.  Precondition: contains(id).
   void remove(VertexId id);
 
@@ -116,11 +119,13 @@ class Delaunay {
   std::vector<TriangleKey> triangles() const;
   bool is_triangle(const TriangleKey& t) const;
   bool is_edge(const EdgeKey& e) const;
-  //! The vertex nearest to x and its distance.  Precondition: size() > 0.
-  std::pair<VertexId, double> nearest(const std::array<double, 3>& x) const;
+  //! The vertex nearest to x and its distance (the search starts at `hint` if it is a current
+  //! vertex).  Precondition: size() > 0.
+  std::pair<VertexId, double> nearest(const std::array<double, 3>& x, VertexId hint = -1) const;
 
  private:
-  std::optional<VertexId> insert_point(const std::array<double, 3>& p, bool is_seed, InsertionChange* change);
+  std::optional<VertexId> insert_point(const std::array<double, 3>& p, bool is_seed, InsertionChange* change,
+                                       VertexId hint);
 
   std::unique_ptr<detail::DelaunayImpl> impl_;
 };

@@ -126,7 +126,7 @@ std::optional<VertexId> Refinement::insert(const Witness& w) {
   record.kind = w.kind;
   record.from_undecided = w.from_undecided;
   if (del_.size() > 0) {
-    const auto [nearest, d] = del_.nearest(w.point);
+    const auto [nearest, d] = del_.nearest(w.point, w.measured_from);
     record.nearest = nearest;
     record.nearest_distance = d;
     if (d <= tolerances::duplicate_sample_relative_distance * oracle_.diagonal()) {
@@ -135,7 +135,7 @@ std::optional<VertexId> Refinement::insert(const Witness& w) {
     }
   }
   InsertionChange change;
-  const auto id = del_.insert(w.point, w.kind == CheckKind::seed, change);
+  const auto id = del_.insert(w.point, w.kind == CheckKind::seed, change, record.nearest);
   if (!id) {
     ++rejected_;
     return std::nullopt;

@@ -50,6 +50,31 @@ BOOST_AUTO_TEST_CASE(octahedron_is_its_own_restricted_triangulation) {
   BOOST_TEST(f.oracle.statistics()[static_cast<int>(Primitive::surface_line)].calls == calls + 1);
 }
 
+// An insertion shrinks the dual edges of its cavity's boundary; their records are restricted from
+// the old ones (no SurfaceLine solve) and agree with records solved from scratch.
+BOOST_AUTO_TEST_CASE(shrunk_records_equal_solved_records) {
+  CheckFixture f(test::unit_sphere, 1.5, {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
+  (void)f.restricted.triangles();
+  InsertionChange change;
+  const auto x = f.del.insert({0.6, 0.6, 0.5291502622129181}, false, change);
+  BOOST_TEST_REQUIRE(x.has_value());
+  BOOST_TEST_REQUIRE(change.local);
+  BOOST_TEST_REQUIRE(!change.shrunk_triangles.empty());
+  f.restricted.shrink(change);
+  const auto restricted_before = f.restricted.records_restricted();
+  std::vector<EdgeRecord> kept;
+  for (const auto& t : change.shrunk_triangles) kept.push_back(f.restricted.edge_record(t));
+  BOOST_TEST(f.restricted.records_restricted() > restricted_before);
+  RestrictedDelaunay fresh(f.del, f.oracle, 1);
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    const auto& solved = fresh.edge_record(change.shrunk_triangles[i]);
+    BOOST_TEST(kept[i].restricted == solved.restricted);
+    BOOST_TEST(kept[i].crossings.size() == solved.crossings.size());
+    for (std::size_t k = 0; k < std::min(kept[i].crossings.size(), solved.crossings.size()); ++k)
+      for (int c = 0; c < 3; ++c) BOOST_TEST(std::abs(kept[i].crossings[k][c] - solved.crossings[k][c]) < 1e-12);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(seeded_uniform_is_deterministic_and_in_range) {
   BOOST_TEST(seeded_uniform(3, 1, 2, 3) == seeded_uniform(3, 1, 2, 3));
   BOOST_TEST(seeded_uniform(3, 1, 2, 3) != seeded_uniform(4, 1, 2, 3));

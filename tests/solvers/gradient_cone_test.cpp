@@ -1,0 +1,81 @@
+// Tests of the gradient-cone certificate (solvers/gradient_cone.h) on the unit sphere, where
+// ⟨∇E(x), w⟩ = 2⟨x, w⟩: it vanishes on Σ exactly along the great circle ⟂ w.
+#include "solvers/gradient_cone.h"
+
+#include <cmath>
+
+#include <boost/test/unit_test.hpp>
+
+#include "common/errors.h"
+#include "symbolic/surface.h"
+
+using namespace delmesh;
+
+namespace {
+
+CompiledSystem unit_sphere() {
+  const GiNaC::symbol &x = coordinate_x(), &y = coordinate_y(), &z = coordinate_z();
+  return CompiledSystem({x * x + y * y + z * z - 1}, {x, y, z}, {});
+}
+
+Domain cube(double lo0, double hi0, double lo1, double hi1, double lo2, double hi2) {
+  return Domain::from_box({{lo0, hi0}, {lo1, hi1}, {lo2, hi2}});
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(gradient_cone)
+
+BOOST_AUTO_TEST_CASE(cap_away_from_the_silhouette_is_proved) {
+  // Σ ∩ {z ≥ 0.5} is a cap where ⟨∇E, e_z⟩ = 2z ≥ 1.
+  const auto E = unit_sphere();
+  const auto r = prove_gradient_cone(E, AffineChart::identity(), cube(-1.5, 1.5, -1.5, 1.5, 0.5, 1.5), {0, 0, 1}, 200);
+  BOOST_TEST(r.proved);
+  BOOST_TEST(r.boxes >= 1u);
+}
+
+BOOST_AUTO_TEST_CASE(a_domain_meeting_the_silhouette_is_never_proved) {
+  // The equator z = 0 is in J_{e_z} and in the domain: no budget may prove the certificate.
+  const auto E = unit_sphere();
+  for (std::size_t budget : {10u, 1000u, 100000u})
+    BOOST_TEST(!prove_gradient_cone(E, AffineChart::identity(), cube(0.5, 1.5, -0.5, 0.5, -0.2, 0.2), {0, 0, 1}, budget)
+                    .proved);
+}
+
+BOOST_AUTO_TEST_CASE(half_spaces_cut_the_domain) {
+  // The box meets the equator, but the half-space z ≥ 0.3 (−z ≤ −0.3) keeps only a cap.
+  const auto E = unit_sphere();
+  Domain d = cube(-1.5, 1.5, -1.5, 1.5, -1.5, 1.5);
+  d.half_spaces.push_back(HalfSpace{{0, 0, -1}, -0.3});
+  BOOST_TEST(prove_gradient_cone(E, AffineChart::identity(), d, {0, 0, 1}, 2000).proved);
+  d.half_spaces.back().offset = 0.1;  // z ≥ −0.1 reaches the equator
+  BOOST_TEST(!prove_gradient_cone(E, AffineChart::identity(), d, {0, 0, 1}, 2000).proved);
+}
+
+BOOST_AUTO_TEST_CASE(a_domain_missing_the_surface_is_proved_for_any_direction) {
+  const auto E = unit_sphere();
+  const auto r = prove_gradient_cone(E, AffineChart::identity(), cube(-0.3, 0.3, -0.3, 0.3, -0.3, 0.3), {1, 0, 0}, 50);
+  BOOST_TEST(r.proved);
+}
+
+BOOST_AUTO_TEST_CASE(planar_chart_section_of_a_facet) {
+  // The plane z = 0.2 in the frame (e_x, e_y): Σ ∩ Π is the circle of radius √0.96, whose tangent
+  // t = ∇E × e_z is orthogonal to ∇E's in-plane part.  With w = e_x the functional is 2x: zero on
+  // the circle at x = 0, so the square around (0, ±0.98) is not proved, the one at x ∈ [0.5, 1.2]
+  // is.
+  const auto E = unit_sphere();
+  AffineChart chart;
+  chart.origin = {0, 0, 0.2};
+  chart.columns = {{1, 0, 0}, {0, 1, 0}};
+  BOOST_TEST(prove_gradient_cone(E, chart, Domain::from_box({{0.5, 1.2}, {-0.5, 0.5}}), {1, 0, 0}, 500).proved);
+  BOOST_TEST(!prove_gradient_cone(E, chart, Domain::from_box({{-0.2, 0.2}, {0.8, 1.2}}), {1, 0, 0}, 500).proved);
+}
+
+BOOST_AUTO_TEST_CASE(misuse_throws) {
+  const auto E = unit_sphere();
+  AffineChart chart;
+  chart.columns = {{1, 0, 0}};
+  BOOST_CHECK_THROW(prove_gradient_cone(E, chart, cube(-1, 1, -1, 1, -1, 1), {0, 0, 1}, 10), PreconditionViolation);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

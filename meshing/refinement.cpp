@@ -44,7 +44,10 @@ std::vector<Refinement::Step> Refinement::make_table() {
                              [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
                                const EdgeKey e = as_edge(s);
                                if (!r.current(e)) return std::nullopt;
-                               return facet_cycle_witness(r.restricted_, e);
+                               auto w = facet_cycle_witness(r.restricted_, e);
+                               // The last facet check of e: its geometry is not kept.
+                               if (!w) r.restricted_.release_facet(e);
+                               return w;
                              }};
   // Step (e) runs only once (a)–(d) have nothing queued: the facets of V_p are clean.
   table[silhouette_step] = {CheckKind::silhouette, "silhouette",

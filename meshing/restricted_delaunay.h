@@ -62,6 +62,10 @@ class RestrictedDelaunay {
   //! Invariant: while every change of Del S is reported (shrink(), forget() before a removal),
   //! records and facets are cached only for current Delaunay triangles and edges.
   const EdgeRecord* cached_record(const TriangleKey& t) const;
+  //! Drops the cached geometry of the facet of e (it is rebuilt if asked for again): the driver
+  //! calls it once the facet checks of e are done, so that memory stays proportional to the
+  //! facets in work, not to all of Vor S.
+  void release_facet(const EdgeKey& e) { facets_.erase(e); }
   //! Whether the facet of e is cached (then e is a current Delaunay edge).
   bool has_facet(const EdgeKey& e) const { return facets_.count(e) != 0; }
   //! The facet of a current Delaunay edge (computed on first use, then cached).  `ring`, if

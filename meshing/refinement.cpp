@@ -84,7 +84,10 @@ bool Refinement::current(const EdgeKey& e) const { return restricted_.has_facet(
 
 Refinement::Refinement(SurfaceOracle& oracle, std::uint64_t seed, RefinementLimits limits, RecheckPolicy policy)
     : oracle_(oracle), seed_(seed), limits_(std::move(limits)), policy_(policy), restricted_(del_, oracle, seed),
-      steps_(make_table()), last_progress_(std::chrono::steady_clock::now()) {}
+      steps_(make_table()), last_progress_(std::chrono::steady_clock::now()) {
+  // insert() and remove() compute the record of every new or changed triangle at once.
+  restricted_.assume_every_triangle_recorded();
+}
 
 void Refinement::enable_geometry(double lambda, std::optional<double> size_bound) {
   if (!(lambda > 0 && lambda < 1.0 / 3.0)) throw PreconditionViolation("enable_geometry: lambda out of (0, 1/3)");
@@ -99,7 +102,15 @@ void Refinement::enable_geometry(double lambda, std::optional<double> size_bound
 }
 
 void Refinement::queue_triangle(const TriangleKey& t, bool topology_checks) {
-  if (topology_checks) steps_[vor_edge_step].queue.push(t);
+  // The record is computed here anyway (eagerly, as the checks would).  VorEdge is a function of
+  // it alone, so under the default policy a triangle waits for VorEdge only if its record has a
+  // witness (a tangency candidate or two crossings); Quality, size and Smooth only look at
+  // restricted triangles.
+  const EdgeRecord& r = restricted_.edge_record(t);
+  const bool vor_edge_fires = !r.candidates.empty() || r.crossings.size() >= 2;
+  if (topology_checks && (vor_edge_fires || policy_ == RecheckPolicy::changed_faces))
+    steps_[vor_edge_step].queue.push(t);
+  if (!r.restricted) return;
   for (int k : {quality_step, smooth_step})
     if (steps_[k].enabled) steps_[k].queue.push(t);
 }
@@ -148,11 +159,9 @@ std::optional<VertexId> Refinement::insert(const Witness& w) {
   log_.push_back(record);
   ++insertions_[static_cast<int>(w.kind)];
   if (!change.local) {
+    // Del S of dimension < 3 before or after: every face may have changed (a few points only).
     restricted_.shrink(change);
-    std::vector<VertexId> around = del_.neighbours(x);
-    around.push_back(x);
-    std::sort(around.begin(), around.end());
-    queue_everything_within(around);
+    queue_everything_within(del_.vertices());
     return id;
   }
   // TopoDisk(p) depends only on the restricted star of p: it is queued for x and for the

@@ -30,10 +30,35 @@ double RestrictedDelaunay::facet_rotation(const EdgeKey& e) const {
   return 2 * M_PI * seeded_uniform(seed_, e[0], e[1], 17);
 }
 
+void RestrictedDelaunay::track(const TriangleKey& t, bool was_restricted, bool is_restricted) {
+  if (was_restricted == is_restricted) return;
+  for (VertexId v : t) {
+    if (static_cast<std::size_t>(v) >= stars_.size()) stars_.resize(v + 1);
+    auto& star = stars_[v];
+    if (is_restricted) {
+      star.push_back(t);
+    } else {
+      star.erase(std::find(star.begin(), star.end(), t));
+    }
+  }
+}
+
+void RestrictedDelaunay::erase_record(const TriangleKey& t) {
+  const auto it = edges_.find(t);
+  if (it == edges_.end()) return;
+  track(t, it->second.restricted, false);
+  edges_.erase(it);
+}
+
 const EdgeRecord& RestrictedDelaunay::edge_record(const TriangleKey& t, const std::array<VertexId, 2>* apexes) {
   auto it = edges_.find(t);
-  if (it == edges_.end()) return edges_.emplace(t, compute(t, apexes)).first->second;
+  if (it == edges_.end()) {
+    it = edges_.emplace(t, compute(t, apexes)).first;
+    track(t, false, it->second.restricted);
+    return it->second;
+  }
   if (it->second.shrunk) {
+    const bool was_restricted = it->second.restricted;
     const VoronoiEdge edge = voronoi_edge(del_, t, oracle_.box(), apexes);
     if (auto restricted = restrict_record(it->second, edge)) {
       ++records_restricted_;
@@ -41,6 +66,7 @@ const EdgeRecord& RestrictedDelaunay::edge_record(const TriangleKey& t, const st
     } else {
       it->second = compute(t, apexes);
     }
+    track(t, was_restricted, it->second.restricted);
   }
   return it->second;
 }
@@ -178,20 +204,21 @@ void RestrictedDelaunay::invalidate(const std::vector<VertexId>& vertices) {
   for (VertexId v : vertices) {
     if (!del_.contains(v)) continue;
     for (const auto& t : del_.incident_triangles(v))
-      if (t[0] == v && in(t[1]) && in(t[2])) edges_.erase(t);
+      if (t[0] == v && in(t[1]) && in(t[2])) erase_record(t);
     for (VertexId w : del_.neighbours(v))
       if (v < w && in(w)) facets_.erase(EdgeKey{v, w});
   }
 }
 
 void RestrictedDelaunay::forget(const std::vector<TriangleKey>& triangles, const std::vector<EdgeKey>& edges) {
-  for (const auto& t : triangles) edges_.erase(t);
+  for (const auto& t : triangles) erase_record(t);
   for (const auto& e : edges) facets_.erase(e);
 }
 
 void RestrictedDelaunay::shrink(const InsertionChange& change) {
   if (!change.local) {
     edges_.clear();
+    stars_.clear();
     facets_.clear();
     return;
   }
@@ -203,6 +230,11 @@ void RestrictedDelaunay::shrink(const InsertionChange& change) {
 
 std::vector<TriangleKey> RestrictedDelaunay::star(VertexId p) {
   std::vector<TriangleKey> out;
+  if (every_triangle_recorded_) {
+    if (static_cast<std::size_t>(p) < stars_.size()) out = stars_[p];
+    std::sort(out.begin(), out.end());
+    return out;
+  }
   for (const auto& t : del_.incident_triangles(p))
     if (edge_record(t).restricted) out.push_back(t);
   return out;

@@ -40,15 +40,16 @@ namespace delmesh {
 
 //! The Voronoi edge of one Delaunay triangle and its intersections with Σ.
 struct EdgeRecord {
-  VoronoiEdge edge;
+  // The fields read on every lookup come first (one cache line with the hash node's key).
+  bool restricted = false;       //!< the triangle is in Tri S|Σ (with the §5.1 rule)
+  bool shrunk = false;           //!< the dual edge shrank since: restrict or solve again on use
+  std::size_t unresolved = 0;    //!< undecided regions whose projection failed or left the edge
+  Vec3 dual_point{};             //!< a counted point of e ∩ Σ when restricted
   std::vector<Vec3> crossings;   //!< all points of e ∩ Σ (certified, and zeros at Voronoi vertices)
   std::vector<Vec3> candidates;  //!< projected undecided regions (tangency candidates)
   //! The solver's enclosure [t_lo, t_hi] of each crossing and each candidate, on edge's line.
   std::vector<std::array<double, 2>> crossing_range, candidate_range;
-  bool shrunk = false;           //!< the dual edge shrank since: restrict or solve again on use
-  std::size_t unresolved = 0;    //!< undecided regions whose projection failed or left the edge
-  bool restricted = false;       //!< the triangle is in Tri S|Σ (with the §5.1 rule)
-  Vec3 dual_point{};             //!< a counted point of e ∩ Σ when restricted
+  VoronoiEdge edge;
 };
 
 class RestrictedDelaunay {
@@ -90,8 +91,13 @@ class RestrictedDelaunay {
   std::size_t records_solved() const { return records_solved_; }
   std::size_t records_restricted() const { return records_restricted_; }
 
-  //! Restricted triangles incident to p (current Delaunay triangles only).
+  //! Restricted triangles incident to p (current Delaunay triangles only), ascending.
   std::vector<TriangleKey> star(VertexId p);
+  //! The caller promises that from now on every current Delaunay triangle has a record whenever
+  //! star() is called (the refinement driver computes each new or changed triangle's record at
+  //! once).  star() then reads the restricted stars kept up to date with the records instead of
+  //! walking Del S.
+  void assume_every_triangle_recorded() { every_triangle_recorded_ = true; }
   //! All of Tri S|Σ, ascending.
   std::vector<TriangleKey> triangles();
 
@@ -102,6 +108,9 @@ class RestrictedDelaunay {
 
  private:
   EdgeRecord compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes);
+  //! Keeps stars_ in step with a record of t whose restricted status went from `was` to `is`.
+  void track(const TriangleKey& t, bool was_restricted, bool is_restricted);
+  void erase_record(const TriangleKey& t);
   //! The record of the shrunk edge `edge` restricted from `old`, or nothing if it must be solved.
   std::optional<EdgeRecord> restrict_record(const EdgeRecord& old, const VoronoiEdge& edge) const;
 
@@ -115,6 +124,9 @@ class RestrictedDelaunay {
   };
   std::unordered_map<EdgeKey, FacetEntry, SimplexKeyHash, SimplexKeyEqual> facets_;
   std::size_t unresolved_ = 0, records_solved_ = 0, records_restricted_ = 0;
+  //! stars_[v]: the recorded restricted triangles containing v (in no particular order).
+  std::vector<std::vector<TriangleKey>> stars_;
+  bool every_triangle_recorded_ = false;
 };
 
 //! A deterministic pseudo-random number in [0, 1) from a seed and up to three integers

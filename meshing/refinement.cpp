@@ -102,11 +102,14 @@ void Refinement::enable_geometry(double lambda, std::optional<double> size_bound
 }
 
 void Refinement::queue_triangle(const TriangleKey& t, bool topology_checks) {
-  // The record is computed here anyway (eagerly, as the checks would).  VorEdge is a function of
+  queue_triangle(t, topology_checks, restricted_.edge_record(t));
+}
+
+void Refinement::queue_triangle(const TriangleKey& t, bool topology_checks, const EdgeRecord& r) {
+  // The record is computed eagerly (the checks would compute it anyway).  VorEdge is a function of
   // it alone, so under the default policy a triangle waits for VorEdge only if its record has a
   // witness (a tangency candidate or two crossings); Quality, size and Smooth only look at
   // restricted triangles.
-  const EdgeRecord& r = restricted_.edge_record(t);
   const bool vor_edge_fires = !r.candidates.empty() || r.crossings.size() >= 2;
   if (topology_checks && (vor_edge_fires || policy_ == RecheckPolicy::changed_faces))
     steps_[vor_edge_step].queue.push(t);
@@ -187,13 +190,13 @@ std::optional<VertexId> Refinement::insert(const Witness& w) {
     if (contains_x) {
       // The faces dual to simplices containing x are new: all their checks run.
       if (r.restricted) star_change(t);
-      queue_triangle(t, true);
+      queue_triangle(t, true, r);
       continue;
     }
     const bool status_changed = !before[i] || before[i]->first != r.restricted;
     if (status_changed) star_change(t);
     if (status_changed || before[i]->second != r.dual_point)
-      queue_triangle(t, policy_ == RecheckPolicy::changed_faces);
+      queue_triangle(t, policy_ == RecheckPolicy::changed_faces, r);
     else if (policy_ == RecheckPolicy::changed_faces)
       steps_[vor_edge_step].queue.push(t);
   }

@@ -176,6 +176,7 @@ class Refinement {
   bool current(const TriangleKey& t) const;
   bool current(const EdgeKey& e) const;
   void queue_triangle(const TriangleKey& t, bool topology_checks);
+  void queue_triangle(const TriangleKey& t, bool topology_checks, const EdgeRecord& record);
   void queue_edge(const EdgeKey& e);
   void queue_everything_within(const std::vector<VertexId>& sorted_vertices);
   std::optional<MeshStatus> limit_reached();

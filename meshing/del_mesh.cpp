@@ -166,6 +166,7 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
   }
   j["seconds_per_check"] = per_check;
   j["checks"] = refinement.checks_json();
+  j["seconds_insertion"] = refinement.seconds_insertion();
   j["edge_records"] = {{"solved", refinement.restricted().records_solved()},
                        {"restricted", refinement.restricted().records_restricted()}};
   j["height_direction"] = seeds.height_direction;

@@ -138,6 +138,13 @@ void Refinement::queue_everything_within(const std::vector<VertexId>& vs) {
 }
 
 std::optional<VertexId> Refinement::insert(const Witness& w) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto id = insert_and_queue(w);
+  seconds_insertion_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return id;
+}
+
+std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
   InsertionRecord record;
   record.point = w.point;
   record.kind = w.kind;

@@ -126,6 +126,8 @@ class Refinement {
   //! Seconds spent in each check, and the number of items each step examined.
   double seconds(CheckKind kind) const { return seconds_[static_cast<int>(kind)]; }
   std::size_t checks(CheckKind kind) const { return checks_[static_cast<int>(kind)]; }
+  //! Seconds spent inserting: updating Del S and the records and facets of the changed faces.
+  double seconds_insertion() const { return seconds_insertion_; }
 
   //! {seeds, vor_edge, …, size, seeds_deleted, rejected_witnesses}
   nlohmann::json insertions_json() const;
@@ -172,6 +174,7 @@ class Refinement {
                    quality_step, smooth_step, step_count };
 
   static std::vector<Step> make_table();
+  std::optional<VertexId> insert_and_queue(const Witness& witness);
   //! Whether t / e is in Del S now (a cached record or facet proves it: see restricted_delaunay.h).
   bool current(const TriangleKey& t) const;
   bool current(const EdgeKey& e) const;
@@ -194,6 +197,7 @@ class Refinement {
   std::vector<InsertionRecord> log_;
   std::array<std::size_t, check_kind_count> insertions_{}, checks_{};
   std::array<double, check_kind_count> seconds_{};
+  double seconds_insertion_ = 0;
   std::size_t seeds_deleted_ = 0, rejected_ = 0;
   std::chrono::steady_clock::time_point last_progress_;
 };

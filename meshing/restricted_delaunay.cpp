@@ -94,20 +94,21 @@ std::optional<EdgeRecord> RestrictedDelaunay::restrict_record(const EdgeRecord& 
   r.edge = edge;
   r.edge.t0 = t0;
   r.edge.t1 = t1;
-  for (std::size_t i = 0; i < old.crossings.size(); ++i) {
-    const int s = side(old.crossing_range[i]);
-    if (s < 0) return std::nullopt;
-    if (s == 0) continue;
-    r.crossings.push_back(old.crossings[i]);
-    r.crossing_range.push_back(old.crossing_range[i]);
-  }
-  for (std::size_t i = 0; i < old.candidates.size(); ++i) {
-    const int s = side(old.candidate_range[i]);
-    if (s < 0) return std::nullopt;
-    if (s == 0) continue;
-    r.candidates.push_back(old.candidates[i]);
-    r.candidate_range.push_back(old.candidate_range[i]);
-  }
+  // Keeps the points whose enclosures lie inside e′; false if one cannot be placed.
+  auto keep = [&](const std::vector<Vec3>& points, const std::vector<std::array<double, 2>>& ranges,
+                  std::vector<Vec3>& kept_points, std::vector<std::array<double, 2>>& kept_ranges) {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const int s = side(ranges[i]);
+      if (s < 0) return false;
+      if (s == 0) continue;
+      kept_points.push_back(points[i]);
+      kept_ranges.push_back(ranges[i]);
+    }
+    return true;
+  };
+  if (!keep(old.crossings, old.crossing_range, r.crossings, r.crossing_range) ||
+      !keep(old.candidates, old.candidate_range, r.candidates, r.candidate_range))
+    return std::nullopt;
   // No crossing is at a Voronoi vertex of e′, so the §5.1 rule keeps every crossing.
   r.restricted = !r.crossings.empty();
   if (r.restricted) r.dual_point = r.crossings.front();

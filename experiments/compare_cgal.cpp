@@ -246,7 +246,7 @@ std::string field_list(const std::vector<double>& values) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"delmesh vs CGAL Surface_mesher and Mesh_3 (issue 5 benchmark, coarsest-topology "
+  CLI::App app{"delmesh vs CGAL Surface_mesher and Mesh_3 (seconds-per-vertex benchmark, coarsest-topology "
                "comparison and the topology demo); writes <out-dir>/compare_cgal.csv"};
   std::string surfaces = "torus,genus2", demo_surfaces = "thin_handle,two_blobs,near_sheets";
   std::string experiments_to_run = "benchmark,coarsest,demo";

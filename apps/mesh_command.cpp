@@ -36,6 +36,7 @@ struct MeshOptions {
   std::size_t max_points = DelMeshOptions{}.max_points;
   double time_limit = 0;
   std::uint64_t seed = 1;
+  int threads = 0;
   bool quiet = false;
   CLI::Option* input_mesh_option = nullptr;
   CLI::Option* size_bound_option = nullptr;
@@ -96,6 +97,8 @@ ExitCode run_mesh(const MeshOptions& o) {
   options.max_points = o.max_points;
   options.time_limit_seconds = o.time_limit;
   options.seed = o.seed;
+  if (o.threads < 0) throw InvalidInput("--threads must be >= 0 (0: every hardware thread), got " + std::to_string(o.threads));
+  options.threads = o.threads;
 
   const SurfaceInput input = o.surface.resolve();
   const std::string out = o.out_option->count() > 0 ? o.out : input.name + ".off";
@@ -202,6 +205,11 @@ Command add_mesh_command(CLI::App& parent) {
   sub->add_option("--time-limit", o->time_limit, "Stop (exit code 3) after this many seconds; 0 means none")->type_name("S")
       ->capture_default_str();
   sub->add_option("--seed", o->seed, "Seed of the generic directions; same input and seed give the same mesh")->type_name("N")
+      ->capture_default_str();
+  sub->add_option("--threads", o->threads,
+                  "Threads for the records of changed Voronoi faces; 0 means every hardware thread. The mesh "
+                  "is the same for every value")
+      ->type_name("N")
       ->capture_default_str();
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
   return {sub, [o]() { return run_mesh(*o); }};

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "common/errors.h"
+#include "meshing/detail/parallel_for.h"
 #include "meshing/detail/vec3.h"
 #include "meshing/input_validation.h"
 #include "meshing/mesh_checker.h"
@@ -91,6 +92,7 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
   if (options.size_bound && !(*options.size_bound > 0)) throw InvalidInput("the size bound must be positive");
   if (options.max_points < 1) throw InvalidInput("max_points must be at least 1");
   if (options.time_limit_seconds < 0) throw InvalidInput("the time limit must be non-negative");
+  if (options.threads < 0) throw InvalidInput("the number of threads must be non-negative (0: all)");
   for (int k = 0; k < 3; ++k)
     if (!(box.lo[k] < box.hi[k])) throw InvalidInput("the box is empty");
 
@@ -102,7 +104,8 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
     limits.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                   std::chrono::duration<double>(options.time_limit_seconds));
   limits.progress = options.progress;
-  Refinement refinement(oracle, options.seed, limits);
+  const int threads = options.threads > 0 ? options.threads : detail::hardware_threads();
+  Refinement refinement(oracle, options.seed, limits, RecheckPolicy::new_faces, threads);
 
   SeedReport seeds;
   MeshStatus status = sample_topology(refinement, seeds);
@@ -173,6 +176,7 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
   j["height_direction_attempts"] = seeds.attempts;
   j["seed_undecided"] = seeds.undecided;
   j["seed"] = options.seed;
+  j["threads"] = refinement.threads();
   j["topology_phase"] = {{"vertices", topology_vertices}, {"seconds", topology_seconds}};
   j["seconds_validation"] = validation.seconds;
   j["points"] = refinement.delaunay().size();

@@ -34,6 +34,9 @@ struct DelMeshOptions {
   std::size_t max_points = 200000;
   double time_limit_seconds = 0;         //!< 0: none
   std::uint64_t seed = 1;                //!< generic directions; same seed → same mesh
+  //! Threads computing the records of the faces each insertion changes; 0: every hardware
+  //! thread.  The mesh does not depend on it.
+  int threads = 0;
   //! Progress callback (phase, points, queue sizes), called periodically; may be empty.
   std::function<void(const std::string&)> progress;
 };

@@ -82,9 +82,10 @@ bool Refinement::current(const TriangleKey& t) const {
 
 bool Refinement::current(const EdgeKey& e) const { return restricted_.has_facet(e) || del_.is_edge(e); }
 
-Refinement::Refinement(SurfaceOracle& oracle, std::uint64_t seed, RefinementLimits limits, RecheckPolicy policy)
+Refinement::Refinement(SurfaceOracle& oracle, std::uint64_t seed, RefinementLimits limits, RecheckPolicy policy,
+                       int threads)
     : oracle_(oracle), seed_(seed), limits_(std::move(limits)), policy_(policy), restricted_(del_, oracle, seed),
-      steps_(make_table()), last_progress_(std::chrono::steady_clock::now()) {
+      steps_(make_table()), parallel_(threads), last_progress_(std::chrono::steady_clock::now()) {
   // insert() and remove() compute the record of every new or changed triangle at once.
   restricted_.assume_every_triangle_recorded();
 }
@@ -191,6 +192,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
     if (r && !r->shrunk) before[i] = std::make_pair(r->restricted, r->dual_point);
   }
   restricted_.shrink(change);
+  restricted_.prepare(star, parallel_);
   for (std::size_t i = 0; i < star.size(); ++i) {
     const auto& [t, apexes, contains_x] = star[i];
     const EdgeRecord& r = restricted_.edge_record(t, &apexes);
@@ -220,15 +222,15 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
     ring_pairs.push_back({r, q});
   }
   std::sort(ring_pairs.begin(), ring_pairs.end());
-  std::vector<VertexId> ring;
+  std::vector<std::pair<EdgeKey, std::vector<VertexId>>> new_edges;
   for (std::size_t i = 0; i < ring_pairs.size();) {
     const VertexId q = ring_pairs[i].first;
-    ring.clear();
-    for (; i < ring_pairs.size() && ring_pairs[i].first == q; ++i) ring.push_back(ring_pairs[i].second);
+    new_edges.push_back({make_edge_key(x, q), {}});
+    for (; i < ring_pairs.size() && ring_pairs[i].first == q; ++i) new_edges.back().second.push_back(ring_pairs[i].second);
     neighbours.push_back(q);
-    restricted_.facet(make_edge_key(x, q), &ring);
-    queue_edge(make_edge_key(x, q));
   }
+  restricted_.prepare_facets(new_edges, parallel_);
+  for (const auto& e : new_edges) queue_edge(e.first);
   steps_[silhouette_step].queue.push({x, -1, -1});
   std::sort(star_changed.begin(), star_changed.end());
   star_changed.erase(std::unique(star_changed.begin(), star_changed.end()), star_changed.end());

@@ -49,6 +49,12 @@
 //! checked again; so is everything when the change is not local (dimension < 3).
 //! RecheckPolicy::changed_faces re-queues the shrunk faces too (for testing the lemma).
 //!
+//! Threads.  Each insertion's new and shrunk triangles get their records, and its new edges their
+//! facets and section certificates, on several threads (RestrictedDelaunay::prepare and
+//! prepare_facets): each item is computed on its own from the current Del S and installed in a
+//! fixed order, so the run does the same work and writes the same mesh for every thread count.
+//! The checks themselves run one at a time, in the table's order.
+//!
 //! Witnesses within tolerances::duplicate_sample_relative_distance of an existing sample are not
 //! inserted (counted as `rejected_witnesses`), so the loop cannot cycle on a degenerate answer.
 
@@ -95,8 +101,10 @@ enum class RecheckPolicy {
 
 class Refinement {
  public:
+  //! `threads` (≥ 1) threads compute the records and facets of the faces an insertion changes;
+  //! the result is the same for every number of threads.
   Refinement(SurfaceOracle& oracle, std::uint64_t seed, RefinementLimits limits,
-             RecheckPolicy policy = RecheckPolicy::new_faces);
+             RecheckPolicy policy = RecheckPolicy::new_faces, int threads = 1);
 
   //! Inserts the witness into S (unless it duplicates a sample), logs it, and queues the faces
   //! it created or changed.  Returns the new id, or nothing if rejected.
@@ -109,6 +117,8 @@ class Refinement {
   //! Precondition: 0 < lambda < 1/3, size_bound > 0 if given.
   void enable_geometry(double lambda, std::optional<double> size_bound);
   bool smooth_enabled() const { return smooth_enabled_; }
+  //! The threads in use (the constructor's request capped by the hardware).
+  int threads() const { return parallel_.threads(); }
 
   //! Runs the table until every queue is empty (complete) or a limit is reached.
   [[nodiscard]] MeshStatus run();
@@ -191,6 +201,7 @@ class Refinement {
   Delaunay del_;
   RestrictedDelaunay restricted_;
   std::vector<Step> steps_;
+  detail::ParallelFor parallel_;
   double lambda_ = 0, smooth_threshold_ = 0;
   std::optional<double> size_bound_;
   bool smooth_enabled_ = false;

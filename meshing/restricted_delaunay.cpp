@@ -50,25 +50,70 @@ void RestrictedDelaunay::erase_record(const TriangleKey& t) {
   edges_.erase(it);
 }
 
-const EdgeRecord& RestrictedDelaunay::edge_record(const TriangleKey& t, const std::array<VertexId, 2>* apexes) {
+const EdgeRecord& RestrictedDelaunay::install(const TriangleKey& t, EdgeRecord&& record, bool solved) {
+  ++(solved ? records_solved_ : records_restricted_);
+  if (solved) unresolved_ += record.unresolved;
   auto it = edges_.find(t);
+  bool was_restricted = false;
   if (it == edges_.end()) {
-    it = edges_.emplace(t, compute(t, apexes)).first;
-    track(t, false, it->second.restricted);
-    return it->second;
+    it = edges_.emplace(t, std::move(record)).first;
+  } else {
+    was_restricted = it->second.restricted;
+    it->second = std::move(record);
   }
-  if (it->second.shrunk) {
-    const bool was_restricted = it->second.restricted;
-    const VoronoiEdge edge = voronoi_edge(del_, t, oracle_.box(), apexes);
-    if (auto restricted = restrict_record(it->second, edge)) {
-      ++records_restricted_;
-      it->second = std::move(*restricted);
-    } else {
-      it->second = compute(t, apexes);
-    }
-    track(t, was_restricted, it->second.restricted);
-  }
+  track(t, was_restricted, it->second.restricted);
   return it->second;
+}
+
+std::optional<EdgeRecord> RestrictedDelaunay::update_without_solving(const TriangleKey& t,
+                                                                    const std::array<VertexId, 2>* apexes,
+                                                                    const EdgeRecord*& current) {
+  const auto it = edges_.find(t);
+  current = nullptr;
+  if (it == edges_.end()) return std::nullopt;
+  if (!it->second.shrunk) {
+    current = &it->second;
+    return std::nullopt;
+  }
+  return restrict_record(it->second, voronoi_edge(del_, t, oracle_.box(), apexes));
+}
+
+const EdgeRecord& RestrictedDelaunay::edge_record(const TriangleKey& t, const std::array<VertexId, 2>* apexes) {
+  const EdgeRecord* current = nullptr;
+  if (auto restricted = update_without_solving(t, apexes, current)) return install(t, std::move(*restricted), false);
+  if (current) return *current;
+  return install(t, compute(t, apexes), true);
+}
+
+void RestrictedDelaunay::prepare(const std::vector<Delaunay::StarTriangle>& triangles,
+                                 const detail::ParallelFor& parallel) {
+  // Restrict what can be restricted; solve the rest in parallel, one slot per triangle, and
+  // install in the given order.
+  std::vector<std::size_t> to_solve;
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const EdgeRecord* current = nullptr;
+    if (auto restricted = update_without_solving(triangles[i].key, &triangles[i].apexes, current))
+      install(triangles[i].key, std::move(*restricted), false);
+    else if (!current)
+      to_solve.push_back(i);
+  }
+  std::vector<EdgeRecord> solved(to_solve.size());
+  parallel.run(to_solve.size(), [&](std::size_t k) {
+    const auto& s = triangles[to_solve[k]];
+    solved[k] = compute(s.key, &s.apexes);
+  });
+  for (std::size_t k = 0; k < to_solve.size(); ++k) install(triangles[to_solve[k]].key, std::move(solved[k]), true);
+}
+
+void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<VertexId>>>& edges,
+                                        const detail::ParallelFor& parallel) {
+  std::vector<FacetEntry> built(edges.size());
+  parallel.run(edges.size(), [&](std::size_t i) {
+    const auto& [e, ring] = edges[i];
+    built[i].facet = voronoi_facet(del_, e, oracle_.box(), facet_rotation(e), &ring);
+    built[i].section_certified = certify_section(e, built[i].facet) ? 1 : 0;
+  });
+  for (std::size_t i = 0; i < edges.size(); ++i) facets_[edges[i].first] = std::move(built[i]);
 }
 
 const EdgeRecord* RestrictedDelaunay::cached_record(const TriangleKey& t) const {
@@ -125,27 +170,26 @@ const VoronoiFacet& RestrictedDelaunay::facet(const EdgeKey& e, const std::vecto
 bool RestrictedDelaunay::facet_section_certified(const EdgeKey& e) {
   const VoronoiFacet& f = facet(e);
   auto& entry = facets_.find(e)->second;
-  if (entry.section_certified >= 0) return entry.section_certified == 1;
-  bool proved = false;
-  if (f.valid) {
-    // The in-plane part of ∇E at the midpoint of pq (the plane's origin before clipping): it
-    // depends on p and q only, so a facet that shrinks keeps its direction (refinement.h).
-    const Vec3 midpoint = 0.5 * (del_.point(e[0]) + del_.point(e[1]));
-    const Vec3 g = oracle_.gradient(midpoint);
-    const Vec3 m = normalized(f.normal);
-    Vec3 w = g - dot(g, m) * m;
-    if (!(norm(w) > 0)) w = f.a;
-    AffineChart chart;
-    chart.origin = f.origin;
-    chart.columns = {f.a, f.b};
-    proved = oracle_.prove_gradient_cone(chart, f.domain, normalized(w));
-  }
-  entry.section_certified = proved ? 1 : 0;
-  return proved;
+  if (entry.section_certified < 0) entry.section_certified = certify_section(e, f) ? 1 : 0;
+  return entry.section_certified == 1;
 }
 
-EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes) {
-  ++records_solved_;
+bool RestrictedDelaunay::certify_section(const EdgeKey& e, const VoronoiFacet& f) const {
+  if (!f.valid) return false;
+  // The in-plane part of ∇E at the midpoint of pq (the plane's origin before clipping): it
+  // depends on p and q only, so a facet that shrinks keeps its direction (refinement.h).
+  const Vec3 midpoint = 0.5 * (del_.point(e[0]) + del_.point(e[1]));
+  const Vec3 g = oracle_.gradient(midpoint);
+  const Vec3 m = normalized(f.normal);
+  Vec3 w = g - dot(g, m) * m;
+  if (!(norm(w) > 0)) w = f.a;
+  AffineChart chart;
+  chart.origin = f.origin;
+  chart.columns = {f.a, f.b};
+  return oracle_.prove_gradient_cone(chart, f.domain, normalized(w));
+}
+
+EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes) const {
   EdgeRecord r;
   r.edge = voronoi_edge(del_, t, oracle_.box(), apexes);
   if (!r.edge.valid) return r;
@@ -191,7 +235,6 @@ EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<Ve
       }
     }
     ++r.unresolved;
-    ++unresolved_;
   }
   const bool lone_excluded_vertex =
       r.crossings.size() == 1 && vertex_root_excluded.size() == 1 && vertex_root_excluded[0];

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "meshing/delaunay.h"
+#include "meshing/detail/parallel_for.h"
 #include "meshing/surface_oracle.h"
 #include "meshing/voronoi_geometry.h"
 
@@ -67,6 +68,13 @@ class RestrictedDelaunay {
   //! calls it once the facet checks of e are done, so that memory stays proportional to the
   //! facets in work, not to all of Vor S.
   void release_facet(const EdgeKey& e) { facets_.erase(e); }
+  //! Brings the records of these triangles up to date (restricting shrunk ones, solving the
+  //! others on `parallel`'s threads); the result does not depend on the number of threads.
+  void prepare(const std::vector<Delaunay::StarTriangle>& triangles, const detail::ParallelFor& parallel);
+  //! Builds the facets of these edges (with the third vertices of their triangles) and their
+  //! section certificates, on `parallel`'s threads.
+  void prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<VertexId>>>& edges,
+                      const detail::ParallelFor& parallel);
   //! Whether the facet of e is cached (then e is a current Delaunay edge).
   bool has_facet(const EdgeKey& e) const { return facets_.count(e) != 0; }
   //! The facet of a current Delaunay edge (computed on first use, then cached).  `ring`, if
@@ -107,7 +115,17 @@ class RestrictedDelaunay {
   std::size_t unresolved() const { return unresolved_; }
 
  private:
-  EdgeRecord compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes);
+  //! Solves the record of t (SurfaceLine on its dual edge).  Touches no member: safe to call
+  //! from several threads at once.
+  EdgeRecord compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes) const;
+  //! The record of t restricted from its shrunk one, or nothing with `current` set to the
+  //! cached record if it is up to date (nullptr if none or if it must be solved).
+  std::optional<EdgeRecord> update_without_solving(const TriangleKey& t, const std::array<VertexId, 2>* apexes,
+                                                   const EdgeRecord*& current);
+  //! Stores the record of t (counting it as solved or restricted) and keeps stars_ in step.
+  const EdgeRecord& install(const TriangleKey& t, EdgeRecord&& record, bool solved);
+  //! The gradient-cone certificate of facet_section_certified().  Thread-safe.
+  bool certify_section(const EdgeKey& e, const VoronoiFacet& f) const;
   //! Keeps stars_ in step with a record of t whose restricted status went from `was` to `is`.
   void track(const TriangleKey& t, bool was_restricted, bool is_restricted);
   void erase_record(const TriangleKey& t);

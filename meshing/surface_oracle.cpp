@@ -1,6 +1,7 @@
 #include "meshing/surface_oracle.h"
 
 #include <cmath>
+#include <mutex>
 #include <sstream>
 
 #include "common/errors.h"
@@ -37,6 +38,7 @@ struct SurfaceOracle::Impl {
   std::vector<std::vector<int>> degrees;  // for homotopy (square polynomial systems), else empty
   std::unique_ptr<LinePolynomial> line_polynomial;
   std::unique_ptr<CompiledSystem> gradient;  // E with its Jacobian = ∇E
+  std::mutex statistics_mutex;                 // statistics updates from concurrent calls
 
   // The degrees cost a symbolic expansion of every system (minutes for a degree-12 E), so they
   // are computed only for the homotopy backend, the one that reads them.
@@ -76,13 +78,14 @@ const Surface& SurfaceOracle::surface() const { return impl_->surface; }
 
 SolveResult SurfaceOracle::finish(Primitive primitive, SolveResult result,
                                   std::chrono::steady_clock::time_point start) {
-  auto& s = stats_[static_cast<int>(primitive)];
-  ++s.calls;
   // Only roots inside the domain count; the solver classifies them.
   std::vector<CertifiedRoot> inside;
   for (auto& r : result.roots)
     if (r.inside_domain) inside.push_back(std::move(r));
   result.roots = std::move(inside);
+  const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
+  auto& s = stats_[static_cast<int>(primitive)];
+  ++s.calls;
   s.certified_roots += result.roots.size();
   s.undecided += result.undecided.size();
   s.boxes += result.counters.boxes;
@@ -153,6 +156,7 @@ SolveResult SurfaceOracle::silhouette_critical(const Vec3& d, const Vec3& d2, co
 bool SurfaceOracle::prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) {
   const auto start = std::chrono::steady_clock::now();
   const auto r = delmesh::prove_gradient_cone(*impl_->gradient, chart, domain, w, tolerances::gradient_cone_box_budget);
+  const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
   ++cone_stats_.attempts;
   cone_stats_.proved += r.proved ? 1 : 0;
   cone_stats_.boxes += r.boxes;

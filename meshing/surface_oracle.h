@@ -5,6 +5,9 @@
 //! subdivision, or homotopy for square polynomial systems), per-call budgets from tolerances.h,
 //! and statistics (calls, certified roots, undecided regions, boxes, seconds per primitive).
 //!
+//! The primitives and the certificate may be called from several threads at once: the compiled
+//! systems keep their scratch per thread, and the statistics are updated under a lock.
+//!
 //! Policy for undecided regions (design notes, "Meaning of a certified result"): a region that the
 //! solver can neither exclude nor certify is a candidate witness.  project() moves its centre onto
 //! Σ by Newton steps along ∇E; the caller inserts the projected point if it lies in the Voronoi

@@ -8,6 +8,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libmpfi-dev
   libginac-dev libcln-dev
   libeigen3-dev
+  libtbb-dev
   libboost-dev libboost-test-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libbenchmark-dev

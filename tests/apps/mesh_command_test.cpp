@@ -43,6 +43,7 @@ BOOST_AUTO_TEST_CASE(bad_options_are_invalid_input) {
   require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--size-bound", "0"}), "--size-bound");
   require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--time-limit", "-1"}), "--time-limit");
   require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--max-points", "0"}), "--max-points");
+  require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--threads", "-1"}), "--threads");
 }
 
 BOOST_AUTO_TEST_CASE(input_mesh_is_validated_then_reported_unimplemented) {

@@ -12,11 +12,12 @@ using namespace delmesh;
 
 namespace {
 
-DelMeshResult run(const std::string& name, double lambda, std::uint64_t seed = 1) {
+DelMeshResult run(const std::string& name, double lambda, std::uint64_t seed = 1, int threads = 0) {
   const auto& entry = catalog_entry(name);
   DelMeshOptions options;
   options.lambda = lambda;
   options.seed = seed;
+  options.threads = threads;
   return del_mesh(entry.surface(), entry.box, options);
 }
 
@@ -95,6 +96,18 @@ BOOST_AUTO_TEST_CASE(statistics_follow_the_contract) {
 BOOST_AUTO_TEST_CASE(same_seed_same_mesh) {
   const auto a = run("torus", 0.06, 7), b = run("torus", 0.06, 7);
   BOOST_TEST(same_mesh(a.mesh, b.mesh));
+}
+
+// The records of changed faces are computed on several threads and installed in a fixed order:
+// the mesh and the solver's work are the same for every thread count.
+BOOST_AUTO_TEST_CASE(same_mesh_for_every_thread_count) {
+  const auto one = run("genus2", 0.06, 1, 1);
+  for (int threads : {2, 4}) {
+    const auto many = run("genus2", 0.06, 1, threads);
+    BOOST_TEST(same_mesh(one.mesh, many.mesh), threads << " threads");
+    BOOST_TEST(one.statistics["solver"]["systems"] == many.statistics["solver"]["systems"]);
+    BOOST_TEST(one.statistics["insertions"] == many.statistics["insertions"]);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(size_bound_refines) {

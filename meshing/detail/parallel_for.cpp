@@ -1,0 +1,41 @@
+#include "meshing/detail/parallel_for.h"
+
+#include <algorithm>
+#include <thread>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+namespace delmesh::detail {
+
+struct ParallelFor::Arena {
+  tbb::task_arena arena;
+  explicit Arena(int threads) : arena(threads) {}
+};
+
+ParallelFor::ParallelFor(int threads) : threads_(std::max(1, std::min(threads, hardware_threads()))) {
+  if (threads_ > 1) arena_ = std::make_unique<Arena>(threads_);
+}
+ParallelFor::~ParallelFor() = default;
+ParallelFor::ParallelFor(ParallelFor&&) noexcept = default;
+ParallelFor& ParallelFor::operator=(ParallelFor&&) noexcept = default;
+
+void ParallelFor::run(std::size_t n, const std::function<void(std::size_t)>& f) const {
+  if (!arena_ || n < 2) {
+    for (std::size_t i = 0; i < n; ++i) f(i);
+    return;
+  }
+  arena_->arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+    });
+  });
+}
+
+int hardware_threads() {
+  const unsigned n = std::thread::hardware_concurrency();
+  return n == 0 ? 1 : static_cast<int>(n);
+}
+
+}  // namespace delmesh::detail

@@ -273,6 +273,8 @@ int main(int argc, char** argv) {
   app.add_option("--ladder", ladder, "CGAL radius bounds tried by 'coarsest' (distance = radius/10), coarse first")
       ->capture_default_str();
   app.add_option("--seed", base.seed, "delmesh seed")->capture_default_str();
+  base.threads = 1;
+  app.add_option("--threads", base.threads, "delmesh threads (0: every hardware thread)")->capture_default_str();
   app.add_option("--cgal-seed", cgal_seed, "seed of CGAL's default random generator")->capture_default_str();
   app.add_option("--time-limit", base.time_limit_seconds, "delmesh time limit per run (s), 0 none")
       ->capture_default_str();
@@ -289,6 +291,7 @@ int main(int argc, char** argv) {
     CsvWriter csv(fs::path(out_dir) / "compare_cgal.csv", "compare_cgal",
                   {{"lambda", field(lambda)},
                    {"benchmark_cases", cases},
+                   {"threads", field(base.threads)},
                    {"cgal_angle", field(fine.angle_deg)},
                    {"demo_radii", field_list(coarse_radii)},
                    {"ladder_radii", field_list(ladder)},

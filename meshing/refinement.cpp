@@ -192,10 +192,11 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
     if (r && !r->shrunk) before[i] = std::make_pair(r->restricted, r->dual_point);
   }
   restricted_.shrink(change);
-  restricted_.prepare(star, parallel_);
+  const auto records = restricted_.prepare(star, parallel_);
   for (std::size_t i = 0; i < star.size(); ++i) {
-    const auto& [t, apexes, contains_x] = star[i];
-    const EdgeRecord& r = restricted_.edge_record(t, &apexes);
+    const auto& t = star[i].key;
+    const EdgeRecord& r = *records[i];
+    const bool contains_x = star[i].contains_vertex;
     if (contains_x) {
       // The faces dual to simplices containing x are new: all their checks run.
       if (r.restricted) star_change(t);

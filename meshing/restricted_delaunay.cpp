@@ -53,14 +53,9 @@ void RestrictedDelaunay::erase_record(const TriangleKey& t) {
 const EdgeRecord& RestrictedDelaunay::install(const TriangleKey& t, EdgeRecord&& record, bool solved) {
   ++(solved ? records_solved_ : records_restricted_);
   if (solved) unresolved_ += record.unresolved;
-  auto it = edges_.find(t);
-  bool was_restricted = false;
-  if (it == edges_.end()) {
-    it = edges_.emplace(t, std::move(record)).first;
-  } else {
-    was_restricted = it->second.restricted;
-    it->second = std::move(record);
-  }
+  const auto [it, inserted] = edges_.try_emplace(t);
+  const bool was_restricted = !inserted && it->second.restricted;
+  it->second = std::move(record);
   track(t, was_restricted, it->second.restricted);
   return it->second;
 }
@@ -85,16 +80,19 @@ const EdgeRecord& RestrictedDelaunay::edge_record(const TriangleKey& t, const st
   return install(t, compute(t, apexes), true);
 }
 
-void RestrictedDelaunay::prepare(const std::vector<Delaunay::StarTriangle>& triangles,
-                                 const detail::ParallelFor& parallel) {
+std::vector<const EdgeRecord*> RestrictedDelaunay::prepare(const std::vector<Delaunay::StarTriangle>& triangles,
+                                                           const detail::ParallelFor& parallel) {
   // Restrict what can be restricted; solve the rest in parallel, one slot per triangle, and
-  // install in the given order.
+  // install in the given order.  (References into the table survive later insertions.)
+  std::vector<const EdgeRecord*> records(triangles.size(), nullptr);
   std::vector<std::size_t> to_solve;
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     const EdgeRecord* current = nullptr;
     if (auto restricted = update_without_solving(triangles[i].key, &triangles[i].apexes, current))
-      install(triangles[i].key, std::move(*restricted), false);
-    else if (!current)
+      records[i] = &install(triangles[i].key, std::move(*restricted), false);
+    else if (current)
+      records[i] = current;
+    else
       to_solve.push_back(i);
   }
   std::vector<EdgeRecord> solved(to_solve.size());
@@ -102,7 +100,9 @@ void RestrictedDelaunay::prepare(const std::vector<Delaunay::StarTriangle>& tria
     const auto& s = triangles[to_solve[k]];
     solved[k] = compute(s.key, &s.apexes);
   });
-  for (std::size_t k = 0; k < to_solve.size(); ++k) install(triangles[to_solve[k]].key, std::move(solved[k]), true);
+  for (std::size_t k = 0; k < to_solve.size(); ++k)
+    records[to_solve[k]] = &install(triangles[to_solve[k]].key, std::move(solved[k]), true);
+  return records;
 }
 
 void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<VertexId>>>& edges,

@@ -69,8 +69,10 @@ class RestrictedDelaunay {
   //! facets in work, not to all of Vor S.
   void release_facet(const EdgeKey& e) { facets_.erase(e); }
   //! Brings the records of these triangles up to date (restricting shrunk ones, solving the
-  //! others on `parallel`'s threads); the result does not depend on the number of threads.
-  void prepare(const std::vector<Delaunay::StarTriangle>& triangles, const detail::ParallelFor& parallel);
+  //! others on `parallel`'s threads) and returns them in the same order; the result does not
+  //! depend on the number of threads.  The pointers stay valid until the records are forgotten.
+  std::vector<const EdgeRecord*> prepare(const std::vector<Delaunay::StarTriangle>& triangles,
+                                         const detail::ParallelFor& parallel);
   //! Builds the facets of these edges (with the third vertices of their triangles) and their
   //! section certificates, on `parallel`'s threads.
   void prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<VertexId>>>& edges,

@@ -136,6 +136,7 @@ int main(int argc, char** argv) {
   app.add_option("--surfaces", surfaces, "catalog names, comma separated")->capture_default_str();
   app.add_option("--lambdas", lambdas, "values of lambda")->capture_default_str();
   app.add_option("--seed", base.seed, "delmesh seed")->capture_default_str();
+  app.add_option("--threads", base.threads, "delmesh threads (0: every hardware thread)")->capture_default_str();
   app.add_option("--time-limit", base.time_limit_seconds, "delmesh time limit per run (s), 0 none")
       ->capture_default_str();
   app.add_option("--max-points", base.max_points, "delmesh point limit per run")->capture_default_str();

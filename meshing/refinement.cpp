@@ -258,8 +258,7 @@ void Refinement::remove(VertexId p) {
   queue_everything_within(around);
 }
 
-std::optional<MeshStatus> Refinement::limit_reached() {
-  const auto now = std::chrono::steady_clock::now();
+std::optional<MeshStatus> Refinement::limit_reached(std::chrono::steady_clock::time_point now) {
   if (limits_.progress &&
       std::chrono::duration<double>(now - last_progress_).count() >= tolerances::progress_interval_seconds) {
     last_progress_ = now;
@@ -275,20 +274,27 @@ std::optional<MeshStatus> Refinement::limit_reached() {
 }
 
 MeshStatus Refinement::run() {
+  // One clock reading per check: it ends the check's time and is the time the limits are
+  // tested against.
+  auto now = std::chrono::steady_clock::now();
   while (true) {
-    if (auto status = limit_reached()) return *status;
+    if (auto status = limit_reached(now)) return *status;
     auto step = std::find_if(steps_.begin(), steps_.end(),
                              [](const Step& s) { return s.enabled && !s.queue.empty(); });
     if (step == steps_.end()) return MeshStatus::complete;
     const Simplex item = step->queue.pop();
-    const auto start = std::chrono::steady_clock::now();
     const auto w = step->check(*this, item);
     const auto k = static_cast<int>(step->kind);
-    seconds_[k] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const auto checked = std::chrono::steady_clock::now();
+    seconds_[k] += std::chrono::duration<double>(checked - now).count();
     ++checks_[k];
+    now = checked;
     // A face that gave a witness is not clean: it is examined again once the witness is in S
     // (e.g. V_p keeps other points of J_{n_p} after the furthest one is inserted).
-    if (w && insert(*w)) step->queue.push(item);
+    if (w) {
+      if (insert(*w)) step->queue.push(item);
+      now = std::chrono::steady_clock::now();
+    }
   }
 }
 

@@ -192,7 +192,7 @@ class Refinement {
   void queue_triangle(const TriangleKey& t, bool topology_checks, const EdgeRecord& record);
   void queue_edge(const EdgeKey& e);
   void queue_everything_within(const std::vector<VertexId>& sorted_vertices);
-  std::optional<MeshStatus> limit_reached();
+  std::optional<MeshStatus> limit_reached(std::chrono::steady_clock::time_point now);
 
   SurfaceOracle& oracle_;
   std::uint64_t seed_;

@@ -179,23 +179,14 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
   // vertices of every triangle that entered or left Tri S|Σ (a triangle never solved counts).
   std::vector<VertexId> star_changed{x};
   auto star_change = [&](const TriangleKey& t) { star_changed.insert(star_changed.end(), t.begin(), t.end()); };
-  for (const auto& t : change.destroyed_triangles) {
-    const EdgeRecord* before = restricted_.cached_record(t);
-    if (!before || before->restricted || before->shrunk) star_change(t);
-  }
+  for (const auto& t : restricted_.forget_destroyed(change)) star_change(t);
   // Shrunk faces keep their clean results (the lemma in refinement.h); their records are brought
   // up to date now, and a triangle whose dual point changed goes to Quality and Smooth again.
   const auto star = del_.closed_star(x);
-  std::vector<std::optional<std::pair<bool, Vec3>>> before(star.size());
-  for (std::size_t i = 0; i < star.size(); ++i) {
-    const EdgeRecord* r = star[i].contains_vertex ? nullptr : restricted_.cached_record(star[i].key);
-    if (r && !r->shrunk) before[i] = std::make_pair(r->restricted, r->dual_point);
-  }
-  restricted_.shrink(change);
-  const auto records = restricted_.prepare(star, parallel_);
+  const auto records = restricted_.prepare_star(star, parallel_);
   for (std::size_t i = 0; i < star.size(); ++i) {
     const auto& t = star[i].key;
-    const EdgeRecord& r = *records[i];
+    const EdgeRecord& r = *records[i].record;
     const bool contains_x = star[i].contains_vertex;
     if (contains_x) {
       // The faces dual to simplices containing x are new: all their checks run.
@@ -203,9 +194,10 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
       queue_triangle(t, true, r);
       continue;
     }
-    const bool status_changed = !before[i] || before[i]->first != r.restricted;
+    const auto& before = records[i];
+    const bool status_changed = !before.had_record || before.was_restricted != r.restricted;
     if (status_changed) star_change(t);
-    if (status_changed || before[i]->second != r.dual_point)
+    if (status_changed || before.old_dual_point != r.dual_point)
       queue_triangle(t, policy_ == RecheckPolicy::changed_faces, r);
     else if (policy_ == RecheckPolicy::changed_faces)
       steps_[vor_edge_step].queue.push(t);

@@ -80,29 +80,58 @@ const EdgeRecord& RestrictedDelaunay::edge_record(const TriangleKey& t, const st
   return install(t, compute(t, apexes), true);
 }
 
-std::vector<const EdgeRecord*> RestrictedDelaunay::prepare(const std::vector<Delaunay::StarTriangle>& triangles,
-                                                           const detail::ParallelFor& parallel) {
-  // Restrict what can be restricted; solve the rest in parallel, one slot per triangle, and
-  // install in the given order.  (References into the table survive later insertions.)
-  std::vector<const EdgeRecord*> records(triangles.size(), nullptr);
+std::vector<TriangleKey> RestrictedDelaunay::forget_destroyed(const InsertionChange& change) {
+  std::vector<TriangleKey> left;
+  for (const auto& t : change.destroyed_triangles) {
+    const auto it = edges_.find(t);
+    if (it == edges_.end() || it->second.restricted || it->second.shrunk) left.push_back(t);
+    if (it == edges_.end()) continue;
+    track(t, it->second.restricted, false);
+    edges_.erase(it);
+  }
+  forget({}, change.destroyed_edges);
+  forget({}, change.shrunk_edges);
+  return left;
+}
+
+std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
+    const std::vector<Delaunay::StarTriangle>& star, const detail::ParallelFor& parallel) {
+  // One lookup per triangle: link triangles are restricted in place where possible; the rest are
+  // solved in parallel, one slot each, and installed in the star's order.  (References into the
+  // table survive later insertions into it.)
+  std::vector<StarRecord> out(star.size());
   std::vector<std::size_t> to_solve;
-  for (std::size_t i = 0; i < triangles.size(); ++i) {
-    const EdgeRecord* current = nullptr;
-    if (auto restricted = update_without_solving(triangles[i].key, &triangles[i].apexes, current))
-      records[i] = &install(triangles[i].key, std::move(*restricted), false);
-    else if (current)
-      records[i] = current;
-    else
+  for (std::size_t i = 0; i < star.size(); ++i) {
+    const auto& s = star[i];
+    const auto it = edges_.find(s.key);
+    if (it == edges_.end() || s.contains_vertex) {
       to_solve.push_back(i);
+      continue;
+    }
+    if (!it->second.shrunk) {
+      out[i].had_record = true;
+      out[i].was_restricted = it->second.restricted;
+      out[i].old_dual_point = it->second.dual_point;
+    }
+    auto restricted = restrict_record(it->second, voronoi_edge(del_, s.key, oracle_.box(), &s.apexes));
+    if (!restricted) {
+      to_solve.push_back(i);
+      continue;
+    }
+    ++records_restricted_;
+    const bool was_restricted = it->second.restricted;
+    it->second = std::move(*restricted);
+    track(s.key, was_restricted, it->second.restricted);
+    out[i].record = &it->second;
   }
   std::vector<EdgeRecord> solved(to_solve.size());
   parallel.run(to_solve.size(), [&](std::size_t k) {
-    const auto& s = triangles[to_solve[k]];
+    const auto& s = star[to_solve[k]];
     solved[k] = compute(s.key, &s.apexes);
   });
   for (std::size_t k = 0; k < to_solve.size(); ++k)
-    records[to_solve[k]] = &install(triangles[to_solve[k]].key, std::move(solved[k]), true);
-  return records;
+    out[to_solve[k]].record = &install(star[to_solve[k]].key, std::move(solved[k]), true);
+  return out;
 }
 
 void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<VertexId>>>& edges,

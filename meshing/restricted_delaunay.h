@@ -68,11 +68,25 @@ class RestrictedDelaunay {
   //! calls it once the facet checks of e are done, so that memory stays proportional to the
   //! facets in work, not to all of Vor S.
   void release_facet(const EdgeKey& e) { facets_.erase(e); }
-  //! Brings the records of these triangles up to date (restricting shrunk ones, solving the
-  //! others on `parallel`'s threads) and returns them in the same order; the result does not
-  //! depend on the number of threads.  The pointers stay valid until the records are forgotten.
-  std::vector<const EdgeRecord*> prepare(const std::vector<Delaunay::StarTriangle>& triangles,
-                                         const detail::ParallelFor& parallel);
+  //! For a local insertion (Delaunay::insert's change): forgets the destroyed triangles' records
+  //! and the destroyed and shrunk edges' facets, like shrink() without marking the shrunk
+  //! triangles (prepare_star() takes them up next).  Returns the destroyed triangles that were
+  //! restricted or had no up-to-date record: the restricted stars of their vertices may change.
+  std::vector<TriangleKey> forget_destroyed(const InsertionChange& change);
+  //! A triangle of prepare_star(): its record now, and what its record said before.
+  struct StarRecord {
+    const EdgeRecord* record = nullptr;
+    bool had_record = false;      //!< an up-to-date record existed before
+    bool was_restricted = false;  //!< … and it was restricted
+    Vec3 old_dual_point{};        //!< … with this dual point
+  };
+  //! After forget_destroyed(): brings the records of the new vertex's closed star up to date —
+  //! link triangles (not containing the vertex) are shrunk and restricted from their records
+  //! where possible, the others solved on `parallel`'s threads — and returns them in the star's
+  //! order.  The result does not depend on the number of threads; the pointers stay valid until
+  //! the records are forgotten.
+  std::vector<StarRecord> prepare_star(const std::vector<Delaunay::StarTriangle>& star,
+                                       const detail::ParallelFor& parallel);
   //! Builds the facets of these edges (with the third vertices of their triangles) and their
   //! section certificates, on `parallel`'s threads.
   void prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<VertexId>>>& edges,

@@ -40,7 +40,10 @@
 //!     that entered or left Tri S|Σ (new, destroyed, or shrunk with a lost crossing).  Quality,
 //!     size and Smooth read a triangle's restricted status and dual point (Smooth also its
 //!     neighbours across its edges, which are then re-queued themselves): they are re-queued for
-//!     the new triangles and the shrunk triangles whose status or dual point changed.
+//!     the new triangles and the shrunk triangles whose status or dual point changed.  Every
+//!     such record is computed at once; VorEdge is a function of the record alone, so a new
+//!     triangle waits for it only if its record has a witness, and Quality, size and Smooth wait
+//!     only for restricted triangles.
 //! Conditions: the checks' generic choices depend only on the face's sites (so it is for the
 //! seeded frames of restricted_delaunay.h and silhouette.h, and for the in-plane direction of the
 //! facet certificate), and only a clean result is kept (an undecided region is a candidate

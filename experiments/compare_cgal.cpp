@@ -252,7 +252,7 @@ int main(int argc, char** argv) {
   std::string experiments_to_run = "benchmark,coarsest,demo";
   double lambda = 0.06;
   std::string cases = "torus:0.05,genus2:0.05,torus:0.02";
-  CgalSettings fine;
+  double cgal_angle = 30;
   std::vector<double> coarse_radii{0.5, 1.0};
   std::vector<double> ladder{0.8, 0.4, 0.2, 0.1, 0.05};
   std::string out_dir = "out";
@@ -267,7 +267,7 @@ int main(int argc, char** argv) {
                  "benchmark cases SURFACE:H, comma separated: delmesh with size bound H against CGAL with "
                  "facet size H and facet distance H/10")
       ->capture_default_str();
-  app.add_option("--angle", fine.angle_deg, "CGAL facet angle bound (deg)")->capture_default_str();
+  app.add_option("--angle", cgal_angle, "CGAL facet angle bound (deg)")->capture_default_str();
   app.add_option("--coarse-radii", coarse_radii, "CGAL radius bounds of the demo (distance = radius/10)")
       ->capture_default_str();
   app.add_option("--ladder", ladder, "CGAL radius bounds tried by 'coarsest' (distance = radius/10), coarse first")
@@ -292,7 +292,7 @@ int main(int argc, char** argv) {
                   {{"lambda", field(lambda)},
                    {"benchmark_cases", cases},
                    {"threads", field(base.threads)},
-                   {"cgal_angle", field(fine.angle_deg)},
+                   {"cgal_angle", field(cgal_angle)},
                    {"demo_radii", field_list(coarse_radii)},
                    {"ladder_radii", field_list(ladder)},
                    {"seed", field(static_cast<long long>(base.seed))},
@@ -330,7 +330,7 @@ int main(int argc, char** argv) {
         const double h = std::stod(item.substr(colon + 1));
         if (!(h > 0)) throw InvalidInput("--cases: H must be positive in '" + item + "'");
         const Prepared s = prepare(name);
-        const CgalSettings settings{fine.angle_deg, h, h / 10};
+        const CgalSettings settings{cgal_angle, h, h / 10};
         Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, settings);
         record(context, "benchmark", *s.entry, sm, s.E);
         Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings);
@@ -361,7 +361,7 @@ int main(int argc, char** argv) {
         const Prepared s = prepare(name);
         std::optional<Run> coarsest_m3;
         for (double radius : ladder) {
-          const CgalSettings settings{fine.angle_deg, radius, radius / 10};
+          const CgalSettings settings{cgal_angle, radius, radius / 10};
           Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, settings);
           record(context, "coarsest", *s.entry, sm, s.E);
           Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings);
@@ -385,7 +385,7 @@ int main(int argc, char** argv) {
       for (const std::string& name : split(demo_surfaces)) {
         const Prepared s = prepare(name);
         for (double radius : coarse_radii) {
-          const CgalSettings coarse{fine.angle_deg, radius, radius / 10};
+          const CgalSettings coarse{cgal_angle, radius, radius / 10};
           Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, coarse);
           record(context, "demo", *s.entry, sm, s.E);
           Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, coarse);

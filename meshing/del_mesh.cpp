@@ -16,13 +16,10 @@
 #include <sstream>
 
 #include "common/errors.h"
-#include "meshing/detail/parallel_for.h"
 #include "meshing/detail/vec3.h"
 #include "meshing/input_validation.h"
 #include "meshing/mesh_checker.h"
-#include "meshing/quality.h"
 #include "meshing/sample_topology.h"
-#include "meshing/smooth.h"
 #include "meshing/surface_oracle.h"
 #include "meshing/theorem_bounds.h"
 #include "meshing/refinement.h"
@@ -104,8 +101,7 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
     limits.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                   std::chrono::duration<double>(options.time_limit_seconds));
   limits.progress = options.progress;
-  const int threads = options.threads > 0 ? options.threads : detail::hardware_threads();
-  Refinement refinement(oracle, options.seed, limits, RecheckPolicy::new_faces, threads);
+  Refinement refinement(oracle, options.seed, limits, RecheckPolicy::new_faces, options.threads);
 
   SeedReport seeds;
   MeshStatus status = sample_topology(refinement, seeds);

@@ -68,6 +68,12 @@ std::optional<TriangleKey> facet_key(const Dt& dt, const typename Dt::Facet& f) 
   return make_triangle_key(ids[0], ids[1], ids[2]);
 }
 
+// The id of a vertex, −1 for the infinite one.
+template <class Dt>
+VertexId vertex_id(const Dt& dt, typename Dt::Vertex_handle v) {
+  return dt.is_infinite(v) ? VertexId(-1) : v->info().id;
+}
+
 template <class Key>
 void sort_unique(std::vector<Key>& keys) {
   std::sort(keys.begin(), keys.end());
@@ -219,8 +225,7 @@ std::optional<std::array<VertexId, 2>> Delaunay::triangle_apexes(const TriangleK
     return std::nullopt;
   const int opposite = 6 - i - j - k;
   const auto other = c->neighbor(opposite);
-  const auto apex = [&](detail::Dt::Vertex_handle v) { return dt.is_infinite(v) ? VertexId(-1) : v->info().id; };
-  return std::array<VertexId, 2>{apex(c->vertex(opposite)), apex(other->vertex(other->index(c)))};
+  return std::array<VertexId, 2>{vertex_id(dt, c->vertex(opposite)), vertex_id(dt, other->vertex(other->index(c)))};
 }
 
 std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x) const {
@@ -230,17 +235,16 @@ std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x) const {
   const auto v = impl_->handle(x);
   std::vector<detail::Dt::Cell_handle> cells;
   dt.incident_cells(v, std::back_inserter(cells));
-  const auto id = [&](detail::Dt::Vertex_handle w) { return dt.is_infinite(w) ? VertexId(-1) : w->info().id; };
   for (const auto& c : cells) {
     const int ix = c->index(v);
     for (int j = 0; j < 4; ++j) {
       const auto t = facet_key(dt, detail::Dt::Facet(c, j));
       if (!t) continue;
-      // A facet containing x is met from both of its cells; keep it from the one with j < its mirror.
+      // A facet containing x lies in two cells of x's star: it is kept from the one at the lower
+      // address (the facet opposite x lies in one cell of the star only).
       const auto other = c->neighbor(j);
-      const int mirror = other->index(c);
-      if (j != ix && other->has_vertex(v) && &*other < &*c) continue;
-      out.push_back({*t, {id(c->vertex(j)), id(other->vertex(mirror))}, j != ix});
+      if (j != ix && &*other < &*c) continue;
+      out.push_back({*t, {vertex_id(dt, c->vertex(j)), vertex_id(dt, other->vertex(other->index(c)))}, j != ix});
     }
   }
   std::sort(out.begin(), out.end(), [](const StarTriangle& a, const StarTriangle& b) { return a.key < b.key; });

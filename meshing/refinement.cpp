@@ -24,22 +24,23 @@ EdgeKey as_edge(const std::array<VertexId, 3>& s) { return {s[0], s[1]}; }
 }  // namespace
 
 std::vector<Refinement::Step> Refinement::make_table() {
+  // Quality and Smooth start disabled (enable_geometry()).
   std::vector<Step> table(step_count);
   table[vor_edge_step] = {CheckKind::vor_edge, "vor_edge", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
                             const TriangleKey t = as_triangle(s);
                             if (!r.current(t)) return std::nullopt;
                             return vor_edge_witness(r.restricted_, t);
-                          }};
+                          }, {}, true};
   table[facet_contact_step] = {CheckKind::facet_contact, "facet_contact",
                                [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
                                  const EdgeKey e = as_edge(s);
                                  if (!r.current(e)) return std::nullopt;
                                  return facet_contact_witness(r.restricted_, e);
-                               }};
+                               }, {}, true};
   table[topo_disk_step] = {CheckKind::topo_disk, "topo_disk", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
                              if (!r.del_.contains(s[0])) return std::nullopt;
                              return topo_disk_witness(r.restricted_, s[0]);
-                           }};
+                           }, {}, true};
   table[facet_cycle_step] = {CheckKind::facet_cycle, "facet_cycle",
                              [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
                                const EdgeKey e = as_edge(s);
@@ -48,20 +49,20 @@ std::vector<Refinement::Step> Refinement::make_table() {
                                // The last facet check of e: its geometry is not kept.
                                if (!w) r.restricted_.release_facet(e);
                                return w;
-                             }};
+                             }, {}, true};
   // Step (e) runs only once (a)–(d) have nothing queued: the facets of V_p are clean.
   table[silhouette_step] = {CheckKind::silhouette, "silhouette",
                             [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
                               if (!r.del_.contains(s[0])) return std::nullopt;
                               return silhouette_witness(r.restricted_, s[0], /*facets_clean=*/true);
-                            }};
+                            }, {}, true};
   table[quality_step] = {CheckKind::quality, "quality", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
                            const TriangleKey t = as_triangle(s);
                            if (!r.current(t)) return std::nullopt;
                            if (auto w = quality_witness(r.restricted_, t, r.lambda_)) return w;
                            if (r.size_bound_) return size_witness(r.restricted_, t, *r.size_bound_);
                            return std::nullopt;
-                         }};
+                         }, {}, false};
   table[smooth_step] = {CheckKind::smooth, "smooth", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
                           const TriangleKey t = as_triangle(s);
                           if (!r.current(t) || !r.restricted_.edge_record(t).restricted)
@@ -70,9 +71,7 @@ std::vector<Refinement::Step> Refinement::make_table() {
                                                 make_edge_key(t[1], t[2])})
                             if (auto w = smooth_witness(r.restricted_, e, r.smooth_threshold_)) return w;
                           return std::nullopt;
-                        }};
-  table[quality_step].enabled = false;
-  table[smooth_step].enabled = false;
+                        }, {}, false};
   return table;
 }
 
@@ -202,28 +201,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
     else if (policy_ == RecheckPolicy::changed_faces)
       steps_[vor_edge_step].queue.push(t);
   }
-  // The facets of the new edges xq, each cut by the third vertices of the triangles xqr of the
-  // star (all of them are there); building them now also marks the edges as current.
-  std::vector<VertexId> neighbours;
-  std::vector<std::pair<VertexId, VertexId>> ring_pairs;  // (q, r) for each triangle xqr, both ways
-  for (const auto& s : star) {
-    if (!s.contains_vertex) continue;
-    VertexId q = -1, r = -1;
-    for (VertexId v : s.key)
-      if (v != x) (q < 0 ? q : r) = v;
-    ring_pairs.push_back({q, r});
-    ring_pairs.push_back({r, q});
-  }
-  std::sort(ring_pairs.begin(), ring_pairs.end());
-  std::vector<std::pair<EdgeKey, std::vector<VertexId>>> new_edges;
-  for (std::size_t i = 0; i < ring_pairs.size();) {
-    const VertexId q = ring_pairs[i].first;
-    new_edges.push_back({make_edge_key(x, q), {}});
-    for (; i < ring_pairs.size() && ring_pairs[i].first == q; ++i) new_edges.back().second.push_back(ring_pairs[i].second);
-    neighbours.push_back(q);
-  }
-  restricted_.prepare_facets(new_edges, parallel_);
-  for (const auto& e : new_edges) queue_edge(e.first);
+  const std::vector<VertexId> neighbours = prepare_new_edges(x, star);
   steps_[silhouette_step].queue.push({x, -1, -1});
   std::sort(star_changed.begin(), star_changed.end());
   star_changed.erase(std::unique(star_changed.begin(), star_changed.end()), star_changed.end());
@@ -236,6 +214,32 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
     }
   }
   return id;
+}
+
+std::vector<VertexId> Refinement::prepare_new_edges(VertexId x, const std::vector<Delaunay::StarTriangle>& star) {
+  // The facet of a new edge xq is cut by the third vertices of the triangles xqr, all of which are
+  // in the star; building the facets now also marks the edges as current.
+  std::vector<std::pair<VertexId, VertexId>> ring_pairs;  // (q, r) for each triangle xqr, both ways
+  for (const auto& s : star) {
+    if (!s.contains_vertex) continue;
+    VertexId q = -1, r = -1;
+    for (VertexId v : s.key)
+      if (v != x) (q < 0 ? q : r) = v;
+    ring_pairs.push_back({q, r});
+    ring_pairs.push_back({r, q});
+  }
+  std::sort(ring_pairs.begin(), ring_pairs.end());
+  std::vector<VertexId> neighbours;
+  std::vector<std::pair<EdgeKey, std::vector<VertexId>>> new_edges;
+  for (std::size_t i = 0; i < ring_pairs.size();) {
+    const VertexId q = ring_pairs[i].first;
+    neighbours.push_back(q);
+    new_edges.push_back({make_edge_key(x, q), {}});
+    for (; i < ring_pairs.size() && ring_pairs[i].first == q; ++i) new_edges.back().second.push_back(ring_pairs[i].second);
+  }
+  restricted_.prepare_facets(new_edges, parallel_);
+  for (const auto& e : new_edges) queue_edge(e.first);
+  return neighbours;
 }
 
 void Refinement::remove(VertexId p) {

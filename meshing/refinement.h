@@ -104,8 +104,8 @@ enum class RecheckPolicy {
 
 class Refinement {
  public:
-  //! `threads` (≥ 1) threads compute the records and facets of the faces an insertion changes;
-  //! the result is the same for every number of threads.
+  //! `threads` threads (0: every hardware thread) compute the records and facets of the faces an
+  //! insertion changes; the result is the same for every number of threads.
   Refinement(SurfaceOracle& oracle, std::uint64_t seed, RefinementLimits limits,
              RecheckPolicy policy = RecheckPolicy::new_faces, int threads = 1);
 
@@ -188,6 +188,9 @@ class Refinement {
 
   static std::vector<Step> make_table();
   std::optional<VertexId> insert_and_queue(const Witness& witness);
+  //! Builds the facets of the edges xq of x's closed star and queues their checks; returns the
+  //! neighbours q, ascending.
+  std::vector<VertexId> prepare_new_edges(VertexId x, const std::vector<Delaunay::StarTriangle>& star);
   //! Whether t / e is in Del S now (a cached record or facet proves it: see restricted_delaunay.h).
   bool current(const TriangleKey& t) const;
   bool current(const EdgeKey& e) const;

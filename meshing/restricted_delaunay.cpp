@@ -43,21 +43,27 @@ void RestrictedDelaunay::track(const TriangleKey& t, bool was_restricted, bool i
   }
 }
 
-void RestrictedDelaunay::erase_record(const TriangleKey& t) {
-  const auto it = edges_.find(t);
-  if (it == edges_.end()) return;
-  track(t, it->second.restricted, false);
+void RestrictedDelaunay::erase_at(RecordTable::iterator it) {
+  track(it->first, it->second.restricted, false);
   edges_.erase(it);
 }
 
-const EdgeRecord& RestrictedDelaunay::install(const TriangleKey& t, EdgeRecord&& record, bool solved) {
+void RestrictedDelaunay::erase_record(const TriangleKey& t) {
+  if (const auto it = edges_.find(t); it != edges_.end()) erase_at(it);
+}
+
+const EdgeRecord& RestrictedDelaunay::assign(RecordTable::iterator it, bool was_restricted, EdgeRecord&& record,
+                                             bool solved) {
   ++(solved ? records_solved_ : records_restricted_);
   if (solved) unresolved_ += record.unresolved;
-  const auto [it, inserted] = edges_.try_emplace(t);
-  const bool was_restricted = !inserted && it->second.restricted;
   it->second = std::move(record);
-  track(t, was_restricted, it->second.restricted);
+  track(it->first, was_restricted, it->second.restricted);
   return it->second;
+}
+
+const EdgeRecord& RestrictedDelaunay::install(const TriangleKey& t, EdgeRecord&& record, bool solved) {
+  const auto [it, inserted] = edges_.try_emplace(t);
+  return assign(it, !inserted && it->second.restricted, std::move(record), solved);
 }
 
 std::optional<EdgeRecord> RestrictedDelaunay::update_without_solving(const TriangleKey& t,
@@ -85,9 +91,7 @@ std::vector<TriangleKey> RestrictedDelaunay::forget_destroyed(const InsertionCha
   for (const auto& t : change.destroyed_triangles) {
     const auto it = edges_.find(t);
     if (it == edges_.end() || it->second.restricted || it->second.shrunk) left.push_back(t);
-    if (it == edges_.end()) continue;
-    track(t, it->second.restricted, false);
-    edges_.erase(it);
+    if (it != edges_.end()) erase_at(it);
   }
   forget({}, change.destroyed_edges);
   forget({}, change.shrunk_edges);
@@ -118,11 +122,7 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
       to_solve.push_back(i);
       continue;
     }
-    ++records_restricted_;
-    const bool was_restricted = it->second.restricted;
-    it->second = std::move(*restricted);
-    track(s.key, was_restricted, it->second.restricted);
-    out[i].record = &it->second;
+    out[i].record = &assign(it, it->second.restricted, std::move(*restricted), false);
   }
   std::vector<EdgeRecord> solved(to_solve.size());
   parallel.run(to_solve.size(), [&](std::size_t k) {
@@ -295,8 +295,7 @@ void RestrictedDelaunay::shrink(const InsertionChange& change) {
     facets_.clear();
     return;
   }
-  forget(change.destroyed_triangles, change.destroyed_edges);
-  forget({}, change.shrunk_edges);
+  forget_destroyed(change);
   for (const auto& t : change.shrunk_triangles)
     if (auto it = edges_.find(t); it != edges_.end()) it->second.shrunk = true;
 }

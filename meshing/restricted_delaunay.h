@@ -138,20 +138,24 @@ class RestrictedDelaunay {
   //! cached record if it is up to date (nullptr if none or if it must be solved).
   std::optional<EdgeRecord> update_without_solving(const TriangleKey& t, const std::array<VertexId, 2>* apexes,
                                                    const EdgeRecord*& current);
+  using RecordTable = std::unordered_map<TriangleKey, EdgeRecord, SimplexKeyHash, SimplexKeyEqual>;
   //! Stores the record of t (counting it as solved or restricted) and keeps stars_ in step.
   const EdgeRecord& install(const TriangleKey& t, EdgeRecord&& record, bool solved);
+  //! The same at a known slot whose previous record had restricted status `was_restricted`.
+  const EdgeRecord& assign(RecordTable::iterator it, bool was_restricted, EdgeRecord&& record, bool solved);
   //! The gradient-cone certificate of facet_section_certified().  Thread-safe.
   bool certify_section(const EdgeKey& e, const VoronoiFacet& f) const;
   //! Keeps stars_ in step with a record of t whose restricted status went from `was` to `is`.
   void track(const TriangleKey& t, bool was_restricted, bool is_restricted);
   void erase_record(const TriangleKey& t);
+  void erase_at(RecordTable::iterator it);
   //! The record of the shrunk edge `edge` restricted from `old`, or nothing if it must be solved.
   std::optional<EdgeRecord> restrict_record(const EdgeRecord& old, const VoronoiEdge& edge) const;
 
   const Delaunay& del_;
   SurfaceOracle& oracle_;
   std::uint64_t seed_;
-  std::unordered_map<TriangleKey, EdgeRecord, SimplexKeyHash, SimplexKeyEqual> edges_;
+  RecordTable edges_;
   struct FacetEntry {
     VoronoiFacet facet;
     int section_certified = -1;  //!< −1 not tried, 0 failed, 1 proved

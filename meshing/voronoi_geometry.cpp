@@ -133,11 +133,7 @@ VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& t, const Box3& 
   if (!(norm(n) > 0)) return e;
   e.point = circumcentre(p, q, r);
   e.direction = normalized(n);
-  if (known_apexes) {
-    edge_from_cells(del, *known_apexes, box, e);
-    return e;
-  }
-  if (const auto apexes = del.triangle_apexes(t)) {
+  if (const auto apexes = known_apexes ? std::optional(*known_apexes) : del.triangle_apexes(t)) {
     edge_from_cells(del, *apexes, box, e);
     return e;
   }

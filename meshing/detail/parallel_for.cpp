@@ -14,7 +14,8 @@ struct ParallelFor::Arena {
   explicit Arena(int threads) : arena(threads) {}
 };
 
-ParallelFor::ParallelFor(int threads) : threads_(std::max(1, std::min(threads, hardware_threads()))) {
+ParallelFor::ParallelFor(int threads)
+    : threads_(threads < 1 ? hardware_threads() : std::min(threads, hardware_threads())) {
   if (threads_ > 1) arena_ = std::make_unique<Arena>(threads_);
 }
 ParallelFor::~ParallelFor() = default;

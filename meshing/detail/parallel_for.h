@@ -12,8 +12,8 @@ namespace delmesh::detail {
 
 class ParallelFor {
  public:
-  //! Uses min(threads, hardware_threads()) threads, at least 1; 1 runs everything on the calling
-  //! thread.
+  //! Uses min(threads, hardware_threads()) threads, or every hardware thread for threads < 1; one
+  //! thread runs everything on the calling thread.
   explicit ParallelFor(int threads);
   ~ParallelFor();
   ParallelFor(ParallelFor&&) noexcept;

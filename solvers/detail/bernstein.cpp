@@ -1,6 +1,46 @@
 #include "solvers/detail/bernstein.h"
 
+#include <array>
+#include <cstdint>
+
 namespace delmesh::detail {
+
+namespace {
+
+constexpr int pascal_rows = max_bernstein_degree + 1;
+using PascalTriangle = std::array<std::array<std::uint64_t, pascal_rows>, pascal_rows>;
+
+//! C(n, k) for 0 ≤ k ≤ n ≤ max_bernstein_degree, by Pascal's rule in exact integer arithmetic;
+//! entries with k > n are 0.
+constexpr PascalTriangle pascal_triangle() {
+  PascalTriangle c{};
+  for (int n = 0; n < pascal_rows; ++n) {
+    c[n][0] = 1;
+    for (int k = 1; k <= n; ++k) c[n][k] = c[n - 1][k - 1] + c[n - 1][k];
+  }
+  return c;
+}
+
+constexpr PascalTriangle binomials = pascal_triangle();
+
+//! No sum of Pascal's rule wrapped around 2^64 (each entry is at least both of its summands).
+constexpr bool pascal_triangle_exact() {
+  for (int n = 1; n < pascal_rows; ++n)
+    for (int k = 1; k <= n; ++k)
+      if (binomials[n][k] < binomials[n - 1][k - 1] || binomials[n][k] < binomials[n - 1][k]) return false;
+  return true;
+}
+static_assert(pascal_triangle_exact(), "max_bernstein_degree: binomial coefficients must fit in 64 bits");
+
+//! An enclosure of the integer C(n, k): the high and low 32-bit halves are exact doubles, and
+//! their interval sum is the exact double C(n, k) when it is one, else the two doubles around it.
+//! Needs a live RoundingGuard.
+Interval binomial_enclosure(int n, int k) {
+  const std::uint64_t c = binomials[n][k];
+  return Interval(static_cast<double>(c >> 32) * 0x1p32) + Interval(static_cast<double>(c & 0xffffffffu));
+}
+
+}  // namespace
 
 void bernstein_from_monomial(int d, const Interval* c, double t0, const Interval& h_range, Interval* b,
                              Interval* q) {
@@ -18,19 +58,11 @@ void bernstein_from_monomial(int d, const Interval* c, double t0, const Interval
       q[0] = T0 * q[0] + c[k];
     }
   }
-  // Monomial in s → Bernstein: b_i = Σ_{k ≤ i} C(i, k) q_k / C(d, k).  Binomials are exact doubles.
-  double binom_d[max_bernstein_degree + 1];
-  binom_d[0] = 1;
-  for (int k = 1; k <= d; ++k) binom_d[k] = binom_d[k - 1] * (d - k + 1) / k;  // exact: integers < 2^53
-  for (int k = 0; k <= d; ++k) q[k] = q[k] / Interval(binom_d[k]);
-  double binom_i[max_bernstein_degree + 1];
+  // Monomial in s → Bernstein: b_i = Σ_{k ≤ i} C(i, k) q_k / C(d, k).
+  for (int k = 0; k <= d; ++k) q[k] = q[k] / binomial_enclosure(d, k);
   for (int i = 0; i <= d; ++i) {
-    // binom_i[k] = C(i, k), updated row by row of Pascal's triangle.
-    binom_i[i] = 1;
-    for (int k = i - 1; k >= 1; --k) binom_i[k] += binom_i[k - 1];
-    binom_i[0] = 1;
     Interval acc = q[0];
-    for (int k = 1; k <= i; ++k) acc += Interval(binom_i[k]) * q[k];
+    for (int k = 1; k <= i; ++k) acc += binomial_enclosure(i, k) * q[k];
     b[i] = acc;
   }
 }

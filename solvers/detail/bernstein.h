@@ -8,11 +8,17 @@
 
 namespace delmesh::detail {
 
-//! Largest degree the Bernstein conversion accepts (binomial coefficients stay exact doubles).
+//! Largest degree the Bernstein conversion accepts.  The conversion computes every binomial
+//! coefficient C(n, k), n ≤ this, exactly in 64-bit unsigned integers (Pascal's triangle;
+//! C(60, 30) < 2^57) and enters it into the interval arithmetic as an enclosure: the exact double
+//! when C(n, k) is one (every C(n, k) with n ≤ 56 is below 2^53), else the two neighbouring doubles
+//! (C(57, 28) and beyond exceed 2^53 and need not be doubles).  Every use is an interval operation,
+//! so it rounds outward either way.
 inline constexpr int max_bernstein_degree = 60;
 
 //! Bernstein coefficients b_0..b_d on s ∈ [0, 1] of q(s) = Σ_k c_k (t0 + h s)^k, for every
-//! c_k ∈ c[k] and h ∈ h_range (Taylor shift, scaling, then b_i = Σ_{k≤i} C(i,k)/C(d,k) q_k).
+//! c_k ∈ c[k] and h ∈ h_range (Taylor shift, scaling, then b_i = Σ_{k≤i} C(i,k)/C(d,k) q_k, with the
+//! binomials enclosed as described at max_bernstein_degree).
 //! `scratch` holds d + 1 intervals.  Precondition: 0 ≤ d ≤ max_bernstein_degree.
 void bernstein_from_monomial(int d, const Interval* c, double t0, const Interval& h_range, Interval* b,
                              Interval* scratch);

@@ -337,6 +337,19 @@ void check_nothing_dropped(const SolveResult& r, const std::vector<Rational>& ze
 
 }  // namespace
 
+BOOST_AUTO_TEST_CASE(degree_56_root_at_an_end_is_not_excluded) {
+  // E = x^24 − 1 + y^56 along the x axis, t ∈ [0, 1]: a degree-56 line polynomial t^24 − 1 whose
+  // last Bernstein coefficient on [0, 1] is E(1) = 0.  Its enclosure must keep 0 (a rounded-up
+  // C(56, 24) made it certainly negative, every coefficient negative, and the zero excluded).
+  const LineProblem P(Surface::parse("x^24-1+y^56"));
+  BOOST_REQUIRE_EQUAL(P.polynomial.degree(), 56);
+  const SolveResult r = isolate_line_roots(P.line, &P.polynomial, {0, 0, 0}, {1, 0, 0}, 0, 1);
+  check_nothing_dropped(r, {Rational(1)});
+  BOOST_TEST(r.roots.empty());
+  BOOST_REQUIRE_EQUAL(r.undecided.size(), 1u);
+  BOOST_TEST(r.undecided[0].reason == UndecidedReason::boundary_root);
+}
+
 BOOST_AUTO_TEST_CASE(many_roots_of_a_product_are_all_certified) {
   // Regression: the Bernstein path used to stop with non_isolated here (after 9 of 20, 5 of 30
   // zeros).  The double enclosures of the Bernstein coefficients on [−1, 1] (Taylor shift of the

@@ -25,6 +25,7 @@ std::ostream& operator<<(std::ostream& out, ExitCode code) {
     case ExitCode::invalid_input: return out << "invalid_input";
     case ExitCode::limit_reached: return out << "limit_reached";
     case ExitCode::internal_error: return out << "internal_error";
+    case ExitCode::uncertified: return out << "uncertified";
   }
   return out << "ExitCode(" << static_cast<int>(code) << ")";
 }

@@ -29,7 +29,8 @@ enum class ExitCode : int {
   check_failed = 1,
   invalid_input = 2,
   limit_reached = 3,
-  internal_error = 4
+  internal_error = 4,
+  uncertified = 5
 };
 std::ostream& operator<<(std::ostream& out, ExitCode code);
 

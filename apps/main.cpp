@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
       "Ray), with guaranteed topology (homeomorphic to the surface) and guaranteed triangle quality.\n"
       "Exit codes: 0 complete; 1 `check --lambda` found a bound violated; 2 invalid input or usage\n"
       "(one line `error: ...` on stderr); 3 stopped by a limit (partial output written); 4 internal\n"
-      "error.",
+      "error; 5 `mesh` ended uncertified (output written, see \"unsettled\" in the statistics).",
       "delmesh"};
   app.set_version_flag("--version", "delmesh 0.1.0");
   app.require_subcommand(1);

@@ -1,7 +1,7 @@
 //! \file mesh_command.cpp
 //! `delmesh mesh`: DelMesh (meshing/del_mesh.h) on a catalog surface or an expression; writes the
 //! mesh (OFF/PLY/OBJ by extension) and the statistics JSON.  Exit code 3 when a limit stopped the
-//! run: the partial mesh and statistics are still written.  Outputs are replaced atomically, only
+//! run, 5 when it ended uncertified: the mesh and statistics are still written.  Outputs are replaced atomically, only
 //! once the new file is complete; a failing run leaves existing files untouched.
 
 #include <cmath>
@@ -155,18 +155,23 @@ ExitCode run_mesh(const MeshOptions& o) {
   }
   write_text_atomically(stats, [&](std::ostream& s) { s << statistics.dump(2) << "\n"; });
 
-  const bool complete = result.status == MeshStatus::complete;
   if (!o.quiet) {
     std::cerr << "delmesh: " << result.status << ": wrote " << out << " (" << result.mesh.number_of_vertices()
               << " vertices, " << result.mesh.number_of_faces() << " triangles)"
               << (stats == "-" ? "" : " and " + stats) << std::endl;
   }
-  if (!complete) {
-    print_warning("stopped by " + std::string(result.status == MeshStatus::time_limit ? "--time-limit" : "--max-points") +
-                  " (status " + to_text(result.status) + "): the mesh is partial");
-    return ExitCode::limit_reached;
+  switch (result.status) {
+    case MeshStatus::complete: return ExitCode::complete;
+    case MeshStatus::uncertified:
+      print_warning("uncertified: the run ended, but " + std::to_string(statistics["unsettled"]["count"].get<std::size_t>()) +
+                    " findings were not settled (statistics: \"unsettled\"); the mesh carries no guarantee");
+      return ExitCode::uncertified;
+    case MeshStatus::point_limit:
+    case MeshStatus::time_limit: break;
   }
-  return ExitCode::complete;
+  print_warning("stopped by " + std::string(result.status == MeshStatus::time_limit ? "--time-limit" : "--max-points") +
+                " (status " + to_text(result.status) + "): the mesh is partial");
+  return ExitCode::limit_reached;
 }
 
 }  // namespace
@@ -180,7 +185,9 @@ Command add_mesh_command(CLI::App& parent) {
       "(Theorem 6.1). Writes the mesh and a statistics JSON." "\n\n"
       "Exit codes: 0 complete; 2 invalid input (one `error:` line; existing output files are left "
               "untouched); 3 stopped by --max-points or --time-limit (the partial mesh and the statistics are "
-              "written); 4 internal error.");
+              "written); 4 internal error; 5 uncertified: the run ended but some check, solver region or "
+              "output defect was not settled (listed under \"unsettled\" in the statistics; mesh and statistics "
+              "written, without the guarantee).");
   o->surface.add_to(*sub);
   o->input_mesh_option = sub->add_option(
       "--input-mesh", o->input_mesh,

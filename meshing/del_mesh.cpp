@@ -39,6 +39,7 @@ std::ostream& operator<<(std::ostream& out, MeshStatus status) {
     case MeshStatus::complete: return out << "complete";
     case MeshStatus::point_limit: return out << "point_limit";
     case MeshStatus::time_limit: return out << "time_limit";
+    case MeshStatus::uncertified: return out << "uncertified";
   }
   return out << "unknown";
 }
@@ -80,6 +81,24 @@ SurfaceMesh output_mesh(Refinement& refinement, std::size_t& flipped_inconsisten
   return mesh;
 }
 
+// At most this many unsettled items are listed one by one in the statistics (all are counted).
+constexpr std::size_t unsettled_listed_max = 1000;
+
+// What the run could not settle on the final Vor S and Tri S|Σ, as statistics; `defects` are
+// the output's own (not a closed, consistently oriented 2-manifold).
+nlohmann::json unsettled_json(const std::vector<Unsettled>& unsettled, const std::vector<std::string>& defects) {
+  nlohmann::json by_reason = nlohmann::json::object(), listed = nlohmann::json::array();
+  for (const auto& u : unsettled) {
+    std::ostringstream check, reason;
+    check << u.check;
+    reason << u.reason;
+    by_reason[reason.str()] = by_reason.value(reason.str(), 0) + 1;
+    if (listed.size() < unsettled_listed_max)
+      listed.push_back({{"check", check.str()}, {"reason", reason.str()}, {"location", u.location}});
+  }
+  return {{"count", unsettled.size()}, {"by_reason", by_reason}, {"regions", listed}, {"output_defects", defects}};
+}
+
 }  // namespace
 
 DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOptions& options) {
@@ -114,11 +133,16 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
   }
 
   DelMeshResult result;
-  result.status = status;
   std::size_t inconsistent = 0, not_added = 0;
   result.mesh = output_mesh(refinement, inconsistent, not_added);
-
   const MeshReport report = check_mesh(result.mesh);
+
+  std::vector<std::string> defects;
+  if (!(report.closed && report.manifold)) defects.push_back("not_closed_manifold");
+  if (not_added > 0) defects.push_back("faces_not_added");
+  if (inconsistent > 0) defects.push_back("orientation_inconsistent_edges");
+  const Certification certification = refinement.certify(status, !defects.empty());
+  result.status = certification.status;
   auto& j = result.statistics;
   {
     std::ostringstream s;
@@ -155,7 +179,8 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
   j["smooth_enabled"] = smooth_enabled;
   j["insertions"] = refinement.insertions_json();
   j["solver"] = oracle.statistics_json();
-  j["solver"]["unresolved_edge_regions"] = refinement.restricted().unresolved();
+  j["solver"]["unresolved_edge_regions"] = certification.unresolved_edge_regions;
+  j["unsettled"] = unsettled_json(certification.unsettled, defects);
   nlohmann::json per_check = nlohmann::json::object();
   for (CheckKind k : {CheckKind::vor_edge, CheckKind::facet_contact, CheckKind::topo_disk, CheckKind::facet_cycle,
                       CheckKind::silhouette, CheckKind::quality, CheckKind::smooth}) {

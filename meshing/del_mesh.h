@@ -23,7 +23,12 @@ std::ostream& operator<<(std::ostream& out, MeshPhase phase);
 enum class SolverBackend { subdivision, homotopy };
 std::ostream& operator<<(std::ostream& out, SolverBackend backend);
 
-enum class MeshStatus { complete, point_limit, time_limit };
+//! complete: every check of §5.3 (and, with phase all, Quality, size and Smooth) ran clean on
+//! every face of the final Vor S, every solver region was decided or became a witness, and
+//! Tri S|Σ is a closed, consistently oriented 2-manifold.  uncertified: the run ended but
+//! something of that was not settled (listed under "unsettled" in the statistics); the mesh
+//! is written, without the guarantee.  point_limit / time_limit: stopped by a limit.
+enum class MeshStatus { complete, point_limit, time_limit, uncertified };
 std::ostream& operator<<(std::ostream& out, MeshStatus status);
 
 struct DelMeshOptions {

@@ -12,8 +12,9 @@ namespace delmesh {
 //! SurfacePlaneContact(Σ, Π) over the facet polygon F of the Delaunay edge pq, in exclusion mode
 //! ({E, ∂uE, ∂vE} has no solution for a non-tangent plane, so certification is not needed): every
 //! region that cannot be excluded is a possible contact; its centre projected onto Σ is returned
-//! if it lies in F (the one furthest from p = the smaller id).  Nothing if every region of F is
-//! excluded.  The facet frame is RestrictedDelaunay::facet(pq).
-std::optional<Witness> facet_contact_witness(RestrictedDelaunay& restricted, const EdgeKey& pq);
+//! if it lies in F (the one furthest from p = the smaller id, then the others as fall-backs).
+//! Nothing if every region of F is excluded.  A region whose projection fails or leaves F is
+//! unsettled (meshing/detail/candidates.h).  The facet frame is RestrictedDelaunay::facet(pq).
+CheckResult facet_contact_witness(RestrictedDelaunay& restricted, const EdgeKey& pq);
 
 }  // namespace delmesh

@@ -10,50 +10,55 @@ namespace delmesh {
 
 using namespace detail;
 
-std::optional<Witness> facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& pq) {
+namespace {
+
+// The parameter interval [s0, s1] of {(ux + s, vx)} ∩ F, or nothing if it is empty.
+std::optional<std::array<double, 2>> clip_line_to_facet(const VoronoiFacet& f, double ux, double vx) {
+  double s0 = f.domain.box.bounds[0][0] - ux, s1 = f.domain.box.bounds[0][1] - ux;
+  if (vx < f.domain.box.bounds[1][0] || vx > f.domain.box.bounds[1][1]) return std::nullopt;
+  for (const auto& h : f.domain.half_spaces) {
+    const double rhs = h.offset - h.normal[0] * ux - h.normal[1] * vx;
+    if (std::abs(h.normal[0]) < 1e-300) {
+      if (rhs < 0) return std::nullopt;
+      continue;
+    }
+    const double bound = rhs / h.normal[0];
+    if (h.normal[0] > 0)
+      s1 = std::min(s1, bound);
+    else
+      s0 = std::max(s0, bound);
+  }
+  if (!(s0 < s1)) return std::nullopt;
+  return std::array<double, 2>{s0, s1};
+}
+
+}  // namespace
+
+CheckResult facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& pq) {
   const VoronoiFacet& f = restricted.facet(pq);
-  if (!f.valid || restricted.facet_section_certified(pq)) return std::nullopt;
+  if (!f.valid || restricted.facet_section_certified(pq)) return {};
   auto& oracle = restricted.oracle();
   const auto critical = oracle.curve_critical(f.origin, f.a, f.b, f.domain);
   std::vector<std::array<double, 2>> starts;
   for (const auto& root : critical.roots) starts.push_back({root.midpoint[0], root.midpoint[1]});
-  bool from_undecided = false;
-  for (const auto& u : critical.undecided) {
-    starts.push_back({0.5 * (u.box.bounds[0][0] + u.box.bounds[0][1]),
-                      0.5 * (u.box.bounds[1][0] + u.box.bounds[1][1])});
-    from_undecided = true;
-  }
+  for (const auto& u : critical.undecided)
+    starts.push_back({0.5 * (u.box.bounds[0][0] + u.box.bounds[0][1]), 0.5 * (u.box.bounds[1][0] + u.box.bounds[1][1])});
   const Vec3& p = restricted.delaunay().point(pq[0]);
+  WitnessCollector collector(CheckKind::facet_cycle, pq[0], p);
   for (const auto& [ux, vx] : starts) {
     // ℓ_x ∩ F = {(ux + s, vx)} clipped by the polygon's half-planes and bounding box.
-    double s0 = f.domain.box.bounds[0][0] - ux, s1 = f.domain.box.bounds[0][1] - ux;
-    if (vx < f.domain.box.bounds[1][0] || vx > f.domain.box.bounds[1][1]) continue;
-    bool empty = false;
-    for (const auto& h : f.domain.half_spaces) {
-      const double rhs = h.offset - h.normal[0] * ux - h.normal[1] * vx;
-      if (std::abs(h.normal[0]) < 1e-300) {
-        if (rhs < 0) empty = true;
-        continue;
-      }
-      const double bound = rhs / h.normal[0];
-      if (h.normal[0] > 0)
-        s1 = std::min(s1, bound);
-      else
-        s0 = std::max(s0, bound);
-    }
-    if (empty || !(s0 < s1)) continue;
-    const auto line = oracle.surface_line(f.world(ux, vx), f.a, s0, s1);
-    std::vector<Vec3> points;
-    for (const auto& root : line.roots) points.push_back(root.world);
-    for (const auto& u : line.undecided) {
-      const auto x = oracle.project(u.world);
-      points.push_back(x ? *x : u.world);
-      if (u.reason != UndecidedReason::boundary_root) from_undecided = true;
-    }
-    if (points.size() >= 2)
-      return Witness{points[furthest_index(points, p)], CheckKind::facet_cycle, pq[0], from_undecided};
+    const auto range = clip_line_to_facet(f, ux, vx);
+    if (!range) continue;
+    const auto line = oracle.surface_line(f.world(ux, vx), f.a, (*range)[0], (*range)[1]);
+    for (const auto& root : line.roots) collector.add(root.world);
+    for (const auto& u : line.undecided) collector.add_line_region(oracle, u);
+    // Two points of Σ on ℓ_x ∩ F: a witness (the furthest from p first).  Fewer: the line's
+    // findings are no witness, but what it could not project stays unsettled.
+    if (collector.points() >= 2) return collector.take();
+    CheckResult unused = collector.take();
+    for (const auto& u : unused.unsettled) collector.add_unsettled(u.reason, u.location);
   }
-  return std::nullopt;
+  return collector.take();
 }
 
 }  // namespace delmesh

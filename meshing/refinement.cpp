@@ -26,51 +26,56 @@ EdgeKey as_edge(const std::array<VertexId, 3>& s) { return {s[0], s[1]}; }
 std::vector<Refinement::Step> Refinement::make_table() {
   // Quality and Smooth start disabled (enable_geometry()).
   std::vector<Step> table(step_count);
-  table[vor_edge_step] = {CheckKind::vor_edge, "vor_edge", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
+  table[vor_edge_step] = {CheckKind::vor_edge, "vor_edge", [](Refinement& r, const Simplex& s) -> CheckResult {
                             const TriangleKey t = as_triangle(s);
-                            if (!r.current(t)) return std::nullopt;
+                            if (!r.current(t)) return {};
                             return vor_edge_witness(r.restricted_, t);
                           }, {}, true};
   table[facet_contact_step] = {CheckKind::facet_contact, "facet_contact",
-                               [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
+                               [](Refinement& r, const Simplex& s) -> CheckResult {
                                  const EdgeKey e = as_edge(s);
-                                 if (!r.current(e)) return std::nullopt;
+                                 if (!r.current(e)) return {};
                                  return facet_contact_witness(r.restricted_, e);
                                }, {}, true};
-  table[topo_disk_step] = {CheckKind::topo_disk, "topo_disk", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
-                             if (!r.del_.contains(s[0])) return std::nullopt;
+  table[topo_disk_step] = {CheckKind::topo_disk, "topo_disk", [](Refinement& r, const Simplex& s) -> CheckResult {
+                             if (!r.del_.contains(s[0])) return {};
                              return topo_disk_witness(r.restricted_, s[0]);
                            }, {}, true};
   table[facet_cycle_step] = {CheckKind::facet_cycle, "facet_cycle",
-                             [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
+                             [](Refinement& r, const Simplex& s) -> CheckResult {
                                const EdgeKey e = as_edge(s);
-                               if (!r.current(e)) return std::nullopt;
-                               auto w = facet_cycle_witness(r.restricted_, e);
+                               if (!r.current(e)) return {};
+                               auto result = facet_cycle_witness(r.restricted_, e);
                                // The last facet check of e: its geometry is not kept.
-                               if (!w) r.restricted_.release_facet(e);
-                               return w;
+                               if (result.clean()) r.restricted_.release_facet(e);
+                               return result;
                              }, {}, true};
   // Step (e) runs only once (a)–(d) have nothing queued: the facets of V_p are clean.
   table[silhouette_step] = {CheckKind::silhouette, "silhouette",
-                            [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
-                              if (!r.del_.contains(s[0])) return std::nullopt;
+                            [](Refinement& r, const Simplex& s) -> CheckResult {
+                              if (!r.del_.contains(s[0])) return {};
                               return silhouette_witness(r.restricted_, s[0], /*facets_clean=*/true);
                             }, {}, true};
-  table[quality_step] = {CheckKind::quality, "quality", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
+  table[quality_step] = {CheckKind::quality, "quality", [](Refinement& r, const Simplex& s) -> CheckResult {
                            const TriangleKey t = as_triangle(s);
-                           if (!r.current(t)) return std::nullopt;
-                           if (auto w = quality_witness(r.restricted_, t, r.lambda_)) return w;
-                           if (r.size_bound_) return size_witness(r.restricted_, t, *r.size_bound_);
-                           return std::nullopt;
+                           CheckResult result;
+                           if (!r.current(t)) return result;
+                           auto w = quality_witness(r.restricted_, t, r.lambda_);
+                           if (!w && r.size_bound_) w = size_witness(r.restricted_, t, *r.size_bound_);
+                           if (w) result.witnesses.push_back(*w);
+                           return result;
                          }, {}, false};
-  table[smooth_step] = {CheckKind::smooth, "smooth", [](Refinement& r, const Simplex& s) -> std::optional<Witness> {
+  table[smooth_step] = {CheckKind::smooth, "smooth", [](Refinement& r, const Simplex& s) -> CheckResult {
                           const TriangleKey t = as_triangle(s);
-                          if (!r.current(t) || !r.restricted_.edge_record(t).restricted)
-                            return std::nullopt;
+                          CheckResult result;
+                          if (!r.current(t) || !r.restricted_.edge_record(t).restricted) return result;
                           for (const auto& e : {make_edge_key(t[0], t[1]), make_edge_key(t[0], t[2]),
                                                 make_edge_key(t[1], t[2])})
-                            if (auto w = smooth_witness(r.restricted_, e, r.smooth_threshold_)) return w;
-                          return std::nullopt;
+                            if (auto w = smooth_witness(r.restricted_, e, r.smooth_threshold_)) {
+                              result.witnesses.push_back(*w);
+                              break;
+                            }
+                          return result;
                         }, {}, false};
   return table;
 }
@@ -80,6 +85,12 @@ bool Refinement::current(const TriangleKey& t) const {
 }
 
 bool Refinement::current(const EdgeKey& e) const { return restricted_.has_facet(e) || del_.is_edge(e); }
+
+bool Refinement::face_current(const Simplex& s) const {
+  if (s[1] < 0) return del_.contains(s[0]);
+  if (s[2] < 0) return current(as_edge(s));
+  return current(as_triangle(s));
+}
 
 Refinement::Refinement(SurfaceOracle& oracle, std::uint64_t seed, RefinementLimits limits, RecheckPolicy policy,
                        int threads)
@@ -153,7 +164,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
     const auto [nearest, d] = del_.nearest(w.point, w.measured_from);
     record.nearest = nearest;
     record.nearest_distance = d;
-    if (d <= tolerances::duplicate_sample_relative_distance * oracle_.diagonal()) {
+    if (d <= limits_.duplicate_relative_distance * oracle_.diagonal()) {
       ++rejected_;
       return std::nullopt;
     }
@@ -164,6 +175,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
     ++rejected_;
     return std::nullopt;
   }
+  ++changes_;
   const VertexId x = *id;
   record.id = x;
   log_.push_back(record);
@@ -249,6 +261,7 @@ void Refinement::remove(VertexId p) {
   const std::vector<VertexId> around = del_.neighbours(p);
   del_.remove(p);
   ++seeds_deleted_;
+  ++changes_;
   restricted_.forget(star, edges);
   restricted_.invalidate(around);
   queue_everything_within(around);
@@ -277,21 +290,82 @@ MeshStatus Refinement::run() {
     if (auto status = limit_reached(now)) return *status;
     auto step = std::find_if(steps_.begin(), steps_.end(),
                              [](const Step& s) { return s.enabled && !s.queue.empty(); });
-    if (step == steps_.end()) return MeshStatus::complete;
+    if (step == steps_.end()) {
+      if (requeue_unsettled()) continue;
+      return MeshStatus::complete;
+    }
     const Simplex item = step->queue.pop();
-    const auto w = step->check(*this, item);
+    CheckResult result = step->check(*this, item);
     const auto k = static_cast<int>(step->kind);
     const auto checked = std::chrono::steady_clock::now();
     seconds_[k] += std::chrono::duration<double>(checked - now).count();
     ++checks_[k];
     now = checked;
-    // A face that gave a witness is not clean: it is examined again once the witness is in S
-    // (e.g. V_p keeps other points of J_{n_p} after the furthest one is inserted).
-    if (w) {
-      if (insert(*w)) step->queue.push(item);
+    if (settle(static_cast<int>(step - steps_.begin()), item, std::move(result))) {
+      // A face that gave a witness is not clean: it is examined again once the witness is in S
+      // (e.g. V_p keeps other points of J_{n_p} after the furthest one is inserted).
+      step->queue.push(item);
       now = std::chrono::steady_clock::now();
     }
   }
+}
+
+bool Refinement::settle(int step, const Simplex& item, CheckResult result) {
+  // The paper's witness first; a witness that duplicates a sample gives way to the next one.
+  bool inserted = false;
+  for (const auto& w : result.witnesses)
+    if (insert(w)) {
+      inserted = true;
+      break;
+    }
+  if (!inserted && !result.witnesses.empty()) {
+    const Witness& w = result.witnesses.front();
+    result.unsettled.push_back({w.kind, UnsettledReason::rejected_witness, w.point});
+  }
+  const auto key = std::make_pair(step, item);
+  if (result.unsettled.empty())
+    unsettled_.erase(key);
+  else
+    unsettled_[key] = {std::move(result.unsettled), changes_};
+  return inserted;
+}
+
+bool Refinement::requeue_unsettled() {
+  // A face left unsettled is examined again if S changed since (it may have shrunk away from
+  // what could not be settled, or a rejected witness may now be inserted).  Faces no longer in
+  // Del S are forgotten: a face that comes back is new and is queued anyway.
+  bool queued = false;
+  for (auto it = unsettled_.begin(); it != unsettled_.end();) {
+    const auto& [step, item] = it->first;
+    if (!face_current(item)) {
+      it = unsettled_.erase(it);
+      continue;
+    }
+    if (it->second.changes != changes_) {
+      steps_[step].queue.push(item);
+      queued = true;
+    }
+    ++it;
+  }
+  return queued;
+}
+
+std::vector<Unsettled> Refinement::unsettled() const {
+  std::vector<Unsettled> out = standing_unsettled_;
+  for (const auto& [key, entry] : unsettled_)
+    if (face_current(key.second)) out.insert(out.end(), entry.what.begin(), entry.what.end());
+  return out;
+}
+
+Certification Refinement::certify(MeshStatus run_status, bool output_defective) const {
+  Certification c;
+  c.unsettled = unsettled();
+  const auto unresolved = restricted_.unresolved_regions();
+  c.unresolved_edge_regions = unresolved.size();
+  for (const auto& [t, x] : unresolved) c.unsettled.push_back({CheckKind::vor_edge, UnsettledReason::unresolved_crossing, x});
+  c.status = run_status;
+  if (run_status == MeshStatus::complete && (!c.unsettled.empty() || output_defective)) c.status = MeshStatus::uncertified;
+  return c;
 }
 
 nlohmann::json Refinement::insertions_json() const {

@@ -60,17 +60,27 @@
 //!
 //! Witnesses within tolerances::duplicate_sample_relative_distance of an existing sample are not
 //! inserted (counted as `rejected_witnesses`), so the loop cannot cycle on a degenerate answer.
+//! A check lists its witnesses in order of preference; when the first is rejected the next is
+//! tried, and when all are, the face is left unsettled (rejected_witness).
+//!
+//! Unsettled faces.  A check that leaves something unsettled (witness.h: UnsettledReason) keeps
+//! its face on a list.  When every queue is empty, each face on the list that is still in Del S
+//! is checked again if S has changed since its check; the run ends when no such face remains.
+//! unsettled() then lists what the current faces' latest checks could not settle: the caller
+//! (del_mesh) reports the run as uncertified unless it is empty.
 
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "common/tolerances.h"
 #include "meshing/del_mesh.h"
 #include "meshing/delaunay.h"
 #include "meshing/restricted_delaunay.h"
@@ -94,6 +104,15 @@ struct RefinementLimits {
   //! Absolute deadline; none if empty.
   std::optional<std::chrono::steady_clock::time_point> deadline;
   std::function<void(const std::string&)> progress;
+  //! A witness this close to a sample (relative to the box diagonal) is rejected as a duplicate.
+  double duplicate_relative_distance = tolerances::duplicate_sample_relative_distance;
+};
+
+//! How a finished run stands: its status, judged on the final Vor S and Tri S|Σ.
+struct Certification {
+  MeshStatus status = MeshStatus::complete;
+  std::vector<Unsettled> unsettled;  //!< Refinement::unsettled() and the unresolved edge regions
+  std::size_t unresolved_edge_regions = 0;
 };
 
 //! Which faces are checked again after an insertion (see the lemma above).
@@ -123,8 +142,21 @@ class Refinement {
   //! The threads in use (the constructor's request capped by the hardware).
   int threads() const { return parallel_.threads(); }
 
-  //! Runs the table until every queue is empty (complete) or a limit is reached.
+  //! Runs the table until every queue is empty (complete) or a limit is reached.  "complete"
+  //! means every queued check ran on its current face; what a check could not settle (see
+  //! unsettled()) is examined again whenever S has changed since, until nothing changes.
   [[nodiscard]] MeshStatus run();
+  //! What the checks could not settle on the faces of the current Vor S (each face's latest
+  //! check), and what report_unsettled() recorded, in a fixed order.  Empty after a complete run
+  //! means every check of every current face came out clean.
+  std::vector<Unsettled> unsettled() const;
+  //! The final judgement: `run_status` unless it is complete and either something is unsettled
+  //! (unsettled(), or an unresolved region on a current Voronoi edge) or the output has a defect
+  //! (`output_defective`: Tri S|Σ is not a closed, consistently oriented 2-manifold); then
+  //! uncertified.  Precondition: no insertion since the last run().
+  Certification certify(MeshStatus run_status, bool output_defective) const;
+  //! Records something left unsettled outside any face's check (e.g. a seed region).
+  void report_unsettled(const Unsettled& u) { standing_unsettled_.push_back(u); }
 
   Delaunay& delaunay() { return del_; }
   const Delaunay& delaunay() const { return del_; }
@@ -179,7 +211,7 @@ class Refinement {
   struct Step {
     CheckKind kind;
     const char* name;
-    std::function<std::optional<Witness>(Refinement&, const Simplex&)> check;
+    std::function<CheckResult(Refinement&, const Simplex&)> check;
     WorkQueue queue;
     bool enabled = true;
   };
@@ -194,6 +226,14 @@ class Refinement {
   //! Whether t / e is in Del S now (a cached record or facet proves it: see restricted_delaunay.h).
   bool current(const TriangleKey& t) const;
   bool current(const EdgeKey& e) const;
+  //! Whether a queued vertex, edge or triangle is in Del S now.
+  bool face_current(const Simplex& s) const;
+  //! Inserts the first witness of `result` that is not rejected, and keeps the face's unsettled
+  //! findings (a rejection of every witness included).  Returns whether a witness went in.
+  bool settle(int step, const Simplex& item, CheckResult result);
+  //! Queues again the unsettled faces still in Del S whose check predates the last change of S.
+  //! Returns whether it queued any.
+  bool requeue_unsettled();
   void queue_triangle(const TriangleKey& t, bool topology_checks);
   void queue_triangle(const TriangleKey& t, bool topology_checks, const EdgeRecord& record);
   void queue_edge(const EdgeKey& e);
@@ -216,6 +256,14 @@ class Refinement {
   std::array<double, check_kind_count> seconds_{};
   double seconds_insertion_ = 0;
   std::size_t seeds_deleted_ = 0, rejected_ = 0;
+  //! Insertions and deletions so far: a face checked at this count has seen the current S.
+  std::size_t changes_ = 0;
+  struct UnsettledFace {
+    std::vector<Unsettled> what;
+    std::size_t changes = 0;  //!< changes_ when the face was checked
+  };
+  std::map<std::pair<int, Simplex>, UnsettledFace> unsettled_;
+  std::vector<Unsettled> standing_unsettled_;
   std::chrono::steady_clock::time_point last_progress_;
 };
 

@@ -55,7 +55,6 @@ void RestrictedDelaunay::erase_record(const TriangleKey& t) {
 const EdgeRecord& RestrictedDelaunay::assign(RecordTable::iterator it, bool was_restricted, EdgeRecord&& record,
                                              bool solved) {
   ++(solved ? records_solved_ : records_restricted_);
-  if (solved) unresolved_ += record.unresolved;
   it->second = std::move(record);
   track(it->first, was_restricted, it->second.restricted);
   return it->second;
@@ -152,7 +151,7 @@ const EdgeRecord* RestrictedDelaunay::cached_record(const TriangleKey& t) const 
 
 std::optional<EdgeRecord> RestrictedDelaunay::restrict_record(const EdgeRecord& old, const VoronoiEdge& edge) const {
   const VoronoiEdge& e = old.edge;
-  if (old.unresolved > 0 || !e.valid || !edge.valid) return std::nullopt;
+  if (!old.unresolved.empty() || !e.valid || !edge.valid) return std::nullopt;
   if (edge.point != e.point || edge.direction != e.direction) return std::nullopt;
   // e′ ⊆ e as computed; the new ends are those of e′ clamped into e (exact as sets).
   const double t0 = std::max(edge.t0, e.t0), t1 = std::min(edge.t1, e.t1);
@@ -221,6 +220,13 @@ bool RestrictedDelaunay::certify_section(const EdgeKey& e, const VoronoiFacet& f
 EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes) const {
   EdgeRecord r;
   r.edge = voronoi_edge(del_, t, oracle_.box(), apexes);
+  if (r.edge.degenerate) {
+    // The edge is numerically the point v: Σ passes through it unless SurfaceLine excludes a
+    // segment of length 2δ about v along the edge's line.
+    const double delta = tolerances::duplicate_sample_relative_distance * oracle_.diagonal();
+    const auto near = oracle_.surface_line(r.edge.point, r.edge.direction, r.edge.t0 - delta, r.edge.t0 + delta);
+    if (!near.roots.empty() || !near.undecided.empty()) r.unresolved.push_back(r.edge.at(r.edge.t0));
+  }
   if (!r.edge.valid) return r;
   const auto& e = r.edge;
   const auto result = oracle_.surface_line(e.point, e.direction, e.t0, e.t1);
@@ -263,7 +269,7 @@ EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<Ve
         continue;
       }
     }
-    ++r.unresolved;
+    r.unresolved.push_back(u.world);
   }
   const bool lone_excluded_vertex =
       r.crossings.size() == 1 && vertex_root_excluded.size() == 1 && vertex_root_excluded[0];
@@ -309,6 +315,14 @@ std::vector<TriangleKey> RestrictedDelaunay::star(VertexId p) {
   }
   for (const auto& t : del_.incident_triangles(p))
     if (edge_record(t).restricted) out.push_back(t);
+  return out;
+}
+
+std::vector<std::pair<TriangleKey, Vec3>> RestrictedDelaunay::unresolved_regions() const {
+  std::vector<std::pair<TriangleKey, Vec3>> out;
+  for (const auto& [t, r] : edges_)
+    for (const auto& x : r.unresolved) out.push_back({t, x});
+  std::sort(out.begin(), out.end());
   return out;
 }
 

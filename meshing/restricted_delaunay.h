@@ -44,7 +44,10 @@ struct EdgeRecord {
   // The fields read on every lookup come first (one cache line with the hash node's key).
   bool restricted = false;       //!< the triangle is in Tri S|Σ (with the §5.1 rule)
   bool shrunk = false;           //!< the dual edge shrank since: restrict or solve again on use
-  std::size_t unresolved = 0;    //!< undecided regions whose projection failed or left the edge
+  //! Centres of the undecided regions on e that are neither a zero at a Voronoi vertex nor a
+  //! candidate (projection failed or left the edge), and the point of a degenerate edge that Σ
+  //! may pass through: what the record could not settle.
+  std::vector<Vec3> unresolved;
   Vec3 dual_point{};             //!< a counted point of e ∩ Σ when restricted
   std::vector<Vec3> crossings;   //!< all points of e ∩ Σ (certified, and zeros at Voronoi vertices)
   std::vector<Vec3> candidates;  //!< projected undecided regions (tangency candidates)
@@ -128,7 +131,10 @@ class RestrictedDelaunay {
   const Delaunay& delaunay() const { return del_; }
   SurfaceOracle& oracle() { return oracle_; }
   std::uint64_t seed() const { return seed_; }
-  std::size_t unresolved() const { return unresolved_; }
+  //! The unresolved regions (EdgeRecord::unresolved) of the current Delaunay triangles, by
+  //! triangle, ascending.  Precondition: assume_every_triangle_recorded() and every record up to
+  //! date (no insertion since the last prepare_star()).
+  std::vector<std::pair<TriangleKey, Vec3>> unresolved_regions() const;
 
  private:
   //! Solves the record of t (SurfaceLine on its dual edge).  Touches no member: safe to call
@@ -161,7 +167,7 @@ class RestrictedDelaunay {
     int section_certified = -1;  //!< −1 not tried, 0 failed, 1 proved
   };
   std::unordered_map<EdgeKey, FacetEntry, SimplexKeyHash, SimplexKeyEqual> facets_;
-  std::size_t unresolved_ = 0, records_solved_ = 0, records_restricted_ = 0;
+  std::size_t records_solved_ = 0, records_restricted_ = 0;
   //! stars_[v]: the recorded restricted triangles containing v (in no particular order).
   std::vector<std::vector<TriangleKey>> stars_;
   bool every_triangle_recorded_ = false;

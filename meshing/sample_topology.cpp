@@ -32,8 +32,12 @@ SeedReport insert_seeds(Refinement& refinement) {
     std::vector<Vec3> points;
     for (const auto& root : result.roots) points.push_back(root.world);
     report.undecided = result.undecided.size();
-    for (const auto& u : result.undecided)
-      if (auto x = oracle.project(u.world)) points.push_back(*x);
+    for (const auto& u : result.undecided) {
+      if (auto x = oracle.project(u.world))
+        points.push_back(*x);
+      else
+        refinement.report_unsettled({CheckKind::seed, UnsettledReason::unprojectable_region, u.world});
+    }
     if (points.empty())
       throw InvalidInput("the surface is empty in the box: no critical point of E = 0 was found");
     for (const auto& x : points)

@@ -17,36 +17,38 @@ Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, cons
   return std::cos(angle) * frame.a + std::sin(angle) * frame.b;
 }
 
-std::optional<Witness> silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool facets_clean) {
+CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool facets_clean) {
   const auto& del = restricted.delaunay();
   auto& oracle = restricted.oracle();
   const Vec3& pp = del.point(p);
+  WitnessCollector collector(CheckKind::silhouette, p, pp);
   const Vec3 n_p = oracle.normal(pp);
-  if (!(norm(n_p) > 0)) return std::nullopt;
+  if (!(norm(n_p) > 0)) {
+    // p is a sample of Σ, which is smooth: ∇E(p) = 0 means the evaluation failed.
+    collector.add_unsettled(UnsettledReason::degenerate_face, pp);
+    return collector.take();
+  }
   const VoronoiCell cell = voronoi_cell(del, p, oracle.box());
-  if (!cell.valid) return std::nullopt;
+  if (!cell.valid) {
+    // V_p ∋ p always has interior; an empty clipped cell is a numerical failure.
+    collector.add_unsettled(UnsettledReason::degenerate_face, pp);
+    return collector.take();
+  }
   // J_{n_p} ∩ V_p = ∅ proved by the gradient cone (solvers/gradient_cone.h): nothing to solve.
-  if (oracle.prove_gradient_cone(AffineChart::identity(), cell.domain, n_p)) return std::nullopt;
+  if (oracle.prove_gradient_cone(AffineChart::identity(), cell.domain, n_p)) return {};
   const Vec3 d2 = silhouette_direction(restricted, p, n_p);
   {
     const auto result = oracle.silhouette_critical(n_p, d2, cell.domain);
-    std::vector<Vec3> points;
-    for (const auto& root : result.roots) points.push_back(root.world);
-    bool from_undecided = false;
-    for (const auto& u : result.undecided)
-      if (auto x = cell_candidate(oracle, cell, u)) {
-        points.push_back(*x);
-        from_undecided = true;
-      }
-    if (!points.empty())
-      return Witness{points[furthest_index(points, pp)], CheckKind::silhouette, p, from_undecided};
+    for (const auto& root : result.roots) collector.add(root.world);
+    for (const auto& u : result.undecided) collector.add_region(oracle, cell, u);
+    if (collector.points() > 0) return collector.take();
   }
   // Neighbours q such that a Voronoi edge of the facet pq meets Σ (see facets_clean).
   std::vector<VertexId> crossing;
   if (facets_clean) {
     for (const auto& t : del.incident_triangles(p)) {
       const auto& rec = restricted.edge_record(t);
-      if (rec.crossings.empty() && rec.candidates.empty() && rec.unresolved == 0) continue;
+      if (rec.crossings.empty() && rec.candidates.empty() && rec.unresolved.empty()) continue;
       for (VertexId v : t)
         if (v != p) crossing.push_back(v);
     }
@@ -57,18 +59,11 @@ std::optional<Witness> silhouette_witness(RestrictedDelaunay& restricted, Vertex
     const VoronoiFacet& f = restricted.facet(make_edge_key(p, q));
     if (!f.valid) continue;
     const auto result = oracle.silhouette_plane(f.origin, f.a, f.b, n_p, f.domain);
-    std::vector<Vec3> points;
-    for (const auto& root : result.roots) points.push_back(root.world);
-    bool from_undecided = false;
-    for (const auto& u : result.undecided)
-      if (auto x = facet_candidate(oracle, f, u)) {
-        points.push_back(*x);
-        from_undecided = true;
-      }
-    if (!points.empty())
-      return Witness{points[furthest_index(points, pp)], CheckKind::silhouette, p, from_undecided};
+    for (const auto& root : result.roots) collector.add(root.world);
+    for (const auto& u : result.undecided) collector.add_region(oracle, f, u);
+    if (collector.points() > 0) return collector.take();
   }
-  return std::nullopt;
+  return collector.take();
 }
 
 }  // namespace delmesh

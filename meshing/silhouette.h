@@ -16,7 +16,9 @@ Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, cons
 //! SilhouetteCritical(Σ, n_p, d′) over the clipped cell V_p: a point inside V_p (the furthest
 //! from p; undecided regions are projected candidates) is returned.  Otherwise, for every facet
 //! pq of V_p, SilhouettePlane(Σ, Π_pq, n_p) over the facet polygon: a point inside the facet is
-//! returned.  Nothing if neither finds one.
+//! returned.  Nothing if neither finds one.  Undecided regions whose projection fails or leaves
+//! the face are unsettled (meshing/detail/candidates.h); so are a zero gradient at p and an
+//! empty clipped cell (numerical failures: p ∈ Σ is regular and interior to V_p).
 //!
 //! facets_clean: the caller asserts the §5.4 order — VorEdge, FacetContact, TopoDisk and
 //! FacetCycle found nothing on the faces of V_p (Topology runs step (e) only then).  Then a facet
@@ -24,6 +26,6 @@ Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, cons
 //! given a FacetCycle witness, and Σ does not reach ∂B), so a facet none of whose Voronoi edges
 //! (the duals of the triangles pqr) meets Σ has F ∩ Σ = ∅ ⊇ F ∩ J_{n_p}, and SilhouettePlane is
 //! skipped for it.  With facets_clean = false every facet is solved.
-std::optional<Witness> silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool facets_clean = false);
+CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool facets_clean = false);
 
 }  // namespace delmesh

@@ -27,14 +27,12 @@ std::optional<Witness> smooth_witness(RestrictedDelaunay& restricted, const Edge
   const Vec3 n1 = outward_normal(restricted, pair[0]), n2 = outward_normal(restricted, pair[1]);
   const double g = std::acos(std::clamp(dot(n1, n2), -1.0, 1.0));
   if (!(g > threshold)) return std::nullopt;
-  std::vector<Vec3> points;
-  for (const auto& t : pair) {
-    const auto& rec = restricted.edge_record(t);
-    points.insert(points.end(), rec.crossings.begin(), rec.crossings.end());
-  }
-  if (points.empty()) return std::nullopt;
-  const Vec3& p = restricted.delaunay().point(pq[0]);
-  return Witness{points[furthest_index(points, p)], CheckKind::smooth, pq[0], false};
+  WitnessCollector collector(CheckKind::smooth, pq[0], restricted.delaunay().point(pq[0]));
+  for (const auto& t : pair)
+    for (const auto& x : restricted.edge_record(t).crossings) collector.add(x);
+  auto witnesses = collector.take().witnesses;
+  if (witnesses.empty()) return std::nullopt;  // restricted triangles have crossings: not reached
+  return witnesses.front();
 }
 
 }  // namespace delmesh

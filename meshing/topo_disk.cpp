@@ -33,16 +33,13 @@ bool is_topological_disk(const std::vector<TriangleKey>& star, VertexId p) {
   return current == start && steps == link.size();
 }
 
-std::optional<Witness> topo_disk_witness(RestrictedDelaunay& restricted, VertexId p) {
-  if (is_topological_disk(restricted.star(p), p)) return std::nullopt;
-  std::vector<Vec3> points;
-  for (const auto& t : restricted.delaunay().incident_triangles(p)) {
-    const auto& r = restricted.edge_record(t);
-    points.insert(points.end(), r.crossings.begin(), r.crossings.end());
-  }
-  if (points.empty()) return std::nullopt;
-  const Vec3& pp = restricted.delaunay().point(p);
-  return Witness{points[detail::furthest_index(points, pp)], CheckKind::topo_disk, p, false};
+CheckResult topo_disk_witness(RestrictedDelaunay& restricted, VertexId p) {
+  if (is_topological_disk(restricted.star(p), p)) return {};
+  detail::WitnessCollector collector(CheckKind::topo_disk, p, restricted.delaunay().point(p));
+  for (const auto& t : restricted.delaunay().incident_triangles(p))
+    for (const auto& x : restricted.edge_record(t).crossings) collector.add(x);
+  if (collector.points() == 0) collector.add_unsettled(UnsettledReason::no_witness, restricted.delaunay().point(p));
+  return collector.take();
 }
 
 }  // namespace delmesh

@@ -16,7 +16,8 @@ namespace delmesh {
 bool is_topological_disk(const std::vector<TriangleKey>& star, VertexId p);
 
 //! If the triangles of Tri S|Σ at p are not a topological disk, the point of Σ on the edges of
-//! V_p furthest from p; otherwise (or if no edge of V_p meets Σ) nothing.
-std::optional<Witness> topo_disk_witness(RestrictedDelaunay& restricted, VertexId p);
+//! V_p furthest from p (then the others, furthest first); if no edge of V_p meets Σ, p itself as
+//! unsettled (no_witness); otherwise nothing.
+CheckResult topo_disk_witness(RestrictedDelaunay& restricted, VertexId p);
 
 }  // namespace delmesh

@@ -4,15 +4,18 @@
 
 namespace delmesh {
 
-std::optional<Witness> vor_edge_witness(RestrictedDelaunay& restricted, const TriangleKey& t) {
+CheckResult vor_edge_witness(RestrictedDelaunay& restricted, const TriangleKey& t) {
   const EdgeRecord& r = restricted.edge_record(t);
   const VertexId p = t[0];
   const Vec3& pp = restricted.delaunay().point(p);
-  if (!r.candidates.empty())
-    return Witness{r.candidates[detail::furthest_index(r.candidates, pp)], CheckKind::vor_edge, p, true};
+  // Tangency candidates first; the crossings (when there are two or more) after them.
+  detail::WitnessCollector candidates(CheckKind::vor_edge, p, pp), crossings(CheckKind::vor_edge, p, pp);
+  for (const auto& x : r.candidates) candidates.add(x, true);
   if (r.crossings.size() >= 2)
-    return Witness{r.crossings[detail::furthest_index(r.crossings, pp)], CheckKind::vor_edge, p, false};
-  return std::nullopt;
+    for (const auto& x : r.crossings) crossings.add(x);
+  CheckResult result = candidates.take();
+  for (auto& w : crossings.take().witnesses) result.witnesses.push_back(w);
+  return result;
 }
 
 }  // namespace delmesh

@@ -16,6 +16,9 @@ namespace delmesh {
 //! - if |e ∩ Σ| ≥ 2, returns the point of e ∩ Σ furthest from p;
 //! - otherwise nothing.
 //! p is the smallest-id vertex of t (every vertex of t is equidistant from every point of e).
-std::optional<Witness> vor_edge_witness(RestrictedDelaunay& restricted, const TriangleKey& t);
+//! The witnesses are listed in that order of preference (candidates, then crossings, each
+//! furthest from p first).  Undecided regions the record could not place are not judged here:
+//! they are RestrictedDelaunay's unresolved regions, judged on the final Tri S|Σ.
+CheckResult vor_edge_witness(RestrictedDelaunay& restricted, const TriangleKey& t);
 
 }  // namespace delmesh

@@ -84,6 +84,12 @@ void edge_from_cells(const Delaunay& del, const std::array<VertexId, 2>& apexes,
   }
   e.at_vertex0 = lo > (*clipped)[0];
   e.at_vertex1 = hi < (*clipped)[1];
+  if (!(lo < hi)) {
+    const double m = 0.5 * (lo + hi);
+    e.degenerate = m >= (*clipped)[0] && m <= (*clipped)[1];
+    e.t0 = e.t1 = m;
+    return;
+  }
   e.t0 = std::max(lo, (*clipped)[0]);
   e.t1 = std::min(hi, (*clipped)[1]);
   e.valid = e.t0 < e.t1;

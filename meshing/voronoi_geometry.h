@@ -39,7 +39,11 @@ struct VoronoiEdge {
   Vec3 direction{};      //!< unit normal of the triangle
   double t0 = 0, t1 = 0;
   bool at_vertex0 = false, at_vertex1 = false;  //!< endpoint is a Voronoi vertex (not on ∂B)
-  bool valid = false;    //!< false if the clipped edge is empty (numerically degenerate)
+  bool valid = false;    //!< false if the clipped edge is empty
+  //! The edge is inside B but its computed ends cross (t0 ≥ t1 before clipping): numerically a
+  //! single point, at(t0) = at(t1), e.g. where five or more samples are cospherical.  Then
+  //! valid = false and t0 = t1 hold the point's parameter.
+  bool degenerate = false;
   Vec3 at(double t) const { return {point[0] + t * direction[0], point[1] + t * direction[1], point[2] + t * direction[2]}; }
 };
 

@@ -1,10 +1,12 @@
 #pragma once
 //! \file witness.h
 //! A witness: a point of Σ returned by one of the checks of §5.3 (or by Quality, Smooth, size
-//! control), to be inserted into S.
+//! control), to be inserted into S; and what a check says about its face: the witnesses it found
+//! and what it could not settle.
 
 #include <array>
 #include <ostream>
+#include <vector>
 
 #include "meshing/delaunay.h"
 
@@ -20,6 +22,34 @@ struct Witness {
   CheckKind kind = CheckKind::vor_edge;
   VertexId measured_from = -1;  //!< the sample p the paper measures the witness from
   bool from_undecided = false;  //!< obtained from an undecided solver region (candidate)
+};
+
+//! Why a check could not show its face clean.  Each one keeps the run from ending `complete`
+//! while the face is part of the final Vor S.
+enum class UnsettledReason {
+  unprojectable_region,  //!< an undecided solver region whose Newton projection onto Σ failed
+  region_outside_face,   //!< an undecided region whose projection left the face by more than its diameter
+  degenerate_face,       //!< the Voronoi face is numerically degenerate and Σ may meet it
+  rejected_witness,      //!< every witness found lies within the duplicate tolerance of a sample
+  no_witness,            //!< the check's condition fails but it found no point of Σ to insert
+  unresolved_crossing    //!< an undecided region on a Voronoi edge that is neither a crossing nor a candidate
+};
+std::ostream& operator<<(std::ostream& out, UnsettledReason reason);
+
+//! One thing a check left unsettled, where it was.
+struct Unsettled {
+  CheckKind check = CheckKind::vor_edge;
+  UnsettledReason reason = UnsettledReason::unprojectable_region;
+  std::array<double, 3> location{};
+};
+
+//! The outcome of one check on one face: the witnesses (points of Σ), the one the paper asks
+//! for first and the others as fall-backs in order of preference, and what was left unsettled.
+//! The face is clean only if both are empty.
+struct CheckResult {
+  std::vector<Witness> witnesses;
+  std::vector<Unsettled> unsettled;
+  bool clean() const { return witnesses.empty() && unsettled.empty(); }
 };
 
 }  // namespace delmesh

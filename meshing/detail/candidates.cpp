@@ -2,16 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "common/tolerances.h"
 #include "meshing/detail/vec3.h"
 
 namespace delmesh::detail {
 
-double region_radius(const UndecidedBox& region) {
-  double w = 0;
-  for (const auto& b : region.box.bounds) w = std::max(w, b[1] - b[0]);
-  return 0.5 * w;
+double region_diameter(const UndecidedBox& region) {
+  double squared = 0;
+  for (const auto& b : region.box.bounds) squared += (b[1] - b[0]) * (b[1] - b[0]);
+  return std::sqrt(squared);
 }
 
 bool facet_contains(const VoronoiFacet& facet, const Vec3& x, double tolerance) {
@@ -21,31 +22,50 @@ bool facet_contains(const VoronoiFacet& facet, const Vec3& x, double tolerance) 
   return facet.contains(uv[0], uv[1], tolerance);
 }
 
-std::optional<Vec3> facet_candidate(const SurfaceOracle& oracle, const VoronoiFacet& facet,
-                                    const UndecidedBox& region) {
+double WitnessCollector::tolerance(const SurfaceOracle& oracle, const UndecidedBox& region) const {
+  return std::max(tolerances::face_membership_relative_tolerance * oracle.diagonal(), region_diameter(region));
+}
+
+std::optional<Vec3> WitnessCollector::projection(const SurfaceOracle& oracle, const UndecidedBox& region) {
   const auto x = oracle.project(region.world);
-  if (!x) return std::nullopt;
-  const double tol = std::max(tolerances::face_membership_relative_tolerance * oracle.diagonal(),
-                              2 * region_radius(region));
-  if (!facet_contains(facet, *x, tol)) return std::nullopt;
+  if (!x) add_unsettled(UnsettledReason::unprojectable_region, region.world);
   return x;
 }
 
-std::optional<Vec3> cell_candidate(const SurfaceOracle& oracle, const VoronoiCell& cell,
-                                   const UndecidedBox& region) {
-  const auto x = oracle.project(region.world);
-  if (!x) return std::nullopt;
-  const double tol = std::max(tolerances::face_membership_relative_tolerance * oracle.diagonal(),
-                              2 * region_radius(region));
-  if (!cell.contains(*x, tol)) return std::nullopt;
-  return x;
+void WitnessCollector::add_region(const SurfaceOracle& oracle, const VoronoiFacet& facet, const UndecidedBox& region) {
+  const auto x = projection(oracle, region);
+  if (!x) return;
+  if (facet_contains(facet, *x, tolerance(oracle, region)))
+    add(*x, true);
+  else
+    add_unsettled(UnsettledReason::region_outside_face, region.world);
 }
 
-std::size_t furthest_index(const std::vector<Vec3>& points, const Vec3& p) {
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < points.size(); ++i)
-    if (distance(points[i], p) > distance(points[best], p)) best = i;
-  return best;
+void WitnessCollector::add_region(const SurfaceOracle& oracle, const VoronoiCell& cell, const UndecidedBox& region) {
+  const auto x = projection(oracle, region);
+  if (!x) return;
+  if (cell.contains(*x, tolerance(oracle, region)))
+    add(*x, true);
+  else
+    add_unsettled(UnsettledReason::region_outside_face, region.world);
+}
+
+void WitnessCollector::add_line_region(const SurfaceOracle& oracle, const UndecidedBox& region) {
+  if (const auto x = projection(oracle, region)) add(*x, region.reason != UndecidedReason::boundary_root);
+}
+
+CheckResult WitnessCollector::take() {
+  std::vector<std::size_t> order(points_.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
+    return distance(points_[i].x, from_point_) > distance(points_[j].x, from_point_);
+  });
+  CheckResult result;
+  for (std::size_t i : order) result.witnesses.push_back(Witness{points_[i].x, kind_, from_, points_[i].from_undecided});
+  result.unsettled = std::move(unsettled_);
+  points_.clear();
+  unsettled_.clear();
+  return result;
 }
 
 }  // namespace delmesh::detail

@@ -1,10 +1,19 @@
 #pragma once
-// A hand-built sample set on a given surface, for the tests of the checks of §5.3.
+// A hand-built sample set on a given surface, for the tests of the checks of §5.3; and the
+// assertions every test of a DelMesh output makes on that output.
+#include <array>
+#include <cstddef>
 #include <memory>
+#include <numeric>
 #include <string>
 #include <vector>
 
+#include <boost/test/unit_test.hpp>
+#include <nlohmann/json.hpp>
+
+#include "meshing/mesh_checker.h"
 #include "meshing/restricted_delaunay.h"
+#include "meshing/surface_mesh.h"
 #include "meshing/surface_oracle.h"
 
 namespace delmesh::test {
@@ -23,5 +32,70 @@ struct CheckFixture {
 };
 
 inline const char* unit_sphere = "x^2+y^2+z^2-1";
+
+//! The signed volume Σ det(a, b, c)/6 of each connected component of a triangle soup, where two
+//! triangles are connected iff they share a vertex (the components of mesh_checker.h), ordered
+//! by each component's first triangle.  For a closed component it does not depend on the origin
+//! and is the enclosed volume if the triangles face away from it, minus that volume otherwise.
+inline std::vector<double> component_signed_volumes(const std::vector<Point3>& points,
+                                                    const std::vector<std::array<std::size_t, 3>>& triangles) {
+  std::vector<std::size_t> parent(points.size());
+  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  auto find = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const auto& t : triangles) {
+    parent[find(t[1])] = find(t[0]);
+    parent[find(t[2])] = find(t[0]);
+  }
+  std::vector<std::size_t> slot(points.size(), triangles.size());  // root → index into volumes
+  std::vector<double> volumes;
+  for (const auto& t : triangles) {
+    const std::size_t root = find(t[0]);
+    if (slot[root] == triangles.size()) {
+      slot[root] = volumes.size();
+      volumes.push_back(0);
+    }
+    const Vector3 a = points[t[0]] - CGAL::ORIGIN, b = points[t[1]] - CGAL::ORIGIN, c = points[t[2]] - CGAL::ORIGIN;
+    volumes[slot[root]] += CGAL::scalar_product(a, CGAL::cross_product(b, c)) / 6;
+  }
+  return volumes;
+}
+
+inline std::vector<double> component_signed_volumes(const SurfaceMesh& mesh) {
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  mesh_to_soup(mesh, points, triangles);
+  return component_signed_volumes(points, triangles);
+}
+
+//! Asserts what the statistics and the mesh of a complete DelMesh run on a catalog surface must
+//! say: every triangle of Tri S|Σ is in the mesh (faces_not_added = 0), no two triangles traverse
+//! an edge in the same direction (orientation_inconsistent_edges = 0), the mesh has the reported
+//! number of components, and each component faces outward.
+//!
+//! Outward: del_mesh orients each triangle along ∇E at its dual point, towards E > 0.  Every
+//! catalog surface has E < 0 inside and E > 0 outside, and none of its components lies inside
+//! another, so each component bounds a region of {E < 0} on its inner side and its signed volume
+//! is that region's volume: positive.  (A component bounding a cavity {E > 0} inside a solid
+//! would have a negative one; the catalog has no such surface.)
+inline void check_oriented_output(const nlohmann::json& statistics, const std::vector<Point3>& points,
+                                  const std::vector<std::array<std::size_t, 3>>& triangles) {
+  BOOST_TEST(statistics.at("faces_not_added").get<std::size_t>() == 0u);
+  BOOST_TEST(statistics.at("orientation_inconsistent_edges").get<std::size_t>() == 0u);
+  const auto volumes = component_signed_volumes(points, triangles);
+  BOOST_TEST(volumes.size() == statistics.at("components").get<std::size_t>());
+  BOOST_TEST(!volumes.empty());
+  for (std::size_t i = 0; i < volumes.size(); ++i)
+    BOOST_TEST(volumes[i] > 0, "component " << i << " has signed volume " << volumes[i]);
+}
+
+inline void check_oriented_output(const nlohmann::json& statistics, const SurfaceMesh& mesh) {
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  mesh_to_soup(mesh, points, triangles);
+  check_oriented_output(statistics, points, triangles);
+}
 
 }  // namespace delmesh::test

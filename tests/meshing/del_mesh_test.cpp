@@ -1,14 +1,20 @@
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <cmath>
 
+#include "check_fixture.h"
 #include "common/errors.h"
 #include "meshing/del_mesh.h"
+#include "meshing/detail/vec3.h"
 #include "meshing/mesh_checker.h"
+#include "meshing/refinement.h"
+#include "meshing/sample_topology.h"
 #include "meshing/theorem_bounds.h"
 #include "symbolic/catalog.h"
 
 using namespace delmesh;
+using delmesh::test::check_oriented_output;
 
 namespace {
 
@@ -26,6 +32,7 @@ void check_theorem_6_1(const std::string& name, double lambda) {
   const auto& entry = catalog_entry(name);
   const auto result = run(name, lambda);
   BOOST_TEST(result.status == MeshStatus::complete);
+  check_oriented_output(result.statistics, result.mesh);
   const auto r = check_mesh(result.mesh);
   const auto b = theorem_bounds(lambda);
   BOOST_TEST_MESSAGE(name << " lambda " << lambda << ": " << r.vertices << " vertices, min angle "
@@ -79,10 +86,12 @@ BOOST_AUTO_TEST_CASE(statistics_follow_the_contract) {
   const auto result = run("sphere", 0.06);
   const auto& j = result.statistics;
   for (const char* key : {"status", "lambda", "vertices", "triangles", "components", "euler_characteristic",
-                          "genus_per_component", "closed_manifold", "orientable", "min_angle_deg",
-                          "max_radius_edge_ratio", "max_roughness_rad", "bounds", "insertions", "solver",
-                          "seconds_per_check", "height_direction", "seed", "seconds"})
+                          "genus_per_component", "closed_manifold", "orientable", "orientation_inconsistent_edges",
+                          "faces_not_added", "min_angle_deg", "max_radius_edge_ratio", "max_roughness_rad", "bounds",
+                          "insertions", "solver", "seconds_per_check", "height_direction", "seed", "points", "seconds"})
     BOOST_TEST(j.contains(key), key);
+  BOOST_TEST(j["status"] == "complete");
+  check_oriented_output(j, result.mesh);
   for (const char* key : {"seeds", "seeds_deleted", "vor_edge", "facet_contact", "topo_disk", "facet_cycle",
                           "silhouette", "quality", "smooth", "size"})
     BOOST_TEST(j["insertions"].contains(key), key);
@@ -95,6 +104,8 @@ BOOST_AUTO_TEST_CASE(statistics_follow_the_contract) {
 
 BOOST_AUTO_TEST_CASE(same_seed_same_mesh) {
   const auto a = run("torus", 0.06, 7), b = run("torus", 0.06, 7);
+  BOOST_TEST(a.statistics["status"] == "complete");
+  check_oriented_output(a.statistics, a.mesh);
   BOOST_TEST(same_mesh(a.mesh, b.mesh));
 }
 
@@ -102,6 +113,8 @@ BOOST_AUTO_TEST_CASE(same_seed_same_mesh) {
 // the mesh and the solver's work are the same for every thread count.
 BOOST_AUTO_TEST_CASE(same_mesh_for_every_thread_count) {
   const auto one = run("genus2", 0.06, 1, 1);
+  BOOST_TEST(one.statistics["status"] == "complete");
+  check_oriented_output(one.statistics, one.mesh);
   for (int threads : {2, 4}) {
     const auto many = run("genus2", 0.06, 1, threads);
     BOOST_TEST(same_mesh(one.mesh, many.mesh), threads << " threads");
@@ -110,15 +123,65 @@ BOOST_AUTO_TEST_CASE(same_mesh_for_every_thread_count) {
   }
 }
 
+// The size bound H caps the radius of every surface Delaunay ball, and so the circumradius of
+// every output triangle (a triangle's circumcircle lies on each of its circumscribing spheres).
 BOOST_AUTO_TEST_CASE(size_bound_refines) {
   const auto& entry = catalog_entry("sphere");
+  const double H = 0.4;
   DelMeshOptions options;
-  options.size_bound = 0.4;
+  options.size_bound = H;
   const auto result = del_mesh(entry.surface(), entry.box, options);
+  BOOST_TEST(result.statistics["status"] == "complete");
   BOOST_TEST(result.statistics["insertions"]["size"].get<int>() > 0);
+  check_oriented_output(result.statistics, result.mesh);
   const auto r = check_mesh(result.mesh);
   BOOST_TEST(r.genus_per_component == std::vector<int>{0}, boost::test_tools::per_element());
   BOOST_TEST(r.vertices > run("sphere", 0.06).statistics["vertices"].get<std::size_t>());
+  double largest = 0;
+  for (auto f : result.mesh.faces()) {
+    auto h = result.mesh.halfedge(f);
+    const Point3& p = result.mesh.point(result.mesh.target(h));
+    const Point3& q = result.mesh.point(result.mesh.target(result.mesh.next(h)));
+    const Point3& s = result.mesh.point(result.mesh.source(h));
+    largest = std::max(largest, std::sqrt(CGAL::squared_radius(p, q, s)));
+  }
+  BOOST_TEST(largest <= H, "largest circumradius " << largest);
+}
+
+// The bound on the quantity the size control measures: for every triangle of Tri S|Σ at the
+// end of the run, the distance from its dual point on Σ to its vertices is at most H.  The run
+// repeats del_mesh's steps; del_mesh itself gives a mesh of exactly these triangles.
+BOOST_AUTO_TEST_CASE(size_bound_holds_for_every_surface_delaunay_ball) {
+  const auto& entry = catalog_entry("torus");
+  const double H = 0.25;
+  SurfaceOracle oracle(entry.surface(), entry.box, SolverBackend::subdivision);
+  Refinement refinement(oracle, 1, RefinementLimits{});
+  SeedReport seeds;
+  BOOST_TEST_REQUIRE(sample_topology(refinement, seeds) == MeshStatus::complete);
+  refinement.enable_geometry(0.06, H);
+  BOOST_TEST_REQUIRE(refinement.run() == MeshStatus::complete);
+  BOOST_TEST(refinement.insertions(CheckKind::size) > 0u);
+  auto& restricted = refinement.restricted();
+  const auto triangles = restricted.triangles();
+  double largest = 0;
+  for (const auto& t : triangles) {
+    const auto& rec = restricted.edge_record(t);
+    BOOST_TEST_REQUIRE(rec.restricted);
+    const double radius = detail::distance(rec.dual_point, refinement.delaunay().point(t[0]));
+    for (int k = 1; k < 3; ++k)  // the dual point is on the Voronoi edge: equidistant
+      BOOST_TEST(detail::distance(rec.dual_point, refinement.delaunay().point(t[k])) == radius,
+                 boost::test_tools::tolerance(1e-9));
+    largest = std::max(largest, radius);
+  }
+  BOOST_TEST(largest <= H, "largest surface Delaunay ball radius " << largest);
+
+  DelMeshOptions options;
+  options.size_bound = H;
+  const auto result = del_mesh(entry.surface(), entry.box, options);
+  BOOST_TEST(result.statistics["status"] == "complete");
+  check_oriented_output(result.statistics, result.mesh);
+  BOOST_TEST(result.mesh.number_of_faces() == triangles.size());
+  BOOST_TEST(result.statistics["points"].get<std::size_t>() == refinement.delaunay().size());
 }
 
 BOOST_AUTO_TEST_CASE(point_limit_stops_with_a_partial_mesh) {
@@ -128,6 +191,13 @@ BOOST_AUTO_TEST_CASE(point_limit_stops_with_a_partial_mesh) {
   const auto result = del_mesh(entry.surface(), entry.box, options);
   BOOST_TEST(result.status == MeshStatus::point_limit);
   BOOST_TEST(result.statistics["status"] == "point_limit");
+  // The seeds go in together, then one sample at a time until the limit is reached.
+  const auto points = result.statistics["points"].get<std::size_t>();
+  const auto seeds = result.statistics["insertions"]["seeds"].get<std::size_t>();
+  BOOST_TEST(points == std::max<std::size_t>(options.max_points, seeds));
+  BOOST_TEST(result.mesh.number_of_vertices() <= points);
+  BOOST_TEST(result.statistics["vertices"].get<std::size_t>() == result.mesh.number_of_vertices());
+  BOOST_TEST(result.statistics["triangles"].get<std::size_t>() == result.mesh.number_of_faces());
 }
 
 BOOST_AUTO_TEST_CASE(lambda_out_of_range_is_invalid) {
@@ -140,6 +210,28 @@ BOOST_AUTO_TEST_CASE(lambda_out_of_range_is_invalid) {
   options.lambda = 0.1;  // allowed, outside Theorem 6.1
   const auto result = del_mesh(entry.surface(), entry.box, options);
   BOOST_TEST(result.statistics["theorem_applies"] == false);
+  BOOST_TEST(result.statistics["status"] == "complete");
+  check_oriented_output(result.statistics, result.mesh);
+}
+
+// The orientation check of the tests sees each component on its own: a copy of the sphere's
+// mesh moved away with its triangles reversed is a second component of opposite volume, while
+// the volume of the whole would be zero.  The mesh's vertices lie on the unit sphere, so the
+// region it bounds lies in the unit ball: its volume is below 4π/3.
+BOOST_AUTO_TEST_CASE(an_inward_component_has_negative_signed_volume) {
+  const auto result = run("sphere", 0.06);
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  mesh_to_soup(result.mesh, points, triangles);
+  const std::size_t n = points.size(), m = triangles.size();
+  for (std::size_t i = 0; i < n; ++i) points.push_back(points[i] + Vector3(5, 0, 0));
+  for (std::size_t i = 0; i < m; ++i)
+    triangles.push_back({triangles[i][0] + n, triangles[i][2] + n, triangles[i][1] + n});
+  const auto volumes = test::component_signed_volumes(points, triangles);
+  BOOST_TEST_REQUIRE(volumes.size() == 2u);
+  BOOST_TEST(volumes[0] > 0);
+  BOOST_TEST(volumes[0] < 4 * M_PI / 3);
+  BOOST_TEST(volumes[1] == -volumes[0], boost::test_tools::tolerance(1e-9));
 }
 
 BOOST_AUTO_TEST_CASE(catalog_at_lambda_006_and_003, *boost::unit_test::label("slow")) {

@@ -78,6 +78,21 @@ inline constexpr int homotopy_certify_attempts = 4;
 //! domain box are still certified and classified (they may straddle a face).
 inline constexpr double homotopy_domain_margin = 1e-6;
 
+//! Homotopy: an endpoint whose largest imaginary part lies above homotopy_real_candidate but not
+//! above this (relative to 1 + ‖u‖∞) is near-real: it may be a real root computed with that error
+//! (a regular endpoint may have a Jacobian condition number up to homotopy_singular_condition, so
+//! an error of 1e10 · 2.2e-16 ≈ 2e-6 is possible), or a non-real root that close to the reals (then
+//! the real Jacobian is nearly singular there: a near-tangency).  It comes back undecided unless
+//! Krawczyk decides the box of half-width homotopy_near_real_box_ratio · ‖Im u‖∞ around Re u.
+inline constexpr double homotopy_near_real = 1e-4;
+inline constexpr double homotopy_near_real_box_ratio = 4;
+
+//! Homotopy: a diverging path whose last tracked point u lies within this distance (relative to
+//! the domain's widest side) of the domain box — Re u within it of the box, ‖Im u‖∞ at most it —
+//! makes the solve undecided: the numerical test for a path at infinity (|X_0| small, or
+//! valuation estimates) may have taken a path to a finite root there for a diverging one.
+inline constexpr double homotopy_diverging_near_domain = 1;
+
 //! Homotopy: the most predictor–corrector steps one path may take before it is declared failed.
 inline constexpr std::size_t homotopy_max_steps_per_path = 20000;
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include <Eigen/Dense>
@@ -168,6 +169,12 @@ class EndpointCertifier {
     return krawczyk_test(system_, parameters_, box).outcome == KrawczykOutcome::unique_root;
   }
 
+  //! True if the Krawczyk test proves that f has no zero in box.
+  bool excludes(const std::vector<Interval>& box) const {
+    RoundingGuard guard;
+    return krawczyk_test(system_, parameters_, box).outcome == KrawczykOutcome::no_root;
+  }
+
   //! Certifies a root near x (real part of an endpoint).  On failure `tried` is the largest box.
   bool certify(std::vector<double> x, Certified& out, std::vector<Interval>& tried) const {
     const double correction = polish(x);
@@ -270,6 +277,15 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
   validate(system, degrees, parameters, domain);
   const auto started = Clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - started).count(); };
+  // The earlier of options.deadline and the end of options.time_limit_seconds.
+  // (A limit beyond half the clock's remaining range is no limit: its end would not be representable.)
+  std::optional<Clock::time_point> deadline = options.deadline;
+  if (options.time_limit_seconds > 0 &&
+      options.time_limit_seconds < 0.5 * std::chrono::duration<double>(Clock::time_point::max() - started).count()) {
+    const auto by_limit =
+        started + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.time_limit_seconds));
+    deadline = deadline ? std::min(*deadline, by_limit) : by_limit;
+  }
   const std::size_t n = system.n_unknowns();
 
   // γ: a unit complex number drawn from the seed (the gamma trick).
@@ -287,6 +303,7 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
   const detail::HomotopyTracker tracker(system, degrees, complex_parameters, gamma, patch);
   auto settings = detail::TrackerSettings::defaults();
   settings.max_steps = options.max_steps_per_path;
+  settings.deadline = deadline;
 
   SolveResult result;
   HomotopyStatistics statistics;
@@ -303,11 +320,12 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
   ends.reserve(starts.size());
   bool out_of_time = false;
   for (const auto& start : starts) {
-    if (options.time_limit_seconds > 0 && elapsed() > options.time_limit_seconds) {
+    PathEndpoint end = track(start, settings);
+    if (end.stopped) {  // cut off by the deadline: neither an endpoint nor a failure
       out_of_time = true;
       break;
     }
-    ends.push_back(track(start, settings));
+    ends.push_back(std::move(end));
   }
 
   // Two paths at the same regular root: one of them jumped (a regular root is the end of exactly
@@ -323,8 +341,15 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
         if (!coincide(ends[i], ends[j])) continue;
         if (std::max(ends[i].condition, ends[j].condition) > tol::homotopy_cluster_condition) {
           ends[i].outcome = ends[j].outcome = PathOutcome::singular;
-        } else if (retrack) {
-          for (std::size_t k : {i, j}) ends[k] = track(starts[k], settings.stricter());
+        } else if (retrack && !out_of_time) {
+          for (std::size_t k : {i, j}) {
+            PathEndpoint again = track(starts[k], settings.stricter());
+            if (again.stopped) {
+              out_of_time = true;  // keep the first endpoint; the solve reports time_limit
+              break;
+            }
+            ends[k] = std::move(again);
+          }
         } else {
           jumped = true;
         }
@@ -343,6 +368,24 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
     return true;
   };
 
+  // A diverging path is near the domain when its last tracked point u (where it was declared at
+  // infinity) has Re u within `near_distance` of the domain box and ‖Im u‖∞ ≤ near_distance.
+  const double near_distance = tol::homotopy_diverging_near_domain * domain.scale();
+  const auto diverging_near_domain = [&](const std::vector<Complex>& u) {
+    for (const auto& c : u)
+      if (!std::isfinite(c.real()) || !std::isfinite(c.imag())) return false;
+    std::vector<double> x(n);
+    for (std::size_t i = 0; i < n; ++i) x[i] = u[i].real();
+    return max_imag(u) <= near_distance && near_domain(x, near_distance);
+  };
+  // The box of half-width `radius` around x.
+  const auto box_around = [](const std::vector<double>& x, double radius) {
+    std::vector<Interval> box;
+    for (double c : x) box.emplace_back(c - radius, c + radius);
+    return box;
+  };
+  bool diverging_undecided = false;
+
   std::vector<Certified> certified;
   for (const auto& end : ends) {
     switch (end.outcome) {
@@ -351,30 +394,57 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
       case PathOutcome::diverging: ++statistics.diverging; break;
       case PathOutcome::failed: ++statistics.failed; break;
     }
-    if (end.outcome == PathOutcome::failed || end.outcome == PathOutcome::diverging) continue;
+    if (end.outcome == PathOutcome::failed) continue;
+    if (end.outcome == PathOutcome::diverging) {
+      if (diverging_near_domain(end.point)) {
+        ++statistics.diverging_near_domain;
+        diverging_undecided = true;
+      }
+      continue;
+    }
     const double scale = 1 + max_abs(end.point);
+    const double imag = max_imag(end.point);
     std::vector<double> x(n);
     for (std::size_t i = 0; i < n; ++i) x[i] = end.point[i].real();
     if (end.outcome == PathOutcome::singular) {
       const double radius =
           std::max(tol::homotopy_singular_box_radius * scale, 16 * (std::isfinite(end.last_correction) ? end.last_correction : 0));
-      if (max_imag(end.point) > std::max(radius, tol::homotopy_real_candidate * scale)) continue;
-      if (!near_domain(x, radius)) continue;
-      std::vector<Interval> box;
-      for (double c : x) box.emplace_back(c - radius, c + radius);
-      add_undecided(result.undecided, box, UndecidedReason::singular_root, certifier);
+      if (imag > std::max(radius, tol::homotopy_near_real * scale)) continue;  // certainly not real
+      const double box_radius = std::max(radius, tol::homotopy_near_real_box_ratio * imag);
+      if (!near_domain(x, box_radius)) continue;
+      if (imag > std::max(radius, tol::homotopy_real_candidate * scale)) ++statistics.near_real;
+      add_undecided(result.undecided, box_around(x, box_radius), UndecidedReason::singular_root, certifier);
       continue;
     }
     // finite, regular endpoint
-    if (max_imag(end.point) > tol::homotopy_real_candidate * scale) continue;
-    if (!near_domain(x, 0)) continue;
+    if (imag > tol::homotopy_near_real * scale) continue;  // certainly not real
+    if (imag <= tol::homotopy_real_candidate * scale) {
+      if (!near_domain(x, 0)) continue;
+      Certified root;
+      std::vector<Interval> tried;
+      if (certifier.certify(x, root, tried)) {
+        certified.push_back(std::move(root));
+      } else if (place(tried, domain) != DomainSide::outside) {
+        add_undecided(result.undecided, tried, UndecidedReason::precision, certifier);
+      }
+      continue;
+    }
+    // Near-real: the real root this endpoint may approximate lies about ‖Im u‖∞ from Re u.  The
+    // box there is settled by a root certified in it, or by a proof that it holds none; else it
+    // is undecided.  (A root certified elsewhere is a root all the same, and is kept.)
+    const double box_radius = std::max(tol::homotopy_certify_radius * scale, tol::homotopy_near_real_box_ratio * imag);
+    if (!near_domain(x, box_radius)) continue;
+    ++statistics.near_real;
+    const std::vector<Interval> box = box_around(x, box_radius);
     Certified root;
     std::vector<Interval> tried;
+    bool settled = false;
     if (certifier.certify(x, root, tried)) {
+      settled = boxes_intersect(root.box, box);
       certified.push_back(std::move(root));
-    } else if (place(tried, domain) != DomainSide::outside) {
-      add_undecided(result.undecided, tried, UndecidedReason::precision, certifier);
     }
+    if (!settled && !certifier.excludes(box) && place(box, domain) != DomainSide::outside)
+      add_undecided(result.undecided, box, UndecidedReason::precision, certifier);
   }
 
   // De-duplicate certified roots: intersecting uniqueness boxes whose hull still holds a unique
@@ -419,7 +489,7 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
   if (out_of_time) {
     add_undecided(result.undecided, domain_box(domain), UndecidedReason::budget, certifier);
     result.status = SolveStatus::time_limit;
-  } else if (statistics.failed > 0 || jumped) {
+  } else if (statistics.failed > 0 || jumped || diverging_undecided) {
     add_undecided(result.undecided, domain_box(domain), UndecidedReason::precision, certifier);
     result.status = SolveStatus::undecided;
   } else {

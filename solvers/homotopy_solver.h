@@ -13,10 +13,13 @@
 //! each endpoint as at infinity (diverging), singular (winding number > 1, or ill-conditioned
 //! Jacobian) or regular; then Krawczyk certification of each real regular endpoint inside the
 //! domain.  Independent oracle for the subdivision solver and a backend
-//! (--solver homotopy).  Roots not certified (singular, diverging near the domain) come back
-//! undecided; a path failure (tracking or endgame) is reported, never dropped.
+//! (--solver homotopy).  Roots not certified (singular, near-real, diverging near the domain)
+//! come back undecided; a path failure (tracking or endgame) is reported, never dropped; the
+//! exact rules are at solve_homotopy().
 
+#include <chrono>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "symbolic/scalar_types.h"
@@ -40,11 +43,20 @@ struct HomotopyStatistics {
   std::size_t steps = 0, rejections = 0;
   //! The largest winding number the Cauchy endgame found (0: no endgame completed).
   int max_winding = 0;
+  //! Singular or regular endpoints in the near-real bands of solve_homotopy() (rules 2 and 3:
+  //! not real candidates, not certainly non-real) near the domain.
+  std::size_t near_real = 0;
+  //! Diverging paths whose last point was near the domain (solve_homotopy(), rule 4).
+  std::size_t diverging_near_domain = 0;
 };
 
 struct HomotopyOptions {
   std::uint64_t seed = 1;  //!< for γ and the projective patch; fixed seed → reproducible
-  double time_limit_seconds = 0;  //!< 0: none
+  double time_limit_seconds = 0;  //!< from the call's start; 0: none
+  //! Absolute end of the solve (none if empty); with time_limit_seconds the earlier one counts.
+  //! The clock is read before every predictor–corrector step, so a single long path is cut off
+  //! too (see solve_homotopy() for what is returned).
+  std::optional<std::chrono::steady_clock::time_point> deadline;
   //! Predictor–corrector steps one path may take before it is declared failed (a failed path
   //! makes the solve undecided: the whole domain box is returned as undecided).
   std::size_t max_steps_per_path = tolerances::homotopy_max_steps_per_path;
@@ -67,19 +79,43 @@ std::vector<std::vector<Complex>> total_degree_start_solutions(const std::vector
 
 //! All roots of the square polynomial system f(u; parameters) = 0 inside the domain, by the
 //! total-degree homotopy.  Every path is tracked and run through the Cauchy endgame; endpoints are
-//! classified as finite, singular, diverging (at infinity) or failed.  Each finite endpoint that is real (max |Im u_i| below
-//! tolerances::homotopy_real_candidate) and in (or within a margin of) the domain box is
-//! Newton-polished over the reals and certified by the Krawczyk test (krawczyk.h) on a small box
-//! around it; the certified box is contracted by Krawczyk iteration and classified against the
-//! box and the half-spaces of the domain.  Returned:
+//! classified as finite (regular), singular, diverging (at infinity) or failed.  Below, u is an
+//! endpoint (for a diverging path: its last tracked point, where it was declared at infinity),
+//! s = 1 + ‖u‖∞, ι = ‖Im u‖∞, x = Re u; x is "near the domain with extra e" when every
+//! coordinate is within homotopy_domain_margin · domain.scale() + e of the domain box (all
+//! tolerances in tolerances::):
+//!  1. real regular endpoint (ι ≤ homotopy_real_candidate · s), x near the domain: Newton-polished
+//!     over the reals and certified by the Krawczyk test (krawczyk.h) on a small box around it,
+//!     contracted by Krawczyk iteration and classified against the domain; not certified → the
+//!     largest box tried undecided (precision), unless it is certainly outside the domain;
+//!  2. singular endpoint with ι ≤ max(r, homotopy_near_real · s), r = max(homotopy_singular_box_radius
+//!     · s, 16 · its accuracy estimate), x near the domain with extra b: the box of half-width
+//!     b = max(r, homotopy_near_real_box_ratio · ι) around x undecided (singular_root);
+//!  3. near-real regular endpoint (homotopy_real_candidate · s < ι ≤ homotopy_near_real · s), x near
+//!     the domain with extra b, B the box of half-width b = max(homotopy_certify_radius · s,
+//!     homotopy_near_real_box_ratio · ι) around x: a root certified from x as in rule 1 is kept;
+//!     unless its box meets B, B is dropped only if the Krawczyk test proves that f has no zero in
+//!     B or B is certainly outside the domain, and is undecided (precision) else;
+//!  4. diverging path with x near the domain with extra δ = homotopy_diverging_near_domain ·
+//!     domain.scale() and ι ≤ δ (u finite): the whole domain box undecided (precision), status
+//!     undecided (the path may end at an unknown finite root there); any other diverging path is
+//!     dropped (it ends at infinity);
+//!  5. a failed path, or two paths at the same regular root after re-tracking with smaller steps
+//!     (one jumped): the whole domain box undecided (precision), status undecided;
+//!  6. the deadline (options.deadline, or options.time_limit_seconds from the call) reached while
+//!     tracking: the path being tracked is abandoned (not counted as failed), no further path or
+//!     re-track is started, the endpoints already tracked are classified as above, and the whole
+//!     domain box comes back undecided (budget) with status time_limit;
+//!  7. non-real endpoints (ι above the bands of rules 2 and 3) and endpoints not near the domain
+//!     are not roots in the domain: dropped.
+//! Returned:
 //!  - roots: certified roots inside the domain (one per root; inside_domain = true), sorted;
-//!  - undecided: real singular endpoints in the domain (singular_root), real endpoints that could
-//!    not be certified (precision), certified roots whose box straddles a face (boundary_root),
-//!    and, when a path failed or two paths reached the same regular root even after re-tracking
-//!    with smaller steps (a root may have been missed), the whole domain box (precision);
-//!    when the time limit stops the solve, the whole domain box (budget) and status time_limit;
+//!    certified roots whose box straddles a face are undecided (boundary_root), certified boxes
+//!    that meet without one unique root in their hull undecided (cluster);
+//!  - undecided: as in rules 1–6;
 //!  - counters.paths (paths tracked, re-tracks included) and counters.seconds.
-//! Status complete iff nothing is undecided.  Fixed options.seed → identical output.
+//! Status complete iff nothing is undecided.  Fixed options.seed → identical output (unless the
+//! deadline cuts the solve).
 //! Not a proof of completeness: path tracking and the endgame are not certified (a path jump that
 //! lands on a different root is detected only when two paths end at the same regular root; the
 //! endgame's loop-closure and agreement tests are numerical).  What is certified is each root

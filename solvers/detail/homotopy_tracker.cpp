@@ -238,9 +238,10 @@ class PathTracker {
   }
 
   //! Tracks X along t = path(τ) from τ = 0 to τ = length with adaptive steps of at most max_step
-  //! (h: the current step, carried from call to call).  False if a step underflows or the step
-  //! budget (settings.max_steps per path, and at most `budget` steps in this call) runs out;
-  //! *reached (if given) is the τ reached.
+  //! (h: the current step, carried from call to call).  False if a step underflows, the step
+  //! budget (settings.max_steps per path, and at most `budget` steps in this call) runs out, or
+  //! the settings' deadline has passed (then end.stopped is set); *reached (if given) is the τ
+  //! reached.
   bool run(const TPath& path, double length, double max_step, Vec& X, double& h, PathEndpoint& end,
            double* reached = nullptr, std::size_t budget = std::numeric_limits<std::size_t>::max()) {
     const std::size_t limit = std::min(settings_.max_steps, end.steps + end.rejections + std::min(budget, settings_.max_steps));
@@ -249,6 +250,11 @@ class PathTracker {
     bool ok = true;
     while (tau < length) {
       if (end.steps + end.rejections >= limit) {
+        ok = false;
+        break;
+      }
+      if (settings_.deadline && std::chrono::steady_clock::now() >= *settings_.deadline) {
+        end.stopped = true;
         ok = false;
         break;
       }

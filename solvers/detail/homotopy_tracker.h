@@ -56,7 +56,9 @@
 //! endgame's closure, agreement and valuation tests are numerical (so is the test |u| > 1e8).
 //! Certification happens afterwards (Krawczyk on the regular real endpoints, homotopy_solver.cpp).
 
+#include <chrono>
 #include <cstddef>
+#include <optional>
 #include <ostream>
 #include <vector>
 
@@ -97,6 +99,9 @@ struct TrackerSettings {
   std::size_t endgame_direct_steps;  //!< steps allowed to finish directly from t_k to 0
   double endgame_valuation_max_t;    //!< the valuation test for infinity only at t_k ≤ this
   double cluster_condition;          //!< c > 1 estimate accepted only where cond J_f ≥ this (or at ∞)
+  //! If set: no step is attempted once the clock has reached it; the path then ends failed with
+  //! PathEndpoint::stopped (the clock is read before every predictor–corrector step).
+  std::optional<std::chrono::steady_clock::time_point> deadline{};
   static TrackerSettings defaults();
   //! Smaller steps and a tighter trust region, for re-tracking paths suspected of jumping.
   TrackerSettings stricter() const;
@@ -115,6 +120,7 @@ struct PathEndpoint {
   int winding = 0;             //!< winding number c found by the endgame loops (0: no loop closed)
   std::size_t steps = 0;       //!< accepted steps (endgame included)
   std::size_t rejections = 0;  //!< rejected steps
+  bool stopped = false;        //!< TrackerSettings::deadline passed before the path ended (outcome failed)
 };
 
 class HomotopyTracker {

@@ -1,6 +1,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -455,6 +456,117 @@ BOOST_AUTO_TEST_CASE(two_close_roots_are_not_merged_by_the_endgame) {
     }
     BOOST_TEST(found, "root " << root[0] << " " << root[1] << " " << root[2]);
   }
+}
+
+BOOST_AUTO_TEST_CASE(near_real_endpoints_are_undecided_not_dropped) {
+  // (x − y)² + 0.01 = 0, x + y = 2000, written expanded (interval evaluation cannot exclude a box
+  // around (1000, 1000)): the roots x = 1000 ± 0.05i, y = 1000 ∓ 0.05i are regular endpoints with
+  // ‖Im u‖∞ / (1 + ‖u‖∞) ≈ 5e-5, above homotopy_real_candidate but within homotopy_near_real.  No
+  // real root exists, but the real Jacobian is singular at (1000, 1000): neither certified nor
+  // excluded, the box around (1000, 1000) comes back undecided.
+  const ex eps = GiNaC::numeric(1, 10);
+  const auto s = make_system({X() * X() - 2 * X() * Y() + Y() * Y() + eps * eps, X() + Y() - 2000}, {X(), Y()});
+  for (std::uint64_t seed : {1, 2, 3}) {
+    HomotopyStatistics statistics;
+    const auto r = solve(s, {}, Domain::from_box({{{999.0, 1001.0}}, {{999.0, 1001.0}}}), seed, &statistics);
+    BOOST_TEST(statistics.finite == 2u);
+    BOOST_TEST(statistics.near_real == 2u);
+    BOOST_TEST(r.status == SolveStatus::undecided);
+    BOOST_TEST(r.roots.empty());
+    BOOST_REQUIRE(r.undecided.size() == 1u);
+    BOOST_TEST(r.undecided[0].reason == UndecidedReason::precision);
+    for (int i = 0; i < 2; ++i) {
+      BOOST_TEST(r.undecided[0].box.bounds[i][0] <= 1000.0 - 0.05);
+      BOOST_TEST(r.undecided[0].box.bounds[i][1] >= 1000.0 + 0.05);
+      BOOST_TEST(r.undecided[0].box.bounds[i][1] - r.undecided[0].box.bounds[i][0] <= 1.0);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(near_real_endpoints_proved_root_free_are_dropped) {
+  // x² + 1e-10: endpoints ±1e-5 i, near-real; Krawczyk proves the box around 0 root-free.
+  const auto s = make_system({X() * X() + GiNaC::numeric(1, 10000000000)}, {X()});
+  HomotopyStatistics statistics;
+  const auto r = solve(s, {}, Domain::from_box({{{-1.0, 1.0}}}), 1, &statistics);
+  BOOST_TEST(statistics.near_real == 2u);
+  BOOST_TEST(r.status == SolveStatus::complete);
+  BOOST_TEST(r.roots.empty());
+  BOOST_TEST(r.undecided.empty());
+}
+
+BOOST_AUTO_TEST_CASE(diverging_paths_near_the_domain_make_it_undecided) {
+  // y = x⁴ and y = x⁴ + x − 1 meet at (1, 1) only: 15 of the 16 paths go to infinity, slowly
+  // (their last points, where the valuation test declares them diverging, have ‖u‖∞ ≈ 10).  On
+  // [−10, 10]² those points are near the domain: the root is still certified, but the domain comes
+  // back undecided.  On [−0.5, 0.5]² (no root) the same paths end far from it: complete.
+  const auto s = make_system({Y() - GiNaC::pow(X(), 4), Y() - GiNaC::pow(X(), 4) - X() + 1}, {X(), Y()});
+  for (std::uint64_t seed : {1, 2}) {
+    HomotopyStatistics statistics;
+    const auto r = solve(s, {}, Domain::from_box({{{-10.0, 10.0}}, {{-10.0, 10.0}}}), seed, &statistics);
+    BOOST_TEST(statistics.diverging == 15u);
+    BOOST_TEST(statistics.diverging_near_domain >= 1u);
+    BOOST_TEST(r.status == SolveStatus::undecided);
+    BOOST_REQUIRE(r.roots.size() == 1u);
+    BOOST_TEST(has_root(r, {1.0, 1.0}));
+    BOOST_REQUIRE(r.undecided.size() == 1u);
+    BOOST_TEST(r.undecided[0].reason == UndecidedReason::precision);
+    BOOST_TEST(r.undecided[0].box.bounds[0][0] == -10.0);
+    BOOST_TEST(r.undecided[0].box.bounds[1][1] == 10.0);
+
+    HomotopyStatistics far;
+    const auto small = solve(s, {}, Domain::from_box({{{-0.5, 0.5}}, {{-0.5, 0.5}}}), seed, &far);
+    BOOST_TEST(far.diverging == 15u);
+    BOOST_TEST(far.diverging_near_domain == 0u);
+    BOOST_TEST(small.status == SolveStatus::complete);
+    BOOST_TEST(small.roots.empty());
+  }
+}
+
+BOOST_AUTO_TEST_CASE(a_deadline_in_the_past_stops_the_first_path) {
+  const auto s = make_system({X() * X() + Y() * Y() - 1, Y() - X()}, {X(), Y()});
+  const CompiledSystem compiled(s);
+  HomotopyOptions options;
+  options.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  HomotopyStatistics statistics;
+  options.statistics = &statistics;
+  const auto r = solve_homotopy(compiled, {2, 1}, {}, Domain::from_box({{{-2.0, 2.0}}, {{-2.0, 2.0}}}), options);
+  BOOST_TEST(r.status == SolveStatus::time_limit);
+  BOOST_TEST(r.roots.empty());
+  BOOST_REQUIRE(r.undecided.size() == 1u);
+  BOOST_TEST(r.undecided[0].reason == UndecidedReason::budget);
+  BOOST_TEST(r.undecided[0].box.bounds[0][0] == -2.0);
+  BOOST_TEST(r.counters.paths == 1u);  // started, and abandoned at its first step
+  BOOST_TEST(statistics.steps == 0u);
+  BOOST_TEST(statistics.finite + statistics.singular + statistics.diverging + statistics.failed == 0u);
+}
+
+BOOST_AUTO_TEST_CASE(a_deadline_cuts_a_long_solve) {
+  // Kostlan degrees (6, 5, 6): 180 paths.  A deadline a tenth of the way through stops the solve
+  // there (the clock is read before every step), with status time_limit and the domain undecided,
+  // never a clean result.
+  const CompiledSystem compiled(kostlan_system({6, 5, 6}, 104));
+  const auto domain = Domain::from_box({{{-1.0, 1.0}}, {{-1.0, 1.0}}, {{-1.0, 1.0}}});
+  HomotopyOptions options;
+  options.seed = 104;
+  const auto full_start = std::chrono::steady_clock::now();
+  const auto full = solve_homotopy(compiled, {6, 5, 6}, {}, domain, options);
+  const double full_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - full_start).count();
+  BOOST_TEST(full.status == SolveStatus::complete);
+  BOOST_TEST(full.counters.paths >= 180u);
+
+  const double budget = full_seconds / 10;
+  const auto start = std::chrono::steady_clock::now();
+  options.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                 std::chrono::duration<double>(budget));
+  const auto cut = solve_homotopy(compiled, {6, 5, 6}, {}, domain, options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  BOOST_TEST_MESSAGE("full solve " << full_seconds << " s; cut at " << budget << " s after " << seconds << " s, "
+                                   << cut.counters.paths << " paths");
+  BOOST_TEST(cut.status == SolveStatus::time_limit);
+  BOOST_TEST(cut.counters.paths < full.counters.paths);
+  BOOST_REQUIRE(!cut.undecided.empty());
+  BOOST_TEST(cut.undecided.back().reason == UndecidedReason::budget);
+  BOOST_TEST(seconds < full_seconds / 2);  // returns at the deadline, not after the solve
 }
 
 BOOST_AUTO_TEST_CASE(path_outcome_prints) {

@@ -1,6 +1,8 @@
 #include "meshing/surface_oracle.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <sstream>
 
@@ -76,6 +78,23 @@ SurfaceOracle& SurfaceOracle::operator=(SurfaceOracle&&) noexcept = default;
 
 const Surface& SurfaceOracle::surface() const { return impl_->surface; }
 
+void SurfaceOracle::set_run_controls(std::uint64_t seed, std::optional<std::chrono::steady_clock::time_point> deadline) {
+  seed_ = seed;
+  deadline_ = deadline;
+}
+
+double SurfaceOracle::seconds_left() const {
+  if (!deadline_) return 0;
+  const double left = std::chrono::duration<double>(*deadline_ - std::chrono::steady_clock::now()).count();
+  return std::max(left, std::numeric_limits<double>::min());
+}
+
+void SurfaceOracle::count_fallback(Primitive primitive) {
+  if (backend_ != SolverBackend::homotopy) return;
+  const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
+  ++stats_[static_cast<int>(primitive)].homotopy_fallbacks;
+}
+
 SolveResult SurfaceOracle::finish(Primitive primitive, SolveResult result,
                                   std::chrono::steady_clock::time_point start) {
   // Only roots inside the domain count; the solver classifies them.
@@ -89,19 +108,33 @@ SolveResult SurfaceOracle::finish(Primitive primitive, SolveResult result,
   s.certified_roots += result.roots.size();
   s.undecided += result.undecided.size();
   s.boxes += result.counters.boxes;
+  if (result.status == SolveStatus::time_limit) ++s.time_limited;
   s.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 
-SolveResult SurfaceOracle::solve_square(int index, const std::vector<double>& parameters,
+SolveResult SurfaceOracle::solve_square(Primitive primitive, const std::vector<double>& parameters,
                                         const Domain& domain, std::size_t box_budget) {
+  const int index = static_cast<int>(primitive);
   const auto& sys = impl_->compiled[index];
   if (backend_ == SolverBackend::homotopy && !impl_->degrees[index].empty()) {
     HomotopyOptions options;
-    return solve_homotopy(sys, impl_->degrees[index], parameters, domain, options);
+    options.seed = seed_;
+    options.deadline = deadline_;
+    HomotopyStatistics paths;
+    options.statistics = &paths;
+    auto result = solve_homotopy(sys, impl_->degrees[index], parameters, domain, options);
+    const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
+    auto& s = stats_[index];
+    s.homotopy_paths += result.counters.paths;
+    s.homotopy_near_real += paths.near_real;
+    s.homotopy_diverging_near_domain += paths.diverging_near_domain;
+    return result;
   }
+  count_fallback(primitive);
   SubdivisionOptions options;
   options.box_budget = box_budget;
+  options.time_limit_seconds = seconds_left();
   return solve_subdivision(sys, parameters, domain, options);
 }
 
@@ -109,6 +142,7 @@ SolveResult SurfaceOracle::surface_line(const Vec3& p, const Vec3& v, double t0,
   const auto start = std::chrono::steady_clock::now();
   UnivariateOptions options;
   options.box_budget = tolerances::mesher_box_budget_1d;
+  options.time_limit_seconds = seconds_left();
   auto r = isolate_line_roots(impl_->compiled[1], impl_->line_polynomial.get(), p, v, t0, t1, options);
   return finish(Primitive::surface_line, std::move(r), start);
 }
@@ -117,7 +151,7 @@ SolveResult SurfaceOracle::surface_critical(const Vec3& d, const Domain& domain,
   const auto start = std::chrono::steady_clock::now();
   const auto frame = orthonormal_frame(d);
   std::vector<double> params{frame.a[0], frame.a[1], frame.a[2], frame.b[0], frame.b[1], frame.b[2]};
-  return finish(Primitive::surface_critical, solve_square(0, params, domain, box_budget), start);
+  return finish(Primitive::surface_critical, solve_square(Primitive::surface_critical, params, domain, box_budget), start);
 }
 
 SolveResult SurfaceOracle::surface_plane_contact(const Vec3& o, const Vec3& a, const Vec3& b,
@@ -127,6 +161,8 @@ SolveResult SurfaceOracle::surface_plane_contact(const Vec3& o, const Vec3& a, c
   SubdivisionOptions options;
   options.box_budget = tolerances::mesher_box_budget_2d;
   options.exclusion_mode = true;
+  options.time_limit_seconds = seconds_left();
+  count_fallback(Primitive::surface_plane_contact);
   auto r = solve_subdivision(impl_->compiled[2], params, domain, options);
   return finish(Primitive::surface_plane_contact, std::move(r), start);
 }
@@ -135,7 +171,7 @@ SolveResult SurfaceOracle::curve_critical(const Vec3& o, const Vec3& a, const Ve
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> params{o[0], o[1], o[2], a[0], a[1], a[2], b[0], b[1], b[2]};
   return finish(Primitive::curve_critical,
-                solve_square(3, params, domain, tolerances::mesher_box_budget_2d), start);
+                solve_square(Primitive::curve_critical, params, domain, tolerances::mesher_box_budget_2d), start);
 }
 
 SolveResult SurfaceOracle::silhouette_plane(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& d,
@@ -143,14 +179,14 @@ SolveResult SurfaceOracle::silhouette_plane(const Vec3& o, const Vec3& a, const 
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> params{o[0], o[1], o[2], a[0], a[1], a[2], b[0], b[1], b[2], d[0], d[1], d[2]};
   return finish(Primitive::silhouette_plane,
-                solve_square(4, params, domain, tolerances::mesher_box_budget_2d), start);
+                solve_square(Primitive::silhouette_plane, params, domain, tolerances::mesher_box_budget_2d), start);
 }
 
 SolveResult SurfaceOracle::silhouette_critical(const Vec3& d, const Vec3& d2, const Domain& domain) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> params{d[0], d[1], d[2], d2[0], d2[1], d2[2]};
   return finish(Primitive::silhouette_critical,
-                solve_square(5, params, domain, tolerances::mesher_box_budget_3d), start);
+                solve_square(Primitive::silhouette_critical, params, domain, tolerances::mesher_box_budget_3d), start);
 }
 
 bool SurfaceOracle::prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) {
@@ -197,26 +233,46 @@ std::optional<Vec3> SurfaceOracle::project(const Vec3& start) const {
 }
 
 nlohmann::json SurfaceOracle::statistics_json() const {
+  const auto counts = [](const PrimitiveStatistics& s) {
+    return nlohmann::json{{"calls", s.calls},
+                          {"certified_roots", s.certified_roots},
+                          {"undecided", s.undecided},
+                          {"boxes", s.boxes},
+                          {"seconds", s.seconds},
+                          {"homotopy_fallbacks", s.homotopy_fallbacks},
+                          {"time_limited", s.time_limited},
+                          {"homotopy_paths", s.homotopy_paths},
+                          {"homotopy_near_real", s.homotopy_near_real},
+                          {"homotopy_diverging_near_domain", s.homotopy_diverging_near_domain}};
+  };
   nlohmann::json per = nlohmann::json::object();
   PrimitiveStatistics total;
   for (int i = 0; i < primitive_count; ++i) {
     const auto& s = stats_[i];
     std::ostringstream name;
     name << static_cast<Primitive>(i);
-    per[name.str()] = {{"calls", s.calls}, {"certified_roots", s.certified_roots},
-                       {"undecided", s.undecided}, {"boxes", s.boxes}, {"seconds", s.seconds}};
+    per[name.str()] = counts(s);
     total.calls += s.calls;
     total.certified_roots += s.certified_roots;
     total.undecided += s.undecided;
     total.boxes += s.boxes;
     total.seconds += s.seconds;
+    total.homotopy_fallbacks += s.homotopy_fallbacks;
+    total.time_limited += s.time_limited;
+    total.homotopy_paths += s.homotopy_paths;
+    total.homotopy_near_real += s.homotopy_near_real;
+    total.homotopy_diverging_near_domain += s.homotopy_diverging_near_domain;
   }
-  return {{"systems", total.calls}, {"certified_roots", total.certified_roots},
-          {"undecided", total.undecided}, {"boxes", total.boxes}, {"seconds", total.seconds},
-          {"per_primitive", per},
-          {"cone_certificates",
-           {{"attempts", cone_stats_.attempts}, {"proved", cone_stats_.proved}, {"boxes", cone_stats_.boxes},
-            {"seconds", cone_stats_.seconds}}}};
+  nlohmann::json j = counts(total);
+  j.erase("calls");
+  j["systems"] = total.calls;
+  j["per_primitive"] = per;
+  j["cone_certificates"] = {{"attempts", cone_stats_.attempts},
+                            {"proved", cone_stats_.proved},
+                            {"boxes", cone_stats_.boxes},
+                            {"seconds", cone_stats_.seconds}};
+  j["backend"] = backend_ == SolverBackend::homotopy ? "homotopy" : "subdivision";
+  return j;
 }
 
 }  // namespace delmesh

@@ -3,7 +3,17 @@
 //! The numerical primitives of §5.2 for one surface Σ = {E = 0} inside a box B, compiled once,
 //! behind one interface used by every check of the mesher: a solver backend (certified
 //! subdivision, or homotopy for square polynomial systems), per-call budgets from tolerances.h,
-//! and statistics (calls, certified roots, undecided regions, boxes, seconds per primitive).
+//! the run's controls (seed and deadline, set_run_controls()), and statistics (calls, certified
+//! roots, undecided regions, boxes, seconds, homotopy fallbacks and solves cut by the deadline per
+//! primitive).
+//!
+//! Backend homotopy: the square systems of surface_critical, curve_critical, silhouette_plane and
+//! silhouette_critical are solved by solve_homotopy() when E is polynomial; when E is not
+//! polynomial (or a system's degrees cannot be computed) they are solved by subdivision instead,
+//! and every such call counts one homotopy fallback of its primitive.  surface_plane_contact (an
+//! over-determined system, exclusion mode) is always solved by subdivision, and counts one
+//! fallback per call under this backend too.  surface_line always uses the univariate isolator
+//! (certified, under either backend) and counts none.
 //!
 //! The primitives and the certificate may be called from several threads at once: the compiled
 //! systems keep their scratch per thread, and the statistics are updated under a lock.
@@ -16,6 +26,7 @@
 
 #include <array>
 #include <chrono>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <ostream>
@@ -47,6 +58,13 @@ inline constexpr int primitive_count = 6;
 
 struct PrimitiveStatistics {
   std::size_t calls = 0, certified_roots = 0, undecided = 0, boxes = 0;
+  //! Calls answered by subdivision although the backend is homotopy (see the file comment).
+  std::size_t homotopy_fallbacks = 0;
+  //! Calls whose solve the deadline stopped (status time_limit; the rest is undecided, budget).
+  std::size_t time_limited = 0;
+  //! Homotopy solves: paths tracked, near-real endpoints and diverging paths near the domain
+  //! (solve_homotopy(), rules 2–4).
+  std::size_t homotopy_paths = 0, homotopy_near_real = 0, homotopy_diverging_near_domain = 0;
   double seconds = 0;
 };
 
@@ -57,6 +75,16 @@ class SurfaceOracle {
   ~SurfaceOracle();
   SurfaceOracle(SurfaceOracle&&) noexcept;
   SurfaceOracle& operator=(SurfaceOracle&&) noexcept;
+
+  //! The run's controls, for every later call: `seed` seeds each homotopy solve (γ and the
+  //! projective patch; HomotopyOptions::seed), and `deadline`, if set, is an absolute end for every
+  //! solve: each homotopy solve gets it as HomotopyOptions::deadline (read before every path step),
+  //! each subdivision solve and univariate isolation the time left as time_limit_seconds (the least
+  //! positive double once it has passed, so they stop at their first clock check).  A solve the
+  //! deadline stops returns status time_limit with its unexplored region undecided (budget).
+  //! Defaults until called: seed 1, no deadline.  Call before the primitives are used from
+  //! several threads (the controls are read without a lock).
+  void set_run_controls(std::uint64_t seed, std::optional<std::chrono::steady_clock::time_point> deadline);
 
   const Box3& box() const { return box_; }
   const Surface& surface() const;
@@ -93,19 +121,27 @@ class SurfaceOracle {
   std::optional<Vec3> project(const Vec3& x) const;
 
   const std::array<PrimitiveStatistics, primitive_count>& statistics() const { return stats_; }
-  //! {systems, certified_roots, undecided, boxes, seconds, per_primitive: {...},
-  //!  cone_certificates: {attempts, proved, boxes, seconds}}
+  //! {systems, certified_roots, undecided, boxes, seconds, homotopy_fallbacks, time_limited,
+  //!  homotopy_paths, homotopy_near_real, homotopy_diverging_near_domain, per_primitive: {name:
+  //!  {the same counts for that primitive}}, cone_certificates: {attempts, proved, boxes, seconds},
+  //!  backend: "subdivision" or "homotopy"}
   nlohmann::json statistics_json() const;
 
  private:
   SolveResult finish(Primitive primitive, SolveResult result, std::chrono::steady_clock::time_point start);
-  SolveResult solve_square(int index, const std::vector<double>& parameters, const Domain& domain,
+  SolveResult solve_square(Primitive primitive, const std::vector<double>& parameters, const Domain& domain,
                            std::size_t box_budget);
+  //! time_limit_seconds for a subdivision solve or univariate isolation started now: 0 without a
+  //! deadline, else the time left (at least the least positive double).
+  double seconds_left() const;
+  void count_fallback(Primitive primitive);
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
   Box3 box_;
   SolverBackend backend_;
+  std::uint64_t seed_ = 1;
+  std::optional<std::chrono::steady_clock::time_point> deadline_;
   std::array<PrimitiveStatistics, primitive_count> stats_{};
   struct ConeStatistics {
     std::size_t attempts = 0, proved = 0, boxes = 0;

@@ -1,0 +1,170 @@
+// The homotopy backend of the mesher (surface_oracle.h, del_mesh.h with SolverBackend::homotopy):
+// the run's deadline reaches every solve, fallbacks to subdivision are counted, and DelMesh with
+// the homotopy backend meets Theorem 6.1 on catalog surfaces.
+#include <chrono>
+#include <string>
+
+#include <boost/test/unit_test.hpp>
+
+#include "common/tolerances.h"
+#include "meshing/del_mesh.h"
+#include "meshing/mesh_checker.h"
+#include "meshing/surface_oracle.h"
+#include "meshing/theorem_bounds.h"
+#include "solvers/query_geometry.h"
+#include "symbolic/catalog.h"
+
+using namespace delmesh;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+SurfaceOracle homotopy_oracle(const std::string& name) {
+  const auto& entry = catalog_entry(name);
+  return SurfaceOracle(entry.surface(), entry.box, SolverBackend::homotopy);
+}
+
+// SilhouetteCritical over the whole box: a 3-D homotopy solve with many paths (60 for the torus,
+// 616 for genus2).
+SolveResult whole_box_silhouette_critical(SurfaceOracle& oracle) {
+  return oracle.silhouette_critical(unit_vector({3, -5, 8}), unit_vector({1, 2, -2}), box_domain(oracle.box()));
+}
+
+// Theorem 6.1 on the output of DelMesh with the homotopy backend, checked by the independent
+// checker against the catalog's topology.
+nlohmann::json check_theorem_6_1(const std::string& name, double lambda) {
+  const auto& entry = catalog_entry(name);
+  DelMeshOptions options;
+  options.lambda = lambda;
+  options.solver = SolverBackend::homotopy;
+  const auto start = Clock::now();
+  const auto result = del_mesh(entry.surface(), entry.box, options);
+  const auto r = check_mesh(result.mesh);
+  const auto b = theorem_bounds(lambda);
+  BOOST_TEST_MESSAGE(name << " lambda " << lambda << " (homotopy): " << seconds_since(start) << " s, " << r.vertices
+                          << " vertices, min angle " << r.min_angle_deg << ", rho " << r.max_radius_edge_ratio
+                          << ", roughness " << r.max_roughness_rad);
+  BOOST_TEST(result.status == MeshStatus::complete);
+  BOOST_TEST(r.closed);
+  BOOST_TEST(r.manifold);
+  BOOST_TEST(r.orientable);
+  BOOST_TEST(r.components == entry.components);
+  BOOST_TEST(r.genus_per_component == entry.genus_per_component, boost::test_tools::per_element());
+  BOOST_TEST(r.min_angle_deg >= b.min_angle_deg - 1e-9);
+  BOOST_TEST(r.max_radius_edge_ratio <= b.max_radius_edge_ratio + 1e-9);
+  BOOST_TEST(r.max_roughness_rad <= b.max_roughness_rad + 1e-9);
+  const auto& solver = result.statistics.at("solver");
+  BOOST_TEST(solver.at("backend") == "homotopy");
+  BOOST_TEST(solver.at("time_limited") == 0u);
+  return solver;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(homotopy_mesh)
+
+BOOST_AUTO_TEST_CASE(a_deadline_in_the_past_stops_a_homotopy_solve_at_once) {
+  auto oracle = homotopy_oracle("torus");
+  oracle.set_run_controls(1, Clock::now() - std::chrono::seconds(1));
+  const auto start = Clock::now();
+  const SolveResult r = whole_box_silhouette_critical(oracle);
+  const double seconds = seconds_since(start);
+  BOOST_TEST(seconds < 0.5);
+  BOOST_TEST(r.status == SolveStatus::time_limit);
+  BOOST_TEST(r.roots.empty());
+  BOOST_REQUIRE(!r.undecided.empty());
+  BOOST_TEST(r.undecided.back().reason == UndecidedReason::budget);
+  const auto stats = oracle.statistics_json();
+  BOOST_TEST(stats["per_primitive"]["silhouette_critical"]["time_limited"] == 1u);
+  BOOST_TEST(stats["per_primitive"]["silhouette_critical"]["homotopy_fallbacks"] == 0u);
+  BOOST_TEST(stats["time_limited"] == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(a_near_deadline_cuts_one_long_homotopy_solve) {
+  // The same solve without a deadline, then with a deadline a tenth of its time away: the solve
+  // stops there (its paths read the clock before every step) and says so.
+  auto oracle = homotopy_oracle("genus2");
+  auto start = Clock::now();
+  const SolveResult full = whole_box_silhouette_critical(oracle);
+  const double full_seconds = seconds_since(start);
+  BOOST_TEST(full.status != SolveStatus::time_limit);
+
+  start = Clock::now();
+  oracle.set_run_controls(1, start + std::chrono::duration_cast<Clock::duration>(
+                                         std::chrono::duration<double>(full_seconds / 10)));
+  const SolveResult cut = whole_box_silhouette_critical(oracle);
+  const double seconds = seconds_since(start);
+  BOOST_TEST_MESSAGE("genus2 silhouette_critical: " << full_seconds << " s, " << full.counters.paths
+                                                   << " paths; with the deadline " << seconds << " s, "
+                                                   << cut.counters.paths << " paths");
+  BOOST_TEST(cut.status == SolveStatus::time_limit);
+  BOOST_TEST(cut.counters.paths < full.counters.paths);
+  BOOST_REQUIRE(!cut.undecided.empty());
+  BOOST_TEST(cut.undecided.back().reason == UndecidedReason::budget);
+  BOOST_TEST(seconds < full_seconds / 2);
+  BOOST_TEST(oracle.statistics_json()["per_primitive"]["silhouette_critical"]["time_limited"] == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(the_deadline_reaches_the_subdivision_fallback) {
+  // two_blobs is not polynomial: the homotopy backend falls back to subdivision, counted, and the
+  // deadline stops that solve too.
+  auto oracle = homotopy_oracle("two_blobs");
+  oracle.set_run_controls(1, Clock::now() - std::chrono::seconds(1));
+  const SolveResult r =
+      oracle.surface_critical(unit_vector({3, -5, 8}), box_domain(oracle.box()), tolerances::mesher_box_budget_global);
+  BOOST_TEST(r.status == SolveStatus::time_limit);
+  const auto stats = oracle.statistics_json();
+  BOOST_TEST(stats["per_primitive"]["surface_critical"]["homotopy_fallbacks"] == 1u);
+  BOOST_TEST(stats["per_primitive"]["surface_critical"]["time_limited"] == 1u);
+  BOOST_TEST(stats["homotopy_paths"] == 0u);
+}
+
+BOOST_AUTO_TEST_CASE(fallbacks_are_counted_per_primitive) {
+  // Sphere, homotopy backend: SurfaceCritical by homotopy (no fallback), SurfacePlaneContact (not
+  // square) by subdivision (a fallback), SurfaceLine by the univariate isolator (none).
+  auto oracle = homotopy_oracle("sphere");
+  const SolveResult critical =
+      oracle.surface_critical(unit_vector({0, 0, 1}), box_domain(oracle.box()), tolerances::mesher_box_budget_global);
+  BOOST_TEST(critical.roots.size() == 2u);
+  (void)oracle.surface_plane_contact({0, 0, 0.5}, {1, 0, 0}, {0, 1, 0},
+                                     Domain::from_box({{{-0.1, 0.1}}, {{-0.1, 0.1}}}));
+  (void)oracle.surface_line({0, 0, 0}, {1, 0, 0}, 0.5, 2);
+  const auto stats = oracle.statistics_json();
+  BOOST_TEST(stats["backend"] == "homotopy");
+  BOOST_TEST(stats["per_primitive"]["surface_critical"]["homotopy_fallbacks"] == 0u);
+  BOOST_TEST(stats["per_primitive"]["surface_critical"]["homotopy_paths"].get<std::size_t>() >= 1u);
+  BOOST_TEST(stats["per_primitive"]["surface_plane_contact"]["homotopy_fallbacks"] == 1u);
+  BOOST_TEST(stats["per_primitive"]["surface_line"]["homotopy_fallbacks"] == 0u);
+  BOOST_TEST(stats["homotopy_fallbacks"] == 1u);
+
+  // The subdivision backend counts none.
+  const auto& entry = catalog_entry("sphere");
+  SurfaceOracle subdivision(entry.surface(), entry.box, SolverBackend::subdivision);
+  (void)subdivision.surface_plane_contact({0, 0, 0.5}, {1, 0, 0}, {0, 1, 0},
+                                          Domain::from_box({{{-0.1, 0.1}}, {{-0.1, 0.1}}}));
+  BOOST_TEST(subdivision.statistics_json()["backend"] == "subdivision");
+  BOOST_TEST(subdivision.statistics_json()["homotopy_fallbacks"] == 0u);
+}
+
+BOOST_AUTO_TEST_CASE(sphere_meets_theorem_6_1) {
+  const auto solver = check_theorem_6_1("sphere", 0.06);
+  BOOST_TEST(solver.at("homotopy_paths").get<std::size_t>() > 0u);
+}
+
+BOOST_AUTO_TEST_CASE(two_blobs_meets_theorem_6_1_by_fallbacks) {
+  // Not polynomial: every square system falls back to subdivision, and the statistics say so.
+  const auto solver = check_theorem_6_1("two_blobs", 0.06);
+  BOOST_TEST(solver.at("homotopy_paths") == 0u);
+  BOOST_TEST(solver.at("homotopy_fallbacks").get<std::size_t>() ==
+             solver.at("systems").get<std::size_t>() - solver.at("per_primitive").at("surface_line").at("calls").get<std::size_t>());
+}
+
+BOOST_AUTO_TEST_CASE(torus_meets_theorem_6_1, *boost::unit_test::label("slow")) {
+  const auto solver = check_theorem_6_1("torus", 0.06);
+  BOOST_TEST(solver.at("homotopy_paths").get<std::size_t>() > 0u);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

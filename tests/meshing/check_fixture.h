@@ -70,6 +70,15 @@ inline std::vector<double> component_signed_volumes(const SurfaceMesh& mesh) {
   return component_signed_volumes(points, triangles);
 }
 
+//! Asserts that the statistics report a fully certified run: status "complete" and nothing left
+//! unsettled (no unsettled region, no defect of the output).
+inline void check_complete(const nlohmann::json& statistics) {
+  BOOST_TEST(statistics.at("status").get<std::string>() == "complete");
+  const auto& unsettled = statistics.at("unsettled");
+  BOOST_TEST(unsettled.at("count").get<std::size_t>() == 0u, unsettled.dump());
+  BOOST_TEST(unsettled.at("output_defects").empty(), unsettled.dump());
+}
+
 //! Asserts what the statistics and the mesh of a complete DelMesh run on a catalog surface must
 //! say: every triangle of Tri S|Σ is in the mesh (faces_not_added = 0), no two triangles traverse
 //! an edge in the same direction (orientation_inconsistent_edges = 0), the mesh has the reported

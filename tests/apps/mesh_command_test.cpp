@@ -1,14 +1,54 @@
+#include <algorithm>
 #include <filesystem>
 
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>
 
+#include "meshing/mesh_checker.h"
+#include "meshing/mesh_io.h"
 #include "tests/apps/run_delmesh.h"
+#include "tests/meshing/check_fixture.h"
 
 using namespace delmesh::test;
 
 namespace {
 
+//! The statistics without their timings: every key whose name begins with "seconds", at any depth.
+nlohmann::json without_timings(nlohmann::json j) {
+  if (!j.is_object()) return j;
+  nlohmann::json kept = nlohmann::json::object();
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (it.key().rfind("seconds", 0) != 0) kept[it.key()] = without_timings(it.value());
+  return kept;
+}
+
+//! Reads a mesh written by `delmesh mesh` as a triangle soup (a partial mesh need not be a
+//! 2-manifold) and checks it.
+delmesh::MeshReport read_and_check(const std::filesystem::path& path, delmesh::TriangleSoup& soup) {
+  BOOST_REQUIRE_NO_THROW(soup = delmesh::read_triangle_soup(path.string()));
+  return delmesh::check_mesh(soup.points, soup.triangles);
+}
+
+//! Meshes `surface` with `seed` and checks the file against the statistics and the catalog's
+//! topology (`components`, `genus`, from `delmesh surfaces --json`).
+void check_topology_for_seed(const std::string& surface, const std::string& phase, int seed, int components,
+                             const std::vector<int>& genus) {
+  ScratchDirectory dir;
+  const RunResult r = run_delmesh({"mesh", "--surface", surface, "--phase", phase, "--seed", std::to_string(seed),
+                                   "--quiet", "--out", "m.off", "--stats", "m.json"},
+                                  dir.path);
+  BOOST_TEST_CONTEXT(surface << " seed " << seed) {
+    BOOST_TEST(r.exit_code == 0, r.err);
+    const nlohmann::json stats = nlohmann::json::parse(read_text(dir / "m.json"));
+    check_complete(stats);
+    delmesh::TriangleSoup soup;
+    const auto report = read_and_check(dir / "m.off", soup);
+    BOOST_TEST(report.components == components);
+    BOOST_TEST(report.has_topology(genus), report);
+    BOOST_TEST(stats.at("genus_per_component").get<std::vector<int>>() == genus);
+    check_oriented_output(stats, soup.points, soup.triangles);
+  }
+}
 
 //! Files of the scratch directory other than the runner's own.
 std::vector<std::string> files_in(const ScratchDirectory& dir) {
@@ -96,7 +136,10 @@ BOOST_AUTO_TEST_CASE(sphere_mesh_and_statistics_are_written) {
                           "height_direction", "seconds"}) {
     BOOST_TEST(stats.contains(key), key);
   }
-  BOOST_TEST(stats.at("status").get<std::string>() == "complete");
+  check_complete(stats);
+  delmesh::TriangleSoup soup;
+  (void)read_and_check(dir / "sphere.off", soup);
+  check_oriented_output(stats, soup.points, soup.triangles);
   // The independent checker, from the file alone.
   const RunResult check = run_delmesh({"check", "sphere.off", "--lambda", "0.06", "--json"}, dir.path);
   BOOST_TEST(check.exit_code == 0, check.out);
@@ -123,15 +166,31 @@ BOOST_AUTO_TEST_CASE(progress_and_the_uncovered_lambda_warning_go_to_stderr) {
   BOOST_TEST(run_delmesh({"check", "s.ply"}, dir.path).exit_code == 0);
 }
 
+// The limit stops SampleTopology (8 points: the torus's 4 seeds and 4 more) or the geometric
+// refinement (100 points; SampleTopology needs about 30).  Samples are inserted one at a time
+// after the seeds, which go in together, so the run stops with exactly max(limit, seeds) samples.
+// The partial mesh is readable, has the vertices and triangles the statistics report, and its
+// vertices are samples.
 BOOST_AUTO_TEST_CASE(a_point_limit_stops_with_exit_3_and_writes_the_partial_outputs) {
-  ScratchDirectory dir;
-  const RunResult r =
-      run_delmesh({"mesh", "--surface", "torus", "--max-points", "8", "--quiet", "--out", "t.obj"}, dir.path);
-  BOOST_TEST(!r.signalled);
-  BOOST_TEST(r.exit_code == 3, r.err);
-  BOOST_TEST(std::filesystem::exists(dir / "t.obj"));
-  const nlohmann::json stats = nlohmann::json::parse(read_text(dir / "torus.json"));
-  BOOST_TEST(stats.at("status").get<std::string>() == "point_limit");
+  for (std::size_t limit : {8, 100}) {
+    ScratchDirectory dir;
+    const RunResult r = run_delmesh(
+        {"mesh", "--surface", "torus", "--max-points", std::to_string(limit), "--quiet", "--out", "t.obj"}, dir.path);
+    BOOST_TEST(!r.signalled);
+    BOOST_TEST(r.exit_code == 3, r.err);
+    BOOST_REQUIRE(std::filesystem::exists(dir / "t.obj"));
+    const nlohmann::json stats = nlohmann::json::parse(read_text(dir / "torus.json"));
+    BOOST_TEST(stats.at("status").get<std::string>() == "point_limit");
+    const auto points = stats.at("points").get<std::size_t>();
+    const auto seeds = stats.at("insertions").at("seeds").get<std::size_t>();
+    BOOST_TEST(points == std::max(limit, seeds), "limit " << limit);
+    delmesh::TriangleSoup soup;
+    const auto report = read_and_check(dir / "t.obj", soup);
+    BOOST_TEST(report.vertices == stats.at("vertices").get<std::size_t>(), "limit " << limit);
+    BOOST_TEST(report.triangles == stats.at("triangles").get<std::size_t>(), "limit " << limit);
+    BOOST_TEST(report.vertices <= points, "limit " << limit);
+    BOOST_TEST(report.unreferenced_vertices == 0u);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(a_time_limit_stops_with_exit_3_and_replaces_outputs_atomically) {
@@ -148,6 +207,75 @@ BOOST_AUTO_TEST_CASE(a_time_limit_stops_with_exit_3_and_replaces_outputs_atomica
   BOOST_TEST(read_text(dir / "g.off") != octahedron_off);  // replaced by the partial mesh
   BOOST_TEST((files_in(dir) == std::vector<std::string>{"g.json", "g.off"}));
   BOOST_TEST(run_delmesh({"check", "g.off"}, dir.path).exit_code == 0);
+  // It stopped at the first check after the deadline (a check takes milliseconds; the bound
+  // leaves room for a loaded machine), far below the default point limit.
+  const double seconds = stats.at("seconds").get<double>();
+  BOOST_TEST(seconds >= 0.5);
+  BOOST_TEST(seconds < 10.5);
+  const auto points = stats.at("points").get<std::size_t>();
+  BOOST_TEST(points < 200000u);
+  delmesh::TriangleSoup soup;
+  const auto report = read_and_check(dir / "g.off", soup);
+  BOOST_TEST(report.vertices == stats.at("vertices").get<std::size_t>());
+  BOOST_TEST(report.triangles == stats.at("triangles").get<std::size_t>());
+  BOOST_TEST(report.vertices <= points);
+  BOOST_TEST(report.vertices > 0u);
+}
+
+// Two processes with the same seed write the same bytes: the mesh file, and the statistics but
+// for the timings.  Another seed gives another mesh (so the comparison sees a difference).
+BOOST_AUTO_TEST_CASE(same_seed_same_files_across_processes) {
+  const std::vector<std::string> args{"mesh", "--surface", "torus", "--seed", "5", "--quiet",
+                                      "--out", "m.off", "--stats", "m.json"};
+  ScratchDirectory first, second, other;
+  const RunResult a = run_delmesh(args, first.path), b = run_delmesh(args, second.path);
+  BOOST_TEST(a.exit_code == 0, a.err);
+  BOOST_TEST(b.exit_code == 0, b.err);
+  const std::string mesh = read_text(first / "m.off");
+  BOOST_TEST(!mesh.empty());
+  BOOST_TEST((mesh == read_text(second / "m.off")));
+  const nlohmann::json stats_a = nlohmann::json::parse(read_text(first / "m.json")),
+                       stats_b = nlohmann::json::parse(read_text(second / "m.json"));
+  check_complete(stats_a);
+  BOOST_TEST(without_timings(stats_a) == without_timings(stats_b),
+             "\n" << without_timings(stats_a).dump(1) << "\n" << without_timings(stats_b).dump(1));
+  BOOST_TEST(without_timings(stats_a).contains("solver"));
+  delmesh::TriangleSoup soup;
+  (void)read_and_check(first / "m.off", soup);
+  check_oriented_output(stats_a, soup.points, soup.triangles);
+
+  auto other_args = args;
+  other_args[4] = "6";
+  BOOST_TEST(run_delmesh(other_args, other.path).exit_code == 0);
+  BOOST_TEST((read_text(other / "m.off") != mesh));
+}
+
+// Three seeds (three generic height directions, three sample sets) give the catalog's topology:
+// the components and the genus of each, from the file alone, with every component outward.
+// SampleTopology is what guarantees the topology; the fast tier runs it alone on surfaces of
+// genus 0 and 1 and with two components.
+BOOST_AUTO_TEST_CASE(three_seeds_same_topology_at_phase_topology) {
+  const nlohmann::json catalog = nlohmann::json::parse(run_delmesh({"surfaces", "--json"}).out);
+  int checked = 0;
+  for (const auto& entry : catalog) {
+    const auto name = entry.at("name").get<std::string>();
+    if (name != "sphere" && name != "torus" && name != "two_blobs") continue;
+    ++checked;
+    for (int seed : {1, 2, 3})
+      check_topology_for_seed(name, "topology", seed, entry.at("components").get<int>(),
+                              entry.at("genus_per_component").get<std::vector<int>>());
+  }
+  BOOST_TEST(checked == 3);
+}
+
+// The same for every catalog surface, meshed completely at the default λ = 0.06.
+BOOST_AUTO_TEST_CASE(three_seeds_same_topology_on_the_catalog, *boost::unit_test::label("slow")) {
+  const nlohmann::json catalog = nlohmann::json::parse(run_delmesh({"surfaces", "--json"}).out);
+  BOOST_TEST(catalog.size() >= 10u);
+  for (const auto& entry : catalog)
+    for (int seed : {1, 2, 3})
+      check_topology_for_seed(entry.at("name").get<std::string>(), "all", seed, entry.at("components").get<int>(),
+                              entry.at("genus_per_component").get<std::vector<int>>());
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -120,6 +120,7 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
     limits.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                   std::chrono::duration<double>(options.time_limit_seconds));
   limits.progress = options.progress;
+  oracle.set_run_controls(options.seed, limits.deadline);
   Refinement refinement(oracle, options.seed, limits, RecheckPolicy::new_faces, options.threads);
 
   SeedReport seeds;

@@ -27,6 +27,10 @@ SeedReport insert_seeds(Refinement& refinement) {
     const Vec3 d = generic_direction(refinement.seed(), k);
     ++report.attempts;
     const auto result = oracle.surface_critical(d, domain, tolerances::mesher_box_budget_global);
+    if (result.status == SolveStatus::time_limit) {
+      report.time_limited = true;
+      return report;
+    }
     if (result.status == SolveStatus::non_isolated) continue;
     report.height_direction = d;
     std::vector<Vec3> points;
@@ -49,6 +53,7 @@ SeedReport insert_seeds(Refinement& refinement) {
 
 MeshStatus sample_topology(Refinement& refinement, SeedReport& report) {
   report = insert_seeds(refinement);
+  if (report.time_limited) return MeshStatus::time_limit;
   if (const auto status = refinement.run(); status != MeshStatus::complete) return status;
   for (VertexId id : refinement.delaunay().vertices()) {
     if (!refinement.delaunay().contains(id) || !refinement.delaunay().is_seed(id)) continue;

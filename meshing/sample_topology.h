@@ -22,13 +22,15 @@ struct SeedReport {
   std::size_t seeds = 0;        //!< seeds inserted
   std::size_t undecided = 0;    //!< undecided regions of the seed solve
   int attempts = 0;             //!< height directions tried
+  bool time_limited = false;    //!< the run's deadline stopped the seed solve: no seed inserted
 };
 
 //! The k-th seeded generic unit direction (k = 0, 1, …).
 Vec3 generic_direction(std::uint64_t seed, int k);
 
 //! Step 1: inserts the seeds into S.  Throws InvalidInput if Σ is empty in the box (no
-//! critical point) or no generic height direction is found.
+//! critical point) or no generic height direction is found.  If the run's deadline
+//! (SurfaceOracle::set_run_controls) stops the seed solve, inserts nothing and says so.
 SeedReport insert_seeds(Refinement& refinement);
 
 //! Steps 1–3.  Returns the status of the last Topology run (a limit stops it early).

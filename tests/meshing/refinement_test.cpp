@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "meshing/del_mesh.h"
+#include "meshing/detail/vec3.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/sample_topology.h"
 #include "meshing/refinement.h"
@@ -123,6 +124,69 @@ BOOST_AUTO_TEST_CASE(seeds_are_deleted) {
 BOOST_AUTO_TEST_CASE(every_catalog_surface_three_seeds, *boost::unit_test::label("slow")) {
   for (const auto& entry : catalog())
     for (std::uint64_t seed : {1, 2, 3}) check_catalog_topology(entry.name, seed);
+}
+
+// A complete run on a catalog surface leaves nothing unsettled and certifies as complete.
+BOOST_AUTO_TEST_CASE(clean_run_certifies_complete) {
+  TopologyRun run(catalog_entry("torus"), 1);
+  BOOST_TEST_REQUIRE(run.status == MeshStatus::complete);
+  BOOST_TEST(run.topology.unsettled().empty());
+  const Certification c = run.topology.certify(run.status, false);
+  BOOST_TEST(c.status == MeshStatus::complete);
+  BOOST_TEST(c.unsettled.empty());
+  BOOST_TEST(c.unresolved_edge_regions == 0u);
+  // A defective output alone makes it uncertified; a limit status is never upgraded.
+  BOOST_TEST(run.topology.certify(run.status, true).status == MeshStatus::uncertified);
+  BOOST_TEST(run.topology.certify(MeshStatus::point_limit, true).status == MeshStatus::point_limit);
+}
+
+// Witnesses within 15 % of the box diagonal of a sample count as duplicates: the checks' witnesses
+// are rejected, the faces that gave them stay unsettled on the final Vor S, and the run cannot
+// certify as complete.
+BOOST_AUTO_TEST_CASE(rejected_witnesses_leave_the_run_uncertified) {
+  const auto& entry = catalog_entry("torus");
+  SurfaceOracle oracle(entry.surface(), entry.box, SolverBackend::subdivision);
+  RefinementLimits limits;
+  limits.duplicate_relative_distance = 0.15;
+  Refinement refinement(oracle, 1, limits);
+  SeedReport seeds;
+  const MeshStatus status = sample_topology(refinement, seeds);
+  BOOST_TEST_REQUIRE(status == MeshStatus::complete);
+  BOOST_TEST_REQUIRE(refinement.rejected_witnesses() > 0u);
+  const auto unsettled = refinement.unsettled();
+  BOOST_TEST_REQUIRE(!unsettled.empty());
+  for (const auto& u : unsettled) {
+    BOOST_TEST(u.reason == UnsettledReason::rejected_witness);
+    BOOST_TEST(std::abs(oracle.E(u.location)) < 1e-6);  // a witness: a point of Σ
+  }
+  BOOST_TEST(refinement.certify(status, false).status == MeshStatus::uncertified);
+}
+
+// Six samples at the vertices of an octahedron centred at (1,0,0) ∈ Σ (the unit sphere) are
+// cospherical: the Voronoi edges of the inner triangles shrink to the point (1,0,0), which Σ
+// passes through.  Those degenerate edges are unresolved, and the run cannot certify as complete.
+BOOST_AUTO_TEST_CASE(degenerate_voronoi_edge_on_the_surface_is_unresolved) {
+  SurfaceOracle oracle(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.6), SolverBackend::subdivision);
+  Refinement refinement(oracle, 1, RefinementLimits{});
+  for (const Vec3& x : std::vector<Vec3>{{1.5, 0, 0}, {0.5, 0, 0}, {1, 0.5, 0}, {1, -0.5, 0}, {1, 0, 0.5}, {1, 0, -0.5}})
+    BOOST_TEST_REQUIRE(refinement.insert(Witness{x, CheckKind::seed, -1, false}).has_value());
+  const Certification c = refinement.certify(MeshStatus::complete, false);
+  BOOST_TEST_REQUIRE(c.unresolved_edge_regions > 0u);
+  BOOST_TEST(c.status == MeshStatus::uncertified);
+  for (const auto& u : c.unsettled) {
+    BOOST_TEST(u.reason == UnsettledReason::unresolved_crossing);
+    BOOST_TEST(detail::distance(u.location, {1, 0, 0}) < 1e-9);
+  }
+}
+
+// The same octahedron centred at (0.5,0,0), inside the ball: its degenerate edges are far from Σ
+// and nothing is unresolved.
+BOOST_AUTO_TEST_CASE(degenerate_voronoi_edge_off_the_surface_is_settled) {
+  SurfaceOracle oracle(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.6), SolverBackend::subdivision);
+  Refinement refinement(oracle, 1, RefinementLimits{});
+  for (const Vec3& x : std::vector<Vec3>{{1, 0, 0}, {0, 0, 0}, {0.5, 0.5, 0}, {0.5, -0.5, 0}, {0.5, 0, 0.5}, {0.5, 0, -0.5}})
+    BOOST_TEST_REQUIRE(refinement.insert(Witness{x, CheckKind::seed, -1, false}).has_value());
+  BOOST_TEST(refinement.certify(MeshStatus::complete, false).unresolved_edge_regions == 0u);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

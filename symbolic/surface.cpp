@@ -71,7 +71,13 @@ Box3 Box3::parse(const std::string& text) {
     if (!(box.lo[i] < box.hi[i]))
       throw InvalidInput("box \"" + text + "\": empty range for " + names[i] + " (need " + names[i] +
                          "0 < " + names[i] + "1)");
+    if (!std::isfinite(box.hi[i] - box.lo[i]))
+      throw InvalidInput("box \"" + text + "\": too large: the width " + names[i] + "1 - " + names[i] +
+                         "0 overflows double precision; rescale the coordinates");
   }
+  if (!std::isfinite(box.diagonal()))
+    throw InvalidInput("box \"" + text + "\": too large: the square of its diagonal overflows double precision "
+                       "(widths up to about 1e154); rescale the coordinates");
   return box;
 }
 
@@ -93,10 +99,8 @@ double Box3::diagonal() const {
 
 namespace {
 
-//! Input limits (not tolerances): a decimal literal's exponent, and an integer power, are bounded
-//! so that a typo cannot make the exact arithmetic run out of memory.
-constexpr long kMaxDecimalExponent = 400;
-constexpr long kMaxPower = 1000;
+constexpr long kMaxDecimalExponent = Surface::max_decimal_exponent;
+constexpr long kMaxPower = Surface::max_power;
 
 //! The exact rational value of a decimal literal "123", "0.16", ".5", "1.5e-3", "2E4".
 GiNaC::numeric decimal_to_rational(const std::string& literal) {
@@ -151,8 +155,16 @@ struct Token {
   std::size_t position;  // 1-based column in the original text
 };
 
+//! The text for a message: itself when short, else its beginning and its length (an error stays
+//! one readable line).
+std::string abbreviated(const std::string& text) {
+  constexpr std::size_t shown = 60;
+  if (text.size() <= shown) return "\"" + text + "\"";
+  return "\"" + text.substr(0, shown) + "...\" (" + std::to_string(text.size()) + " characters)";
+}
+
 std::string where(const std::string& text, std::size_t position) {
-  return "at position " + std::to_string(position) + " of \"" + text + "\"";
+  return "at position " + std::to_string(position) + " of " + abbreviated(text);
 }
 
 std::vector<Token> tokenize(const std::string& text) {
@@ -229,10 +241,17 @@ class Recognizer {
   const Token& next() { return tokens_[at_++]; }
   [[noreturn]] void fail(const std::string& what, const Token& token) const {
     if (token.kind == TokenKind::end)
-      throw InvalidInput("syntax error: " + what + " at the end of \"" + text_ + "\"");
+      throw InvalidInput("syntax error: " + what + " at the end of " + abbreviated(text_));
     throw InvalidInput("syntax error: " + what + " " + where(text_, token.position));
   }
   static std::string describe(const Token& t) { return t.kind == TokenKind::end ? "end of input" : "'" + t.text + "'"; }
+
+  //! Entered at every '(' (of a parenthesis, a function call or an exponent): the recursion, and
+  //! GiNaC's recursive algorithms later, stay within Surface::max_nesting levels.
+  void open(const Token& t) {
+    if (++depth_ > Surface::max_nesting)
+      fail("parentheses nested more than " + std::to_string(Surface::max_nesting) + " deep", t);
+  }
 
   void expression() {
     if (peek().kind == TokenKind::op && (peek().text == "+" || peek().text == "-")) next();
@@ -259,10 +278,12 @@ class Recognizer {
   void exponent(int depth) {
     const Token& t = next();
     if (t.kind == TokenKind::lparen) {
+      open(t);
       if (peek().kind == TokenKind::op && (peek().text == "+" || peek().text == "-")) next();
       exponent(depth + 1);
       const Token& close = next();
       if (close.kind != TokenKind::rparen) fail("non-integer power: expected ')' after the exponent, got " + describe(close), close);
+      --depth_;
       return;
     }
     if (t.kind == TokenKind::number) {
@@ -288,12 +309,14 @@ class Recognizer {
           return;
         }
         if (is_allowed_function(t.text)) {
-          const Token& open = next();
-          if (open.kind != TokenKind::lparen) fail("expected '(' after function '" + t.text + "'", open);
+          const Token& paren = next();
+          if (paren.kind != TokenKind::lparen) fail("expected '(' after function '" + t.text + "'", paren);
+          open(paren);
           expression();
           const Token& close = next();
           if (close.kind != TokenKind::rparen)
             fail("expected ')' closing '" + t.text + "(' (one argument), got " + describe(close), close);
+          --depth_;
           return;
         }
         if (peek().kind == TokenKind::lparen)
@@ -302,9 +325,11 @@ class Recognizer {
         throw InvalidInput("unknown symbol '" + t.text + "' " + where(text_, t.position) + "; allowed: " +
                            kAllowedSymbols);
       case TokenKind::lparen: {
+        open(t);
         expression();
         const Token& close = next();
         if (close.kind != TokenKind::rparen) fail("expected ')', got " + describe(close), close);
+        --depth_;
         return;
       }
       default:
@@ -315,6 +340,7 @@ class Recognizer {
   const std::string& text_;
   const std::vector<Token>& tokens_;
   std::size_t at_ = 0;
+  std::size_t depth_ = 0;
 };
 
 std::string print(const GiNaC::ex& e) {
@@ -349,7 +375,7 @@ GiNaC::ex rationalize_floats(const GiNaC::ex& e) {
 //! + - * /, integer powers, square roots and exp sin cos log.
 void validate(const GiNaC::ex& e, const std::string& text) {
   using namespace GiNaC;
-  const std::string in = " in \"" + text + "\"";
+  const std::string in = " in " + abbreviated(text);
   if (is_a<numeric>(e)) {
     const auto& n = ex_to<numeric>(e);
     if (!n.is_real()) throw InvalidInput("complex value " + print(e) + in + " (E must be real)");
@@ -402,7 +428,88 @@ bool has_only_rational_polynomial_parts(const GiNaC::ex& e) {
   return true;
 }
 
+//! Bounds on the total degree of e in x, y, z and on the number of terms of e.expand() (upper
+//! bounds where e is a polynomial; a negative power counts like a positive one), computed from
+//! the expression tree without expanding: a sum adds the term counts, a product
+//! multiplies them, an n-th power of t terms has at most C(t + |n| − 1, |n|) (the monomials of
+//! degree |n| in t symbols); a polynomial of degree d in three variables has at most C(d + 3, 3)
+//! terms.  Function arguments are bounded separately (a function value counts as one term of
+//! degree 0).  Counts saturate at `cap`, and so do degrees.
+struct SizeBound {
+  double degree = 0;
+  double terms = 1;
+};
+
+SizeBound size_bound(const GiNaC::ex& e, double cap) {
+  using namespace GiNaC;
+  const auto monomials = [cap](double symbols, double degree) {  // C(symbols + degree − 1, degree)
+    double c = 1;
+    for (double k = 1; k <= degree && c <= cap; ++k) c = c * (symbols - 1 + k) / k;
+    return std::min(c, cap + 1);
+  };
+  const auto clamp = [cap](SizeBound b) {
+    b.degree = std::min(b.degree, cap + 1);
+    b.terms = std::min({b.terms, cap + 1, std::max(1.0, [&] {
+                          double c = 1;  // C(degree + 3, 3)
+                          for (double k = 1; k <= 3; ++k) c = c * (b.degree + 4 - k) / k;
+                          return c;
+                        }())});
+    return b;
+  };
+  if (is_a<symbol>(e)) return {1, 1};
+  if (is_a<numeric>(e) || is_a<constant>(e)) return {0, 1};
+  if (is_a<function>(e)) {
+    for (std::size_t i = 0; i < e.nops(); ++i) (void)size_bound(e.op(i), cap);
+    return {0, 1};
+  }
+  if (is_a<power>(e)) {
+    const SizeBound base = size_bound(e.op(0), cap);
+    const ex exponent = e.op(1);
+    double n = 1;
+    if (is_a<numeric>(exponent)) n = std::ceil(std::abs(ex_to<numeric>(exponent).to_double()));
+    return clamp({base.degree * n, monomials(base.terms, n)});
+  }
+  if (is_a<add>(e)) {
+    SizeBound b{0, 0};
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      const SizeBound t = size_bound(e.op(i), cap);
+      b.degree = std::max(b.degree, t.degree);
+      b.terms += t.terms;
+    }
+    return clamp(b);
+  }
+  if (is_a<mul>(e)) {
+    SizeBound b{0, 1};
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      const SizeBound t = size_bound(e.op(i), cap);
+      b.degree += t.degree;
+      b.terms *= t.terms;
+    }
+    return clamp(b);
+  }
+  SizeBound b{0, 1};
+  for (std::size_t i = 0; i < e.nops(); ++i) b = size_bound(e.op(i), cap);
+  return b;
+}
+
+//! Throws InvalidInput if E's degree bound exceeds Surface::max_degree or its expansion may have
+//! more than Surface::max_expanded_terms terms (size_bound), before anything is expanded.
+void check_size(const GiNaC::ex& E, const std::string& text) {
+  const double cap = static_cast<double>(std::max<std::size_t>(Surface::max_degree, Surface::max_expanded_terms));
+  const SizeBound b = size_bound(E, cap);
+  if (b.degree > Surface::max_degree)
+    throw InvalidInput("expression " + abbreviated(text) + " has degree up to " +
+                       (b.degree > cap ? std::string("more than ") + std::to_string(Surface::max_degree) : std::to_string(static_cast<long>(b.degree))) +
+                       " in x, y, z (at most " + std::to_string(Surface::max_degree) + ")");
+  if (b.terms > Surface::max_expanded_terms)
+    throw InvalidInput("expression " + abbreviated(text) + " is too large: expanded it may have more than " +
+                       std::to_string(Surface::max_expanded_terms) + " terms; simplify it or lower its degree");
+}
+
 GiNaC::ex parse_text(const std::string& text) {
+  if (text.size() > Surface::max_length)
+    throw InvalidInput("expression too long: " + std::to_string(text.size()) + " characters (at most " +
+                       std::to_string(Surface::max_length) + ")");
   const std::vector<Token> tokens = tokenize(text);
   Recognizer(text, tokens).run();
 
@@ -434,9 +541,11 @@ GiNaC::ex parse_text(const std::string& text) {
     if (colon != std::string::npos) message = message.substr(colon + 2);
     const std::size_t newline = message.find('\n');
     if (newline != std::string::npos) message.resize(newline);
-    throw InvalidInput("syntax error in \"" + text + "\": " + message);
+    throw InvalidInput("syntax error in " + abbreviated(text) + ": " + message);
   } catch (const std::exception& error) {
-    throw InvalidInput("cannot parse \"" + text + "\": " + error.what());
+    if (std::string(error.what()).find("division by zero") != std::string::npos)
+      throw InvalidInput("division by zero in " + abbreviated(text) + ": a divisor is identically 0");
+    throw InvalidInput("cannot parse " + abbreviated(text) + ": " + error.what());
   }
 }
 
@@ -448,11 +557,12 @@ Surface::Surface(GiNaC::ex E, std::string text) {
   E_ = rationalize_floats(E);
   text_ = text.empty() ? print(E_) : std::move(text);
   validate(E_, text_);
+  check_size(E_, text_);
   const GiNaC::symbol& x = coordinate_x();
   const GiNaC::symbol& y = coordinate_y();
   const GiNaC::symbol& z = coordinate_z();
   if (!E_.has(x) && !E_.has(y) && !E_.has(z))
-    throw InvalidInput("constant expression \"" + text_ + "\" (= " + print(E_) +
+    throw InvalidInput("constant expression " + abbreviated(text_) + " (= " + print(E_) +
                        ") does not define a surface; E must depend on x, y or z");
 
   const GiNaC::symbol* xyz[3] = {&x, &y, &z};

@@ -4,6 +4,7 @@
 //! rational coefficients), its exact gradient ∇E and Hessian.  §2.1 of the paper.
 
 #include <array>
+#include <cstddef>
 #include <string>
 
 #include <ginac/ginac.h>
@@ -21,7 +22,8 @@ GiNaC::lst coordinates();
 struct Box3 {
   std::array<double, 3> lo{};
   std::array<double, 3> hi{};
-  //! Parses "x0,x1,y0,y1,z0,z1"; throws InvalidInput on malformed text or an empty box.
+  //! Parses "x0,x1,y0,y1,z0,z1"; throws InvalidInput on malformed text, a non-finite number, an
+  //! empty box, or a box so large that a width xi1 − xi0 or the squared diagonal overflows double.
   static Box3 parse(const std::string& text);
   //! The cube [−h, h]³ centred at the origin.  Precondition: h > 0 (else PreconditionViolation).
   static Box3 cube(double h);
@@ -42,14 +44,30 @@ class Surface {
   //! Throws InvalidInput (message quotes the offending token and its 1-based position) on a
   //! syntax error, an unknown symbol or function, a non-integer power (x^0.5, x^y, a^b^c), an
   //! empty or constant expression (3, x-x), or an expression with complex constants (sqrt(-1)).
-  //! Input limits: integer powers |n| ≤ 1000, decimal exponents |e| ≤ 400 (1e400).
+  //! Input limits (so that no input can exhaust the stack, the memory or the time of the exact
+  //! arithmetic): at most max_length characters, parentheses nested at most max_nesting deep,
+  //! integer powers |n| ≤ max_power, decimal exponents |e| ≤ max_decimal_exponent, and the size
+  //! limits of the constructor.  Each violation throws InvalidInput naming the limit.
   static Surface parse(const std::string& text);
+
+  static constexpr std::size_t max_length = 10000;
+  static constexpr std::size_t max_nesting = 200;
+  static constexpr long max_power = 1000;
+  static constexpr long max_decimal_exponent = 400;
+  //! Size limits checked on the expression tree before anything is expanded: the total degree in
+  //! x, y, z (bounded from the tree: sums take the maximum, products add, powers multiply by |n|)
+  //! at most max_degree, and at most max_expanded_terms terms once expanded (bounded from the
+  //! tree: sums add, products multiply, powers take the multinomial count, capped by the number
+  //! of monomials of that degree in three variables).
+  static constexpr std::size_t max_degree = 200;
+  static constexpr std::size_t max_expanded_terms = 200000;
 
   //! Wraps an already built expression in x, y, z; the same validation as parse() on the
   //! expression: symbols ⊂ {x, y, z}, constant Pi, functions exp sin cos log, powers with integer
   //! or half-integer (square root) exponents, real constants, not constant.  Floating-point
   //! numerics become the rational of the shortest decimal that reads back as the same double
-  //! (numeric(0.1) → 1/10).
+  //! (numeric(0.1) → 1/10).  Throws InvalidInput beyond the size limits (max_degree,
+  //! max_expanded_terms).
   explicit Surface(GiNaC::ex E, std::string text = {});
 
   const GiNaC::ex& E() const { return E_; }

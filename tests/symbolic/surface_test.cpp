@@ -190,6 +190,7 @@ BOOST_AUTO_TEST_CASE(box_parsing) {
       {"0,1,0,1,0,nan", "nan"}, {"0,1,0,1,0,inf", "inf"},
       {"a,1,0,1,0,1", "\"a\""}, {"0,1x,0,1,0,1", "1x"},
       {"0,1,,1,0,1", "field 3"},
+      {"-1e308,1e308,-2,2,-2,2", "overflows"}, {"-2,2,-1e200,1e200,-2,2", "overflows"},
   };
   for (const auto& [text, fragment] : bad) {
     const std::string message = box_error(text);
@@ -198,6 +199,45 @@ BOOST_AUTO_TEST_CASE(box_parsing) {
       BOOST_TEST(message.find(fragment) != std::string::npos);
     }
   }
+}
+
+// Inputs that once exhausted the stack (20 000 nested parentheses) or would exhaust the memory of
+// the exact arithmetic are refused with the limit they break, before any expansion.
+BOOST_AUTO_TEST_CASE(input_limits) {
+  const auto nested = [](std::size_t depth, const std::string& open, const std::string& inner) {
+    std::string text;
+    for (std::size_t i = 0; i < depth; ++i) text += open;
+    text += inner;
+    text += std::string(depth, ')');
+    return text;
+  };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {nested(20000, "(", "x") + "-1", "expression too long: 40003 characters"},
+      {nested(Surface::max_nesting + 1, "(", "x") + "-1", "nested more than 200"},
+      {nested(Surface::max_nesting + 1, "sin(", "x") + "-1", "nested more than 200"},
+      {"x^" + nested(Surface::max_nesting + 1, "(", "2"), "nested more than 200"},
+      {"x+" + std::string(Surface::max_length, 'y'), "too long"},
+      {"x^201+y", "degree up to 201"},
+      {"(x^2+y^2)^101-1", "degree up to 202"},
+      {"((x^10)^10)^10-1", "degree up to 1000"},
+      {"(x+y+z+1)^120-1", "may have more than 200000 terms"},
+      {"1/(x-x)+y", "division by zero"},
+      {"y+1/(0*x)", "division by zero"},
+  };
+  for (const auto& [text, fragment] : cases) {
+    const std::string message = parse_error(text);
+    BOOST_TEST_CONTEXT("text of " << text.size() << " characters, message \"" << message << "\"") {
+      BOOST_TEST(message.find(fragment) != std::string::npos);
+      BOOST_TEST(message.size() < 300u);  // long inputs are abbreviated in the message
+    }
+  }
+  // Just inside the limits.
+  BOOST_CHECK_NO_THROW(Surface::parse(nested(Surface::max_nesting, "(", "x") + "^2+y^2+z^2-1"));
+  BOOST_CHECK_NO_THROW(Surface::parse(nested(Surface::max_nesting - 1, "sin(", "x") + "+y"));
+  BOOST_TEST(Surface::parse("x^200+y^2+z^2-1").degree() == 200);
+  BOOST_TEST(Surface::parse("(x+y+z+1)^50-1").degree() == 50);  // 23 426 terms expanded
+  // The bound on the expanded size holds for built expressions too.
+  BOOST_CHECK_THROW(Surface(GiNaC::pow(x + y + z + 1, 150)), InvalidInput);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

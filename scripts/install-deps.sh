@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every Debian package that building, testing and running the experiments of delmesh needs.
+# Installs every Debian package that building, testing and running the experiments of delmesh needs
+# (clang, its sanitizer and libFuzzer runtimes and llvm-symbolizer for scripts/fuzz.sh).
 # Idempotent: packages already present are skipped by apt-get.  Run as root (or with sudo).
 set -euo pipefail
 
@@ -14,6 +15,7 @@ packages=(
   libbenchmark-dev
   python3 python3-matplotlib
   libcgal-demo
+  clang libclang-rt-dev llvm
 )
 
 missing=()

@@ -217,6 +217,28 @@ bool RestrictedDelaunay::certify_section(const EdgeKey& e, const VoronoiFacet& f
   return oracle_.prove_gradient_cone(chart, f.domain, normalized(w));
 }
 
+namespace {
+
+// The zero of E on the edge's parameter range between tv and tf, where E is proved monotone and
+// E(at(tv)) has proved sign sv ≠ 0: nothing if E(at(tf)) has the same sign (no zero), else the
+// bisection limit of the sign change (to the last bit of t, or a point where E = 0 up to
+// rounding).
+std::optional<double> monotone_zero(const SurfaceOracle& oracle, const VoronoiEdge& e, double tv, double tf, int sv) {
+  const int sf = oracle.value_sign(e.at(tf));
+  if (sf == sv) return std::nullopt;
+  if (sf == 0) return tf;
+  double a = tv, b = tf;
+  while (true) {
+    const double m = 0.5 * (a + b);
+    if (m == a || m == b) return m;
+    const int sm = oracle.value_sign(e.at(m));
+    if (sm == 0) return m;
+    (sm == sv ? a : b) = m;
+  }
+}
+
+}  // namespace
+
 EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes) const {
   EdgeRecord r;
   r.edge = voronoi_edge(del_, t, oracle_.box(), apexes);
@@ -233,17 +255,40 @@ EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<Ve
   const double face_tol = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
   // Zeros at Voronoi vertices: whether each would be excluded by §5.1 if it were the only one.
   std::vector<bool> vertex_root_excluded;
+  // A zero of E in the parameter range [lo, hi] that may be at the Voronoi vertex v = e.at(tv)
+  // (a certified root within the vertex tolerance, or a boundary_root region the isolator could
+  // not separate from v), settled by interval proofs on the part R of [lo, hi] ∪ {tv} in e.
+  auto add_near_vertex = [&](double tv, bool at_start, double lo, double hi) {
+    const double tf = at_start ? std::max(hi, tv) : std::min(lo, tv);  // the far end of R
+    const Vec3 into = at_start ? e.direction : (-1.0) * e.direction;   // direction of u − v
+    const int s = oracle_.gradient_sign(e.at(tv), e.at(tf), into);
+    const int sv = oracle_.value_sign(e.at(tv));
+    if (s == 0) {
+      // E is not proved monotone on R: it may hold several zeros.  Kept as a crossing, unresolved.
+      r.crossings.push_back(e.at(tv));
+      r.crossing_range.push_back({lo, hi});
+      r.unresolved.push_back(e.at(tv));
+    } else if (sv == 0) {
+      // E(v) = 0 up to rounding and E monotone on R: v is R's only zero, the §5.1 case.
+      r.crossings.push_back(e.at(tv));
+      r.crossing_range.push_back({std::min(lo, tv), std::max(hi, tv)});
+      vertex_root_excluded.push_back(s > 0);
+    } else if (const auto t = monotone_zero(oracle_, e, tv, tf, sv)) {
+      // E(v) ≠ 0: R's one zero is a crossing inside e (none if E keeps its sign on R).
+      r.crossings.push_back(e.at(*t));
+      r.crossing_range.push_back({lo, hi});
+    }
+  };
   const double vertex_tol = tolerances::duplicate_sample_relative_distance * oracle_.diagonal();
   for (const auto& root : result.roots) {
-    // A certified zero numerically at a Voronoi vertex is the §5.1 degeneracy as well.
-    const double t = root.midpoint[0];
-    const bool at0 = e.at_vertex0 && std::abs(t - e.t0) <= vertex_tol;
-    const bool at1 = e.at_vertex1 && std::abs(t - e.t1) <= vertex_tol;
-    r.crossings.push_back(root.world);
-    r.crossing_range.push_back({root.box.bounds[0][0], root.box.bounds[0][1]});
-    if (at0 || at1) {
-      const Vec3 into = at0 ? e.direction : (-1.0) * e.direction;
-      vertex_root_excluded.push_back(dot(into, oracle_.normal(root.world)) > 0);
+    const double t = root.midpoint[0], lo = root.box.bounds[0][0], hi = root.box.bounds[0][1];
+    if (e.at_vertex0 && std::abs(t - e.t0) <= vertex_tol) {
+      add_near_vertex(e.t0, true, lo, hi);
+    } else if (e.at_vertex1 && std::abs(t - e.t1) <= vertex_tol) {
+      add_near_vertex(e.t1, false, lo, hi);
+    } else {
+      r.crossings.push_back(root.world);
+      r.crossing_range.push_back({lo, hi});
     }
   }
   for (const auto& u : result.undecided) {
@@ -251,11 +296,7 @@ EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<Ve
     const double tm = 0.5 * (lo + hi);
     const bool near0 = std::abs(tm - e.t0) <= std::abs(tm - e.t1);
     if (u.reason == UndecidedReason::boundary_root && (near0 ? e.at_vertex0 : e.at_vertex1)) {
-      const Vec3 v = e.at(near0 ? e.t0 : e.t1);
-      const Vec3 into = near0 ? e.direction : (-1.0) * e.direction;  // direction of u − v
-      r.crossings.push_back(v);
-      r.crossing_range.push_back({lo, hi});
-      vertex_root_excluded.push_back(dot(into, oracle_.normal(v)) > 0);
+      add_near_vertex(near0 ? e.t0 : e.t1, near0, lo, hi);
       continue;
     }
     const auto x = oracle_.project(u.world);

@@ -20,11 +20,23 @@
 //! enclosure near an end of e′ (a zero at a new Voronoi vertex, the §5.1 case) makes the record be
 //! solved again.
 //!
-//! Zeros at a Voronoi vertex are reported by the isolator as undecided boundary_root regions at an
-//! endpoint of the edge; they are resolved here by the rule above (this is the one kind of
-//! undecided region that is not a candidate witness: it is the §5.1 degeneracy).  Any other
-//! undecided region on the edge (a tangency, Lemma 4.7(ii), or an exhausted budget) is projected
-//! onto Σ and kept as a candidate witness for VorEdge.
+//! Zeros at Voronoi vertices.  A zero of E that the isolator reports next to a Voronoi vertex v
+//! of the edge (a certified root within tolerances::duplicate_sample_relative_distance of v, or
+//! an undecided boundary_root region at v) is settled by interval proofs on the part R of its
+//! range that lies in e, from v to the range's far end (solvers/gradient_cone.h):
+//!  - if ⟨∇E, u − v⟩ has a proved sign s on R, E is strictly monotone there and R holds at most
+//!    one zero.  Then if E(v) = 0 up to the rounding of its evaluation, the zero is v and the rule
+//!    above decides with the proved sign s (not a floating-point dot product); if E(v) ≠ 0 is
+//!    proved, R's zero, if E changes sign on R, is an ordinary crossing inside e, located by
+//!    bisection on proved signs, and no zero lies in R otherwise.
+//!  - if no sign is proved, R may hold several zeros: the zero is kept as a crossing at v and the
+//!    record lists v as unresolved (the run cannot end complete while the edge is in Vor S).
+//! Decisions are thus exact relative to the floating-point Voronoi vertex v.  Any other undecided
+//! region on the edge (a tangency, Lemma 4.7(ii), or an exhausted budget) is projected onto Σ
+//! and kept as a candidate witness for VorEdge, or listed as unresolved if that fails.
+//! A degenerate edge (VoronoiEdge::degenerate, numerically a point) is unresolved unless
+//! SurfaceLine excludes Σ from a segment of length 2·duplicate_sample_relative_distance·diag
+//! about it.
 
 #include <array>
 #include <memory>

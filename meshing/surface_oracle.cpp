@@ -200,6 +200,12 @@ bool SurfaceOracle::prove_gradient_cone(const AffineChart& chart, const Domain& 
   return r.proved;
 }
 
+int SurfaceOracle::gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const {
+  return gradient_functional_sign(*impl_->gradient, a, b, w);
+}
+
+int SurfaceOracle::value_sign(const Vec3& x) const { return delmesh::value_sign(*impl_->gradient, x); }
+
 double SurfaceOracle::E(const Vec3& x) const {
   double value = 0;
   impl_->gradient->values<double>(x.data(), nullptr, &value);

@@ -109,6 +109,10 @@ class SurfaceOracle {
   //! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P, P = domain in the chart (solvers/gradient_cone.h):
   //! true is a proof, false proves nothing.  Counted under `cone_certificates`.
   bool prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w);
+  //! The proved sign of ⟨∇E, w⟩ on the segment [a, b], or 0 (solvers/gradient_cone.h).
+  int gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const;
+  //! The proved sign of E(x), or 0 if E(x) is zero up to rounding (solvers/gradient_cone.h).
+  int value_sign(const Vec3& x) const;
 
   //! E(x) in double.
   double E(const Vec3& x) const;

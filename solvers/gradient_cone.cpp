@@ -76,4 +76,31 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
   return result;
 }
 
+namespace {
+
+int sign_of(const Interval& v) {
+  if (v.inf() > 0) return 1;
+  if (v.sup() < 0) return -1;
+  return 0;
+}
+
+}  // namespace
+
+int gradient_functional_sign(const CompiledSystem& E, const std::array<double, 3>& a, const std::array<double, 3>& b,
+                             const std::array<double, 3>& w) {
+  RoundingGuard guard;
+  Interval x[3], value, gradient[3];
+  for (int k = 0; k < 3; ++k) x[k] = Interval(std::min(a[k], b[k]), std::max(a[k], b[k]));
+  E.values_and_jacobian<Interval>(x, nullptr, &value, gradient);
+  return sign_of(gradient[0] * w[0] + gradient[1] * w[1] + gradient[2] * w[2]);
+}
+
+int value_sign(const CompiledSystem& E, const std::array<double, 3>& x) {
+  RoundingGuard guard;
+  Interval point[3], value;
+  for (int k = 0; k < 3; ++k) point[k] = Interval(x[k]);
+  E.values<Interval>(point, nullptr, &value);
+  return sign_of(value);
+}
+
 }  // namespace delmesh

@@ -59,4 +59,15 @@ struct GradientConeResult {
 GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChart& chart, const Domain& domain,
                                        const std::array<double, 3>& w, std::size_t box_budget);
 
+//! The sign of ⟨∇E(x), w⟩ on the whole segment [a, b], proved by one interval evaluation over
+//! the segment's bounding box: +1 or −1, or 0 if the enclosure contains 0 (nothing proved).  A
+//! non-zero sign also proves that E is strictly monotone along the segment when w ∥ b − a, so
+//! E has at most one zero on it.  Same precondition on E as prove_gradient_cone().
+int gradient_functional_sign(const CompiledSystem& E, const std::array<double, 3>& a, const std::array<double, 3>& b,
+                             const std::array<double, 3>& w);
+
+//! The sign of E(x) at the point x, proved by interval evaluation: +1 or −1, or 0 if the
+//! enclosure contains 0 (E(x) is zero up to the rounding of its evaluation).
+int value_sign(const CompiledSystem& E, const std::array<double, 3>& x);
+
 }  // namespace delmesh

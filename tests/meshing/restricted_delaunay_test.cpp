@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "check_fixture.h"
+#include "meshing/detail/vec3.h"
 #include "meshing/restricted_delaunay.h"
 
 using namespace delmesh;
@@ -82,6 +83,46 @@ BOOST_AUTO_TEST_CASE(seeded_uniform_is_deterministic_and_in_range) {
     const double u = seeded_uniform(1, k);
     BOOST_TEST((u >= 0 && u < 1));
   }
+}
+
+// A tetrahedron inscribed in the sphere of radius 5/8 about c = (1 − δ, 0, 0), with dyadic
+// coordinates so that every construction is exact: the face {0, 1, 2} lies in the plane
+// x = 11/8 − δ, and its Voronoi edge is the ray from the Voronoi vertex v = c in direction +x,
+// leaving the unit ball.
+std::vector<Vec3> tetrahedron_about(double delta) {
+  const double x = 1.375 - delta;
+  return {{x, 0.5, 0}, {x, -0.5, 0}, {x, 0, 0.5}, {0.375 - delta, 0, 0}};
+}
+
+// The finite end of a Voronoi ray.
+Vec3 voronoi_vertex(const VoronoiEdge& e) { return e.at(e.at_vertex0 ? e.t0 : e.t1); }
+
+// δ = 0: E(v) = 0 exactly.  The zero at v is the §5.1 case, settled by a proved sign of
+// ⟨∇E, u − v⟩ > 0: the face is excluded and nothing is left unresolved.
+BOOST_AUTO_TEST_CASE(exact_vertex_zero_is_excluded_by_a_proved_sign) {
+  CheckFixture f(test::unit_sphere, 1.6, tetrahedron_about(0));
+  const auto& rec = f.restricted.edge_record({0, 1, 2});
+  BOOST_TEST_REQUIRE(rec.edge.at_vertex0 != rec.edge.at_vertex1);
+  BOOST_TEST_REQUIRE(detail::distance(voronoi_vertex(rec.edge), {1, 0, 0}) == 0.0);
+  BOOST_TEST(!rec.restricted);
+  BOOST_TEST(rec.unresolved.empty());
+  BOOST_TEST_REQUIRE(rec.crossings.size() == 1u);
+  BOOST_TEST(detail::distance(rec.crossings[0], {1, 0, 0}) == 0.0);
+}
+
+// δ = 2⁻³³: v lies inside the ball, and Σ crosses the ray δ from v — within the Voronoi-vertex
+// tolerance, but E(v) < 0 is proved, so it is a true crossing: the face is in Tri S|Σ (taken for
+// a zero at v, it would be excluded).
+BOOST_AUTO_TEST_CASE(crossing_next_to_a_vertex_is_not_collapsed_onto_it) {
+  const double delta = std::ldexp(1.0, -33);
+  CheckFixture f(test::unit_sphere, 1.6, tetrahedron_about(delta));
+  const auto& rec = f.restricted.edge_record({0, 1, 2});
+  BOOST_TEST_REQUIRE(detail::distance(voronoi_vertex(rec.edge), {1 - delta, 0, 0}) == 0.0);
+  BOOST_TEST(rec.restricted);
+  BOOST_TEST(rec.unresolved.empty());
+  BOOST_TEST_REQUIRE(rec.crossings.size() == 1u);
+  BOOST_TEST(std::abs(f.oracle.E(rec.crossings[0])) < 1e-15);
+  BOOST_TEST(rec.crossings[0][0] > 1 - delta / 2);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

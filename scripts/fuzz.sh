@@ -58,7 +58,7 @@ for target in "${targets[@]}"; do
   else
     failed=1
     artifact=$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$log" | tail -1)
-    reason=$(grep -m1 -E 'ERROR: (libFuzzer|AddressSanitizer|LeakSanitizer|UndefinedBehaviorSanitizer)|runtime error:|^fuzz: ' "$log" || true)
+    reason=$(grep -m1 -E 'ERROR: (libFuzzer|AddressSanitizer|LeakSanitizer|UndefinedBehaviorSanitizer)|runtime error:|^fuzz: .* threw' "$log" || true)
     result="FAILED (exit $status) ${reason:-see $log} ${artifact:+input: $artifact}"
     tail -n 60 "$log"
   fi

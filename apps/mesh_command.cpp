@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/command_line.h"
+#include "apps/interrupt.h"
 #include "common/errors.h"
 #include "meshing/del_mesh.h"
 #include "meshing/mesh_io.h"
@@ -132,6 +133,8 @@ ExitCode run_mesh(const MeshOptions& o) {
     };
   }
 
+  install_interrupt_handlers();
+  options.interrupt = &interrupt_flag();
   DelMeshResult result = del_mesh(input.surface, input.box, options);
 
   nlohmann::json statistics = result.statistics;
@@ -166,6 +169,9 @@ ExitCode run_mesh(const MeshOptions& o) {
       print_warning("uncertified: the run ended, but " + std::to_string(statistics["unsettled"]["count"].get<std::size_t>()) +
                     " findings were not settled (statistics: \"unsettled\"); the mesh carries no guarantee");
       return ExitCode::uncertified;
+    case MeshStatus::interrupted:
+      print_warning("interrupted by a signal: the mesh is partial");
+      return ExitCode::limit_reached;
     case MeshStatus::point_limit:
     case MeshStatus::time_limit: break;
   }
@@ -184,8 +190,9 @@ Command add_mesh_command(CLI::App& parent) {
       "the surface, every triangle has radius-edge ratio <= 1+lambda and every edge roughness <= 2 beta(lambda) "
       "(Theorem 6.1). Writes the mesh and a statistics JSON." "\n\n"
       "Exit codes: 0 complete; 2 invalid input (one `error:` line; existing output files are left "
-              "untouched); 3 stopped by --max-points or --time-limit (the partial mesh and the statistics are "
-              "written); 4 internal error; 5 uncertified: the run ended but some check, solver region or "
+              "untouched); 3 stopped by --max-points, --time-limit, or a first SIGINT/SIGTERM (status "
+              "interrupted; a second one ends the process at once): the partial mesh and the statistics are "
+              "written; 4 internal error; 5 uncertified: the run ended but some check, solver region or "
               "output defect was not settled (listed under \"unsettled\" in the statistics; mesh and statistics "
               "written, without the guarantee).");
   o->surface.add_to(*sub);

@@ -40,6 +40,7 @@ std::ostream& operator<<(std::ostream& out, MeshStatus status) {
     case MeshStatus::point_limit: return out << "point_limit";
     case MeshStatus::time_limit: return out << "time_limit";
     case MeshStatus::uncertified: return out << "uncertified";
+    case MeshStatus::interrupted: return out << "interrupted";
   }
   return out << "unknown";
 }
@@ -120,6 +121,7 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
     limits.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                   std::chrono::duration<double>(options.time_limit_seconds));
   limits.progress = options.progress;
+  limits.interrupt = options.interrupt;
   oracle.set_run_controls(options.seed, limits.deadline);
   Refinement refinement(oracle, options.seed, limits, RecheckPolicy::new_faces, options.threads);
 

@@ -4,6 +4,7 @@
 //! every insertion, until nothing changes.  Theorem 6.1: for 0 < λ ≤ 0.06 the output Tri S|Σ is
 //! homeomorphic to Σ, every triangle has radius-edge ratio ≤ 1+λ and every edge roughness ≤ 2β(λ).
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -27,8 +28,9 @@ std::ostream& operator<<(std::ostream& out, SolverBackend backend);
 //! every face of the final Vor S, every solver region was decided or became a witness, and
 //! Tri S|Σ is a closed, consistently oriented 2-manifold.  uncertified: the run ended but
 //! something of that was not settled (listed under "unsettled" in the statistics); the mesh
-//! is written, without the guarantee.  point_limit / time_limit: stopped by a limit.
-enum class MeshStatus { complete, point_limit, time_limit, uncertified };
+//! is written, without the guarantee.  point_limit / time_limit: stopped by a limit;
+//! interrupted: stopped by DelMeshOptions::interrupt (e.g. Ctrl-C).
+enum class MeshStatus { complete, point_limit, time_limit, uncertified, interrupted };
 std::ostream& operator<<(std::ostream& out, MeshStatus status);
 
 struct DelMeshOptions {
@@ -42,6 +44,9 @@ struct DelMeshOptions {
   //! Threads computing the records of the faces each insertion changes; 0: every hardware
   //! thread.  The mesh does not depend on it.
   int threads = 0;
+  //! If given, the run stops (status interrupted) at the first check after it becomes true; it
+  //! is read between checks, so a signal handler may set it.
+  const std::atomic<bool>* interrupt = nullptr;
   //! Progress callback (phase, points, queue sizes), called periodically; may be empty.
   std::function<void(const std::string&)> progress;
 };

@@ -277,6 +277,7 @@ std::optional<MeshStatus> Refinement::limit_reached(std::chrono::steady_clock::t
       if (step.enabled) s << ' ' << step.name << '=' << step.queue.size();
     limits_.progress(s.str());
   }
+  if (limits_.interrupt && limits_.interrupt->load(std::memory_order_relaxed)) return MeshStatus::interrupted;
   if (del_.size() >= limits_.max_points) return MeshStatus::point_limit;
   if (limits_.deadline && now >= *limits_.deadline) return MeshStatus::time_limit;
   return std::nullopt;

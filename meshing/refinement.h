@@ -71,6 +71,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <functional>
 #include <map>
@@ -104,6 +105,8 @@ struct RefinementLimits {
   //! Absolute deadline; none if empty.
   std::optional<std::chrono::steady_clock::time_point> deadline;
   std::function<void(const std::string&)> progress;
+  //! Stops the run (interrupted) when it reads true; none if null.
+  const std::atomic<bool>* interrupt = nullptr;
   //! A witness this close to a sample (relative to the box diagonal) is rejected as a duplicate.
   double duplicate_relative_distance = tolerances::duplicate_sample_relative_distance;
 };

@@ -31,8 +31,11 @@ namespace {
 //! crash is fixed.
 //!   fuzz_read_off: CGAL's File_scanner_OFF::scan_color reads past its entries (heap overflow) and
 //!     converts out-of-range colours to unsigned char: any OFF variant with vertex colours (COFF...).
+//!   fuzz_read_off: CGAL's File_scanner_OFF reads face sizes and indices as double and casts them
+//!     to std::size_t: undefined for a negative one ("-4"); any OFF with a '-' is skipped (this also
+//!     skips negative coordinates).
 //!   fuzz_read_ply: CGAL's PLY_reader::init calls back() on its empty element list for a "property"
-//!     line before the first "element" line.
+//!     line before the first "element" line (header keywords read as CGAL does, word by word).
 bool known_crash(const std::string& text) {
   static const bool skip = [] {
     const char* all = std::getenv("DELMESH_FUZZ_ALL_INPUTS");
@@ -57,15 +60,15 @@ bool known_crash(const std::string& text) {
     }
     std::size_t end = at;
     while (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end]))) ++end;
-    return text.substr(at, end - at).find('C') != std::string::npos;
+    return text.substr(at, end - at).find('C') != std::string::npos || text.find('-') != std::string::npos;
   }
   if (extension == ".ply") {
-    std::istringstream header(text.substr(0, text.find("end_header")));
+    std::istringstream header(text);
     for (std::string line; std::getline(header, line);) {
       std::istringstream words(line);
       std::string keyword;
       words >> keyword;
-      if (keyword == "element") return false;
+      if (keyword == "element" || keyword == "end_header") return false;
       if (keyword == "property") return true;
     }
   }

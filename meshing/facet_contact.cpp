@@ -6,10 +6,15 @@ namespace delmesh {
 
 CheckResult facet_contact_witness(RestrictedDelaunay& restricted, const EdgeKey& pq) {
   const VoronoiFacet& f = restricted.facet(pq);
-  if (!f.valid || restricted.facet_section_certified(pq)) return {};
   auto& oracle = restricted.oracle();
-  const auto result = oracle.surface_plane_contact(f.origin, f.a, f.b, f.domain);
   detail::WitnessCollector collector(CheckKind::facet_contact, pq[0], restricted.delaunay().point(pq[0]));
+  if (!f.valid) {
+    // The facet checks of a degenerate facet are reported here, once.
+    collector.add_degenerate_facet(oracle, f);
+    return collector.take();
+  }
+  if (restricted.facet_section_certified(pq)) return {};
+  const auto result = oracle.surface_plane_contact(f.origin, f.a, f.b, f.domain);
   for (const auto& u : result.undecided) collector.add_region(oracle, f, u);
   // A solver that certifies contacts (not in exclusion mode) would report them as roots.
   for (const auto& root : result.roots) collector.add(root.world);

@@ -204,7 +204,9 @@ int SurfaceOracle::gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) co
   return gradient_functional_sign(*impl_->gradient, a, b, w);
 }
 
-int SurfaceOracle::value_sign(const Vec3& x) const { return delmesh::value_sign(*impl_->gradient, x); }
+int SurfaceOracle::value_sign(const Vec3& lo, const Vec3& hi) const {
+  return delmesh::value_sign(*impl_->gradient, lo, hi);
+}
 
 double SurfaceOracle::E(const Vec3& x) const {
   double value = 0;

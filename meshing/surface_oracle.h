@@ -112,7 +112,9 @@ class SurfaceOracle {
   //! The proved sign of ⟨∇E, w⟩ on the segment [a, b], or 0 (solvers/gradient_cone.h).
   int gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const;
   //! The proved sign of E(x), or 0 if E(x) is zero up to rounding (solvers/gradient_cone.h).
-  int value_sign(const Vec3& x) const;
+  int value_sign(const Vec3& x) const { return value_sign(x, x); }
+  //! The proved sign of E on the box [lo, hi], or 0: non-zero proves Σ misses the box.
+  int value_sign(const Vec3& lo, const Vec3& hi) const;
 
   //! E(x) in double.
   double E(const Vec3& x) const;

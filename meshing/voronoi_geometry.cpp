@@ -216,7 +216,11 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
     }
     clip_polygon(poly, n, off, scratch);
     poly.swap(scratch);
-    if (poly.size() < 3) return f;
+    if (poly.size() < 3) {
+      f.degenerate = !poly.empty();
+      f.polygon = std::move(poly);
+      return f;
+    }
   }
   // Drop (numerically) repeated vertices.
   std::vector<P2> clean;
@@ -229,7 +233,11 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
   while (clean.size() >= 2 &&
          std::hypot(clean.front()[0] - clean.back()[0], clean.front()[1] - clean.back()[1]) <= eps)
     clean.pop_back();
-  if (clean.size() < 3 || polygon_area(clean) <= eps * eps) return f;
+  if (clean.size() < 3 || polygon_area(clean) <= eps * eps) {
+    f.degenerate = true;
+    f.polygon = std::move(poly);
+    return f;
+  }
   f.polygon = std::move(clean);
   f.domain = polygon_domain(f.polygon);
   f.valid = true;

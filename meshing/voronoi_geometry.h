@@ -54,6 +54,9 @@ struct VoronoiFacet {
   std::vector<std::array<double, 2>> polygon;      //!< counter-clockwise (u, v)
   Domain domain;                                   //!< bounding box ∩ edge half-planes
   bool valid = false;                              //!< false if F is empty or has no area
+  //! F is not empty but has (numerically) no area: valid = false, and `polygon` keeps the
+  //! points the clipping left, whose hull contains the computed F.
+  bool degenerate = false;
   Vec3 world(double u, double v) const;
   //! (u, v) of the orthogonal projection of x onto Π.
   std::array<double, 2> plane_coordinates(const Vec3& x) const;

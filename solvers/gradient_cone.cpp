@@ -95,11 +95,11 @@ int gradient_functional_sign(const CompiledSystem& E, const std::array<double, 3
   return sign_of(gradient[0] * w[0] + gradient[1] * w[1] + gradient[2] * w[2]);
 }
 
-int value_sign(const CompiledSystem& E, const std::array<double, 3>& x) {
+int value_sign(const CompiledSystem& E, const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
   RoundingGuard guard;
-  Interval point[3], value;
-  for (int k = 0; k < 3; ++k) point[k] = Interval(x[k]);
-  E.values<Interval>(point, nullptr, &value);
+  Interval box[3], value;
+  for (int k = 0; k < 3; ++k) box[k] = Interval(lo[k], hi[k]);
+  E.values<Interval>(box, nullptr, &value);
   return sign_of(value);
 }
 

@@ -66,8 +66,9 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
 int gradient_functional_sign(const CompiledSystem& E, const std::array<double, 3>& a, const std::array<double, 3>& b,
                              const std::array<double, 3>& w);
 
-//! The sign of E(x) at the point x, proved by interval evaluation: +1 or −1, or 0 if the
-//! enclosure contains 0 (E(x) is zero up to the rounding of its evaluation).
-int value_sign(const CompiledSystem& E, const std::array<double, 3>& x);
+//! The sign of E on the box [lo, hi] (lo = hi: at a point), proved by one interval evaluation:
+//! +1 or −1, or 0 if the enclosure contains 0 (at a point: E(x) is zero up to the rounding of
+//! its evaluation).  A non-zero sign proves that Σ does not meet the box.
+int value_sign(const CompiledSystem& E, const std::array<double, 3>& lo, const std::array<double, 3>& hi);
 
 }  // namespace delmesh

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "common/tolerances.h"
@@ -48,6 +49,24 @@ void WitnessCollector::add_region(const SurfaceOracle& oracle, const VoronoiCell
     add(*x, true);
   else
     add_unsettled(UnsettledReason::region_outside_face, region.world);
+}
+
+void WitnessCollector::add_degenerate_facet(const SurfaceOracle& oracle, const VoronoiFacet& facet) {
+  if (!facet.degenerate) return;
+  const double margin = tolerances::face_membership_relative_tolerance * oracle.diagonal();
+  Vec3 lo{}, hi{};
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = std::numeric_limits<double>::infinity();
+    hi[k] = -lo[k];
+  }
+  for (const auto& w : facet.polygon) {
+    const Vec3 x = facet.world(w[0], w[1]);
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], x[k] - margin);
+      hi[k] = std::max(hi[k], x[k] + margin);
+    }
+  }
+  if (oracle.value_sign(lo, hi) == 0) add_unsettled(UnsettledReason::degenerate_face, 0.5 * (lo + hi));
 }
 
 void WitnessCollector::add_line_region(const SurfaceOracle& oracle, const UndecidedBox& region) {

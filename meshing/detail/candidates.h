@@ -42,6 +42,9 @@ class WitnessCollector {
   //! An undecided region of SurfaceLine: its projection onto Σ, or unsettled if that fails.
   void add_line_region(const SurfaceOracle& oracle, const UndecidedBox& region);
   void add_unsettled(UnsettledReason reason, const Vec3& where) { unsettled_.push_back({kind_, reason, where}); }
+  //! A degenerate facet (VoronoiFacet::degenerate): unsettled unless E has a proved sign on the
+  //! bounding box of its points, widened by face_membership_relative_tolerance · diag.
+  void add_degenerate_facet(const SurfaceOracle& oracle, const VoronoiFacet& facet);
 
   std::size_t points() const { return points_.size(); }
   //! The witnesses, furthest from the sample first (ties: in the order added), and the unsettled

@@ -34,4 +34,35 @@ BOOST_AUTO_TEST_CASE(contact_outside_the_facet_does_not_fire) {
   BOOST_TEST(facet_contact_witness(f.restricted, {0, 1}).clean());
 }
 
+// Six cospherical samples, the vertices of an octahedron about c: the Voronoi facet of the
+// octahedron's diagonal in Del S is the single point c.  Returns that diagonal.
+EdgeKey degenerate_diagonal(CheckFixture& f) {
+  for (VertexId v : f.del.vertices())
+    for (const auto& e : f.del.incident_edges(v))
+      if (f.restricted.facet(e).degenerate) return e;
+  BOOST_FAIL("no degenerate facet");
+  return {};
+}
+
+std::vector<Vec3> octahedron_about(const Vec3& c) {
+  return {{c[0] + 0.5, c[1], c[2]}, {c[0] - 0.5, c[1], c[2]}, {c[0], c[1] + 0.5, c[2]},
+          {c[0], c[1] - 0.5, c[2]}, {c[0], c[1], c[2] + 0.5}, {c[0], c[1], c[2] - 0.5}};
+}
+
+// c = (1,0,0) ∈ Σ: the degenerate facet may meet Σ, so it is unsettled, not skipped.
+BOOST_AUTO_TEST_CASE(degenerate_facet_on_the_surface_is_unsettled) {
+  CheckFixture f(test::unit_sphere, 1.6, octahedron_about({1, 0, 0}));
+  const auto result = facet_contact_witness(f.restricted, degenerate_diagonal(f));
+  BOOST_TEST(result.witnesses.empty());
+  BOOST_TEST_REQUIRE(result.unsettled.size() == 1u);
+  BOOST_TEST(result.unsettled[0].reason == UnsettledReason::degenerate_face);
+  BOOST_TEST(detail::distance(result.unsettled[0].location, {1, 0, 0}) < 1e-6);
+}
+
+// c = (0.5,0,0), inside the ball: Σ is proved to miss the degenerate facet.
+BOOST_AUTO_TEST_CASE(degenerate_facet_off_the_surface_is_clean) {
+  CheckFixture f(test::unit_sphere, 1.6, octahedron_about({0.5, 0, 0}));
+  BOOST_TEST(facet_contact_witness(f.restricted, degenerate_diagonal(f)).clean());
+}
+
 BOOST_AUTO_TEST_SUITE_END()

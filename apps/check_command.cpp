@@ -26,6 +26,11 @@ struct CheckOptions {
 
 const char* yes_no(bool b) { return b ? "yes" : "no"; }
 const char* pass_fail(bool b) { return b ? "pass" : "FAIL"; }
+//! "1 boundary loop", "3 boundary loops", "2 non-manifold vertices".
+std::string count_of(std::size_t n, const std::string& thing) {
+  if (n == 1) return "1 " + thing;
+  return std::to_string(n) + " " + (thing.back() == 'x' ? thing.substr(0, thing.size() - 2) + "ices" : thing + "s");
+}
 
 ExitCode run_check(const CheckOptions& o) {
   const bool with_bounds = o.lambda_option->count() > 0;
@@ -33,7 +38,9 @@ ExitCode run_check(const CheckOptions& o) {
     throw InvalidInput("--lambda must lie in (0, 1/6) for the bounds of Theorem 6.1, got " +
                        format_number(o.lambda));
   }
-  const MeshReport report = check_mesh(read_mesh(o.mesh));
+  // Read as a soup: open, non-manifold and non-orientable meshes are reported, not refused.
+  const TriangleSoup soup = read_triangle_soup(o.mesh);
+  const MeshReport report = check_mesh(soup.points, soup.triangles);
 
   bool all_pass = true;
   nlohmann::ordered_json out = nlohmann::ordered_json::parse(to_json(report).dump());
@@ -65,12 +72,30 @@ ExitCode run_check(const CheckOptions& o) {
     std::cout << "triangles:             " << report.triangles << "\n";
     std::cout << "components:            " << report.components << "\n";
     std::cout << "euler characteristic:  " << report.euler_characteristic << "\n";
+    // The genus only of the components that are closed orientable 2-manifolds, "-" elsewhere.
     std::cout << "genus per component:  ";
-    for (int g : report.genus_per_component) std::cout << " " << g;
+    bool undefined = false;
+    for (int g : report.genus_per_component) {
+      std::cout << " " << (g >= 0 ? std::to_string(g) : "-");
+      undefined = undefined || g < 0;
+    }
+    if (undefined) std::cout << "  (-: not a closed orientable 2-manifold, genus undefined)";
     std::cout << "\n";
-    std::cout << "closed:                " << yes_no(report.closed) << "\n";
-    std::cout << "manifold:              " << yes_no(report.manifold) << "\n";
-    std::cout << "orientable:            " << yes_no(report.orientable) << "\n";
+    std::cout << "closed:                " << yes_no(report.closed);
+    if (!report.closed)
+      std::cout << " (" << count_of(report.boundary_edges, "boundary edge") << " in "
+                << count_of(report.boundary_loops, "boundary loop") << ")";
+    std::cout << "\n";
+    std::cout << "manifold:              " << yes_no(report.manifold);
+    if (report.nonmanifold_edges > 0 || report.nonmanifold_vertices > 0)
+      std::cout << " (" << count_of(report.nonmanifold_edges, "non-manifold edge") << ", "
+                << count_of(report.nonmanifold_vertices, "non-manifold vertex") << ")";
+    else if (!report.manifold)
+      std::cout << " (it has boundary)";
+    std::cout << "\n";
+    std::cout << "orientable:            " << yes_no(report.orientable);
+    if (report.orientable && !report.oriented) std::cout << " (but the triangles are not consistently oriented)";
+    std::cout << "\n";
     std::cout << "min angle (deg):       " << report.min_angle_deg << "\n";
     std::cout << "max radius-edge ratio: " << report.max_radius_edge_ratio << "\n";
     std::cout << "max roughness (rad):   " << report.max_roughness_rad << "\n";
@@ -92,14 +117,17 @@ Command add_check_command(CLI::App& parent) {
   CLI::App* sub = parent.add_subcommand("check", "Check a mesh file independently (topology, quality, bounds)");
   sub->footer(
       "Check a triangle mesh file (OFF, PLY or OBJ) from the file alone: components, Euler characteristic, "
-      "genus per component, closed / manifold / orientable, minimum angle, maximum radius-edge ratio, "
-      "maximum roughness. With --lambda, compare with the bounds of Theorem 6.1." "\n\n"
+      "genus per component (where defined: closed orientable 2-manifold components), closed / manifold / "
+      "orientable with the counts of boundary edges and loops and of non-manifold edges and vertices, minimum "
+      "angle, maximum radius-edge ratio, maximum roughness. Open, non-manifold and non-orientable meshes are "
+      "reported, not refused. With --lambda, compare with the bounds of Theorem 6.1." "\n\n"
       "Exit codes: 0 checked (and with --lambda every bound holds), 1 some bound fails, "
               "2 invalid input (missing or corrupt file, lambda out of range), 4 internal error.");
   sub->add_option("MESH", o->mesh, "The mesh file (.off, .ply or .obj)")->required();
   o->lambda_option = sub->add_option("--lambda", o->lambda,
                                      "lambda in (0, 1/6): compare with min angle >= asin(1/(2+2 lambda)), "
-                                     "radius-edge ratio <= 1+lambda, roughness <= 2 beta(lambda)")->type_name("L");
+                                     "radius-edge ratio <= 1+lambda, roughness <= 2 beta(lambda)")->type_name("L")
+      ->check(finite_number());
   sub->add_flag("--json", o->json,
                 "Print the report as JSON (with --lambda also \"lambda\", \"bounds\" and \"pass\")");
   return {sub, [o]() { return run_check(*o); }};

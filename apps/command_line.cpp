@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
+#include <optional>
 #include <sstream>
 
 #include "common/errors.h"
@@ -46,7 +48,51 @@ std::string one_line(std::string message) {
   return message;
 }
 
+//! The whole of `text` as a finite double, if it is one.
+std::optional<double> finite_value(const std::string& text) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return std::nullopt;
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(begin, &end);
+  if (end != begin + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
 }  // namespace
+
+CLI::Validator whole_number(unsigned long long min, unsigned long long max) {
+  const std::string range = "expected a whole number from " + std::to_string(min) + " to " + std::to_string(max);
+  return CLI::Validator(
+      [min, max, range](std::string& text) -> std::string {
+        const std::string got = ", got '" + text + "'";
+        std::size_t i = 0;
+        bool negative = false;
+        if (i < text.size() && (text[i] == '+' || text[i] == '-')) negative = text[i++] == '-';
+        if (i == text.size()) return range + got;
+        unsigned long long value = 0;
+        bool overflow = false;
+        for (; i < text.size(); ++i) {
+          if (!std::isdigit(static_cast<unsigned char>(text[i]))) return range + got;
+          const unsigned long long digit = static_cast<unsigned long long>(text[i] - '0');
+          if (value > (std::numeric_limits<unsigned long long>::max() - digit) / 10) overflow = true;
+          if (!overflow) value = 10 * value + digit;
+        }
+        if (negative && value != 0) return range + got;
+        if (overflow || value < min || value > max) return range + got;
+        return {};
+      },
+      "", "whole_number");
+}
+
+CLI::Validator finite_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (!finite_value(text)) return "expected a finite number, got '" + text + "'";
+        return {};
+      },
+      "", "finite_number");
+}
 
 std::array<double, 3> parse_vector3(const std::string& text, const std::string& option) {
   std::array<double, 3> v{};

@@ -48,6 +48,23 @@ Command add_solve_command(CLI::App& parent);
 Command add_mesh_command(CLI::App& parent);
 Command add_check_command(CLI::App& parent);
 
+//! Ranges of the numeric options (input limits, not tolerances).  A count (--max-points,
+//! --max-boxes) is at most max_count; a time limit at most max_time_limit_seconds (about 31
+//! years: the deadline now + limit must stay representable in nanoseconds); --threads at most
+//! max_threads (more than the hardware threads run as many as there are).
+inline constexpr unsigned long long max_count = 1000000000ULL;
+inline constexpr double max_time_limit_seconds = 1e9;
+inline constexpr unsigned long long max_threads = 1024;
+
+//! A CLI11 validator for an integer option: the whole text is a decimal integer (an optional
+//! sign, then digits; no fraction, exponent, spaces or other text) in [min, max].  Otherwise the
+//! option fails with "OPTION: expected a whole number from MIN to MAX, got 'TEXT'".  It runs
+//! before CLI11's conversion, so a negative count never wraps around to a huge unsigned one.
+CLI::Validator whole_number(unsigned long long min, unsigned long long max);
+//! A CLI11 validator for a real option: the whole text is a finite decimal number (not nan, not
+//! inf, not one that overflows to inf such as 1e400).  Range checks are the command's.
+CLI::Validator finite_number();
+
 //! Parses "a,b,c" into three finite doubles; throws InvalidInput naming `option` otherwise.
 std::array<double, 3> parse_vector3(const std::string& text, const std::string& option);
 

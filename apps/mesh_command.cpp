@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -92,8 +93,8 @@ ExitCode run_mesh(const MeshOptions& o) {
     options.size_bound = o.size_bound;
   }
   if (o.max_points < 1) throw InvalidInput("--max-points must be at least 1");
-  if (!std::isfinite(o.time_limit) || o.time_limit < 0) {
-    throw InvalidInput("--time-limit must be >= 0 seconds (0: none), got " + format_number(o.time_limit));
+  if (!std::isfinite(o.time_limit) || o.time_limit < 0 || o.time_limit > max_time_limit_seconds) {
+    throw InvalidInput("--time-limit must be >= 0 and <= 1e9 seconds (0: none), got " + format_number(o.time_limit));
   }
   options.max_points = o.max_points;
   options.time_limit_seconds = o.time_limit;
@@ -202,28 +203,38 @@ Command add_mesh_command(CLI::App& parent) {
       "implemented yet (exit code 2)")->type_name("FILE");
   sub->add_option("--lambda", o->lambda,
                   "lambda in (0, 1/3); Theorem 6.1 covers (0, 0.06], larger values run with a warning")->type_name("L")
+      ->check(finite_number())
       ->capture_default_str();
   sub->add_option("--phase", o->phase, "topology (SampleTopology only, Sec. 5) or all (DelMesh, Sec. 6.2)")->type_name("PHASE")
       ->capture_default_str();
   sub->add_option("--solver", o->solver, "subdivision or homotopy (polynomial E only)")->type_name("SOLVER")->capture_default_str();
   o->size_bound_option = sub->add_option(
       "--size-bound", o->size_bound,
-      "H > 0 (length units of E): also refine triangles whose surface Delaunay ball radius exceeds H")->type_name("H");
+      "H > 0 (length units of E): also refine triangles whose surface Delaunay ball radius exceeds H")->type_name("H")
+      ->check(finite_number());
   o->out_option = sub->add_option("--out", o->out,
                                   "Mesh file, format by extension .off|.ply|.obj (default: <name>.off, <name> = "
                                   "the catalog name or 'surface' for --expr)")->type_name("FILE");
   o->stats_option =
       sub->add_option("--stats", o->stats, "Statistics JSON file, or - for stdout (default: <name>.json)")->type_name("FILE|-");
-  sub->add_option("--max-points", o->max_points, "Stop (exit code 3) after this many sample points (>= 1)")->type_name("N")
+  sub->add_option("--max-points", o->max_points,
+                  "Stop (exit code 3) once the sample holds N points, 1 <= N <= 1e9. The seeds (critical points of a "
+                  "height function, at least two per component) are always inserted first, so the sample may exceed "
+                  "a small N and its partial mesh may have few or no triangles")
+      ->type_name("N")
+      ->check(whole_number(1, max_count))
       ->capture_default_str();
-  sub->add_option("--time-limit", o->time_limit, "Stop (exit code 3) after this many seconds; 0 means none")->type_name("S")
+  sub->add_option("--time-limit", o->time_limit, "Stop (exit code 3) after this many seconds (at most 1e9); 0 means none")->type_name("S")
+      ->check(finite_number())
       ->capture_default_str();
-  sub->add_option("--seed", o->seed, "Seed of the generic directions; same input and seed give the same mesh")->type_name("N")
+  sub->add_option("--seed", o->seed, "Seed of the generic directions, 0 <= N < 2^64; same input and seed give the same mesh")->type_name("N")
+      ->check(whole_number(0, std::numeric_limits<std::uint64_t>::max()))
       ->capture_default_str();
   sub->add_option("--threads", o->threads,
                   "Threads for the records of changed Voronoi faces; 0 means every hardware thread. The mesh "
-                  "is the same for every value")
+                  "is the same for every value; at most 1024, and more than the hardware threads run as many as there are")
       ->type_name("N")
+      ->check(whole_number(0, max_threads))
       ->capture_default_str();
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
   return {sub, [o]() { return run_mesh(*o); }};

@@ -209,8 +209,8 @@ ExitCode run_solve(const SolveOptions& o) {
       {"automatic", TaylorForms::automatic}, {"always", TaylorForms::always}, {"never", TaylorForms::never}};
   if (!taylor_choices.count(o.taylor_forms))
     throw InvalidInput("--taylor-forms: expected automatic, always or never, got '" + o.taylor_forms + "'");
-  if (!std::isfinite(o.time_limit) || o.time_limit < 0) {
-    throw InvalidInput("--time-limit must be >= 0 seconds (0: none), got " + format_number(o.time_limit));
+  if (!std::isfinite(o.time_limit) || o.time_limit < 0 || o.time_limit > max_time_limit_seconds) {
+    throw InvalidInput("--time-limit must be >= 0 and <= 1e9 seconds (0: none), got " + format_number(o.time_limit));
   }
   check_parameter_options(o);
   const SurfaceInput input = o.surface.resolve();
@@ -341,10 +341,12 @@ Command add_solve_command(CLI::App& parent) {
                   "(automatic: for dense expanded polynomials, where they are faster)")
       ->capture_default_str()
       ->type_name("MODE");
-  sub->add_option("--max-boxes", o->max_boxes, "box budget of the subdivision solver and the isolator (>= 1)")
+  sub->add_option("--max-boxes", o->max_boxes, "box budget of the subdivision solver and the isolator (1 to 1e9)")
+      ->check(whole_number(1, max_count))
       ->capture_default_str()
       ->type_name("N");
-  sub->add_option("--time-limit", o->time_limit, "seconds; 0 means no limit (subdivision and homotopy)")
+  sub->add_option("--time-limit", o->time_limit, "seconds, at most 1e9; 0 means no limit (subdivision and homotopy)")
+      ->check(finite_number())
       ->capture_default_str()
       ->type_name("S");
   sub->add_flag("--json", o->json,

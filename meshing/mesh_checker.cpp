@@ -193,6 +193,9 @@ MeshReport check_mesh(const std::vector<Point3>& input_points,
     normal[t] = cross(p[triangles[t][1]] - a, p[triangles[t][2]] - a);
   }
 
+  // Boundary loops: the connected pieces of the graph of boundary edges.
+  UnionFind boundary_graph(n_points);
+  std::vector<char> on_boundary(n_points, 0);
   bool oriented = true;
   report.min_edge_length = std::numeric_limits<double>::infinity();
   report.max_edge_length = 0;
@@ -208,9 +211,15 @@ MeshReport check_mesh(const std::vector<Point3>& input_points,
     report.max_edge_length = std::max(report.max_edge_length, length);
     if (count != 2) {
       comp_closed[c] = 0;
-      if (count == 1) ++report.boundary_edges;
+      if (count == 1) {
+        ++report.boundary_edges;
+        ++components[c].boundary_edges;
+        boundary_graph.unite(uses[begin].lo, uses[begin].hi);
+        on_boundary[uses[begin].lo] = 1;
+      }
       if (count >= 3) {
         ++report.nonmanifold_edges;
+        ++components[c].nonmanifold_edges;
         comp_orientable[c] = 0;
         oriented = false;
       }
@@ -232,6 +241,13 @@ MeshReport check_mesh(const std::vector<Point3>& input_points,
     begin = end;
   }
   report.oriented = oriented;
+  for (std::size_t v = 0; v < n_points; ++v) {
+    // One count per piece, at its smallest vertex (UnionFind keeps the smallest index as the
+    // root); that vertex lies on a boundary edge, so it has an incident triangle.
+    if (!on_boundary[v] || boundary_graph.find(v) != v) continue;
+    ++report.boundary_loops;
+    ++components[component_of[incident[first[v]]]].boundary_loops;
+  }
 
   // Orientation BFS per component.
   std::vector<signed char> flip(n_triangles, -1);
@@ -267,7 +283,10 @@ MeshReport check_mesh(const std::vector<Point3>& input_points,
       link.emplace_back(tri[(at + 1) % 3], tri[(at + 2) % 3]);
     }
     const LinkKind kind = link_kind(link);
-    if (kind == LinkKind::other) ++report.nonmanifold_vertices;
+    if (kind == LinkKind::other) {
+      ++report.nonmanifold_vertices;
+      ++components[component_of[incident[first[v]]]].nonmanifold_vertices;
+    }
     if (kind != LinkKind::cycle) comp_manifold[component_of[incident[first[v]]]] = 0;
   }
 
@@ -358,6 +377,7 @@ nlohmann::json to_json(const MeshReport& r) {
   auto finite_or_null = [](double value) -> nlohmann::json {
     return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
   };
+  const auto genus = [](int g) { return g >= 0 ? nlohmann::json(g) : nlohmann::json(nullptr); };
   nlohmann::json components = nlohmann::json::array();
   for (const ComponentReport& c : r.component_reports) {
     components.push_back({{"vertices", c.vertices},
@@ -367,15 +387,21 @@ nlohmann::json to_json(const MeshReport& r) {
                           {"closed", c.closed},
                           {"manifold", c.manifold},
                           {"orientable", c.orientable},
-                          {"genus", c.genus}});
+                          {"genus", genus(c.genus)},
+                          {"boundary_edges", c.boundary_edges},
+                          {"boundary_loops", c.boundary_loops},
+                          {"nonmanifold_edges", c.nonmanifold_edges},
+                          {"nonmanifold_vertices", c.nonmanifold_vertices}});
   }
+  nlohmann::json genera = nlohmann::json::array();
+  for (int g : r.genus_per_component) genera.push_back(genus(g));
   return {{"vertices", r.vertices},
           {"edges", r.edges},
           {"triangles", r.triangles},
           {"unreferenced_vertices", r.unreferenced_vertices},
           {"components", r.components},
           {"euler_characteristic", r.euler_characteristic},
-          {"genus_per_component", r.genus_per_component},
+          {"genus_per_component", genera},
           {"component_reports", components},
           {"closed", r.closed},
           {"manifold", r.manifold},
@@ -383,6 +409,7 @@ nlohmann::json to_json(const MeshReport& r) {
           {"orientable", r.orientable},
           {"oriented", r.oriented},
           {"boundary_edges", r.boundary_edges},
+          {"boundary_loops", r.boundary_loops},
           {"nonmanifold_edges", r.nonmanifold_edges},
           {"nonmanifold_vertices", r.nonmanifold_vertices},
           {"signed_volume", r.signed_volume},

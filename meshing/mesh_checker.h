@@ -17,7 +17,13 @@
 //!   that every edge shared by two triangles is traversed in opposite directions (BFS over the
 //!   edge adjacency).  oriented: the GIVEN orientation already has that property (every directed
 //!   edge is used at most once).
-//! - genus g = (2 − χ)/2 of a component that is a closed orientable 2-manifold, −1 otherwise.
+//! - genus g = (2 − χ)/2 of a component that is a closed orientable 2-manifold; elsewhere the
+//!   genus is not defined: −1 in the structs, null in the JSON.
+//! - boundary loops: the connected pieces of the graph formed by the boundary edges (edges in
+//!   exactly one triangle).  On a 2-manifold with boundary these are its boundary circles; two
+//!   circles that touch at a (non-manifold) vertex count as one piece.
+//! - non-manifold edges: in three or more triangles; non-manifold vertices: the link is neither
+//!   one cycle nor one path (e.g. a vertex pinching two fans together).
 //! - Angles and ratios of a triangle with zero area: min angle 0, radius-edge ratio +∞.
 //! - roughness of an edge shared by exactly two triangles (§6.1): π − internal dihedral angle,
 //!   i.e. the angle between the two triangle normals after orienting the pair consistently.
@@ -38,7 +44,9 @@ struct ComponentReport {
   std::size_t vertices = 0, edges = 0, triangles = 0;
   int euler_characteristic = 0;
   bool closed = false, manifold = false, orientable = false;
-  int genus = -1;  //!< (2 − χ)/2 if closed, manifold and orientable, else −1
+  int genus = -1;  //!< (2 − χ)/2 if closed, manifold and orientable, else −1 (undefined)
+  std::size_t boundary_edges = 0, boundary_loops = 0;
+  std::size_t nonmanifold_edges = 0, nonmanifold_vertices = 0;
 };
 
 struct MeshReport {
@@ -46,7 +54,7 @@ struct MeshReport {
   std::size_t unreferenced_vertices = 0;  //!< points used by no triangle (not counted in V)
   int components = 0;
   int euler_characteristic = 0;          //!< V − E + F of the whole mesh
-  std::vector<int> genus_per_component;  //!< sorted ascending; −1 where not a closed surface
+  std::vector<int> genus_per_component;  //!< sorted ascending; −1 where undefined (not a closed orientable 2-manifold)
   //! Per component, sorted by (genus, −triangles): the same order as genus_per_component.
   std::vector<ComponentReport> component_reports;
   bool closed = false;                   //!< every edge has exactly two incident triangles
@@ -54,6 +62,7 @@ struct MeshReport {
   bool orientable = false;               //!< consistently oriented triangles exist
   bool oriented = false;                 //!< the given triangles are consistently oriented
   std::size_t boundary_edges = 0;        //!< edges in exactly one triangle
+  std::size_t boundary_loops = 0;        //!< connected pieces of the boundary edges (file comment)
   std::size_t nonmanifold_edges = 0;     //!< edges in three or more triangles
   std::size_t nonmanifold_vertices = 0;  //!< vertices whose link is not one cycle or one path
   double signed_volume = 0;              //!< Σ over triangles of det(a, b, c)/6 (> 0: outward, if closed)
@@ -82,7 +91,8 @@ void mesh_to_soup(const SurfaceMesh& mesh, std::vector<Point3>& points,
 //! Every field, with the key names of the statistics contract (design.md): vertices, edges,
 //! triangles, components, euler_characteristic, genus_per_component, closed, manifold,
 //! closed_manifold, orientable, oriented, min_angle_deg, max_radius_edge_ratio, max_roughness_rad…
-//! A radius-edge ratio of +∞ is written as null.
+//! plus boundary_edges, boundary_loops, nonmanifold_edges, nonmanifold_vertices (also per
+//! component).  A radius-edge ratio of +∞ and an undefined genus are written as null.
 nlohmann::json to_json(const MeshReport& report);
 std::ostream& operator<<(std::ostream& out, const MeshReport& report);
 

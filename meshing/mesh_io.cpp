@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <limits>
+#include <sstream>
 #include <filesystem>
 #include <fstream>
 #include <locale>
@@ -44,6 +48,148 @@ Format format_of(const std::string& path) {
   throw InvalidInput("mesh file '" + path + "': " + why);
 }
 
+//! A word of the file as it may appear in a message: at most 32 characters, bytes that are not
+//! printable ASCII shown as '?'.
+std::string printable(const std::string& word) {
+  std::string out;
+  for (std::size_t i = 0; i < word.size() && i < 32; ++i) {
+    const unsigned char c = static_cast<unsigned char>(word[i]);
+    out += (c >= 32 && c < 127) ? static_cast<char>(c) : '?';
+  }
+  if (word.size() > 32) out += "...";
+  return out;
+}
+
+//! "the file has N vertices (numbered FIRST to LAST)", or "the file has no vertices".
+std::string vertex_range(std::uintmax_t n, std::uintmax_t first) {
+  if (n == 0) return "the file has no vertices";
+  return "the file has " + std::to_string(n) + " vertices (numbered " + std::to_string(first) + " to " +
+         std::to_string(first + n - 1) + ")";
+}
+
+//! A count of the header: a whole number of at most 19 digits (no sign).
+std::uintmax_t header_count(const std::string& path, const std::string& word, const char* what) {
+  if (!word.empty() && word[0] == '-') corrupt(path, std::string("the header declares a negative ") + what + " (" + printable(word) + ")");
+  const bool digits = !word.empty() && word.size() <= 19 &&
+                      std::all_of(word.begin(), word.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
+  if (!digits) corrupt(path, std::string("the header's ") + what + " '" + printable(word) + "' is not a whole number below 10^19");
+  return std::stoull(word);
+}
+
+//! The reason CGAL's reader refused an OFF file, found by reading it again token by token (the
+//! first problem met), or "" if none is found.
+std::string diagnose_off(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  in.imbue(std::locale::classic());
+  std::vector<std::vector<std::string>> lines;  // non-empty lines, comments removed
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    std::istringstream fields(line);
+    std::vector<std::string> words;
+    for (std::string w; fields >> w;) words.push_back(w);
+    if (!words.empty()) lines.push_back(std::move(words));
+  }
+  // A cursor over the words, line after line, for the header and the vertices.
+  std::size_t row = 0, column = 0;
+  const auto next_word = [&](std::string& w) {
+    while (row < lines.size() && column >= lines[row].size()) ++row, column = 0;
+    if (row >= lines.size()) return false;
+    w = lines[row][column++];
+    return true;
+  };
+  const auto number = [](const std::string& w, double& value) {
+    char* end = nullptr;
+    value = std::strtod(w.c_str(), &end);
+    return !w.empty() && end == w.c_str() + w.size();
+  };
+  std::string w;
+  if (!next_word(w)) return "is empty";
+  if (w.find("OFF") == std::string::npos) --column;
+  std::string v_text, f_text;
+  if (!next_word(v_text) || !next_word(f_text)) return "the OFF header has no vertex and face counts";
+  const std::uintmax_t nv = header_count(path, v_text, "vertex count");
+  const std::uintmax_t nf = header_count(path, f_text, "face count");
+  ++row, column = 0;  // the rest of the counts' line is the edge count
+  for (std::uintmax_t v = 0; v < nv; ++v)
+    for (int k = 0; k < 3; ++k) {
+      double value = 0;
+      if (!next_word(w))
+        return "truncated: the file ends in vertex " + std::to_string(v) + " of the " + std::to_string(nv) + " declared";
+      if (!number(w, value)) return "vertex " + std::to_string(v) + ": '" + printable(w) + "' is not a number";
+      if (!std::isfinite(value)) return "vertex " + std::to_string(v) + " has a non-finite coordinate";
+    }
+  if (column > 0) ++row;  // faces start on the line after the last vertex
+  for (std::uintmax_t f = 0; f < nf; ++f, ++row) {
+    if (row >= lines.size())
+      return "truncated: the file ends before face " + std::to_string(f) + " of the " + std::to_string(nf) + " declared";
+    const std::vector<std::string>& face = lines[row];
+    double count = 0;
+    if (!number(face[0], count) || count < 1 || count != std::floor(count))
+      return "face " + std::to_string(f) + ": '" + printable(face[0]) + "' is not a vertex count";
+    if (face.size() < 1 + static_cast<std::size_t>(count))
+      return "face " + std::to_string(f) + " lists fewer vertices than its count " + printable(face[0]) +
+             (f + 1 == nf ? " (truncated?)" : "");
+    for (std::size_t k = 1; k <= static_cast<std::size_t>(count); ++k) {
+      double index = 0;
+      if (!number(face[k], index) || index != std::floor(index))
+        return "face " + std::to_string(f) + ": '" + printable(face[k]) + "' is not a vertex index";
+      if (index < 0 || index >= static_cast<double>(nv))
+        return "face " + std::to_string(f) + " refers to vertex " + printable(face[k]) + ", but " + vertex_range(nv, 0);
+    }
+  }
+  return "";
+}
+
+//! The reason CGAL's reader refused an OBJ file, found by reading its v and f lines again (the
+//! first problem met), or "" if none is found.  Indices are quoted as in the file (1-based,
+//! negative ones relative to the last vertex defined).
+std::string diagnose_obj(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  in.imbue(std::locale::classic());
+  std::string line;
+  long long vertices = 0, faces = 0;
+  for (std::size_t number = 1; std::getline(in, line); ++number) {
+    std::istringstream fields(line);
+    std::string keyword;
+    fields >> keyword;
+    const std::string where = "line " + std::to_string(number) + ": ";
+    if (keyword == "v") {
+      for (int k = 0; k < 3; ++k) {
+        std::string w;
+        if (!(fields >> w)) return where + "a vertex needs three coordinates";
+        char* end = nullptr;
+        const double value = std::strtod(w.c_str(), &end);
+        if (end != w.c_str() + w.size()) return where + "'" + printable(w) + "' is not a number";
+        if (!std::isfinite(value)) return where + "a vertex has a non-finite coordinate";
+      }
+      ++vertices;
+    } else if (keyword == "f") {
+      std::string w;
+      int corners = 0;
+      while (fields >> w) {
+        const std::string head = w.substr(0, w.find('/'));
+        char* end = nullptr;
+        const long long index = std::strtoll(head.c_str(), &end, 10);
+        if (head.empty() || end != head.c_str() + head.size()) return where + "'" + printable(w) + "' is not a vertex index";
+        const long long resolved = index < 0 ? vertices + index + 1 : index;
+        if (index == 0 || resolved < 1 || resolved > vertices)
+          return where + "a face refers to vertex " + head + ", but " +
+                 (vertices == 0 ? std::string("no vertex is defined before it")
+                                : std::to_string(vertices) + " vertices are defined before it (indices 1 to " +
+                                      std::to_string(vertices) + ", or -1 to -" + std::to_string(vertices) +
+                                      " counting back)");
+        ++corners;
+      }
+      if (corners < 3) return where + "a face needs at least three vertices";
+      ++faces;
+    }
+  }
+  if (faces == 0) return "has no faces";
+  return "";
+}
+
 //! A loose upper bound on the element counts a file of this size can hold, so that a header that
 //! claims billions of elements is rejected before the CGAL readers allocate for them.
 void check_declared_counts(const std::string& path, Format format, std::uintmax_t bytes) {
@@ -59,11 +205,7 @@ void check_declared_counts(const std::string& path, Format format, std::uintmax_
         continue;
       }
       if (word.find("OFF") != std::string::npos) continue;
-      try {
-        counts.push_back(std::stoull(word));
-      } catch (const std::exception&) {
-        corrupt(path, "malformed OFF header near '" + word + "'");
-      }
+      counts.push_back(header_count(path, word, counts.empty() ? "vertex count" : "face count"));
       if (counts.size() == 2) break;
     }
     if (counts.size() != 2) corrupt(path, "OFF header has no vertex and face counts");
@@ -76,12 +218,10 @@ void check_declared_counts(const std::string& path, Format format, std::uintmax_
         break;
       }
       if (line.rfind("element", 0) == 0) {
-        const auto at = line.find_last_of(' ');
-        try {
-          counts.push_back(std::stoull(line.substr(at + 1)));
-        } catch (const std::exception&) {
-          corrupt(path, "malformed PLY element line '" + line + "'");
-        }
+        std::istringstream fields(line);
+        std::string keyword, name, count;
+        fields >> keyword >> name >> count;
+        counts.push_back(header_count(path, count, ("number of " + printable(name) + " elements").c_str()));
       }
     }
     if (!ended) corrupt(path, "PLY header has no end_header");
@@ -90,7 +230,7 @@ void check_declared_counts(const std::string& path, Format format, std::uintmax_
   for (std::uintmax_t count : counts) {
     if (count > bytes / 3 + 1) {
       corrupt(path, "the header declares " + std::to_string(count) + " elements but the file has only " +
-                        std::to_string(bytes) + " bytes (truncated or corrupt)");
+                        std::to_string(bytes) + " bytes (truncated, or a corrupt count)");
     }
   }
 }
@@ -109,7 +249,7 @@ void write_triangle_soup(const TriangleSoup& soup, const std::string& path) {
   bool ok = false;
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("write_mesh: cannot open '" + temporary.string() + "' for writing");
+    if (!out) throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
     out.imbue(std::locale::classic());
     out.precision(full_double_precision);
     const auto np = CGAL::parameters::stream_precision(full_double_precision);
@@ -131,14 +271,13 @@ void write_triangle_soup(const TriangleSoup& soup, const std::string& path) {
   std::error_code ignored;
   if (!ok) {
     fs::remove(temporary, ignored);
-    throw std::runtime_error("write_mesh: writing '" + temporary.string() + "' failed");
+    throw std::runtime_error("cannot write '" + path + "': the write failed (disk full?)");
   }
   std::error_code error;
   fs::rename(temporary, target, error);
   if (error) {
     fs::remove(temporary, ignored);
-    throw std::runtime_error("write_mesh: cannot rename '" + temporary.string() + "' to '" + path +
-                             "': " + error.message());
+    throw std::runtime_error("cannot write '" + path + "': " + error.message());
   }
 }
 
@@ -152,9 +291,12 @@ void write_mesh(const SurfaceMesh& mesh, const std::string& path) {
 TriangleSoup read_triangle_soup(const std::string& path) {
   const Format format = format_of(path);
   std::error_code error;
-  if (!fs::is_regular_file(path, error)) corrupt(path, "no such file");
+  if (fs::is_directory(path, error)) corrupt(path, "is a directory, not a mesh file");
+  if (!fs::exists(path, error)) corrupt(path, "no such file");
+  if (!fs::is_regular_file(path, error)) corrupt(path, "is not a regular file");
   const std::uintmax_t bytes = fs::file_size(path, error);
   if (error) corrupt(path, "cannot read its size: " + error.message());
+  if (bytes == 0) corrupt(path, "is empty");
   {
     std::ifstream probe(path, std::ios::binary);
     if (!probe) corrupt(path, "cannot be opened for reading");
@@ -181,7 +323,12 @@ TriangleSoup read_triangle_soup(const std::string& path) {
   } catch (const std::exception& e) {
     corrupt(path, std::string("the reader failed: ") + e.what());
   }
-  if (!ok) corrupt(path, "cannot be parsed (truncated or corrupt)");
+  if (!ok) {
+    std::string reason;
+    if (format == Format::off) reason = diagnose_off(path);
+    if (format == Format::obj) reason = diagnose_obj(path);
+    corrupt(path, reason.empty() ? std::string("cannot be parsed (truncated or corrupt)") : reason);
+  }
   if (polygons.empty()) corrupt(path, "has no faces");
 
   TriangleSoup soup;
@@ -195,8 +342,12 @@ TriangleSoup read_triangle_soup(const std::string& path) {
     }
     for (std::size_t v : polygon) {
       if (v >= soup.points.size()) {
-        corrupt(path, "face " + std::to_string(f) + " refers to vertex " + std::to_string(v) + " of " +
-                          std::to_string(soup.points.size()));
+        // The readers store a negative index of the file as its wrapped-around unsigned value.
+        const std::string index = v > std::numeric_limits<std::size_t>::max() / 2
+                                      ? "-" + std::to_string(std::numeric_limits<std::size_t>::max() - v + 1)
+                                      : std::to_string(format == Format::obj ? v + 1 : v);
+        corrupt(path, "face " + std::to_string(f) + " refers to vertex " + index + ", but " +
+                          vertex_range(soup.points.size(), format == Format::obj ? 1 : 0));
       }
     }
     if (polygon[0] == polygon[1] || polygon[1] == polygon[2] || polygon[0] == polygon[2]) {

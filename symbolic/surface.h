@@ -56,9 +56,10 @@ class Surface {
   static constexpr long max_decimal_exponent = 400;
   //! Size limits checked on the expression tree before anything is expanded: the total degree in
   //! x, y, z (bounded from the tree: sums take the maximum, products add, powers multiply by |n|)
-  //! at most max_degree, and at most max_expanded_terms terms once expanded (bounded from the
-  //! tree: sums add, products multiply, powers take the multinomial count, capped by the number
-  //! of monomials of that degree in three variables).
+  //! at most max_degree, and at most max_expanded_terms terms once expanded, also along a general
+  //! line E(p + t v) as symbolic/line_polynomial.h expands it (bounded from the tree: sums add,
+  //! products multiply, powers take the multinomial count, capped by the number of monomials of
+  //! that degree in the variables).
   static constexpr std::size_t max_degree = 200;
   static constexpr std::size_t max_expanded_terms = 200000;
 

@@ -59,4 +59,91 @@ BOOST_AUTO_TEST_CASE(bad_files_and_lambda_are_invalid_input) {
   require_invalid_input(run_delmesh({"check", "octahedron.off", "--lambda", "0.5"}, dir.path), "--lambda");
 }
 
+// Open, non-manifold and non-orientable meshes are reported, not refused: counts of boundary edges
+// and loops and of non-manifold edges and vertices; the genus only where it is defined (null in
+// JSON, "-" in the text).  A single triangle used to be refused or given genus -1.
+BOOST_AUTO_TEST_CASE(open_non_manifold_and_non_orientable_meshes_are_reported) {
+  ScratchDirectory dir;
+  write_text(dir / "triangle.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  // A Möbius strip: a band of six triangles closed with a half twist.
+  write_text(dir / "mobius.off",
+             "OFF\n6 6 0\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n1 1 0\n2 1 0\n"
+             "3 0 1 4\n3 0 4 3\n3 1 2 5\n3 1 5 4\n3 2 3 0\n3 2 0 5\n");
+  // Three triangles on one edge, and a fourth touching them at one vertex only.
+  write_text(dir / "fin.off",
+             "OFF\n7 4 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n2 2 0\n3 3 0\n3 0 1 2\n3 1 0 3\n3 0 1 4\n3 1 5 6\n");
+  // A square annulus: two boundary loops.
+  write_text(dir / "annulus.off",
+             "OFF\n8 8 0\n-2 -2 0\n2 -2 0\n2 2 0\n-2 2 0\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n"
+             "3 0 1 4\n3 1 5 4\n3 1 2 5\n3 2 6 5\n3 2 3 6\n3 3 7 6\n3 3 0 7\n3 0 4 7\n");
+  // A tetrahedron with one face turned over: closed and orientable, but not oriented.
+  write_text(dir / "flipped.off",
+             "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 2 1 3\n");
+  write_text(dir / "octahedron.off", octahedron_off);
+
+  struct Expected {
+    const char* file;
+    std::size_t boundary_edges, boundary_loops, nonmanifold_edges, nonmanifold_vertices;
+    bool closed, orientable;
+    int genus;  // -1: undefined (null)
+  };
+  const Expected cases[] = {
+      {"triangle.off", 3, 1, 0, 0, false, true, -1},
+      {"mobius.off", 6, 1, 0, 0, false, false, -1},
+      {"fin.off", 9, 1, 1, 2, false, false, -1},
+      {"annulus.off", 8, 2, 0, 0, false, true, -1},
+      {"octahedron.off", 0, 0, 0, 0, true, true, 0},
+  };
+  for (const Expected& e : cases) {
+    BOOST_TEST_CONTEXT(e.file) {
+      const RunResult r = run_delmesh({"check", e.file, "--json"}, dir.path);
+      BOOST_TEST(r.exit_code == 0, r.err);
+      const nlohmann::json j = nlohmann::json::parse(r.out);
+      BOOST_TEST(j.at("boundary_edges").get<std::size_t>() == e.boundary_edges);
+      BOOST_TEST(j.at("boundary_loops").get<std::size_t>() == e.boundary_loops);
+      BOOST_TEST(j.at("nonmanifold_edges").get<std::size_t>() == e.nonmanifold_edges);
+      BOOST_TEST(j.at("nonmanifold_vertices").get<std::size_t>() == e.nonmanifold_vertices);
+      BOOST_TEST(j.at("closed").get<bool>() == e.closed);
+      BOOST_TEST(j.at("orientable").get<bool>() == e.orientable);
+      const nlohmann::json& genus = j.at("genus_per_component").at(0);
+      if (e.genus < 0) {
+        BOOST_TEST(genus.is_null(), genus.dump());
+      } else {
+        BOOST_TEST(genus.get<int>() == e.genus);
+      }
+      BOOST_TEST(r.out.find("-1") == std::string::npos, r.out);
+    }
+  }
+  const RunResult text = run_delmesh({"check", "triangle.off"}, dir.path);
+  BOOST_TEST(text.exit_code == 0, text.err);
+  BOOST_TEST(text.out.find("genus per component:   -") != std::string::npos, text.out);
+  BOOST_TEST(text.out.find("closed:                no (3 boundary edges in 1 boundary loop)") != std::string::npos, text.out);
+  const RunResult fin = run_delmesh({"check", "fin.off"}, dir.path);
+  BOOST_TEST(fin.out.find("(1 non-manifold edge, 2 non-manifold vertices)") != std::string::npos, fin.out);
+  const RunResult flipped = run_delmesh({"check", "flipped.off", "--json"}, dir.path);
+  BOOST_TEST(flipped.exit_code == 0, flipped.err);
+  const nlohmann::json f = nlohmann::json::parse(flipped.out);
+  BOOST_TEST(f.at("closed").get<bool>());
+  BOOST_TEST(f.at("orientable").get<bool>());
+  BOOST_TEST(!f.at("oriented").get<bool>());
+  BOOST_TEST(f.at("genus_per_component").at(0).get<int>() == 0);
+}
+
+// The partial mesh of a run stopped at 8 points (7 triangles pinched at a vertex) is checkable.
+BOOST_AUTO_TEST_CASE(partial_mesh_of_a_point_limited_run_is_checkable) {
+  ScratchDirectory dir;
+  const RunResult m = run_delmesh(
+      {"mesh", "--surface", "torus", "--max-points", "8", "--out", "t.off", "--stats", "t.json", "--quiet"}, dir.path);
+  BOOST_TEST(m.exit_code == 3, m.err);
+  const RunResult r = run_delmesh({"check", "t.off", "--json"}, dir.path);
+  BOOST_TEST(r.exit_code == 0, r.err);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const nlohmann::json stats = nlohmann::json::parse(read_text(dir / "t.json"));
+  BOOST_TEST(j.at("vertices") == stats.at("vertices"));
+  BOOST_TEST(j.at("triangles") == stats.at("triangles"));
+  BOOST_TEST(!j.at("closed").get<bool>());
+  BOOST_TEST(j.at("boundary_loops").get<std::size_t>() >= 1u);
+  for (const auto& g : j.at("genus_per_component")) BOOST_TEST(g.is_null());
+}
+
 BOOST_AUTO_TEST_SUITE_END()

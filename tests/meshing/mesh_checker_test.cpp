@@ -266,6 +266,46 @@ BOOST_AUTO_TEST_CASE(surface_mesh_overload_agrees_with_soup) {
   BOOST_CHECK_THROW(check_mesh(quad), InvalidInput);
 }
 
+// Boundary loops are counted per component; the genus is undefined (null in JSON) on components
+// that are not closed orientable 2-manifolds.
+BOOST_AUTO_TEST_CASE(boundary_loops_and_undefined_genus) {
+  const MeshReport strip = check(test::mobius_strip(7));
+  BOOST_TEST(strip.boundary_loops == 1u);  // a Möbius strip has one boundary circle
+  const MeshReport disk = check(test::open_disk(6));
+  BOOST_TEST(disk.boundary_loops == 1u);
+  // A square annulus beside a tetrahedron: two loops in one component, none in the other.
+  Soup s = test::tetrahedron();
+  const std::size_t o = s.points.size();
+  for (const auto& p : {Point3(-2, -2, 5), Point3(2, -2, 5), Point3(2, 2, 5), Point3(-2, 2, 5), Point3(-1, -1, 5),
+                        Point3(1, -1, 5), Point3(1, 1, 5), Point3(-1, 1, 5)})
+    s.points.push_back(p);
+  for (int i = 0; i < 4; ++i) {
+    const std::size_t a = o + i, b = o + (i + 1) % 4, c = o + 4 + i, d = o + 4 + (i + 1) % 4;
+    s.triangles.push_back({a, b, c});
+    s.triangles.push_back({b, d, c});
+  }
+  const MeshReport r = check(s);
+  BOOST_TEST(r.components == 2);
+  BOOST_TEST(r.boundary_loops == 2u);
+  BOOST_TEST(r.boundary_edges == 8u);
+  BOOST_TEST(r.genus_per_component == (std::vector<int>{-1, 0}), boost::test_tools::per_element());
+  BOOST_TEST(r.component_reports[0].boundary_loops == 2u);
+  BOOST_TEST(r.component_reports[0].boundary_edges == 8u);
+  BOOST_TEST(r.component_reports[1].boundary_loops == 0u);
+  const nlohmann::json j = to_json(r);
+  BOOST_TEST(j["genus_per_component"] == nlohmann::json::parse("[null, 0]"));
+  BOOST_TEST(j["component_reports"][0]["genus"].is_null());
+  BOOST_TEST(j["component_reports"][0]["boundary_loops"] == 2);
+  BOOST_TEST(j["boundary_loops"] == 2);
+  // Two triangles sharing only a vertex: one component (vertex adjacency), one pinched vertex,
+  // one boundary piece through it.
+  const std::vector<Point3> bow{Point3(0, 0, 0), Point3(1, 0, 0), Point3(0, 1, 0), Point3(-1, 0, 0), Point3(0, -1, 0)};
+  const MeshReport b = check_mesh(bow, {{0, 1, 2}, {0, 3, 4}});
+  BOOST_TEST(b.nonmanifold_vertices == 1u);
+  BOOST_TEST(b.boundary_loops == 1u);
+  BOOST_TEST(b.component_reports[0].nonmanifold_vertices == 1u);
+}
+
 BOOST_AUTO_TEST_CASE(json_has_the_contract_keys) {
   const nlohmann::json j = to_json(check(test::torus(5, 4)));
   for (const char* key : {"vertices", "triangles", "components", "euler_characteristic", "genus_per_component",

@@ -186,6 +186,38 @@ BOOST_AUTO_TEST_CASE(corrupt_files_are_invalid_input) {
   }
 }
 
+// When a reader refuses a file, the message says what is wrong with it, where.
+BOOST_AUTO_TEST_CASE(corrupt_files_are_explained) {
+  TempDir dir;
+  const std::pair<const char*, std::string> cases[][1] = {
+      {{"word.off", "OFF\n3 1 0\n0 0 0\n1 0 zz\n0 1 0\n3 0 1 2\n"}},
+      {{"short.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1\n"}},
+      {{"face.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"}},
+      {{"count.off", "OFF\n-3 1 0\n0 0 0\n"}},
+      {{"relative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n"}},
+      {{"empty.obj", "# nothing\n"}},
+      {{"none.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"}},
+  };
+  const char* expected[] = {
+      "vertex 1: 'zz' is not a number",
+      "truncated: the file ends in vertex 2 of the 3 declared",
+      "truncated: the file ends before face 1 of the 2 declared",
+      "the header declares a negative vertex count (-3)",
+      "line 4: a face refers to vertex -4, but 3 vertices are defined before it",
+      "has no faces",
+      "has no faces",
+  };
+  for (std::size_t i = 0; i < std::size(cases); ++i) {
+    const auto& [name, content] = cases[i][0];
+    try {
+      (void)read_triangle_soup(dir.write(name, content));
+      BOOST_ERROR("no exception for " << name);
+    } catch (const InvalidInput& e) {
+      BOOST_TEST(std::string(e.what()).find(expected[i]) != std::string::npos, name << ": " << e.what());
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(non_manifold_soup_reads_as_soup_only) {
   TempDir dir;
   // Two triangles sharing one vertex plus a third through the same edge as the first: an edge in

@@ -11,10 +11,13 @@
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>
 
+#include "meshing/del_mesh.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/restricted_delaunay.h"
 #include "meshing/surface_mesh.h"
 #include "meshing/surface_oracle.h"
+#include "meshing/theorem_bounds.h"
+#include "symbolic/catalog.h"
 
 namespace delmesh::test {
 
@@ -105,6 +108,27 @@ inline void check_oriented_output(const nlohmann::json& statistics, const Surfac
   std::vector<std::array<std::size_t, 3>> triangles;
   mesh_to_soup(mesh, points, triangles);
   check_oriented_output(statistics, points, triangles);
+}
+
+//! Theorem 6.1 on a DelMesh run of a catalog surface at λ ≤ 0.06, checked on the output by the
+//! independent checker: a certified, outward-oriented closed manifold with the catalog's
+//! components and genera, and the angle, radius-edge and roughness bounds.
+inline void check_theorem_6_1(const CatalogEntry& entry, const DelMeshResult& result, double lambda) {
+  check_complete(result.statistics);
+  check_oriented_output(result.statistics, result.mesh);
+  const auto r = check_mesh(result.mesh);
+  const auto b = theorem_bounds(lambda);
+  BOOST_TEST_MESSAGE(entry.name << " lambda " << lambda << ": " << r.vertices << " vertices, min angle "
+                                << r.min_angle_deg << ", rho " << r.max_radius_edge_ratio << ", roughness "
+                                << r.max_roughness_rad);
+  BOOST_TEST(r.closed);
+  BOOST_TEST(r.manifold);
+  BOOST_TEST(r.orientable);
+  BOOST_TEST(r.components == entry.components);
+  BOOST_TEST(r.genus_per_component == entry.genus_per_component, boost::test_tools::per_element());
+  BOOST_TEST(r.min_angle_deg >= b.min_angle_deg - 1e-9);
+  BOOST_TEST(r.max_radius_edge_ratio <= b.max_radius_edge_ratio + 1e-9);
+  BOOST_TEST(r.max_roughness_rad <= b.max_roughness_rad + 1e-9);
 }
 
 }  // namespace delmesh::test

@@ -30,24 +30,7 @@ DelMeshResult run(const std::string& name, double lambda, std::uint64_t seed = 1
 
 // Theorem 6.1 checked on the output by the independent checker.
 void check_theorem_6_1(const std::string& name, double lambda) {
-  const auto& entry = catalog_entry(name);
-  const auto result = run(name, lambda);
-  BOOST_TEST(result.status == MeshStatus::complete);
-  check_oriented_output(result.statistics, result.mesh);
-  const auto r = check_mesh(result.mesh);
-  const auto b = theorem_bounds(lambda);
-  BOOST_TEST_MESSAGE(name << " lambda " << lambda << ": " << r.vertices << " vertices, min angle "
-                          << r.min_angle_deg << ", rho " << r.max_radius_edge_ratio << ", roughness "
-                          << r.max_roughness_rad);
-  BOOST_TEST(r.closed);
-  BOOST_TEST(r.manifold);
-  BOOST_TEST(r.orientable);
-  BOOST_TEST(r.components == entry.components);
-  BOOST_TEST(r.genus_per_component == entry.genus_per_component, boost::test_tools::per_element());
-  BOOST_TEST(r.min_angle_deg >= b.min_angle_deg - 1e-9);
-  BOOST_TEST(r.max_radius_edge_ratio <= b.max_radius_edge_ratio + 1e-9);
-  BOOST_TEST(r.max_roughness_rad <= b.max_roughness_rad + 1e-9);
-  check_complete(result.statistics);
+  test::check_theorem_6_1(catalog_entry(name), run(name, lambda), lambda);
 }
 
 bool same_mesh(const SurfaceMesh& a, const SurfaceMesh& b) {

@@ -6,6 +6,7 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include "check_fixture.h"
 #include "common/tolerances.h"
 #include "meshing/del_mesh.h"
 #include "meshing/mesh_checker.h"
@@ -42,20 +43,8 @@ nlohmann::json check_theorem_6_1(const std::string& name, double lambda) {
   options.solver = SolverBackend::homotopy;
   const auto start = Clock::now();
   const auto result = del_mesh(entry.surface(), entry.box, options);
-  const auto r = check_mesh(result.mesh);
-  const auto b = theorem_bounds(lambda);
-  BOOST_TEST_MESSAGE(name << " lambda " << lambda << " (homotopy): " << seconds_since(start) << " s, " << r.vertices
-                          << " vertices, min angle " << r.min_angle_deg << ", rho " << r.max_radius_edge_ratio
-                          << ", roughness " << r.max_roughness_rad);
-  BOOST_TEST(result.status == MeshStatus::complete);
-  BOOST_TEST(r.closed);
-  BOOST_TEST(r.manifold);
-  BOOST_TEST(r.orientable);
-  BOOST_TEST(r.components == entry.components);
-  BOOST_TEST(r.genus_per_component == entry.genus_per_component, boost::test_tools::per_element());
-  BOOST_TEST(r.min_angle_deg >= b.min_angle_deg - 1e-9);
-  BOOST_TEST(r.max_radius_edge_ratio <= b.max_radius_edge_ratio + 1e-9);
-  BOOST_TEST(r.max_roughness_rad <= b.max_roughness_rad + 1e-9);
+  BOOST_TEST_MESSAGE(name << " (homotopy): " << seconds_since(start) << " s");
+  test::check_theorem_6_1(entry, result, lambda);
   const auto& solver = result.statistics.at("solver");
   BOOST_TEST(solver.at("backend") == "homotopy");
   BOOST_TEST(solver.at("time_limited") == 0u);

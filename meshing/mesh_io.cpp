@@ -128,7 +128,7 @@ std::string diagnose_off(const std::string& path) {
     double count = 0;
     if (!number(face[0], count) || count < 1 || count != std::floor(count))
       return "face " + std::to_string(f) + ": '" + printable(face[0]) + "' is not a vertex count";
-    if (face.size() < 1 + static_cast<std::size_t>(count))
+    if (count > static_cast<double>(face.size() - 1))  // compared as doubles: count may be 1e308
       return "face " + std::to_string(f) + " lists fewer vertices than its count " + printable(face[0]) +
              (f + 1 == nf ? " (truncated?)" : "");
     for (std::size_t k = 1; k <= static_cast<std::size_t>(count); ++k) {

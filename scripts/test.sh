@@ -2,8 +2,22 @@
 # Builds delmesh (Release) and runs every test: the fast tier and the slow tier (the catalog's
 # topology, Theorem 6.1 at lambda 0.06 and 0.03 on every catalog surface, the recheck lemma).
 # Pass --fast to run the fast tier only.
+# Pass --sanitize to build the libraries, the program and the test suites with AddressSanitizer and
+# UndefinedBehaviorSanitizer (-O1, in build-sanitize/, experiments left out) and run the fast tier
+# there; any sanitizer report fails the test that triggered it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ "${1:-}" = "--sanitize" ]; then
+  build=${DELMESH_SANITIZE_BUILD_DIR:-build-sanitize}
+  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -G Ninja -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
+    -DDELMESH_SANITIZE=ON -DDELMESH_BUILD_EXPERIMENTS=OFF
+  cmake --build "$build" -j "$(nproc)"
+  export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1}
+  export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+  export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan.supp:print_suppressions=0}
+  ctest --test-dir "$build" --output-on-failure -LE slow
+  exit
+fi
 build=${DELMESH_BUILD_DIR:-build}
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -G Ninja
 cmake --build "$build" -j "$(nproc)"

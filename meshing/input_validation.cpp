@@ -376,6 +376,8 @@ std::size_t check_regular(const CompiledSystem& system, const Surface& surface, 
   double domain_width = 0;
   for (int k = 0; k < 3; ++k) domain_width = std::max(domain_width, box.hi[k] - box.lo[k]);
   const double min_width = tolerances::validation_min_box_relative_width * domain_width;
+  const double deep_min_width = validation_deep_min_box_relative_width * domain_width;
+  std::size_t deep_boxes = 0;
   const Scales scale = domain_scales(system, box);
   std::optional<CompiledSystem> gradient_only;
 
@@ -405,14 +407,22 @@ std::size_t check_regular(const CompiledSystem& system, const Surface& surface, 
     for (int k = 1; k < 3; ++k)
       if (bounds[2 * k + 1] - bounds[2 * k] > bounds[2 * side + 1] - bounds[2 * side]) side = k;
     const double lo = bounds[2 * side], hi = bounds[2 * side + 1], split = 0.5 * (lo + hi);
-    if (hi - lo < min_width || !(split > lo && split < hi)) {
-      const Evidence evidence = singular_evidence(system, gradient_only, surface, scale, b);
-      if (evidence.singular)
-        throw InvalidInput("the surface is singular: the gradient of E vanishes on it near " +
-                           point_text(evidence.where) + evidence.detail);
-      if (undecided.empty()) first_note = evidence.detail;
-      undecided.push_back(b);
-      continue;
+    const bool splittable = split > lo && split < hi;
+    if (hi - lo < min_width || !splittable) {
+      // Evidence is looked for once, on the boxes that have just crossed min_width; below it a
+      // box without evidence is bisected on, down to deep_min_width, within the deep budget.
+      if (hi - lo >= 0.5 * min_width || !splittable) {
+        const Evidence evidence = singular_evidence(system, gradient_only, surface, scale, b);
+        if (evidence.singular)
+          throw InvalidInput("the surface is singular: the gradient of E vanishes on it near " +
+                             point_text(evidence.where) + evidence.detail);
+        if (undecided.empty() && !evidence.detail.empty()) first_note = evidence.detail;
+      }
+      if (!splittable || hi - lo < deep_min_width || deep_boxes >= validation_deep_box_budget) {
+        undecided.push_back(b);
+        continue;
+      }
+      ++deep_boxes;
     }
     auto lower = bounds, upper = bounds;
     lower[2 * side + 1] = split;

@@ -34,7 +34,7 @@
 //!
 //! ## Undecided boxes are not called singular without evidence
 //! A box narrower than tolerances::validation_min_box_relative_width (relative to the widest side
-//! of the domain) that is not dropped is undecided.  validate_regular calls the surface singular
+//! of the domain) that is not dropped is looked at for evidence of a singular point.  validate_regular calls the surface singular
 //! only with evidence found near such a box (evidence, not a proof).  From the box's centre,
 //! damped Gauss–Newton on (E, ∇E) = 0 reaches a point p; p must lie within one box width of the
 //! box.  Then Krawczyk on ∇E = 0 is tried on boxes p ± r (tolerances::
@@ -49,15 +49,26 @@
 //! The scales are the largest |E| and ‖∇E‖∞ at the 27 points of the domain's 3 × 3 × 3 grid
 //! (corners, edge and face centres, centre).  Without evidence the message is "cannot certify",
 //! never "singular".  So a smooth surface is called singular only where (E, ∇E) vanish to within
-//! that relative threshold and Krawczyk can neither certify nor exclude a critical point (two
-//! spheres 2e-7 apart in a box of size 2.6 get "cannot certify": Krawczyk puts the critical point
-//! between them off Σ).
+//! that relative threshold and Krawczyk can neither certify nor exclude a critical point.  A box
+//! without evidence is not undecided yet: it is bisected on down to
+//! validation_deep_min_box_relative_width (below, within validation_deep_box_budget boxes), and
+//! only a box narrower than that, or beyond the budget, is undecided.  So two unit spheres 1e-6
+//! apart validate, and two spheres of radius 0.5 2e-10 apart in a box of size 2.6 get "cannot
+//! certify" (Krawczyk puts the critical point between them off Σ).
 
 #include <cstddef>
 
 #include "symbolic/surface.h"
 
 namespace delmesh {
+
+//! Boxes of validate_regular narrower than tolerances::validation_min_box_relative_width (relative
+//! to the widest side of the domain) in which no evidence of a singular point was found are
+//! bisected on, down to this relative width, at most validation_deep_box_budget of them in all:
+//! smooth surfaces whose sheets come closer than the first limit (two unit spheres 1e-6 apart)
+//! are then certified.  (Budgets of this check, kept here next to it.)
+inline constexpr double validation_deep_min_box_relative_width = 1e-10;
+inline constexpr std::size_t validation_deep_box_budget = 100000;
 
 //! Work done by validate_input.
 struct [[nodiscard]] ValidationReport {

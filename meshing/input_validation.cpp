@@ -441,7 +441,7 @@ std::size_t check_regular(const CompiledSystem& system, const Surface& surface, 
     s << "the budget of " << tolerances::mesher_box_budget_global << " boxes ran out with " << stack.size()
       << " boxes unexplored and " << undecided.size() << " undecided";
   else
-    s << undecided.size() << " boxes narrower than " << min_width << " stay undecided";
+    s << undecided.size() << " boxes stay undecided (bisected down to width " << deep_min_width << " or the budget of " << validation_deep_box_budget << " narrow boxes)";
   if (!undecided.empty()) {
     s << ", the first near " << point_text(where) << ", with no singular point found near them";
     Interval v[4];
@@ -449,8 +449,14 @@ std::size_t check_regular(const CompiledSystem& system, const Surface& surface, 
       RoundingGuard guard;
       system.values<Interval>(undecided.front().data(), nullptr, v);
     }
-    if (!(finite(v[0]) && finite(v[1]) && finite(v[2]) && finite(v[3])))
-      s << " (E or its gradient is undefined or unbounded there)";
+    if (!(finite(v[0]) && finite(v[1]) && finite(v[2]) && finite(v[3]))) {
+      // A polynomial has no pole: an infinite enclosure there is an overflow of double precision.
+      if (surface.is_polynomial())
+        s << " (E or its gradient overflows double precision there: the box is too large for E; rescale the "
+             "coordinates or shrink the box)";
+      else
+        s << " (E or its gradient is undefined, unbounded or beyond double precision there)";
+    }
     s << first_note;
   } else if (!stack.empty()) {
     const auto& u = stack.back();

@@ -135,6 +135,19 @@ BOOST_AUTO_TEST_CASE(nearly_touching_spheres_are_not_called_singular) {
   }
 }
 
+// A box so large that E overflows double precision on it: said so, not called singular.
+BOOST_AUTO_TEST_CASE(overflow_on_a_huge_box_is_named) {
+  Box3 box;
+  box.lo = {-1e100, -2, -2};
+  box.hi = {1e100, 2, 2};
+  expect_regular_rejected("x^4+y^2+z^2-1", box, "overflows double precision there");
+  try {
+    (void)validate_regular(Surface::parse("x^4+y^2+z^2-1"), box);
+  } catch (const InvalidInput& e) {
+    BOOST_TEST(std::string(e.what()).find("singular:") == std::string::npos, e.what());
+  }
+}
+
 // A sphere tangent to the face x = 1.1 at (1.1, 0.3, -0.2), not at a subdivision centre.
 BOOST_AUTO_TEST_CASE(surface_touching_the_box_is_rejected) {
   Box3 box;

@@ -429,78 +429,74 @@ bool has_only_rational_polynomial_parts(const GiNaC::ex& e) {
 }
 
 //! Bounds on the total degree of e in x, y, z and on the number of terms of e.expand() once each
-//! symbol is replaced by a sum of `symbol_terms` terms in `variables` variables in all (upper
-//! bounds where e is a polynomial; a negative power counts like a positive one), computed from
-//! the expression tree without expanding: a sum adds the term counts, a product
-//! multiplies them, an n-th power of t terms has at most C(t + |n| − 1, |n|) (the monomials of
-//! degree |n| in t symbols); a polynomial of degree d in k variables has at most C(d + k, k)
-//! terms.  Function arguments are bounded separately (a function value counts as one term of
-//! degree 0).  Counts saturate at `cap`, and so do degrees.
+//! symbol is replaced by a sum of `symbol_terms` terms, each its own variable (upper bounds where
+//! e is a polynomial; a negative power counts like a positive one), computed from the expression
+//! tree without expanding: a sum adds the term counts, a product multiplies them, an n-th power
+//! of t terms has at most C(t + |n| − 1, |n|) (the monomials of degree |n| in t symbols); and a
+//! polynomial of degree d in the k symbols of a subexpression has at most C(d + k·symbol_terms,
+//! k·symbol_terms) terms.  Function arguments are bounded separately (a function value counts as
+//! one term of degree 0).  Counts saturate at `cap`, and so do degrees.
 struct SizeBound {
   double degree = 0;
   double terms = 1;
+  std::set<std::string> symbols;  //!< the symbols of the subexpression
 };
 
-SizeBound size_bound(const GiNaC::ex& e, double cap, double symbol_terms, double variables) {
+SizeBound size_bound(const GiNaC::ex& e, double cap, double symbol_terms) {
   using namespace GiNaC;
   const auto monomials = [cap](double symbols, double degree) {  // C(symbols + degree − 1, degree)
     double c = 1;
     for (double k = 1; k <= degree && c <= cap; ++k) c = c * (symbols - 1 + k) / k;
     return std::min(c, cap + 1);
   };
-  const auto clamp = [cap, variables](SizeBound b) {
+  const auto clamp = [cap, symbol_terms](SizeBound b) {
+    const double variables = symbol_terms * static_cast<double>(b.symbols.size());
+    double c = 1;  // C(degree + variables, variables)
+    for (double k = 1; k <= variables && c <= cap; ++k) c = c * (b.degree + k) / k;
     b.degree = std::min(b.degree, cap + 1);
-    b.terms = std::min({b.terms, cap + 1, std::max(1.0, [&] {
-                          double c = 1;  // C(degree + variables, variables)
-                          for (double k = 1; k <= variables; ++k) c = c * (b.degree + k) / k;
-                          return c;
-                        }())});
+    b.terms = std::min({b.terms, cap + 1, std::max(1.0, c)});
     return b;
   };
-  if (is_a<symbol>(e)) return {1, symbol_terms};
-  if (is_a<numeric>(e) || is_a<constant>(e)) return {0, 1};
+  if (is_a<symbol>(e)) return {1, symbol_terms, {ex_to<symbol>(e).get_name()}};
+  if (is_a<numeric>(e) || is_a<constant>(e)) return {0, 1, {}};
   if (is_a<function>(e)) {
-    for (std::size_t i = 0; i < e.nops(); ++i) (void)size_bound(e.op(i), cap, symbol_terms, variables);
-    return {0, 1};
+    for (std::size_t i = 0; i < e.nops(); ++i) (void)size_bound(e.op(i), cap, symbol_terms);
+    return {0, 1, {}};
   }
   if (is_a<power>(e)) {
-    const SizeBound base = size_bound(e.op(0), cap, symbol_terms, variables);
+    SizeBound base = size_bound(e.op(0), cap, symbol_terms);
     const ex exponent = e.op(1);
     double n = 1;
     if (is_a<numeric>(exponent)) n = std::ceil(std::abs(ex_to<numeric>(exponent).to_double()));
-    return clamp({base.degree * n, monomials(base.terms, n)});
+    return clamp({base.degree * n, monomials(base.terms, n), std::move(base.symbols)});
   }
-  if (is_a<add>(e)) {
-    SizeBound b{0, 0};
-    for (std::size_t i = 0; i < e.nops(); ++i) {
-      const SizeBound t = size_bound(e.op(i), cap, symbol_terms, variables);
+  const bool sum = is_a<add>(e), product = is_a<mul>(e);
+  SizeBound b{0, sum ? 0.0 : 1.0, {}};
+  for (std::size_t i = 0; i < e.nops(); ++i) {
+    SizeBound t = size_bound(e.op(i), cap, symbol_terms);
+    if (sum) {
       b.degree = std::max(b.degree, t.degree);
       b.terms += t.terms;
-    }
-    return clamp(b);
-  }
-  if (is_a<mul>(e)) {
-    SizeBound b{0, 1};
-    for (std::size_t i = 0; i < e.nops(); ++i) {
-      const SizeBound t = size_bound(e.op(i), cap, symbol_terms, variables);
+    } else if (product) {
       b.degree += t.degree;
       b.terms *= t.terms;
+    } else {
+      b.degree = t.degree;
+      b.terms = t.terms;
     }
-    return clamp(b);
+    b.symbols.insert(t.symbols.begin(), t.symbols.end());
   }
-  SizeBound b{0, 1};
-  for (std::size_t i = 0; i < e.nops(); ++i) b = size_bound(e.op(i), cap, symbol_terms, variables);
-  return b;
+  return sum || product ? clamp(std::move(b)) : b;
 }
 
 //! Throws InvalidInput if E's degree bound exceeds Surface::max_degree, or if its expansion, or
-//! the expansion of E(p + t v) along a general line (x, y, z each replaced by a sum of two terms,
-//! seven variables p, v, t: what symbolic/line_polynomial.h expands for a polynomial E), may have
-//! more than Surface::max_expanded_terms terms (size_bound), before anything is expanded.
+//! the expansion of E(p + t v) along a general line (each coordinate replaced by the sum of the
+//! two products p_i and t·v_i: what symbolic/line_polynomial.h expands for a polynomial E), may
+//! have more than Surface::max_expanded_terms terms (size_bound), before anything is expanded.
 void check_size(const GiNaC::ex& E, const std::string& text) {
   const double cap = static_cast<double>(std::max<std::size_t>(Surface::max_degree, Surface::max_expanded_terms));
-  SizeBound b = size_bound(E, cap, 1, 3);
-  const SizeBound along_line = size_bound(E, cap, 2, 7);
+  SizeBound b = size_bound(E, cap, 1);
+  const SizeBound along_line = size_bound(E, cap, 2);
   b.terms = std::max(b.terms, along_line.terms);
   if (b.degree > Surface::max_degree)
     throw InvalidInput("expression " + abbreviated(text) + " has degree up to " +

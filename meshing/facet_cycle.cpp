@@ -53,10 +53,9 @@ CheckResult facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& p
     for (const auto& root : line.roots) collector.add(root.world);
     for (const auto& u : line.undecided) collector.add_line_region(oracle, u);
     // Two points of Σ on ℓ_x ∩ F: a witness (the furthest from p first).  Fewer: the line's
-    // findings are no witness, but what it could not project stays unsettled.
+    // points are no witness, but what it could not project stays unsettled.
     if (collector.points() >= 2) return collector.take();
-    CheckResult unused = collector.take();
-    for (const auto& u : unused.unsettled) collector.add_unsettled(u.reason, u.location);
+    collector.drop_points();
   }
   return collector.take();
 }

@@ -47,6 +47,8 @@ class WitnessCollector {
   void add_degenerate_facet(const SurfaceOracle& oracle, const VoronoiFacet& facet);
 
   std::size_t points() const { return points_.size(); }
+  //! Forgets the points added so far (not the unsettled findings).
+  void drop_points() { points_.clear(); }
   //! The witnesses, furthest from the sample first (ties: in the order added), and the unsettled
   //! regions.  Leaves the collector empty.
   CheckResult take();

@@ -175,7 +175,6 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
     ++rejected_;
     return std::nullopt;
   }
-  ++changes_;
   const VertexId x = *id;
   record.id = x;
   log_.push_back(record);
@@ -261,7 +260,6 @@ void Refinement::remove(VertexId p) {
   const std::vector<VertexId> around = del_.neighbours(p);
   del_.remove(p);
   ++seeds_deleted_;
-  ++changes_;
   restricted_.forget(star, edges);
   restricted_.invalidate(around);
   queue_everything_within(around);
@@ -327,7 +325,7 @@ bool Refinement::settle(int step, const Simplex& item, CheckResult result) {
   if (result.unsettled.empty())
     unsettled_.erase(key);
   else
-    unsettled_[key] = {std::move(result.unsettled), changes_};
+    unsettled_[key] = {std::move(result.unsettled), changes()};
   return inserted;
 }
 
@@ -342,7 +340,7 @@ bool Refinement::requeue_unsettled() {
       it = unsettled_.erase(it);
       continue;
     }
-    if (it->second.changes != changes_) {
+    if (it->second.changes != changes()) {
       steps_[step].queue.push(item);
       queued = true;
     }

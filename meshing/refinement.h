@@ -260,10 +260,10 @@ class Refinement {
   double seconds_insertion_ = 0;
   std::size_t seeds_deleted_ = 0, rejected_ = 0;
   //! Insertions and deletions so far: a face checked at this count has seen the current S.
-  std::size_t changes_ = 0;
+  std::size_t changes() const { return log_.size() + seeds_deleted_; }
   struct UnsettledFace {
     std::vector<Unsettled> what;
-    std::size_t changes = 0;  //!< changes_ when the face was checked
+    std::size_t changes = 0;  //!< changes() when the face was checked
   };
   std::map<std::pair<int, Simplex>, UnsettledFace> unsettled_;
   std::vector<Unsettled> standing_unsettled_;

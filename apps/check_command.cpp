@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/command_line.h"
+#include "apps/commands.h"
 #include "common/errors.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/mesh_io.h"
@@ -32,39 +33,59 @@ std::string count_of(std::size_t n, const std::string& thing) {
   return std::to_string(n) + " " + (thing.back() == 'x' ? thing.substr(0, thing.size() - 2) + "ices" : thing + "s");
 }
 
-ExitCode run_check(const CheckOptions& o) {
-  const bool with_bounds = o.lambda_option->count() > 0;
-  if (with_bounds && !(o.lambda > 0 && o.lambda < 1.0 / 6.0)) {
-    throw InvalidInput("--lambda must lie in (0, 1/6) for the bounds of Theorem 6.1, got " +
-                       format_number(o.lambda));
-  }
-  // Read as a soup: open, non-manifold and non-orientable meshes are reported, not refused.
-  const TriangleSoup soup = read_triangle_soup(o.mesh);
-  const MeshReport report = check_mesh(soup.points, soup.triangles);
+}  // namespace
 
-  bool all_pass = true;
-  nlohmann::ordered_json out = nlohmann::ordered_json::parse(to_json(report).dump());
-  TheoremBounds bounds{};
-  bool angle_ok = true, ratio_ok = true, roughness_ok = true;
-  if (with_bounds) {
-    if (o.lambda > 0.06) print_warning("Theorem 6.1 covers 0 < lambda <= 0.06 only; the bounds are computed anyway");
-    bounds = theorem_bounds(o.lambda);
-    angle_ok = report.triangles > 0 && report.min_angle_deg >= bounds.min_angle_deg;
-    ratio_ok = report.triangles > 0 && report.max_radius_edge_ratio <= bounds.max_radius_edge_ratio;
-    roughness_ok = report.triangles > 0 && report.max_roughness_rad <= bounds.max_roughness_rad;
-    all_pass = angle_ok && ratio_ok && roughness_ok;
-    out["lambda"] = o.lambda;
+void require_bounds_lambda(double lambda) {
+  if (!(lambda > 0 && lambda < 1.0 / 6.0)) {
+    throw InvalidInput("--lambda must lie in (0, 1/6) for the bounds of Theorem 6.1, got " + format_number(lambda));
+  }
+}
+
+CheckVerdict check_verdict(const MeshReport& report, std::optional<double> lambda) {
+  CheckVerdict v;
+  v.report = report;
+  v.lambda = lambda;
+  if (lambda) {
+    require_bounds_lambda(*lambda);
+    if (*lambda > 0.06) v.warnings.push_back("Theorem 6.1 covers 0 < lambda <= 0.06 only; the bounds are computed anyway");
+    v.bounds = theorem_bounds(*lambda);
+    v.angle_ok = report.triangles > 0 && report.min_angle_deg >= v.bounds.min_angle_deg;
+    v.ratio_ok = report.triangles > 0 && report.max_radius_edge_ratio <= v.bounds.max_radius_edge_ratio;
+    v.roughness_ok = report.triangles > 0 && report.max_roughness_rad <= v.bounds.max_roughness_rad;
+  }
+  return v;
+}
+
+nlohmann::ordered_json CheckVerdict::to_json() const {
+  nlohmann::ordered_json out = nlohmann::ordered_json::parse(delmesh::to_json(report).dump());
+  if (lambda) {
+    out["lambda"] = *lambda;
     out["bounds"] = {{"min_angle_deg", bounds.min_angle_deg},
                      {"max_radius_edge_ratio", bounds.max_radius_edge_ratio},
                      {"max_roughness_rad", bounds.max_roughness_rad}};
     out["pass"] = {{"min_angle_deg", angle_ok},
                    {"max_radius_edge_ratio", ratio_ok},
                    {"max_roughness_rad", roughness_ok},
-                   {"all", all_pass}};
+                   {"all", all_pass()}};
   }
+  return out;
+}
+
+namespace {
+
+ExitCode run_check(const CheckOptions& o) {
+  const bool with_bounds = o.lambda_option->count() > 0;
+  if (with_bounds) require_bounds_lambda(o.lambda);
+  // Read as a soup: open, non-manifold and non-orientable meshes are reported, not refused.
+  const TriangleSoup soup = read_triangle_soup(o.mesh);
+  const CheckVerdict verdict = check_verdict(check_mesh(soup.points, soup.triangles),
+                                             with_bounds ? std::optional<double>(o.lambda) : std::nullopt);
+  for (const std::string& warning : verdict.warnings) print_warning(warning);
+  const MeshReport& report = verdict.report;
+  const TheoremBounds& bounds = verdict.bounds;
 
   if (o.json) {
-    print_json(std::cout, out);
+    print_json(std::cout, verdict.to_json());
   } else {
     std::cout << "mesh:                  " << o.mesh << "\n";
     std::cout << "vertices:              " << report.vertices << "\n";
@@ -101,13 +122,15 @@ ExitCode run_check(const CheckOptions& o) {
     std::cout << "max roughness (rad):   " << report.max_roughness_rad << "\n";
     if (with_bounds) {
       std::cout << "Theorem 6.1 bounds for lambda = " << format_number(o.lambda) << ":\n";
-      std::cout << "  min angle >= " << bounds.min_angle_deg << " deg: " << pass_fail(angle_ok) << "\n";
-      std::cout << "  radius-edge ratio <= " << bounds.max_radius_edge_ratio << ": " << pass_fail(ratio_ok) << "\n";
-      std::cout << "  roughness <= " << bounds.max_roughness_rad << " rad: " << pass_fail(roughness_ok) << "\n";
+      std::cout << "  min angle >= " << bounds.min_angle_deg << " deg: " << pass_fail(verdict.angle_ok) << "\n";
+      std::cout << "  radius-edge ratio <= " << bounds.max_radius_edge_ratio << ": " << pass_fail(verdict.ratio_ok)
+                << "\n";
+      std::cout << "  roughness <= " << bounds.max_roughness_rad << " rad: " << pass_fail(verdict.roughness_ok)
+                << "\n";
     }
     std::cout.flush();
   }
-  return all_pass ? ExitCode::complete : ExitCode::check_failed;
+  return verdict.all_pass() ? ExitCode::complete : ExitCode::check_failed;
 }
 
 }  // namespace

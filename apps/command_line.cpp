@@ -41,13 +41,6 @@ std::string trim(const std::string& s) {
   return s.substr(first, last - first + 1);
 }
 
-std::string one_line(std::string message) {
-  std::replace(message.begin(), message.end(), '\n', ' ');
-  std::replace(message.begin(), message.end(), '\r', ' ');
-  while (!message.empty() && message.back() == ' ') message.pop_back();
-  return message;
-}
-
 //! The whole of `text` as a finite double, if it is one.
 std::optional<double> finite_value(const std::string& text) {
   if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return std::nullopt;
@@ -94,6 +87,17 @@ CLI::Validator finite_number() {
       "", "finite_number");
 }
 
+void require_whole_number(const std::string& option, std::string text, unsigned long long min,
+                          unsigned long long max) {
+  const std::string error = whole_number(min, max)(text);
+  if (!error.empty()) throw InvalidInput(option + ": " + error);
+}
+
+void require_finite_number(const std::string& option, std::string text) {
+  const std::string error = finite_number()(text);
+  if (!error.empty()) throw InvalidInput(option + ": " + error);
+}
+
 std::array<double, 3> parse_vector3(const std::string& text, const std::string& option) {
   std::array<double, 3> v{};
   std::stringstream stream(text);
@@ -138,18 +142,25 @@ bool SurfaceOptions::given() const {
   return (surface_option && surface_option->count() > 0) || (expr_option && expr_option->count() > 0);
 }
 
-SurfaceInput SurfaceOptions::resolve() const {
-  const bool has_surface = surface_option && surface_option->count() > 0;
-  const bool has_expr = expr_option && expr_option->count() > 0;
-  const bool has_box = box_option && box_option->count() > 0;
-  if (has_surface == has_expr) throw InvalidInput("give exactly one of --surface NAME and --expr E");
-  if (has_surface) {
-    const CatalogEntry& entry = catalog_entry(surface);
-    return SurfaceInput{entry.name, entry.surface(), has_box ? Box3::parse(box) : entry.box};
+SurfaceArguments SurfaceOptions::arguments() const {
+  SurfaceArguments a;
+  if (surface_option && surface_option->count() > 0) a.surface = surface;
+  if (expr_option && expr_option->count() > 0) a.expr = expr;
+  if (box_option && box_option->count() > 0) a.box = box;
+  return a;
+}
+
+SurfaceInput SurfaceOptions::resolve() const { return arguments().resolve(); }
+
+SurfaceInput SurfaceArguments::resolve() const {
+  if (surface.has_value() == expr.has_value()) throw InvalidInput("give exactly one of --surface NAME and --expr E");
+  if (surface) {
+    const CatalogEntry& entry = catalog_entry(*surface);
+    return SurfaceInput{entry.name, entry.surface(), box ? Box3::parse(*box) : entry.box};
   }
-  if (!has_box) throw InvalidInput("--expr needs --box x0,x1,y0,y1,z0,z1");
-  const Box3 parsed_box = Box3::parse(box);
-  return SurfaceInput{"surface", Surface::parse(expr), parsed_box};
+  if (!box) throw InvalidInput("--expr needs --box x0,x1,y0,y1,z0,z1");
+  const Box3 parsed_box = Box3::parse(*box);
+  return SurfaceInput{"surface", Surface::parse(*expr), parsed_box};
 }
 
 std::string format_number(double x) {
@@ -246,6 +257,13 @@ void print_json(std::ostream& out, const nlohmann::ordered_json& object) {
         << (i + 1 < object.size() ? ",\n" : "\n");
   }
   out << "}" << std::endl;
+}
+
+std::string one_line(std::string message) {
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  std::replace(message.begin(), message.end(), '\r', ' ');
+  while (!message.empty() && message.back() == ' ') message.pop_back();
+  return message;
 }
 
 void print_error(const std::string& message) {

@@ -65,6 +65,13 @@ CLI::Validator whole_number(unsigned long long min, unsigned long long max);
 //! inf, not one that overflows to inf such as 1e400).  Range checks are the command's.
 CLI::Validator finite_number();
 
+//! The checks of whole_number() and finite_number() on an option's text, for callers without a
+//! command line: throw InvalidInput with the message the command line gives,
+//! "OPTION: expected …, got 'TEXT'".
+void require_whole_number(const std::string& option, std::string text, unsigned long long min,
+                          unsigned long long max);
+void require_finite_number(const std::string& option, std::string text);
+
 //! Parses "a,b,c" into three finite doubles; throws InvalidInput naming `option` otherwise.
 std::array<double, 3> parse_vector3(const std::string& text, const std::string& option);
 
@@ -74,6 +81,14 @@ struct SurfaceInput {
   std::string name;
   Surface surface;
   Box3 box;
+};
+
+//! The values of --surface NAME, --expr E, --box x0,x1,y0,y1,z0,z1 (nullopt: not given).
+struct SurfaceArguments {
+  std::optional<std::string> surface, expr, box;
+  //! Exactly one of --surface and --expr; --expr needs --box; --box with --surface replaces the
+  //! catalog box.  Throws InvalidInput (from the catalog, the parser, or here).
+  SurfaceInput resolve() const;
 };
 
 //! The options --surface NAME, --expr E, --box x0,x1,y0,y1,z0,z1 of `solve` and `mesh`.
@@ -89,8 +104,9 @@ struct SurfaceOptions {
   void add_to(CLI::App& app);
   //! True if --surface or --expr was given.
   bool given() const;
-  //! Exactly one of --surface and --expr; --expr needs --box; --box with --surface replaces the
-  //! catalog box.  Throws InvalidInput (from the catalog, the parser, or here).
+  //! The options given, as values.
+  SurfaceArguments arguments() const;
+  //! arguments().resolve().
   SurfaceInput resolve() const;
 };
 
@@ -114,6 +130,8 @@ void write_text_atomically(const std::string& path, const std::function<void(std
 //! still valid JSON); other values as one line.
 void print_json(std::ostream& out, const nlohmann::ordered_json& object);
 
+//! `message` on one line: line breaks become spaces, trailing spaces go.
+std::string one_line(std::string message);
 //! Prints `error: <message>` (newlines flattened) as a single line on stderr.
 void print_error(const std::string& message);
 //! Prints `warning: <message>` on stderr.

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/command_line.h"
+#include "apps/commands.h"
 #include "apps/interrupt.h"
 #include "common/errors.h"
 #include "meshing/del_mesh.h"
@@ -61,48 +62,97 @@ bool check_lambda(double lambda) {
   return lambda <= theorem_lambda;
 }
 
-ExitCode run_mesh(const MeshOptions& o) {
-  const bool covered = check_lambda(o.lambda);
-  if (o.input_mesh_option->count() > 0) {
-    if (o.surface.given()) throw InvalidInput("--input-mesh excludes --surface and --expr");
-    (void)read_mesh(o.input_mesh);  // a missing or corrupt file is reported as such first
+//! The run's options as values.
+MeshRequest request_of(const MeshOptions& o) {
+  MeshRequest r;
+  r.surface = o.surface.arguments();
+  if (o.input_mesh_option->count() > 0) r.input_mesh = o.input_mesh;
+  r.lambda = o.lambda;
+  r.phase = o.phase;
+  r.solver = o.solver;
+  if (o.size_bound_option->count() > 0) r.size_bound = o.size_bound;
+  r.max_points = o.max_points;
+  r.time_limit = o.time_limit;
+  r.seed = o.seed;
+  r.threads = o.threads;
+  return r;
+}
+
+}  // namespace
+
+MeshPlan plan_mesh(const MeshRequest& r) {
+  const bool covered = check_lambda(r.lambda);
+  if (r.input_mesh) {
+    if (r.surface.surface || r.surface.expr) throw InvalidInput("--input-mesh excludes --surface and --expr");
+    (void)read_mesh(*r.input_mesh);  // a missing or corrupt file is reported as such first
     throw InvalidInput("--input-mesh: remeshing triangulated surfaces is not implemented yet");
   }
-  if (!o.surface.given()) throw InvalidInput("give one of --surface NAME, --expr E --box B, --input-mesh FILE");
+  if (!r.surface.surface && !r.surface.expr) {
+    throw InvalidInput("give one of --surface NAME, --expr E --box B, --input-mesh FILE");
+  }
 
   DelMeshOptions options;
-  options.lambda = o.lambda;
-  if (o.phase == "all") {
+  options.lambda = r.lambda;
+  if (r.phase == "all") {
     options.phase = MeshPhase::all;
-  } else if (o.phase == "topology") {
+  } else if (r.phase == "topology") {
     options.phase = MeshPhase::topology;
   } else {
-    throw InvalidInput("--phase: expected topology or all, got '" + o.phase + "'");
+    throw InvalidInput("--phase: expected topology or all, got '" + r.phase + "'");
   }
-  if (o.solver == "subdivision") {
+  if (r.solver == "subdivision") {
     options.solver = SolverBackend::subdivision;
-  } else if (o.solver == "homotopy") {
+  } else if (r.solver == "homotopy") {
     options.solver = SolverBackend::homotopy;
   } else {
-    throw InvalidInput("--solver: expected subdivision or homotopy, got '" + o.solver + "'");
+    throw InvalidInput("--solver: expected subdivision or homotopy, got '" + r.solver + "'");
   }
-  if (o.size_bound_option->count() > 0) {
-    if (!std::isfinite(o.size_bound) || o.size_bound <= 0) {
-      throw InvalidInput("--size-bound must be a positive length, got " + format_number(o.size_bound));
+  if (r.size_bound) {
+    if (!std::isfinite(*r.size_bound) || *r.size_bound <= 0) {
+      throw InvalidInput("--size-bound must be a positive length, got " + format_number(*r.size_bound));
     }
-    options.size_bound = o.size_bound;
+    options.size_bound = *r.size_bound;
   }
-  if (o.max_points < 1) throw InvalidInput("--max-points must be at least 1");
-  if (!std::isfinite(o.time_limit) || o.time_limit < 0 || o.time_limit > max_time_limit_seconds) {
-    throw InvalidInput("--time-limit must be >= 0 and <= 1e9 seconds (0: none), got " + format_number(o.time_limit));
+  if (r.max_points < 1) throw InvalidInput("--max-points must be at least 1");
+  if (!std::isfinite(r.time_limit) || r.time_limit < 0 || r.time_limit > max_time_limit_seconds) {
+    throw InvalidInput("--time-limit must be >= 0 and <= 1e9 seconds (0: none), got " + format_number(r.time_limit));
   }
-  options.max_points = o.max_points;
-  options.time_limit_seconds = o.time_limit;
-  options.seed = o.seed;
-  if (o.threads < 0) throw InvalidInput("--threads must be >= 0 (0: every hardware thread), got " + std::to_string(o.threads));
-  options.threads = o.threads;
+  options.max_points = r.max_points;
+  options.time_limit_seconds = r.time_limit;
+  options.seed = r.seed;
+  if (r.threads < 0) throw InvalidInput("--threads must be >= 0 (0: every hardware thread), got " + std::to_string(r.threads));
+  options.threads = r.threads;
 
-  const SurfaceInput input = o.surface.resolve();
+  MeshPlan plan{r.surface.resolve(), options, {}};
+  if (!covered) {
+    plan.warnings.push_back("lambda = " + format_number(r.lambda) +
+                            " > 0.06: Theorem 6.1 does not cover it (no guarantee of topology or quality)");
+  }
+  return plan;
+}
+
+nlohmann::json mesh_statistics(const DelMeshResult& result, const SurfaceInput& input, std::uint64_t seed,
+                               const std::optional<std::string>& mesh_file) {
+  nlohmann::json statistics = result.statistics;
+  if (!statistics.is_object()) statistics = nlohmann::json::object();
+  if (!statistics.contains("status")) statistics["status"] = to_text(result.status);
+  if (!statistics.contains("surface")) {
+    statistics["surface"] = {{"name", input.name},
+                             {"equation", input.surface.text()},
+                             {"box", {input.box.lo[0], input.box.hi[0], input.box.lo[1], input.box.hi[1],
+                                      input.box.lo[2], input.box.hi[2]}}};
+  }
+  if (!statistics.contains("seed")) statistics["seed"] = seed;
+  if (mesh_file && !statistics.contains("mesh_file")) statistics["mesh_file"] = *mesh_file;
+  return statistics;
+}
+
+namespace {
+
+ExitCode run_mesh(const MeshOptions& o) {
+  MeshPlan plan = plan_mesh(request_of(o));
+  const SurfaceInput& input = plan.input;
+  DelMeshOptions& options = plan.options;
   const std::string out = o.out_option->count() > 0 ? o.out : input.name + ".off";
   const std::string stats = o.stats_option->count() > 0 ? o.stats : input.name + ".json";
   const std::string extension = extension_of(out);
@@ -115,10 +165,7 @@ ExitCode run_mesh(const MeshOptions& o) {
   if (stats == out) throw InvalidInput("--stats and --out name the same file " + out);
 
   // All options are valid from here on: a warning now cannot precede an `error:` about them.
-  if (!covered) {
-    print_warning("lambda = " + format_number(o.lambda) +
-                  " > 0.06: Theorem 6.1 does not cover it (no guarantee of topology or quality)");
-  }
+  for (const std::string& warning : plan.warnings) print_warning(warning);
   if (!o.quiet) {
     // The header goes out with the first progress report, i.e. once del_mesh has accepted the
     // surface: a surface rejected as invalid input gives the single `error:` line only.
@@ -138,17 +185,7 @@ ExitCode run_mesh(const MeshOptions& o) {
   options.interrupt = &interrupt_flag();
   DelMeshResult result = del_mesh(input.surface, input.box, options);
 
-  nlohmann::json statistics = result.statistics;
-  if (!statistics.is_object()) statistics = nlohmann::json::object();
-  if (!statistics.contains("status")) statistics["status"] = to_text(result.status);
-  if (!statistics.contains("surface")) {
-    statistics["surface"] = {{"name", input.name},
-                             {"equation", input.surface.text()},
-                             {"box", {input.box.lo[0], input.box.hi[0], input.box.lo[1], input.box.hi[1],
-                                      input.box.lo[2], input.box.hi[2]}}};
-  }
-  if (!statistics.contains("seed")) statistics["seed"] = o.seed;
-  if (!statistics.contains("mesh_file")) statistics["mesh_file"] = out;
+  nlohmann::json statistics = mesh_statistics(result, input, o.seed, out);
 
   try {
     write_mesh(result.mesh, out);

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/command_line.h"
+#include "apps/commands.h"
 #include "common/errors.h"
 #include "common/tolerances.h"
 #include "solvers/homotopy_solver.h"
@@ -30,16 +31,20 @@ namespace {
 
 struct SolveOptions {
   SurfaceOptions surface;
-  std::string primitive;
-  std::string direction, direction2, point, plane_origin, plane_normal;
-  std::string solver = "subdivision";
-  std::string taylor_forms = "automatic";
-  std::size_t max_boxes = tolerances::default_box_budget;
-  double time_limit = 0;
-  bool json = false;
+  SolveRequest request;  // all but the surface and the parameters, bound to the options directly
+  std::map<std::string, std::string> parameters;          // "--direction" → its value
   std::map<std::string, CLI::Option*> parameter_options;  // "--direction" → option
+  bool json = false;
 
-  bool has(const std::string& name) const { return parameter_options.at(name)->count() > 0; }
+  //! The options as values: the surface and the parameter options given.
+  SolveRequest request_of() const {
+    SolveRequest r = request;
+    r.surface = surface.arguments();
+    for (const auto& [name, option] : parameter_options) {
+      if (option->count() > 0) r.parameters[name] = parameters.at(name);
+    }
+    return r;
+  }
 };
 
 //! The parameter options each primitive takes, and which of them it requires.
@@ -83,20 +88,20 @@ std::string text_of(const Vec3& v) {
   return format_number(v[0]) + "," + format_number(v[1]) + "," + format_number(v[2]);
 }
 
-Query build_query(const SolveOptions& o, const Box3& box) {
+Query build_query(const SolveRequest& o, const Box3& box) {
   Query q;
   const std::string& name = o.primitive;
-  auto vector_of = [&](const std::string& option, const std::string& text) { return parse_vector3(text, option); };
+  auto vector_of = [&](const std::string& option) { return parse_vector3(o.parameters.at(option), option); };
   if (name == "surface_critical") {
-    const Vec3 d = o.has("--direction") ? vector_of("--direction", o.direction) : Vec3{0, 0, 1};
+    const Vec3 d = o.parameters.count("--direction") > 0 ? vector_of("--direction") : Vec3{0, 0, 1};
     const OrthonormalFrame f = orthonormal_frame(d);
     append(q.parameters, f.a);
     append(q.parameters, f.b);
     q.domain = box_domain(box);
     q.description = "direction " + text_of(f.d);
   } else if (name == "surface_line") {
-    const Vec3 p = vector_of("--point", o.point);
-    const Vec3 v = unit_vector(vector_of("--direction", o.direction));
+    const Vec3 p = vector_of("--point");
+    const Vec3 v = unit_vector(vector_of("--direction"));
     append(q.parameters, p);
     append(q.parameters, v);
     q.line = true;
@@ -111,13 +116,13 @@ Query build_query(const SolveOptions& o, const Box3& box) {
     q.description = "line " + text_of(p) + " + t (" + text_of(v) + ")";
   } else if (name == "surface_plane_contact" || name == "curve_critical" ||
              name == "silhouette_plane") {
-    const Vec3 origin = vector_of("--plane-origin", o.plane_origin);
-    const Vec3 normal = unit_vector(vector_of("--plane-normal", o.plane_normal));
+    const Vec3 origin = vector_of("--plane-origin");
+    const Vec3 normal = unit_vector(vector_of("--plane-normal"));
     OrthonormalFrame frame = orthonormal_frame(normal);
     Vec3 d{};
     if (name == "curve_critical") {
       // The direction d must be parallel to the plane: its component in the plane becomes a.
-      const Vec3 given = vector_of("--direction", o.direction);
+      const Vec3 given = vector_of("--direction");
       const double along = dot(given, normal);
       const Vec3 in_plane{given[0] - along * normal[0], given[1] - along * normal[1], given[2] - along * normal[2]};
       if (std::sqrt(dot(in_plane, in_plane)) <= 1e-12 * std::sqrt(dot(given, given))) {
@@ -126,7 +131,7 @@ Query build_query(const SolveOptions& o, const Box3& box) {
       frame.a = unit_vector(in_plane);
       frame.b = cross(frame.d, frame.a);
     } else if (name == "silhouette_plane") {
-      d = unit_vector(vector_of("--direction", o.direction));
+      d = unit_vector(vector_of("--direction"));
     }
     append(q.parameters, origin);
     append(q.parameters, frame.a);
@@ -142,8 +147,8 @@ Query build_query(const SolveOptions& o, const Box3& box) {
                     text_of(frame.a) + " b " + text_of(frame.b);
     if (name == "silhouette_plane") q.description += ", direction " + text_of(d);
   } else if (name == "silhouette_critical") {
-    const Vec3 d = unit_vector(vector_of("--direction", o.direction));
-    const Vec3 e = unit_vector(vector_of("--direction2", o.direction2));
+    const Vec3 d = unit_vector(vector_of("--direction"));
+    const Vec3 e = unit_vector(vector_of("--direction2"));
     const Vec3 c = cross(d, e);
     if (std::sqrt(dot(c, c)) <= 1e-12) throw InvalidInput("--direction and --direction2 must not be parallel");
     append(q.parameters, d);
@@ -156,7 +161,7 @@ Query build_query(const SolveOptions& o, const Box3& box) {
   return q;
 }
 
-void check_parameter_options(const SolveOptions& o) {
+void check_parameter_options(const SolveRequest& o) {
   bool registered = false;
   std::string known;
   for (const PrimitiveInfo& info : primitive_registry()) {
@@ -168,13 +173,11 @@ void check_parameter_options(const SolveOptions& o) {
   if (entry == primitive_parameters().end()) {
     throw InvalidInput("delmesh solve does not know the parameters of primitive " + o.primitive);
   }
-  for (const auto& [option, pointer] : o.parameter_options) {
-    if (pointer->count() > 0 && entry->second.allowed.count(option) == 0) {
-      throw InvalidInput(option + " is not a parameter of " + o.primitive);
-    }
+  for (const auto& [option, value] : o.parameters) {
+    if (entry->second.allowed.count(option) == 0) throw InvalidInput(option + " is not a parameter of " + o.primitive);
   }
   for (const std::string& option : entry->second.required) {
-    if (!o.has(option)) throw InvalidInput(o.primitive + " needs " + option);
+    if (o.parameters.count(option) == 0) throw InvalidInput(o.primitive + " needs " + option);
   }
 }
 
@@ -200,7 +203,15 @@ std::string to_text(const T& value) {
   return s.str();
 }
 
-ExitCode run_solve(const SolveOptions& o) {
+}  // namespace
+
+const std::vector<std::string>& solve_parameter_options() {
+  static const std::vector<std::string> names{"--direction", "--direction2", "--point", "--plane-origin",
+                                              "--plane-normal"};
+  return names;
+}
+
+SolveOutcome solve_primitive(const SolveRequest& o) {
   if (o.solver != "subdivision" && o.solver != "homotopy") {
     throw InvalidInput("--solver: expected subdivision or homotopy, got '" + o.solver + "'");
   }
@@ -248,27 +259,42 @@ ExitCode run_solve(const SolveOptions& o) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  std::vector<std::array<std::array<double, 2>, 3>> undecided;
+  std::vector<WorldBox> undecided;
   for (const UndecidedBox& u : result.undecided) undecided.push_back(world_box(compiled, query.parameters, u.box));
+  const std::string solver = query.line && o.solver == "subdivision" ? "univariate isolator" : o.solver;
+  return SolveOutcome{input, query.description, solver, std::move(result), std::move(undecided), seconds};
+}
 
-  if (o.json) {
-    nlohmann::ordered_json out;
-    out["status"] = to_text(result.status);
-    out["roots"] = nlohmann::ordered_json::array();
-    for (const CertifiedRoot& r : result.roots) out["roots"].push_back({r.world[0], r.world[1], r.world[2]});
-    out["undecided"] = nlohmann::ordered_json::array();
-    for (const auto& b : undecided) {
-      out["undecided"].push_back({{b[0][0], b[0][1]}, {b[1][0], b[1][1]}, {b[2][0], b[2][1]}});
-    }
-    out["boxes"] = result.counters.boxes;
-    out["seconds"] = seconds;
-    print_json(std::cout, out);
+nlohmann::ordered_json SolveOutcome::to_json() const {
+  nlohmann::ordered_json out;
+  out["status"] = to_text(result.status);
+  out["roots"] = nlohmann::ordered_json::array();
+  for (const CertifiedRoot& r : result.roots) out["roots"].push_back({r.world[0], r.world[1], r.world[2]});
+  out["undecided"] = nlohmann::ordered_json::array();
+  for (const auto& b : undecided) {
+    out["undecided"].push_back({{b[0][0], b[0][1]}, {b[1][0], b[1][1]}, {b[2][0], b[2][1]}});
+  }
+  out["boxes"] = result.counters.boxes;
+  out["seconds"] = seconds;
+  return out;
+}
+
+namespace {
+
+ExitCode run_solve(const SolveOptions& options) {
+  const SolveOutcome outcome = solve_primitive(options.request_of());
+  const SolveRequest& o = options.request;
+  const SurfaceInput& input = outcome.input;
+  const SolveResult& result = outcome.result;
+  const auto& undecided = outcome.undecided;
+
+  if (options.json) {
+    print_json(std::cout, outcome.to_json());
   } else {
-    std::cout << "primitive: " << o.primitive << " (" << query.description << ")\n";
+    std::cout << "primitive: " << o.primitive << " (" << outcome.description << ")\n";
     std::cout << "surface:   " << input.name << ": " << input.surface.text() << " = 0 in " << format_box(input.box)
               << "\n";
-    std::cout << "solver:    " << (query.line && o.solver == "subdivision" ? "univariate isolator" : o.solver)
-              << "\n";
+    std::cout << "solver:    " << outcome.solver << "\n";
     std::cout << "status:    " << result.status << "\n";
     std::cout << "roots:     " << result.roots.size() << "\n";
     for (const CertifiedRoot& r : result.roots) {
@@ -283,7 +309,7 @@ ExitCode run_solve(const SolveOptions& o) {
                 << ", " << format_number(b[2][1]) << "]  (" << result.undecided[i].reason << ")\n";
     }
     std::cout << "boxes:     " << result.counters.boxes << "\n";
-    std::cout << "seconds:   " << seconds << "\n";
+    std::cout << "seconds:   " << outcome.seconds << "\n";
     std::cout.flush();
   }
   return ExitCode::complete;
@@ -309,43 +335,44 @@ Command add_solve_command(CLI::App& parent) {
   o->surface.add_to(*sub);
   std::string names;
   for (const PrimitiveInfo& info : primitive_registry()) names += (names.empty() ? "" : "|") + info.name;
-  sub->add_option("--primitive", o->primitive, names)->required()->type_name("P");
+  sub->add_option("--primitive", o->request.primitive, names)->required()->type_name("P");
   o->parameter_options["--direction"] = sub->add_option(
-      "--direction", o->direction,
+      "--direction", o->parameters["--direction"],
       "dx,dy,dz: height direction (surface_critical, default 0,0,1), line direction (surface_line), "
       "in-plane direction (curve_critical; its component in the plane is used), silhouette direction "
       "(silhouette_plane, silhouette_critical)")
       ->type_name("DX,DY,DZ");
   o->parameter_options["--direction2"] = sub->add_option(
-      "--direction2", o->direction2, "dx,dy,dz: direction d' of the critical points of the silhouette "
-                                     "(silhouette_critical)")
+      "--direction2", o->parameters["--direction2"],
+      "dx,dy,dz: direction d' of the critical points of the silhouette (silhouette_critical)")
       ->type_name("DX,DY,DZ");
   o->parameter_options["--point"] =
-      sub->add_option("--point", o->point, "px,py,pz: a point of the line (surface_line); the line is clipped "
-                                           "to the box")
+      sub->add_option("--point", o->parameters["--point"],
+                      "px,py,pz: a point of the line (surface_line); the line is clipped to the box")
           ->type_name("PX,PY,PZ");
   o->parameter_options["--plane-origin"] = sub->add_option(
-      "--plane-origin", o->plane_origin, "ox,oy,oz: a point of the plane (surface_plane_contact, curve_critical, "
-                                         "silhouette_plane); the domain is the polygon plane & box")
+      "--plane-origin", o->parameters["--plane-origin"],
+      "ox,oy,oz: a point of the plane (surface_plane_contact, curve_critical, silhouette_plane); the domain is the "
+      "polygon plane & box")
       ->type_name("OX,OY,OZ");
   o->parameter_options["--plane-normal"] =
-      sub->add_option("--plane-normal", o->plane_normal, "nx,ny,nz: the plane's normal (non-zero)")
+      sub->add_option("--plane-normal", o->parameters["--plane-normal"], "nx,ny,nz: the plane's normal (non-zero)")
       ->type_name("NX,NY,NZ");
-  sub->add_option("--solver", o->solver,
+  sub->add_option("--solver", o->request.solver,
                   "subdivision (certified interval subdivision; the univariate isolator for surface_line) "
                   "or homotopy (total-degree homotopy, polynomial E and square systems only)")
       ->capture_default_str()
       ->type_name("SOLVER");
-  sub->add_option("--taylor-forms", o->taylor_forms,
+  sub->add_option("--taylor-forms", o->request.taylor_forms,
                   "automatic, always or never: run the subdivision solver on Taylor forms of a polynomial system "
                   "(automatic: for dense expanded polynomials, where they are faster)")
       ->capture_default_str()
       ->type_name("MODE");
-  sub->add_option("--max-boxes", o->max_boxes, "box budget of the subdivision solver and the isolator (1 to 1e9)")
+  sub->add_option("--max-boxes", o->request.max_boxes, "box budget of the subdivision solver and the isolator (1 to 1e9)")
       ->check(whole_number(1, max_count))
       ->capture_default_str()
       ->type_name("N");
-  sub->add_option("--time-limit", o->time_limit, "seconds, at most 1e9; 0 means no limit (subdivision and homotopy)")
+  sub->add_option("--time-limit", o->request.time_limit, "seconds, at most 1e9; 0 means no limit (subdivision and homotopy)")
       ->check(finite_number())
       ->capture_default_str()
       ->type_name("S");

@@ -7,9 +7,26 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/command_line.h"
+#include "apps/commands.h"
 #include "symbolic/catalog.h"
 
 namespace delmesh::app {
+
+nlohmann::ordered_json catalog_json() {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const CatalogEntry& e : catalog()) {
+    nlohmann::ordered_json item;
+    item["name"] = e.name;
+    item["equation"] = e.equation;
+    item["box"] = {e.box.lo[0], e.box.hi[0], e.box.lo[1], e.box.hi[1], e.box.lo[2], e.box.hi[2]};
+    item["components"] = e.components;
+    item["genus_per_component"] = e.genus_per_component;
+    item["description"] = e.description;
+    item["analytic_lfs"] = static_cast<bool>(e.local_feature_size);
+    out.push_back(std::move(item));
+  }
+  return out;
+}
 
 Command add_surfaces_command(CLI::App& parent) {
   CLI::App* sub = parent.add_subcommand("surfaces", "List the catalog of named surfaces");
@@ -22,19 +39,7 @@ Command add_surfaces_command(CLI::App& parent) {
   return {sub, [json]() {
             const auto& entries = catalog();
             if (*json) {
-              nlohmann::ordered_json out = nlohmann::ordered_json::array();
-              for (const CatalogEntry& e : entries) {
-                nlohmann::ordered_json item;
-                item["name"] = e.name;
-                item["equation"] = e.equation;
-                item["box"] = {e.box.lo[0], e.box.hi[0], e.box.lo[1], e.box.hi[1], e.box.lo[2], e.box.hi[2]};
-                item["components"] = e.components;
-                item["genus_per_component"] = e.genus_per_component;
-                item["description"] = e.description;
-                item["analytic_lfs"] = static_cast<bool>(e.local_feature_size);
-                out.push_back(std::move(item));
-              }
-              std::cout << out.dump(2) << std::endl;
+              std::cout << catalog_json().dump(2) << std::endl;
               return ExitCode::complete;
             }
             for (const CatalogEntry& e : entries) {

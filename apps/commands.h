@@ -1,0 +1,139 @@
+#pragma once
+//! \file commands.h
+//! The computations behind the subcommands of `delmesh`, callable without a command line: the
+//! program and the Python module (python/delmesh_module.cpp) share them, so both accept the same
+//! inputs, refuse bad ones with the same InvalidInput message (the text of the program's
+//! `error:` line) and give the same results.  Each is implemented next to its subcommand's
+//! command-line code, apps/<name>_command.cpp; printing and output files stay there.
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/command_line.h"
+#include "common/tolerances.h"
+#include "meshing/del_mesh.h"
+#include "meshing/mesh_checker.h"
+#include "meshing/theorem_bounds.h"
+#include "solvers/solve_result.h"
+
+namespace delmesh::app {
+
+// ---------------------------------------------------------------------------------------------
+// delmesh mesh (mesh_command.cpp)
+// ---------------------------------------------------------------------------------------------
+
+//! The options of `delmesh mesh` that describe the run (not its output files), as values.
+struct MeshRequest {
+  SurfaceArguments surface;               //!< --surface | --expr with --box
+  std::optional<std::string> input_mesh;  //!< --input-mesh
+  double lambda = 0.06;                   //!< --lambda
+  std::string phase = "all";              //!< --phase: topology or all
+  std::string solver = "subdivision";     //!< --solver: subdivision or homotopy
+  std::optional<double> size_bound;       //!< --size-bound
+  std::size_t max_points = DelMeshOptions{}.max_points;  //!< --max-points
+  double time_limit = 0;                  //!< --time-limit (0: none)
+  std::uint64_t seed = 1;                 //!< --seed
+  int threads = 0;                        //!< --threads (0: every hardware thread)
+};
+
+//! A validated request: the surface and the options of del_mesh (without progress and
+//! interrupt, which belong to the caller), and the warnings to show once the caller has
+//! validated its own options.
+struct MeshPlan {
+  SurfaceInput input;
+  DelMeshOptions options;
+  std::vector<std::string> warnings;  //!< e.g. λ > 0.06 is not covered by Theorem 6.1
+};
+
+//! Validates a request in the program's order (λ, --input-mesh, the surface's presence, phase,
+//! solver, size bound, limits, threads, then the surface itself).  Throws InvalidInput with the
+//! program's message on the first invalid option; --input-mesh, once its file is read, is refused
+//! as not implemented.
+MeshPlan plan_mesh(const MeshRequest& request);
+
+//! The statistics record of a run as `delmesh mesh` writes it: del_mesh's statistics with the
+//! status, the surface (name, equation, box) and the seed, and "mesh_file" if a file is named.
+nlohmann::json mesh_statistics(const DelMeshResult& result, const SurfaceInput& input, std::uint64_t seed,
+                               const std::optional<std::string>& mesh_file);
+
+// ---------------------------------------------------------------------------------------------
+// delmesh check (check_command.cpp)
+// ---------------------------------------------------------------------------------------------
+
+//! Throws InvalidInput unless 0 < λ < 1/6, the range of the bounds of Theorem 6.1.
+void require_bounds_lambda(double lambda);
+
+//! The checker's report on a mesh and, with λ, the bounds of Theorem 6.1 and which of them hold
+//! (a bound fails on a mesh without triangles).
+struct CheckVerdict {
+  MeshReport report;
+  std::optional<double> lambda;
+  TheoremBounds bounds{};
+  bool angle_ok = true, ratio_ok = true, roughness_ok = true;
+  std::vector<std::string> warnings;  //!< e.g. λ > 0.06 is outside Theorem 6.1
+
+  bool all_pass() const { return angle_ok && ratio_ok && roughness_ok; }
+  //! The report of to_json(MeshReport), then with λ also "lambda", "bounds" and "pass".
+  nlohmann::ordered_json to_json() const;
+};
+
+//! The verdict on `report` for the optional λ.  Precondition (checked by
+//! require_bounds_lambda, throws InvalidInput): λ, if given, lies in (0, 1/6).
+CheckVerdict check_verdict(const MeshReport& report, std::optional<double> lambda);
+
+// ---------------------------------------------------------------------------------------------
+// delmesh solve (solve_command.cpp)
+// ---------------------------------------------------------------------------------------------
+
+//! The parameter options of the primitives: --direction, --direction2, --point, --plane-origin,
+//! --plane-normal.
+const std::vector<std::string>& solve_parameter_options();
+
+//! The options of `delmesh solve`, as values.
+struct SolveRequest {
+  SurfaceArguments surface;
+  std::string primitive;
+  //! The parameter options given, e.g. "--direction" → "0,0,1" (see solve_parameter_options()).
+  std::map<std::string, std::string> parameters;
+  std::string solver = "subdivision";      //!< subdivision or homotopy
+  std::string taylor_forms = "automatic";  //!< automatic, always or never
+  std::size_t max_boxes = tolerances::default_box_budget;
+  double time_limit = 0;                   //!< seconds; 0: none
+};
+
+//! A world bounding box [x0,x1] × [y0,y1] × [z0,z1].
+using WorldBox = std::array<std::array<double, 2>, 3>;
+
+//! The answer of one solve, in world coordinates.
+struct SolveOutcome {
+  SurfaceInput input;
+  std::string description;  //!< the primitive's parameters as used (unit vectors, frames)
+  std::string solver;       //!< "subdivision", "homotopy" or "univariate isolator"
+  SolveResult result;       //!< status, roots (with world points), undecided regions, counters
+  std::vector<WorldBox> undecided;  //!< the world bounding box of each result.undecided region
+  double seconds = 0;
+
+  //! The `--json` output: status, roots, undecided (world boxes), boxes, seconds.
+  nlohmann::ordered_json to_json() const;
+};
+
+//! Solves one primitive of §5.2 as `delmesh solve` does.  Throws InvalidInput with the
+//! program's message for an unknown primitive, a parameter it does not take or lacks, a bad
+//! vector, solver or surface.
+SolveOutcome solve_primitive(const SolveRequest& request);
+
+// ---------------------------------------------------------------------------------------------
+// delmesh surfaces (surfaces_command.cpp)
+// ---------------------------------------------------------------------------------------------
+
+//! The catalog as `delmesh surfaces --json` prints it: an array of {name, equation, box,
+//! components, genus_per_component, description, analytic_lfs}.
+nlohmann::ordered_json catalog_json();
+
+}  // namespace delmesh::app

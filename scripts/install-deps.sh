@@ -14,6 +14,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libbenchmark-dev
   python3 python3-matplotlib
+  python3-dev python3-numpy pybind11-dev  # the Python module (python/)
   libcgal-demo
   clang libclang-rt-dev llvm
 )

@@ -1,0 +1,518 @@
+//! \file delmesh_module.cpp
+//! The Python module `delmesh`: mesh, check, solve and surfaces on numpy arrays.  Each function
+//! runs the computation of the matching `delmesh` subcommand (apps/commands.h), so the same input
+//! and seed give the same mesh, and an input the program refuses raises ValueError with the text
+//! of the program's `error:` line.  Numbers are validated from their Python text (str(value)) by
+//! the program's own option checks, so lam=float("nan") is refused as --lambda nan is.
+//!
+//! Threads: every call releases the GIL while the library works.  The library builds its
+//! symbolic systems with GiNaC, which is not thread-safe, so calls from several Python threads
+//! run one at a time (a process-wide mutex, always taken after releasing the GIL).  mesh() runs
+//! del_mesh on a worker thread; the calling thread waits without the GIL and, every
+//! poll_interval, takes the GIL to hand the queued progress lines to the callback and to run
+//! Python's signal handlers: an exception from either (KeyboardInterrupt on Ctrl-C) sets the
+//! run's interrupt flag, the run stops at its next check, the worker is joined and the exception
+//! is raised.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <cstdlib>
+#include <deque>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "apps/command_line.h"
+#include "apps/commands.h"
+#include "common/errors.h"
+#include "meshing/del_mesh.h"
+#include "meshing/mesh_checker.h"
+
+namespace py = pybind11;
+
+namespace delmesh::python {
+
+namespace {
+
+using namespace delmesh::app;
+
+//! How often a waiting mesh() call takes the GIL to deliver progress and run signal handlers.
+constexpr std::chrono::milliseconds poll_interval{50};
+
+// ---------------------------------------------------------------------------------------------
+// One call into the library at a time
+// ---------------------------------------------------------------------------------------------
+
+std::mutex& library_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+//! True on a thread that is inside a call (a progress callback calling delmesh again would wait
+//! for itself).
+thread_local bool inside_call = false;
+
+//! Held for the duration of a library call: releases the GIL, then takes the library mutex.
+class LibraryCall {
+ public:
+  LibraryCall() {
+    if (inside_call) throw std::runtime_error("delmesh: a progress callback cannot call delmesh");
+    inside_call = true;
+    release_.emplace();
+    lock_ = std::unique_lock<std::mutex>(library_mutex());
+  }
+  ~LibraryCall() {
+    lock_ = {};
+    release_.reset();
+    inside_call = false;
+  }
+  LibraryCall(const LibraryCall&) = delete;
+  LibraryCall& operator=(const LibraryCall&) = delete;
+
+ private:
+  std::optional<py::gil_scoped_release> release_;
+  std::unique_lock<std::mutex> lock_;
+};
+
+//! Issues each warning as a Python RuntimeWarning (the program prints them as `warning:` lines).
+//! Needs the GIL.
+void warn_all(const std::vector<std::string>& warnings) {
+  for (const std::string& w : warnings) {
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 2) != 0) throw py::error_already_set();
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Python values as the program's option texts
+// ---------------------------------------------------------------------------------------------
+
+std::string text_of(const py::handle& value) { return py::str(value); }
+
+//! A number option: its text passes the program's finite-number check, then reads as a double.
+double finite_option(const std::string& option, const py::handle& value) {
+  const std::string text = text_of(value);
+  require_finite_number(option, text);
+  return std::strtod(text.c_str(), nullptr);
+}
+
+//! A whole-number option: its text passes the program's range check, then reads as an integer.
+std::uint64_t whole_option(const std::string& option, const py::handle& value, unsigned long long min,
+                           unsigned long long max) {
+  const std::string text = text_of(value);
+  require_whole_number(option, text, min, max);
+  return std::strtoull(text.c_str(), nullptr, 10);
+}
+
+//! A comma-separated option (--box, --point, ...): a string as it is, a sequence of numbers
+//! joined by commas.
+std::string list_option(const py::handle& value) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  std::string text;
+  for (const py::handle item : py::iterable(py::reinterpret_borrow<py::object>(value))) {
+    text += (text.empty() ? "" : ",") + text_of(item);
+  }
+  return text;
+}
+
+//! A path (str or os.PathLike).
+std::string path_option(const py::handle& value) {
+  return py::module_::import("os").attr("fspath")(value).cast<std::string>();
+}
+
+py::object from_json(const std::string& dumped) { return py::module_::import("json").attr("loads")(dumped); }
+
+// ---------------------------------------------------------------------------------------------
+// mesh
+// ---------------------------------------------------------------------------------------------
+
+struct MeshResult {
+  py::array_t<double> vertices;        // N × 3
+  py::array_t<std::int64_t> triangles;  // M × 3
+  py::object stats;
+  std::string status;
+};
+
+//! del_mesh on a worker thread; the caller keeps serving progress and signals (file comment).
+DelMeshResult run_del_mesh(const MeshPlan& plan, const py::object& progress) {
+  std::atomic<bool> interrupt{false};
+  std::mutex m;
+  std::condition_variable changed;
+  std::deque<std::string> lines;
+  bool done = false;
+  std::optional<DelMeshResult> result;
+  std::exception_ptr failure;
+
+  DelMeshOptions options = plan.options;
+  options.interrupt = &interrupt;
+  if (!progress.is_none()) {
+    options.progress = [&](const std::string& line) {
+      std::lock_guard<std::mutex> lock(m);
+      lines.push_back(line);
+      changed.notify_all();
+    };
+  }
+  // Whatever leaves this function, the worker is stopped and joined first (it never takes the GIL).
+  struct Joiner {
+    std::atomic<bool>& interrupt;
+    std::thread thread;
+    ~Joiner() {
+      if (thread.joinable()) {
+        interrupt.store(true);
+        thread.join();
+      }
+    }
+  } worker{interrupt, std::thread([&] {
+    try {
+      DelMeshResult r = del_mesh(plan.input.surface, plan.input.box, options);
+      std::lock_guard<std::mutex> lock(m);
+      result.emplace(std::move(r));
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(m);
+      failure = std::current_exception();
+    }
+    std::lock_guard<std::mutex> lock(m);
+    done = true;
+    changed.notify_all();
+  })};
+
+  std::optional<py::error_already_set> python_error;
+  for (bool finished = false; !finished;) {
+    std::deque<std::string> delivered;
+    {
+      std::unique_lock<std::mutex> lock(m);
+      changed.wait_for(lock, poll_interval, [&] { return done || !lines.empty(); });
+      finished = done;
+      delivered.swap(lines);
+    }
+    if (python_error) continue;  // stopping: wait for the worker only
+    py::gil_scoped_acquire gil;
+    try {
+      for (const std::string& line : delivered) progress(line);
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    } catch (py::error_already_set& e) {
+      python_error.emplace(std::move(e));
+      interrupt.store(true);
+    }
+  }
+  worker.thread.join();
+  if (python_error) {
+    py::gil_scoped_acquire gil;
+    throw std::move(*python_error);
+  }
+  if (failure) std::rethrow_exception(failure);
+  return std::move(*result);
+}
+
+MeshResult mesh(const py::object& expr, const py::object& box, const py::object& surface,
+                const py::object& input_mesh, const py::object& lam, const py::object& size_bound,
+                const std::string& phase, const py::object& seed, const py::object& max_points,
+                const py::object& time_limit, const py::object& threads, const py::object& progress,
+                const std::string& solver) {
+  MeshRequest request;
+  if (!surface.is_none()) request.surface.surface = surface.cast<std::string>();
+  if (!expr.is_none()) request.surface.expr = expr.cast<std::string>();
+  if (!box.is_none()) request.surface.box = list_option(box);
+  if (!input_mesh.is_none()) request.input_mesh = path_option(input_mesh);
+  request.lambda = finite_option("--lambda", lam);
+  if (!size_bound.is_none()) request.size_bound = finite_option("--size-bound", size_bound);
+  request.phase = phase;
+  request.solver = solver;
+  request.seed = whole_option("--seed", seed, 0, std::numeric_limits<std::uint64_t>::max());
+  if (!max_points.is_none()) request.max_points = whole_option("--max-points", max_points, 1, max_count);
+  if (!time_limit.is_none()) request.time_limit = finite_option("--time-limit", time_limit);
+  if (!threads.is_none()) request.threads = static_cast<int>(whole_option("--threads", threads, 0, max_threads));
+  if (!progress.is_none() && !PyCallable_Check(progress.ptr())) throw py::type_error("progress must be callable");
+
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> faces;
+  std::string statistics, status;
+  {
+    LibraryCall call;
+    const MeshPlan plan = plan_mesh(request);
+    {
+      py::gil_scoped_acquire gil;
+      warn_all(plan.warnings);
+    }
+    const DelMeshResult result = run_del_mesh(plan, progress);
+    mesh_to_soup(result.mesh, points, faces);
+    statistics = mesh_statistics(result, plan.input, request.seed, std::nullopt).dump();
+    std::ostringstream s;
+    s << result.status;
+    status = s.str();
+  }
+
+  MeshResult out;
+  out.vertices = py::array_t<double>({static_cast<py::ssize_t>(points.size()), py::ssize_t{3}});
+  auto v = out.vertices.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (int k = 0; k < 3; ++k) v(i, k) = points[i][k];
+  }
+  out.triangles = py::array_t<std::int64_t>({static_cast<py::ssize_t>(faces.size()), py::ssize_t{3}});
+  auto t = out.triangles.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    for (int k = 0; k < 3; ++k) t(i, k) = static_cast<std::int64_t>(faces[i][k]);
+  }
+  out.stats = from_json(statistics);
+  out.status = status;
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// check
+// ---------------------------------------------------------------------------------------------
+
+py::object check(const py::object& vertices, const py::object& triangles, const py::object& lam) {
+  std::optional<double> lambda;
+  if (!lam.is_none()) {
+    lambda = finite_option("--lambda", lam);
+    require_bounds_lambda(*lambda);
+  }
+  const py::module_ np = py::module_::import("numpy");
+  const py::array v = np.attr("asarray")(vertices, "float64");
+  if (v.ndim() != 2 || v.shape(1) != 3) {
+    throw InvalidInput("vertices: expected an N x 3 array of coordinates, got shape " +
+                       text_of(py::tuple(v.attr("shape"))));
+  }
+  const py::array t_any = np.attr("asarray")(triangles);
+  if (t_any.size() > 0 && !np.attr("issubdtype")(t_any.dtype(), np.attr("integer")).cast<bool>()) {
+    throw InvalidInput("triangles: expected integer vertex indices, got dtype " + text_of(t_any.dtype()));
+  }
+  const py::array t = np.attr("asarray")(t_any, "int64");
+  if (t.ndim() != 2 || t.shape(1) != 3) {
+    throw InvalidInput("triangles: expected an M x 3 array of vertex indices, got shape " +
+                       text_of(py::tuple(t.attr("shape"))));
+  }
+  const auto vv = py::array_t<double, py::array::c_style | py::array::forcecast>(v).unchecked<2>();
+  const auto tt = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>(t).unchecked<2>();
+  std::vector<Point3> points;
+  points.reserve(static_cast<std::size_t>(vv.shape(0)));
+  for (py::ssize_t i = 0; i < vv.shape(0); ++i) points.emplace_back(vv(i, 0), vv(i, 1), vv(i, 2));
+  std::vector<std::array<std::size_t, 3>> faces;
+  faces.reserve(static_cast<std::size_t>(tt.shape(0)));
+  for (py::ssize_t i = 0; i < tt.shape(0); ++i) {
+    std::array<std::size_t, 3> f{};
+    for (int k = 0; k < 3; ++k) {
+      if (tt(i, k) < 0) {
+        throw InvalidInput("triangles: triangle " + std::to_string(i) + " has the negative index " +
+                           std::to_string(tt(i, k)));
+      }
+      f[k] = static_cast<std::size_t>(tt(i, k));
+    }
+    faces.push_back(f);
+  }
+
+  std::string report;
+  std::vector<std::string> warnings;
+  {
+    LibraryCall call;
+    const CheckVerdict verdict = check_verdict(check_mesh(points, faces), lambda);
+    report = verdict.to_json().dump();
+    warnings = verdict.warnings;
+  }
+  warn_all(warnings);
+  return from_json(report);
+}
+
+// ---------------------------------------------------------------------------------------------
+// solve
+// ---------------------------------------------------------------------------------------------
+
+struct SolveAnswer {
+  std::string status;
+  py::array_t<double> roots;      // K × 3
+  py::array_t<double> undecided;  // U × 3 × 2
+  std::vector<std::string> undecided_reasons;
+  std::size_t boxes = 0;
+  double seconds = 0;
+  std::string solver;
+  std::string description;
+};
+
+SolveAnswer solve(const std::string& primitive, const py::object& expr, const py::object& box,
+                  const py::object& surface, const py::object& direction, const py::object& direction2,
+                  const py::object& point, const py::object& plane_origin, const py::object& plane_normal,
+                  const std::string& solver, const std::string& taylor_forms, const py::object& max_boxes,
+                  const py::object& time_limit) {
+  SolveRequest request;
+  request.primitive = primitive;
+  if (!surface.is_none()) request.surface.surface = surface.cast<std::string>();
+  if (!expr.is_none()) request.surface.expr = expr.cast<std::string>();
+  if (!box.is_none()) request.surface.box = list_option(box);
+  const std::pair<const char*, const py::object*> parameters[] = {{"--direction", &direction},
+                                                                  {"--direction2", &direction2},
+                                                                  {"--point", &point},
+                                                                  {"--plane-origin", &plane_origin},
+                                                                  {"--plane-normal", &plane_normal}};
+  for (const auto& [option, value] : parameters) {
+    if (!value->is_none()) request.parameters[option] = list_option(*value);
+  }
+  request.solver = solver;
+  request.taylor_forms = taylor_forms;
+  if (!max_boxes.is_none()) request.max_boxes = whole_option("--max-boxes", max_boxes, 1, max_count);
+  if (!time_limit.is_none()) request.time_limit = finite_option("--time-limit", time_limit);
+
+  std::optional<SolveOutcome> outcome;
+  {
+    LibraryCall call;
+    outcome.emplace(solve_primitive(request));
+  }
+  const SolveOutcome& o = *outcome;
+  SolveAnswer a;
+  std::ostringstream status;
+  status << o.result.status;
+  a.status = status.str();
+  a.roots = py::array_t<double>({static_cast<py::ssize_t>(o.result.roots.size()), py::ssize_t{3}});
+  auto r = a.roots.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < o.result.roots.size(); ++i) {
+    for (int k = 0; k < 3; ++k) r(i, k) = o.result.roots[i].world[k];
+  }
+  a.undecided = py::array_t<double>({static_cast<py::ssize_t>(o.undecided.size()), py::ssize_t{3}, py::ssize_t{2}});
+  auto u = a.undecided.mutable_unchecked<3>();
+  for (std::size_t i = 0; i < o.undecided.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      u(i, k, 0) = o.undecided[i][k][0];
+      u(i, k, 1) = o.undecided[i][k][1];
+    }
+    std::ostringstream reason;
+    reason << o.result.undecided[i].reason;
+    a.undecided_reasons.push_back(reason.str());
+  }
+  a.boxes = o.result.counters.boxes;
+  a.seconds = o.seconds;
+  a.solver = o.solver;
+  a.description = o.description;
+  return a;
+}
+
+// ---------------------------------------------------------------------------------------------
+// surfaces
+// ---------------------------------------------------------------------------------------------
+
+py::object surfaces() {
+  std::string dumped;
+  {
+    LibraryCall call;
+    dumped = catalog_json().dump();
+  }
+  return from_json(dumped);
+}
+
+}  // namespace
+
+}  // namespace delmesh::python
+
+PYBIND11_MODULE(delmesh, m) {
+  using namespace delmesh::python;
+  m.doc() =
+      "delmesh: certified meshing of smooth closed implicit surfaces E(x,y,z) = 0 with DelMesh (Cheng, Dey,\n"
+      "Ramos, Ray).  mesh() returns numpy arrays; check() is the independent checker; solve() one numerical\n"
+      "primitive; surfaces() the catalog.  The functions run the computations of the `delmesh` program:\n"
+      "the same input and seed give the same mesh, and an input the program refuses raises ValueError\n"
+      "with the text of the program's `error:` line.  Each call releases the GIL; calls from several\n"
+      "threads run one at a time.";
+  m.attr("__version__") = DELMESH_VERSION;
+
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const std::invalid_argument& e) {
+      PyErr_SetString(PyExc_ValueError, delmesh::app::one_line(e.what()).c_str());
+    }
+  });
+
+  py::class_<MeshResult>(m, "MeshResult", "The output of mesh(): Tri S|Sigma, its statistics and status.")
+      .def_readonly("vertices", &MeshResult::vertices, "N x 3 float64 array of vertex coordinates")
+      .def_readonly("triangles", &MeshResult::triangles,
+                    "M x 3 int64 array of vertex indices, consistently outward oriented")
+      .def_readonly("stats", &MeshResult::stats,
+                    "the statistics as a dict: the JSON `delmesh mesh --stats` writes, without mesh_file")
+      .def_readonly("status", &MeshResult::status,
+                    "complete, uncertified, point_limit, time_limit or interrupted (see stats['unsettled'])")
+      .def("__repr__", [](const MeshResult& r) {
+        return "<delmesh.MeshResult status=" + r.status + ", " + std::to_string(r.vertices.shape(0)) +
+               " vertices, " + std::to_string(r.triangles.shape(0)) + " triangles>";
+      });
+
+  py::class_<SolveAnswer>(m, "SolveResult", "The output of solve(), in world coordinates.")
+      .def_readonly("status", &SolveAnswer::status, "complete, undecided, non_isolated, box_limit or time_limit")
+      .def_readonly("roots", &SolveAnswer::roots, "K x 3 float64 array: a point of each certified root's box")
+      .def_readonly("undecided", &SolveAnswer::undecided,
+                    "U x 3 x 2 float64 array: the world bounding box [[x0,x1],[y0,y1],[z0,z1]] of each region "
+                    "neither excluded nor certified")
+      .def_readonly("undecided_reasons", &SolveAnswer::undecided_reasons, "why each region is undecided")
+      .def_readonly("boxes", &SolveAnswer::boxes, "boxes the solver visited")
+      .def_readonly("seconds", &SolveAnswer::seconds, "solver time")
+      .def_readonly("solver", &SolveAnswer::solver, "subdivision, homotopy or univariate isolator")
+      .def_readonly("description", &SolveAnswer::description, "the primitive's parameters as used")
+      .def("__repr__", [](const SolveAnswer& a) {
+        return "<delmesh.SolveResult status=" + a.status + ", " + std::to_string(a.roots.shape(0)) + " roots, " +
+               std::to_string(a.undecided.shape(0)) + " undecided>";
+      });
+
+  m.def("mesh", &mesh, py::kw_only(), py::arg("expr") = py::none(), py::arg("box") = py::none(),
+        py::arg("surface") = py::none(), py::arg("input_mesh") = py::none(), py::arg("lam") = 0.06,
+        py::arg("size_bound") = py::none(), py::arg("phase") = "all", py::arg("seed") = 1,
+        py::arg("max_points") = py::none(), py::arg("time_limit") = py::none(), py::arg("threads") = py::none(),
+        py::arg("progress") = py::none(), py::arg("solver") = "subdivision",
+        R"doc(Mesh a surface with DelMesh, as `delmesh mesh` does; returns a MeshResult.
+
+Give exactly one of expr (E(x,y,z) as text, the surface is E = 0) with box, surface (a catalog
+name, see surfaces(); a box replaces the catalog's) or input_mesh (a file path; remeshing is not
+implemented yet, so it is refused after the file is read, as by the program).
+
+box: "x0,x1,y0,y1,z0,z1" or six numbers; the surface must lie strictly inside.
+lam: lambda in (0, 1/3); Theorem 6.1 covers (0, 0.06] (guaranteed topology, radius-edge ratio
+  <= 1+lam, roughness <= 2 beta(lam)); larger values run with a RuntimeWarning.
+size_bound: also refine triangles whose surface Delaunay ball radius exceeds it.
+phase: "topology" (SampleTopology only) or "all" (DelMesh).
+seed: 0 <= seed < 2**64; the same input and seed give the same mesh as the program.
+max_points, time_limit (seconds; 0 or None: none): a run stopped by a limit returns its partial
+  mesh with status point_limit or time_limit.
+threads: worker threads (None or 0: every hardware thread); the mesh does not depend on it.
+progress: called with each progress line (about every 0.5 s), on the calling thread.
+solver: "subdivision" or "homotopy" (polynomial E only).
+
+The GIL is released while meshing.  Ctrl-C (any exception raised by a signal handler or by
+progress) stops the run at its next check and is raised once the run has stopped.
+Raises ValueError, with the program's error message, on invalid input.)doc");
+
+  m.def("check", &check, py::arg("vertices"), py::arg("triangles"), py::arg("lam") = py::none(),
+        R"doc(The independent checker on a triangle soup, as `delmesh check --json` reports it; returns a dict.
+
+vertices: N x 3 array of coordinates; triangles: M x 3 array of integer vertex indices.
+Components, Euler characteristic, genus_per_component (None where the component is not a closed
+orientable 2-manifold), closed / manifold / orientable with the counts of boundary edges and loops
+and of non-manifold edges and vertices, min angle, max radius-edge ratio, max roughness.
+lam: lambda in (0, 1/6): also "lambda", the bounds of Theorem 6.1 ("bounds") and which hold ("pass").
+Raises ValueError on an index out of range, a repeated index in a triangle, a non-finite point.)doc");
+
+  m.def("solve", &solve, py::arg("primitive"), py::kw_only(), py::arg("expr") = py::none(),
+        py::arg("box") = py::none(), py::arg("surface") = py::none(), py::arg("direction") = py::none(),
+        py::arg("direction2") = py::none(), py::arg("point") = py::none(), py::arg("plane_origin") = py::none(),
+        py::arg("plane_normal") = py::none(), py::arg("solver") = "subdivision",
+        py::arg("taylor_forms") = "automatic", py::arg("max_boxes") = py::none(), py::arg("time_limit") = py::none(),
+        R"doc(Solve one numerical primitive of Sec. 5.2 with a certified solver, as `delmesh solve` does.
+
+primitive: surface_critical [direction, default (0,0,1)], surface_line (point, direction),
+surface_plane_contact (plane_origin, plane_normal), curve_critical (plane_origin, plane_normal,
+direction), silhouette_plane (plane_origin, plane_normal, direction), silhouette_critical
+(direction, direction2).  Vectors are three numbers or "a,b,c".  The surface as for mesh().
+Returns a SolveResult: status, roots (K x 3), undecided (U x 3 x 2 world boxes) and their reasons.
+The GIL is released while solving; time_limit (seconds) and max_boxes bound the work.)doc");
+
+  m.def("surfaces", &surfaces,
+        "The catalog of named surfaces as `delmesh surfaces --json` lists it: a list of dicts {name, equation, "
+        "box, components, genus_per_component, description, analytic_lfs}.");
+}

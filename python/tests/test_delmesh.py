@@ -1,0 +1,351 @@
+"""Tests of the Python module delmesh against known answers and against the program `delmesh`.
+
+Run by ctest (entry `python`, fast tier) with PYTHONPATH=<build>/python and DELMESH_BINARY set to
+the program of the same build; by hand:
+    PYTHONPATH=build/python DELMESH_BINARY=build/delmesh python3 -m unittest discover -s python/tests
+"""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import unittest
+
+import numpy as np
+
+import delmesh
+
+DELMESH_BINARY = os.environ.get("DELMESH_BINARY", "delmesh")
+
+
+def run_cli(*args):
+    """Runs the program; returns (exit code, stdout, stderr)."""
+    p = subprocess.run([DELMESH_BINARY, *args], capture_output=True, text=True, check=False)
+    return p.returncode, p.stdout, p.stderr
+
+
+def cli_error(*args):
+    """The message of the program's single `error:` line for args (which must be refused)."""
+    code, _, err = run_cli(*args)
+    assert code == 2, (args, code, err)
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), err
+    return lines[0][len("error: "):]
+
+
+def read_off(path):
+    """Vertices (float64) and triangles (int64) of an ASCII OFF file as the program writes it."""
+    with open(path) as f:
+        words = f.read().split()
+    assert words[0] == "OFF"
+    nv, nf = int(words[1]), int(words[2])
+    at = 4
+    vertices = np.array(words[at:at + 3 * nv], dtype=np.float64).reshape(nv, 3)
+    at += 3 * nv
+    faces = np.array(words[at:at + 4 * nf], dtype=np.int64).reshape(nf, 4)
+    assert (faces[:, 0] == 3).all()
+    return vertices, faces[:, 1:]
+
+
+def without_timings(value):
+    """The statistics without what differs from run to run (seconds) or between the program and
+    the module by design (mesh_file)."""
+    if isinstance(value, dict):
+        return {k: without_timings(v) for k, v in value.items()
+                if not k.startswith("seconds") and k != "mesh_file"}
+    if isinstance(value, list):
+        return [without_timings(v) for v in value]
+    return value
+
+
+class SurfacesTest(unittest.TestCase):
+    def test_catalog_is_the_programs(self):
+        code, out, _ = run_cli("surfaces", "--json")
+        self.assertEqual(code, 0)
+        surfaces = delmesh.surfaces()
+        self.assertEqual(surfaces, json.loads(out))
+        torus = next(s for s in surfaces if s["name"] == "torus")
+        self.assertEqual(torus["genus_per_component"], [1])
+        self.assertEqual(len(torus["box"]), 6)
+
+
+class MeshTest(unittest.TestCase):
+    def test_shapes_dtypes_and_statistics(self):
+        result = delmesh.mesh(surface="sphere")
+        self.assertEqual(result.status, "complete")
+        self.assertEqual(result.vertices.dtype, np.float64)
+        self.assertEqual(result.triangles.dtype, np.int64)
+        self.assertEqual(result.vertices.ndim, 2)
+        self.assertEqual(result.vertices.shape[1], 3)
+        self.assertEqual(result.triangles.shape[1], 3)
+        self.assertGreater(len(result.triangles), 0)
+        self.assertEqual(result.stats["status"], "complete")
+        self.assertEqual(result.stats["vertices"], len(result.vertices))
+        self.assertEqual(result.stats["triangles"], len(result.triangles))
+        self.assertEqual(result.stats["seed"], 1)
+        self.assertEqual(result.stats["surface"]["name"], "sphere")
+        self.assertNotIn("mesh_file", result.stats)
+        self.assertTrue(result.triangles.min() >= 0 and result.triangles.max() < len(result.vertices))
+        # A closed 2-manifold: Euler's formula with 3F = 2E.
+        v, f = len(result.vertices), len(result.triangles)
+        self.assertEqual(v - f // 2, 2)
+        # On the unit sphere (E = x^2+y^2+z^2-1): every vertex is a sample of the surface.
+        np.testing.assert_allclose(np.linalg.norm(result.vertices, axis=1), 1.0, rtol=0, atol=1e-9)
+
+    def test_torus_has_genus_one_by_the_checker(self):
+        result = delmesh.mesh(surface="torus")
+        self.assertEqual(result.status, "complete")
+        report = delmesh.check(result.vertices, result.triangles, lam=0.06)
+        self.assertEqual(report["components"], 1)
+        self.assertEqual(report["genus_per_component"], [1])
+        self.assertEqual(report["euler_characteristic"], 0)
+        self.assertTrue(report["closed_manifold"])
+        self.assertTrue(report["oriented"])
+        self.assertTrue(report["pass"]["all"])
+        self.assertEqual(report["min_angle_deg"], result.stats["min_angle_deg"])
+
+    def test_same_mesh_and_statistics_as_the_program(self):
+        cases = [
+            (["--surface", "torus", "--seed", "7"], dict(surface="torus", seed=7)),
+            (["--expr", "x^2+2*y^2+3*z^2-1", "--box", "-2,2,-2,2,-2,2", "--phase", "topology", "--lambda", "0.05"],
+             dict(expr="x^2+2*y^2+3*z^2-1", box=(-2, 2, -2, 2, -2, 2), phase="topology", lam=0.05)),
+        ]
+        with tempfile.TemporaryDirectory() as d:
+            for args, kwargs in cases:
+                with self.subTest(args=args):
+                    off, stats = os.path.join(d, "m.off"), os.path.join(d, "m.json")
+                    code, _, err = run_cli("mesh", *args, "--out", off, "--stats", stats, "--quiet")
+                    self.assertEqual(code, 0, err)
+                    vertices, triangles = read_off(off)
+                    with open(stats) as f:
+                        cli_stats = json.load(f)
+                    result = delmesh.mesh(**kwargs)
+                    np.testing.assert_array_equal(result.vertices, vertices)  # exactly: 17 digits in the file
+                    np.testing.assert_array_equal(result.triangles, triangles)
+                    self.assertEqual(without_timings(result.stats), without_timings(cli_stats))
+
+    def test_point_limit_returns_the_partial_mesh_with_its_status(self):
+        result = delmesh.mesh(surface="torus", max_points=20)
+        self.assertEqual(result.status, "point_limit")
+        self.assertEqual(result.stats["status"], "point_limit")
+        self.assertEqual(result.stats["vertices"], len(result.vertices))
+
+    def test_invalid_input_raises_the_programs_message(self):
+        box = "-1,1,-1,1,-1,1"
+        cases = [
+            (dict(expr="x^2+", box=box), ["--expr", "x^2+", "--box", box]),
+            (dict(expr="x^2+y^2+z^2-1"), ["--expr", "x^2+y^2+z^2-1"]),
+            (dict(surface="no_such_surface"), ["--surface", "no_such_surface"]),
+            (dict(surface="sphere", expr="x"), ["--surface", "sphere", "--expr", "x"]),
+            (dict(), []),
+            (dict(surface="sphere", lam=0.5), ["--surface", "sphere", "--lambda", "0.5"]),
+            (dict(surface="sphere", lam=float("nan")), ["--surface", "sphere", "--lambda", "nan"]),
+            (dict(surface="sphere", max_points=0), ["--surface", "sphere", "--max-points", "0"]),
+            (dict(surface="sphere", seed=-1), ["--surface", "sphere", "--seed", "-1"]),
+            (dict(surface="sphere", threads=2000), ["--surface", "sphere", "--threads", "2000"]),
+            (dict(surface="sphere", time_limit=-1), ["--surface", "sphere", "--time-limit", "-1"]),
+            (dict(surface="sphere", phase="some"), ["--surface", "sphere", "--phase", "some"]),
+            (dict(surface="sphere", box="0,1,0,1"), ["--surface", "sphere", "--box", "0,1,0,1"]),
+            (dict(expr="x^2+y^2+z^2-4", box=box), ["--expr", "x^2+y^2+z^2-4", "--box", box]),
+            (dict(input_mesh="/nonexistent/m.off"), ["--input-mesh", "/nonexistent/m.off"]),
+        ]
+        with tempfile.TemporaryDirectory() as d:
+            for kwargs, args in cases:
+                with self.subTest(kwargs=kwargs):
+                    message = cli_error("mesh", *args, "--out", os.path.join(d, "m.off"),
+                                        "--stats", os.path.join(d, "m.json"), "--quiet")
+                    with self.assertRaises(ValueError) as caught:
+                        delmesh.mesh(**kwargs)
+                    self.assertEqual(str(caught.exception), message)
+
+    def test_lambda_beyond_the_theorem_warns(self):
+        with self.assertWarnsRegex(RuntimeWarning, "Theorem 6.1 does not cover"):
+            result = delmesh.mesh(surface="sphere", lam=0.1)
+        self.assertEqual(result.stats["lambda"], 0.1)
+
+
+class ThreadsTest(unittest.TestCase):
+    def test_the_gil_is_released_while_meshing(self):
+        ticks = []
+        stop = threading.Event()
+
+        def tick():
+            while not stop.is_set():
+                ticks.append(time.monotonic())
+                time.sleep(0.005)
+
+        ticker = threading.Thread(target=tick)
+        ticker.start()
+        try:
+            time.sleep(0.05)
+            start = time.monotonic()
+            result = delmesh.mesh(surface="torus")
+            end = time.monotonic()
+        finally:
+            stop.set()
+            ticker.join()
+        self.assertEqual(result.status, "complete")
+        during = [t for t in ticks if start < t < end]
+        # A thread blocked on the GIL would not tick at all during the call; with the GIL released
+        # it ticks about every 5 ms (at least a third of that rate is required).
+        self.assertGreater(end - start, 0.1)
+        self.assertGreaterEqual(len(during), (end - start) / 0.005 / 3)
+
+    def test_ctrl_c_stops_the_run_and_raises_keyboard_interrupt(self):
+        # SIGINT comes from another thread once the refinement reports progress, so the main
+        # thread receives it while it waits inside mesh(), not while it runs Python code.
+        lines = []
+        refining, finished = threading.Event(), threading.Event()
+        sent = []
+
+        def progress(line):
+            lines.append(line)
+            refining.set()
+
+        def interrupt():
+            if refining.wait(timeout=60) and not finished.is_set():
+                sent.append(time.monotonic())
+                os.kill(os.getpid(), signal.SIGINT)
+
+        sender = threading.Thread(target=interrupt)
+        sender.start()
+        try:
+            with self.assertRaises(KeyboardInterrupt):
+                delmesh.mesh(surface="chair", progress=progress)
+            stopped = time.monotonic()
+        finally:
+            finished.set()
+            refining.set()
+            sender.join()
+        self.assertTrue(sent, "the run ended before its first progress report")
+        self.assertIsInstance(lines[0], str)
+        self.assertIn("points", lines[0])
+        self.assertLess(stopped - sent[0], 2.0)
+        # The library is usable again: the worker was joined and the lock released.
+        self.assertEqual(delmesh.mesh(surface="sphere").status, "complete")
+
+    def test_an_exception_in_progress_stops_the_run(self):
+        def progress(line):
+            raise RuntimeError("enough")
+
+        with self.assertRaisesRegex(RuntimeError, "enough"):
+            delmesh.mesh(surface="chair", progress=progress)
+
+
+class CheckTest(unittest.TestCase):
+    TETRAHEDRON = (np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float64),
+                   np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]))
+
+    def test_closed_and_open_meshes(self):
+        report = delmesh.check(*self.TETRAHEDRON)
+        self.assertEqual(report["vertices"], 4)
+        self.assertEqual(report["edges"], 6)
+        self.assertEqual(report["euler_characteristic"], 2)
+        self.assertEqual(report["genus_per_component"], [0])
+        self.assertTrue(report["closed"])
+        self.assertNotIn("pass", report)
+        vertices, triangles = self.TETRAHEDRON
+        report = delmesh.check(vertices.tolist(), triangles[:3].tolist())  # plain lists work too
+        self.assertFalse(report["closed"])
+        self.assertEqual(report["boundary_edges"], 3)
+        self.assertEqual(report["boundary_loops"], 1)
+        self.assertEqual(report["genus_per_component"], [None])
+
+    def test_same_report_as_the_program(self):
+        result = delmesh.mesh(surface="two_blobs", phase="topology")
+        with tempfile.TemporaryDirectory() as d:
+            off = os.path.join(d, "m.off")
+            code, _, err = run_cli("mesh", "--surface", "two_blobs", "--phase", "topology", "--out", off,
+                                   "--stats", os.path.join(d, "m.json"), "--quiet")
+            self.assertEqual(code, 0, err)
+            code, out, _ = run_cli("check", off, "--lambda", "0.06", "--json")
+        self.assertEqual(delmesh.check(result.vertices, result.triangles, lam=0.06), json.loads(out))
+
+    def test_invalid_input(self):
+        vertices, triangles = self.TETRAHEDRON
+        with self.assertRaisesRegex(ValueError, "vertex index 4 but there are 4 points"):
+            delmesh.check(vertices, triangles + 1)
+        with self.assertRaisesRegex(ValueError, "negative index"):
+            delmesh.check(vertices, triangles - 1)
+        with self.assertRaisesRegex(ValueError, "N x 3"):
+            delmesh.check(vertices[:, :2], triangles)
+        with self.assertRaisesRegex(ValueError, "integer"):
+            delmesh.check(vertices, triangles.astype(np.float64))
+        with tempfile.TemporaryDirectory() as d:
+            off = os.path.join(d, "t.off")
+            with open(off, "w") as f:
+                f.write("OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n")
+            message = cli_error("check", off, "--lambda", "0.2")
+        with self.assertRaises(ValueError) as caught:
+            delmesh.check(vertices, triangles, lam=0.2)
+        self.assertEqual(str(caught.exception), message)
+
+
+class SolveTest(unittest.TestCase):
+    def test_critical_points_of_the_torus_along_x(self):
+        # The catalog torus (x^2+y^2+z^2+R^2-r^2)^2 - 4R^2(x^2+y^2), R = 1, r = 0.4, revolves about z:
+        # the height along x has exactly four critical points on it, (±(R+r), 0, 0) and (±(R-r), 0, 0).
+        result = delmesh.solve("surface_critical", surface="torus", direction=(1, 0, 0))
+        self.assertEqual(result.status, "complete")
+        np.testing.assert_allclose(sorted(result.roots[:, 0]), [-1.4, -0.6, 0.6, 1.4], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(result.roots[:, 1:], 0, rtol=0, atol=1e-12)
+        self.assertEqual(result.undecided.shape, (0, 3, 2))
+        code, out, err = run_cli("solve", "--surface", "torus", "--primitive", "surface_critical",
+                                 "--direction", "1,0,0", "--json")
+        self.assertEqual(code, 0, err)
+        cli = json.loads(out)
+        self.assertEqual(result.status, cli["status"])
+        np.testing.assert_array_equal(result.roots, np.array(cli["roots"], dtype=np.float64).reshape(-1, 3))
+        self.assertEqual(result.boxes, cli["boxes"])
+
+    def test_line_roots_on_the_unit_sphere(self):
+        result = delmesh.solve("surface_line", expr="x^2+y^2+z^2-1", box="-2,2,-2,2,-2,2",
+                               point=(0, 0, 0), direction="0,0,1")
+        self.assertEqual(result.status, "complete")
+        self.assertEqual(result.solver, "univariate isolator")
+        np.testing.assert_allclose(sorted(result.roots[:, 2]), [-1.0, 1.0], rtol=0, atol=1e-12)
+
+    def test_invalid_input_raises_the_programs_message(self):
+        cases = [
+            (dict(primitive="no_such_primitive", surface="torus"), ["--primitive", "no_such_primitive"]),
+            (dict(primitive="surface_line", surface="torus", point=(1, 2, 3)),
+             ["--primitive", "surface_line", "--point", "1,2,3"]),
+            (dict(primitive="surface_line", surface="torus", point="1,2", direction=(0, 0, 1)),
+             ["--primitive", "surface_line", "--point", "1,2", "--direction", "0,0,1"]),
+            (dict(primitive="surface_critical", surface="torus", point=(0, 0, 0)),
+             ["--primitive", "surface_critical", "--point", "0,0,0"]),
+            (dict(primitive="surface_critical", surface="torus", max_boxes=0),
+             ["--primitive", "surface_critical", "--max-boxes", "0"]),
+        ]
+        for kwargs, args in cases:
+            with self.subTest(kwargs=kwargs):
+                message = cli_error("solve", "--surface", "torus", *args)
+                with self.assertRaises(ValueError) as caught:
+                    delmesh.solve(**kwargs)
+                self.assertEqual(str(caught.exception), message)
+
+
+class ExampleTest(unittest.TestCase):
+    SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+    def test_the_readme_example_runs_and_its_mesh_checks(self):
+        example = os.path.join(self.SOURCE, "python", "example.py")
+        with open(example) as f, open(os.path.join(self.SOURCE, "README.md")) as readme:
+            self.assertIn(f.read(), readme.read(), "the README shows python/example.py verbatim")
+        with tempfile.TemporaryDirectory() as d:
+            p = subprocess.run([sys.executable, example, d], capture_output=True, text=True, check=False)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            self.assertIn("genus per component: [1] closed manifold: True", p.stdout)
+            code, out, err = run_cli("check", os.path.join(d, "torus.off"), "--lambda", "0.06", "--json")
+            self.assertEqual(code, 0, err)
+            report = json.loads(out)
+        self.assertEqual(report["genus_per_component"], [1])
+        self.assertTrue(report["pass"]["all"])
+
+
+if __name__ == "__main__":
+    unittest.main()

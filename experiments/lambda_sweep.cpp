@@ -1,5 +1,6 @@
 //! \file lambda_sweep.cpp
-//! Theorem 6.1 by experiment: for catalog surfaces and a decreasing sequence of λ, run DelMesh
+//! Theorem 6.1 by experiment: for catalog surfaces (or a surface given by --expr, --box, --name)
+//! and a decreasing sequence of λ, run DelMesh
 //! (no size bound), judge the output with the independent checker (meshing/mesh_checker.h) and
 //! compare with the theorem's bounds for λ:
 //!   (i)   topology: closed orientable 2-manifold with the catalog's genus per component;
@@ -11,14 +12,30 @@
 //! ρ(s, t) along rays from a centre (star charts) or from a core circle (tube charts), ρ found by
 //! bisection on the compiled E, and dA = |J| / |n·e| ds dt with J the Jacobian of the coordinates
 //! and e the ray direction.  The closed forms for the sphere (4π) and the torus (4π²R/r) are
-//! printed next to the computed values.  Output: <out-dir>/lambda_sweep.csv, meshes under
-//! <out-dir>/meshes/.
+//! printed next to the computed values.
+//!
+//! Real ε-samples (meshing/eps_sample.h) for every surface: a dense reference sample R of Σ
+//! (meshing/dense_sample.h, cell edges ≤ --relative-spacing · lfs, seeded by --sample-seed), with
+//! lfs analytic where the catalog knows it and otherwise estimated from the Voronoi poles of a
+//! dense sample (meshing/lfs_estimate.h); the greedy farthest-point ε-sample of R for each ε of
+//! --epsilons; and per run size_ratio = |S| λ² / (|ε-sample| ε²), which Theorem 6.1(iii) predicts
+//! to stay bounded as λ → 0.  Where lfs is analytic the pole estimate is made as well and its
+//! relative error against the exact lfs is reported.  The ε-samples depend on the surface only, so
+//! they are computed once per surface, or read back with --eps-reference from an earlier run's
+//! eps_reference.csv (the Snakemake workflow, experiments/Snakefile, does that).
+//!
+//! Output in <out-dir>: lambda_sweep.csv (one row per surface and λ), eps_sample.csv (one row per
+//! surface, λ and ε), eps_reference.csv (one row per surface and ε: the ε-samples and the lfs
+//! estimate's error), lfs_estimate.csv (a subsample of R: lfs estimate and exact lfs), meshes
+//! under meshes/.  --eps-only computes the reference files without meshing.
 
 #include <CLI/CLI.hpp>
 
 #include <boost/math/constants/constants.hpp>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -27,6 +44,9 @@
 #include "common/errors.h"
 #include "experiments/experiment_support.h"
 #include "meshing/del_mesh.h"
+#include "meshing/dense_sample.h"
+#include "meshing/eps_sample.h"
+#include "meshing/lfs_estimate.h"
 #include "meshing/mesh_io.h"
 #include "meshing/theorem_bounds.h"
 #include "symbolic/catalog.h"
@@ -79,8 +99,9 @@ double first_root(const CompiledE& E, const Vec& origin, const Vec& e, double st
 }
 
 //! ∫_Σ dA / lfs², midpoint rule with n × 2n cells per chart.
-double lfs_integral(const CatalogEntry& entry, const CompiledE& E, const Chart& chart, int n) {
-  const double step = 1e-3 * entry.box.diagonal(), max_rho = entry.box.diagonal();
+double lfs_integral(const LfsFunction& local_feature_size, const Box3& box, const CompiledE& E, const Chart& chart,
+                    int n) {
+  const double step = 1e-3 * box.diagonal(), max_rho = box.diagonal();
   double total = 0;
   // One cell: the ray origin + ρ e meets Σ at p; jacobian(ρ) is |J| of the chart coordinates.
   auto add = [&](const Vec& origin, const Vec& e, const auto& jacobian, double cell_area) {
@@ -89,7 +110,7 @@ double lfs_integral(const CatalogEntry& entry, const CompiledE& E, const Chart& 
     Vec g{};
     E.value_and_gradient(p, g);
     const double cosine = std::fabs(g[0] * e[0] + g[1] * e[1] + g[2] * e[2]) / std::hypot(g[0], g[1], g[2]);
-    const double lfs = entry.local_feature_size(p);
+    const double lfs = local_feature_size(p);
     total += std::fabs(jacobian(rho)) / cosine / (lfs * lfs) * cell_area;
   };
   if (chart.kind == Chart::Kind::star) {
@@ -116,6 +137,141 @@ double lfs_integral(const CatalogEntry& entry, const CompiledE& E, const Chart& 
   return total;
 }
 
+//! One surface of the sweep: a catalog entry, or the surface of --expr/--box/--name.
+struct SweepSurface {
+  std::string name;
+  Surface surface;
+  Box3 box;
+  std::optional<std::vector<int>> genus_per_component; //!< empty for --expr without --genus
+  LfsFunction analytic_lfs;                              //!< empty where no closed form is known
+};
+
+//! The ε-samples of one surface and, where lfs is analytic, the pole estimate's error.
+struct EpsReference {
+  std::string lfs_source; //!< "analytic" or PoleLfsEstimate::name()
+  std::size_t reference_points = 0;
+  std::vector<double> epsilons;
+  std::vector<std::size_t> sizes;
+  std::vector<double> covering;
+  std::optional<LfsErrorSummary> error; //!< of the pole estimate against the analytic lfs
+  double seconds = 0;
+};
+
+struct EpsParameters {
+  std::vector<double> epsilons;
+  DenseSampleOptions sample;
+  std::size_t lfs_points = 3000; //!< rows of lfs_estimate.csv per surface (a regular subsample of R)
+};
+
+//! Writes every stride-th reference point (at most `count`) with its lfs estimate and exact lfs.
+void write_lfs_points(CsvWriter& csv, const std::string& name, const std::vector<std::array<double, 3>>& points,
+                      const std::vector<double>& estimate, const std::vector<double>& exact, std::size_t count) {
+  const std::size_t stride = std::max<std::size_t>(1, (points.size() + count - 1) / std::max<std::size_t>(count, 1));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t i = 0; i < points.size(); i += stride)
+    csv.row({name, field(points[i][0]), field(points[i][1]), field(points[i][2]), field(estimate[i]),
+             field(exact.empty() ? nan : exact[i])});
+}
+
+//! The reference sample, its lfs and the ε-samples (see the file comment).  Rows for
+//! lfs_estimate.csv go to lfs_csv.
+EpsReference eps_reference(const SweepSurface& s, const EpsParameters& parameters, CsvWriter& lfs_csv) {
+  const Stopwatch clock;
+  EpsReference result;
+  result.epsilons = parameters.epsilons;
+  LfsEstimateOptions estimate_options;
+  estimate_options.sample = parameters.sample;
+  const LfsEstimateResult estimate = estimate_lfs(s.surface, s.box, estimate_options);
+  std::vector<std::array<double, 3>> points;
+  std::vector<double> lfs;
+  if (s.analytic_lfs) {
+    // The estimate against the exact lfs on the estimator's own sample; the ε-samples from a
+    // reference refined for the exact lfs.
+    std::vector<double> exact;
+    for (const auto& p : estimate.sample.points) exact.push_back(s.analytic_lfs(p));
+    result.error = lfs_relative_error(estimate.values, exact);
+    write_lfs_points(lfs_csv, s.name, estimate.sample.points, estimate.values, exact, parameters.lfs_points);
+    DenseSample reference = dense_sample(s.surface, s.box, parameters.sample, s.analytic_lfs);
+    if (reference.status != DenseSampleStatus::complete)
+      throw std::runtime_error(s.name + ": the reference sample reached its point limit");
+    points = std::move(reference.points);
+    for (const auto& p : points) lfs.push_back(s.analytic_lfs(p));
+    result.lfs_source = "analytic";
+  } else {
+    if (estimate.sample.status != DenseSampleStatus::complete)
+      throw std::runtime_error(s.name + ": the reference sample reached its point limit");
+    write_lfs_points(lfs_csv, s.name, estimate.sample.points, estimate.values, {}, parameters.lfs_points);
+    points = estimate.sample.points;
+    lfs = estimate.values;
+    result.lfs_source = PoleLfsEstimate::name();
+  }
+  result.reference_points = points.size();
+  const EpsSampleResult samples = eps_sample(points, lfs, parameters.epsilons);
+  result.epsilons = samples.epsilons;
+  result.sizes = samples.sizes;
+  result.covering = samples.covering;
+  result.seconds = clock.seconds();
+  return result;
+}
+
+std::vector<std::string> eps_reference_columns() {
+  return {"surface", "lfs_source", "epsilon", "eps_sample_vertices", "covering_ratio", "reference_points",
+          "lfs_relative_error_max", "lfs_relative_error_median", "lfs_relative_error_mean", "seconds"};
+}
+
+void write_eps_reference(CsvWriter& csv, const std::string& name, const EpsReference& r) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t k = 0; k < r.epsilons.size(); ++k)
+    csv.row({name, r.lfs_source, field(r.epsilons[k]), field(r.sizes[k]), field(r.covering[k]),
+             field(r.reference_points), field(r.error ? r.error->max : nan), field(r.error ? r.error->median : nan),
+             field(r.error ? r.error->mean : nan), field(r.seconds)});
+}
+
+//! The rows of an eps_reference.csv for surface `name` (written by an earlier run with the same
+//! sampling parameters: the file's header line must carry them); throws InvalidInput if the file
+//! cannot be read, its parameters differ, or it has no row for the surface.
+EpsReference read_eps_reference(const std::string& path, const std::string& name, const std::string& expected) {
+  std::ifstream in(path);
+  if (!in) throw InvalidInput("cannot read --eps-reference file '" + path + "'");
+  std::string line;
+  std::getline(in, line);
+  if (line.find(expected) == std::string::npos)
+    throw InvalidInput("--eps-reference file '" + path + "' was made with other sampling parameters (want '" +
+                       expected + "')");
+  std::getline(in, line);
+  const std::vector<std::string> header = split(line);
+  auto column = [&header, &path](const std::string& key) {
+    const auto at = std::find(header.begin(), header.end(), key);
+    if (at == header.end()) throw InvalidInput("--eps-reference file '" + path + "' has no column " + key);
+    return static_cast<std::size_t>(at - header.begin());
+  };
+  const std::size_t c_surface = column("surface"), c_source = column("lfs_source"), c_eps = column("epsilon"),
+                    c_size = column("eps_sample_vertices"), c_cover = column("covering_ratio"),
+                    c_points = column("reference_points"), c_max = column("lfs_relative_error_max"),
+                    c_median = column("lfs_relative_error_median"), c_mean = column("lfs_relative_error_mean");
+  EpsReference r;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> f = split(line);
+    if (f.size() != header.size() || f[c_surface] != name) continue;
+    r.lfs_source = f[c_source];
+    r.epsilons.push_back(std::stod(f[c_eps]));
+    r.sizes.push_back(std::stoull(f[c_size]));
+    r.covering.push_back(std::stod(f[c_cover]));
+    r.reference_points = std::stoull(f[c_points]);
+    if (f[c_max] != "nan") r.error = LfsErrorSummary{std::stod(f[c_max]), std::stod(f[c_median]), std::stod(f[c_mean]), 0};
+  }
+  if (r.epsilons.empty()) throw InvalidInput("--eps-reference file '" + path + "' has no row for " + name);
+  return r;
+}
+
+//! A surface name usable in file names.
+void check_name(const std::string& name) {
+  if (name.empty() || !std::all_of(name.begin(), name.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+      }))
+    throw InvalidInput("--name must be letters, digits, '_' or '-' (got '" + name + "')");
+}
+
 std::string lambda_tag(double lambda) {
   std::ostringstream out;
   out << lambda;
@@ -126,14 +282,26 @@ std::string lambda_tag(double lambda) {
 
 int main(int argc, char** argv) {
   CLI::App app{"Theorem 6.1 by experiment: DelMesh over a lambda sweep, checked by the independent "
-               "checker against the bounds; writes <out-dir>/lambda_sweep.csv"};
+               "checker against the bounds, with real epsilon-samples for the size; writes "
+               "<out-dir>/lambda_sweep.csv, eps_sample.csv, eps_reference.csv, lfs_estimate.csv"};
   std::string surfaces = "sphere,ellipsoid,torus,genus2,metaball,two_blobs,thin_handle,near_sheets";
   std::vector<double> lambdas{0.06, 0.05, 0.04, 0.03, 0.02};
   std::string out_dir = "out";
   int resolution = 200;
-  bool no_meshes = false;
+  bool no_meshes = false, no_eps = false, eps_only = false;
+  std::string expr, box_text, expr_name, eps_reference_path;
+  std::vector<int> expr_genus;
+  EpsParameters eps;
+  eps.epsilons = {0.1, 0.15, 0.19};
   DelMeshOptions base;
-  app.add_option("--surfaces", surfaces, "catalog names, comma separated")->capture_default_str();
+  auto* surfaces_option = app.add_option("--surfaces", surfaces, "catalog names, comma separated")->capture_default_str();
+  auto* expr_option = app.add_option("--expr", expr, "a surface E(x,y,z) = 0 to sweep as well (with --box, --name)");
+  auto* box_option = app.add_option("--box", box_text, "x0,x1,y0,y1,z0,z1: the box of --expr");
+  auto* name_option = app.add_option("--name", expr_name, "the name of --expr in the CSV and file names");
+  app.add_option("--genus", expr_genus, "genus of each component of --expr (ascending), for topology_correct");
+  expr_option->needs(box_option)->needs(name_option);
+  box_option->needs(expr_option);
+  name_option->needs(expr_option);
   app.add_option("--lambdas", lambdas, "values of lambda")->capture_default_str();
   app.add_option("--seed", base.seed, "delmesh seed")->capture_default_str();
   app.add_option("--threads", base.threads, "delmesh threads (0: every hardware thread)")->capture_default_str();
@@ -141,39 +309,129 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--max-points", base.max_points, "delmesh point limit per run")->capture_default_str();
   app.add_option("--resolution", resolution, "integration cells per chart: n x 2n")->capture_default_str();
+  app.add_option("--epsilons", eps.epsilons, "epsilon of the epsilon-samples")->capture_default_str();
+  app.add_option("--sample-seed", eps.sample.seed, "seed of the dense reference sample")->capture_default_str();
+  app.add_option("--relative-spacing", eps.sample.relative_spacing,
+                 "reference sample: cell edge <= this times lfs")->capture_default_str();
+  app.add_option("--eps-reference", eps_reference_path,
+                 "read the epsilon-samples from this eps_reference.csv instead of computing them");
+  app.add_flag("--eps-only", eps_only, "compute the epsilon-samples (eps_reference.csv, lfs_estimate.csv) only");
+  app.add_flag("--no-eps-samples", no_eps, "no epsilon-samples (lambda_sweep.csv only)");
   app.add_option("--out-dir", out_dir, "output directory")->capture_default_str();
   app.add_flag("--no-meshes", no_meshes, "do not write the meshes");
   CLI11_PARSE(app, argc, argv);
 
   return run_guarded([&] {
+    // The surfaces: the catalog names (all of --surfaces, or none if only --expr is given) and --expr.
+    std::vector<SweepSurface> sweep;
+    if (!(expr_option->count() && !surfaces_option->count()))
+      for (const std::string& name : split(surfaces)) {
+        const CatalogEntry& entry = catalog_entry(name);
+        sweep.push_back({name, entry.surface(), entry.box, entry.genus_per_component, entry.local_feature_size});
+      }
+    if (expr_option->count()) {
+      check_name(expr_name);
+      std::optional<std::vector<int>> genus;
+      if (!expr_genus.empty()) {
+        genus = expr_genus;
+        std::sort(genus->begin(), genus->end());
+      }
+      sweep.push_back({expr_name, Surface::parse(expr), Box3::parse(box_text), genus, {}});
+    }
+    for (double e : eps.epsilons)
+      if (!(e > 0 && e < 1)) throw InvalidInput("--epsilons must lie in (0, 1)");
+    if (!(eps.sample.relative_spacing > 0 && eps.sample.relative_spacing < 1))
+      throw InvalidInput("--relative-spacing must lie in (0, 1)");
+    if (no_eps && (eps_only || !eps_reference_path.empty()))
+      throw InvalidInput("--no-eps-samples excludes --eps-only and --eps-reference");
+    const std::vector<std::pair<std::string, std::string>> sampling_parameters{
+        {"sample_seed", field(static_cast<long long>(eps.sample.seed))},
+        {"relative_spacing", field(eps.sample.relative_spacing)},
+        {"max_spacing", field(eps.sample.max_spacing)},
+        {"epsilons", [&] {
+           std::string text;
+           for (std::size_t k = 0; k < eps.epsilons.size(); ++k) text += (k ? ";" : "") + field(eps.epsilons[k]);
+           return text;
+         }()}};
+    std::string surface_names;
+    for (const SweepSurface& s : sweep) surface_names += (surface_names.empty() ? "" : ";") + s.name;
+
+    // The ε-samples, once per surface.
+    std::map<std::string, EpsReference> references;
+    if (!no_eps) {
+      std::optional<CsvWriter> reference_csv, lfs_csv;
+      if (eps_reference_path.empty()) {
+        auto parameters = sampling_parameters;
+        parameters.insert(parameters.begin(), {"surfaces", surface_names});
+        reference_csv.emplace(fs::path(out_dir) / "eps_reference.csv", "lambda_sweep", parameters,
+                              eps_reference_columns());
+        lfs_csv.emplace(fs::path(out_dir) / "lfs_estimate.csv", "lambda_sweep", parameters,
+                        std::vector<std::string>{"surface", "x", "y", "z", "lfs_estimate", "lfs_analytic"});
+      }
+      for (const SweepSurface& s : sweep) {
+        EpsReference r;
+        if (eps_reference_path.empty()) {
+          r = eps_reference(s, eps, *lfs_csv);
+          write_eps_reference(*reference_csv, s.name, r);
+        } else {
+          std::string expected;
+          for (const auto& [key, value] : sampling_parameters) expected += (expected.empty() ? "" : " ") + key + "=" + value;
+          r = read_eps_reference(eps_reference_path, s.name, expected);
+        }
+        std::cout << s.name << ": reference sample " << r.reference_points << " points, lfs " << r.lfs_source;
+        if (r.error)
+          std::cout << " (pole estimate: relative error max " << r.error->max << " median " << r.error->median << ")";
+        std::cout << "; eps-samples";
+        for (std::size_t k = 0; k < r.epsilons.size(); ++k) std::cout << " " << r.epsilons[k] << ": " << r.sizes[k];
+        std::cout << std::endl;
+        references[s.name] = r;
+      }
+      if (reference_csv) {
+        reference_csv->close();
+        lfs_csv->close();
+        std::cout << "wrote " << reference_csv->path().string() << ", " << lfs_csv->path().string() << std::endl;
+      }
+    }
+    if (eps_only) return;
+
     std::vector<std::string> columns{"surface", "lambda", "status", "seconds", "expected_genus",
                                      "topology_correct"};
     append(columns, report_columns());
     append(columns, {"bound_min_angle_deg", "bound_max_radius_edge_ratio", "bound_max_roughness_rad",
                      "angle_ok", "ratio_ok", "roughness_ok", "lfs_integral", "vertices_lambda2",
                      "vertices_lambda2_over_lfs_integral", "theorem_size_bound", "size_ok",
-                     "insertions_quality", "insertions_smooth", "insertions_topology"});
-    CsvWriter csv(fs::path(out_dir) / "lambda_sweep.csv", "lambda_sweep",
-                  {{"surfaces", surfaces},
-                   {"seed", field(static_cast<long long>(base.seed))},
-                   {"time_limit", field(base.time_limit_seconds)},
-                   {"max_points", field(base.max_points)},
-                   {"resolution", field(resolution)}},
-                  columns);
-    for (const std::string& name : split(surfaces)) {
-      const CatalogEntry& entry = catalog_entry(name);
-      const Surface surface = entry.surface();
-      const CompiledE E(surface);
+                     "insertions_quality", "insertions_smooth", "insertions_topology", "seed", "lfs_source"});
+    const std::vector<std::pair<std::string, std::string>> run_parameters{
+        {"surfaces", surface_names},
+        {"seed", field(static_cast<long long>(base.seed))},
+        {"time_limit", field(base.time_limit_seconds)},
+        {"max_points", field(base.max_points)},
+        {"resolution", field(resolution)}};
+    CsvWriter csv(fs::path(out_dir) / "lambda_sweep.csv", "lambda_sweep", run_parameters, columns);
+    std::optional<CsvWriter> eps_csv;
+    if (!no_eps) {
+      auto parameters = run_parameters;
+      append(parameters, sampling_parameters);
+      eps_csv.emplace(fs::path(out_dir) / "eps_sample.csv", "lambda_sweep", parameters,
+                      std::vector<std::string>{"surface", "lambda", "seed", "status", "topology_correct", "vertices",
+                                               "lfs_source", "epsilon", "eps_sample_vertices", "size_ratio",
+                                               "reference_points", "covering_ratio", "lfs_relative_error_max",
+                                               "lfs_relative_error_median", "lfs_integral",
+                                               "vertices_lambda2_over_lfs_integral"});
+    }
+    for (const SweepSurface& s : sweep) {
+      const CompiledE E(s.surface);
       std::optional<double> integral;
-      const auto chart = charts().find(name);
-      if (entry.local_feature_size && chart != charts().end()) {
-        integral = lfs_integral(entry, E, chart->second, resolution);
-        std::cout << name << ": integral of 1/lfs^2 over the surface = " << *integral;
-        if (name == "sphere") std::cout << " (closed form 4 pi = " << 4 * pi << ")";
-        if (name == "torus") std::cout << " (closed form 4 pi^2 R / r = " << 4 * pi * pi / 0.4 << ")";
-        if (name == "thin_handle") std::cout << " (closed form 4 pi^2 R / r = " << 4 * pi * pi / 0.08 << ")";
+      const auto chart = charts().find(s.name);
+      if (s.analytic_lfs && chart != charts().end()) {
+        integral = lfs_integral(s.analytic_lfs, s.box, E, chart->second, resolution);
+        std::cout << s.name << ": integral of 1/lfs^2 over the surface = " << *integral;
+        if (s.name == "sphere") std::cout << " (closed form 4 pi = " << 4 * pi << ")";
+        if (s.name == "torus") std::cout << " (closed form 4 pi^2 R / r = " << 4 * pi * pi / 0.4 << ")";
+        if (s.name == "thin_handle") std::cout << " (closed form 4 pi^2 R / r = " << 4 * pi * pi / 0.08 << ")";
         std::cout << std::endl;
       }
+      const std::string lfs_source = s.analytic_lfs ? "analytic" : PoleLfsEstimate::name();
       for (double lambda : lambdas) {
         DelMeshOptions options = base;
         options.lambda = lambda;
@@ -182,7 +440,7 @@ int main(int argc, char** argv) {
         MeshReport report;
         nlohmann::json statistics;
         try {
-          DelMeshResult result = del_mesh(surface, entry.box, options);
+          DelMeshResult result = del_mesh(s.surface, s.box, options);
           std::ostringstream text;
           text << result.status;
           status = text.str();
@@ -191,7 +449,7 @@ int main(int argc, char** argv) {
           if (!no_meshes) {
             fs::create_directories(fs::path(out_dir) / "meshes");
             write_mesh(result.mesh,
-                       (fs::path(out_dir) / "meshes" / ("sweep_" + name + "_l" + lambda_tag(lambda) + ".off")).string());
+                       (fs::path(out_dir) / "meshes" / ("sweep_" + s.name + "_l" + lambda_tag(lambda) + ".off")).string());
           }
         } catch (const std::exception& e) {
           status = std::string("error: ") + e.what();
@@ -200,7 +458,8 @@ int main(int argc, char** argv) {
         }
         const double seconds = clock.seconds();
         const TheoremBounds bounds = theorem_bounds(lambda);
-        const bool correct = report.has_topology(entry.genus_per_component);
+        const bool checked = s.genus_per_component.has_value();
+        const bool correct = checked && report.has_topology(*s.genus_per_component);
         const bool angle_ok = report.triangles > 0 && report.min_angle_deg >= bounds.min_angle_deg;
         const bool ratio_ok = report.triangles > 0 && report.max_radius_edge_ratio <= bounds.max_radius_edge_ratio;
         const bool roughness_ok = report.triangles > 0 && report.max_roughness_rad <= bounds.max_roughness_rad;
@@ -209,8 +468,10 @@ int main(int argc, char** argv) {
         const double size_bound = integral ? 2 * (2 + 5 * lambda) * (2 + 5 * lambda) / (pi * lambda * lambda) * *integral : nan;
         const auto& insertions = statistics.contains("insertions") ? statistics["insertions"] : nlohmann::json::object();
         auto count = [&insertions](const char* key) { return insertions.value(key, 0LL); };
-        std::vector<std::string> row{name, field(lambda), status, field(seconds), field(entry.genus_per_component),
-                                     field(correct)};
+        const std::string correct_field = checked ? field(correct) : std::string("nan");
+        std::vector<std::string> row{s.name, field(lambda), status, field(seconds),
+                                     s.genus_per_component ? field(*s.genus_per_component) : std::string("nan"),
+                                     correct_field};
         append(row, report_fields(report));
         append(row, {field(bounds.min_angle_deg), field(bounds.max_radius_edge_ratio),
                      field(bounds.max_roughness_rad), field(angle_ok), field(ratio_ok), field(roughness_ok),
@@ -219,14 +480,36 @@ int main(int argc, char** argv) {
                      integral ? field(static_cast<double>(report.vertices) <= size_bound) : std::string("nan"),
                      field(count("quality")), field(count("smooth")),
                      field(count("vor_edge") + count("facet_contact") + count("topo_disk") +
-                           count("facet_cycle") + count("silhouette"))});
+                           count("facet_cycle") + count("silhouette")),
+                     field(static_cast<long long>(base.seed)), lfs_source});
         csv.row(row);
-        std::cout << name << " lambda=" << lambda << " " << status << " " << seconds << " s: " << report
-                  << " | bounds " << bounds << (correct ? " topology ok" : " TOPOLOGY WRONG")
+        std::cout << s.name << " lambda=" << lambda << " " << status << " " << seconds << " s: " << report
+                  << " | bounds " << bounds
+                  << (!checked ? " topology not checked" : correct ? " topology ok" : " TOPOLOGY WRONG")
                   << (angle_ok && ratio_ok && roughness_ok ? " bounds ok" : " BOUND VIOLATED") << std::endl;
+        if (!eps_csv) continue;
+        // Theorem 6.1(iii) against the ε-samples: size_ratio = |S| λ² / (|ε-sample| ε²).
+        const EpsReference& r = references.at(s.name);
+        std::cout << "  size_ratio";
+        for (std::size_t k = 0; k < r.epsilons.size(); ++k) {
+          const double eps_k = r.epsilons[k];
+          const double ratio = report.vertices > 0 ? v_l2 / (static_cast<double>(r.sizes[k]) * eps_k * eps_k) : nan;
+          eps_csv->row({s.name, field(lambda), field(static_cast<long long>(base.seed)), status, correct_field,
+                        field(report.vertices), r.lfs_source, field(eps_k), field(r.sizes[k]), field(ratio),
+                        field(r.reference_points), field(r.covering[k]), field(r.error ? r.error->max : nan),
+                        field(r.error ? r.error->median : nan), field(integral ? *integral : nan),
+                        field(integral ? v_l2 / *integral : nan)});
+          std::cout << " eps=" << eps_k << ": " << ratio;
+        }
+        std::cout << std::endl;
       }
     }
     csv.close();
-    std::cout << "wrote " << csv.path().string() << std::endl;
+    std::cout << "wrote " << csv.path().string();
+    if (eps_csv) {
+      eps_csv->close();
+      std::cout << ", " << eps_csv->path().string();
+    }
+    std::cout << std::endl;
   });
 }

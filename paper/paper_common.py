@@ -106,7 +106,7 @@ def surface_color(name):
     import matplotlib.pyplot as plt
 
     palette = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    index = SURFACE_ORDER.index(name) if name in SURFACE_ORDER else len(SURFACE_ORDER) + hash(name) % 7
+    index = SURFACE_ORDER.index(name) if name in SURFACE_ORDER else len(SURFACE_ORDER) + sum(map(ord, name)) % 7
     return palette[index % len(palette)]
 
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs every Debian package that building, testing and running the experiments of delmesh needs
-# (clang, its sanitizer and libFuzzer runtimes and llvm-symbolizer for scripts/fuzz.sh).
+# (clang, its sanitizer and libFuzzer runtimes and llvm-symbolizer for scripts/fuzz.sh; snakemake
+# for the sweep workflow experiments/Snakefile).
 # Idempotent: packages already present are skipped by apt-get.  Run as root (or with sudo).
 set -euo pipefail
 
@@ -15,6 +16,7 @@ packages=(
   libbenchmark-dev
   python3 python3-matplotlib
   python3-dev python3-numpy pybind11-dev  # the Python module (python/)
+  snakemake
   libcgal-demo
   clang libclang-rt-dev llvm
 )

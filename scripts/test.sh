@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds delmesh (Release) and runs every test: the fast tier and the slow tier (the catalog's
 # topology, Theorem 6.1 at lambda 0.06 and 0.03 on every catalog surface, the recheck lemma).
-# Pass --fast to run the fast tier only.
+# Pass --fast to run the fast tier only.  Both then dry-run (snakemake -n) the full sweep workflow
+# experiments/Snakefile (every surface, λ and seed of its defaults) against the built lambda_sweep.
 # Pass --sanitize to build the libraries, the program and the test suites with AddressSanitizer and
 # UndefinedBehaviorSanitizer (-O1, in build-sanitize/, experiments left out) and run the fast tier
 # there; any sanitizer report fails the test that triggered it.
@@ -26,3 +27,8 @@ if [ "${1:-}" = "--fast" ]; then
 else
   ctest --test-dir "$build" --output-on-failure
 fi
+command -v snakemake >/dev/null || { echo "test.sh: snakemake is missing (scripts/install-deps.sh)" >&2; exit 1; }
+mkdir -p "$build/snakemake-dry-run"
+snakemake -s experiments/Snakefile --directory "$build/snakemake-dry-run" -n --quiet --cores 2 \
+  --config out="$(realpath "$build")/snakemake-dry-run/out" bin="$(realpath "$build")/experiments/lambda_sweep"
+echo "test.sh: dry run of experiments/Snakefile passed"

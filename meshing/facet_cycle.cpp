@@ -39,18 +39,25 @@ CheckResult facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& p
   if (!f.valid || restricted.facet_section_certified(pq)) return {};
   auto& oracle = restricted.oracle();
   const auto critical = oracle.curve_critical(f.origin, f.a, f.b, f.domain);
-  std::vector<std::array<double, 2>> starts;
-  for (const auto& root : critical.roots) starts.push_back({root.midpoint[0], root.midpoint[1]});
+  // (u, v) of each start, and whether it is the centre of an undecided region (then ℓ_x is not
+  // known to pass through a critical point, and its points are candidate witnesses only).
+  struct Start {
+    double ux, vx;
+    bool undecided;
+  };
+  std::vector<Start> starts;
+  for (const auto& root : critical.roots) starts.push_back({root.midpoint[0], root.midpoint[1], false});
   for (const auto& u : critical.undecided)
-    starts.push_back({0.5 * (u.box.bounds[0][0] + u.box.bounds[0][1]), 0.5 * (u.box.bounds[1][0] + u.box.bounds[1][1])});
+    starts.push_back({0.5 * (u.box.bounds[0][0] + u.box.bounds[0][1]), 0.5 * (u.box.bounds[1][0] + u.box.bounds[1][1]),
+                      true});
   const Vec3& p = restricted.delaunay().point(pq[0]);
   WitnessCollector collector(CheckKind::facet_cycle, pq[0], p);
-  for (const auto& [ux, vx] : starts) {
+  for (const auto& [ux, vx, undecided_start] : starts) {
     // ℓ_x ∩ F = {(ux + s, vx)} clipped by the polygon's half-planes and bounding box.
     const auto range = clip_line_to_facet(f, ux, vx);
     if (!range) continue;
     const auto line = oracle.surface_line(f.world(ux, vx), f.a, (*range)[0], (*range)[1]);
-    for (const auto& root : line.roots) collector.add(root.world);
+    for (const auto& root : line.roots) collector.add(root.world, undecided_start);
     for (const auto& u : line.undecided) collector.add_line_region(oracle, u);
     // Two points of Σ on ℓ_x ∩ F: a witness (the furthest from p first).  Fewer: the line's
     // points are no witness, but what it could not project stays unsettled.

@@ -14,9 +14,10 @@ namespace delmesh {
 //! critical point x in F (certified, or the centre of an undecided region), the line ℓ_x through
 //! x parallel to d is clipped to F and SurfaceLine(Σ, ℓ_x ∩ F) is solved; if it has ≥ 2 points
 //! (undecided regions on ℓ_x count, projected onto Σ), the one furthest from p (the smaller id of
-//! pq) is returned, the others as fall-backs.  An undecided region of SurfaceLine whose
-//! projection onto Σ fails is unsettled, never a witness.  Precondition (the paper's):
-//! FacetContact(F) returned nothing.
+//! pq) is returned, the others as fall-backs.  The witnesses of a line through the centre of an
+//! undecided region are marked from_undecided (that centre is not known to be critical).  An
+//! undecided region of SurfaceLine whose projection onto Σ fails is unsettled, never a witness.
+//! Precondition (the paper's): FacetContact(F) returned nothing.
 CheckResult facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& pq);
 
 }  // namespace delmesh

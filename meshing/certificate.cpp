@@ -1,0 +1,296 @@
+// The certificate of a finished mesh (certificate.h): Del S of the mesh's vertices, the five
+// checks of §5.3 on every Voronoi face of a fresh RestrictedDelaunay, and Tri S|Σ against the
+// mesh's triangles.
+//
+// Steps:
+//  1. validate Σ (smooth, strictly inside B) and read the soup into S (referenced points only);
+//  2. VorEdge on every Delaunay triangle; its record also says whether the triangle is in
+//     Tri S|Σ, and its unresolved regions are unsettled findings (vor_edge.h leaves them to the
+//     caller);
+//  3. FacetContact on every Delaunay edge, then FacetCycle where FacetContact was clean; the
+//     facet's geometry is released after its two checks;
+//  4. TopoDisk on every vertex;
+//  5. Silhouette on every vertex, with the facet shortcut only where steps 2–4 were clean on
+//     every face of the cell;
+//  6. Tri S|Σ against the soup.
+// A witness counts as proved unless it comes from an undecided region, or is a VorEdge crossing
+// of a record with an unresolved region, or a TopoDisk witness of a vertex some triangle of
+// which has an unresolved record (the restricted star may then be wrong).
+#include "meshing/certificate.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "common/errors.h"
+#include "meshing/delaunay.h"
+#include "meshing/facet_contact.h"
+#include "meshing/facet_cycle.h"
+#include "meshing/input_validation.h"
+#include "meshing/restricted_delaunay.h"
+#include "meshing/silhouette.h"
+#include "meshing/surface_oracle.h"
+#include "meshing/topo_disk.h"
+#include "meshing/vor_edge.h"
+
+namespace delmesh {
+
+std::ostream& operator<<(std::ostream& out, CertificateStatus status) {
+  switch (status) {
+    case CertificateStatus::certified: return out << "certified";
+    case CertificateStatus::violated: return out << "violated";
+    case CertificateStatus::undecided: return out << "undecided";
+  }
+  return out << "unknown";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+template <class T>
+std::string text_of(const T& value) {
+  std::ostringstream s;
+  s << value;
+  return s.str();
+}
+
+//! Collects the findings of the checks and the per-vertex "some face of V_p is not clean" marks.
+class Findings {
+ public:
+  Findings(Certificate& c, const std::vector<std::size_t>& soup_index, std::size_t samples)
+      : c_(c), soup_index_(soup_index), dirty_(samples, false) {}
+
+  //! Records `result` of a check on the face dual to `simplex` (Delaunay ids); `proved` says
+  //! whether its certified witnesses prove the check's condition fails (file comment).
+  void add(const std::vector<VertexId>& simplex, const CheckResult& result, bool proved = true) {
+    if (result.clean()) return;
+    std::vector<std::size_t> face;
+    for (VertexId v : simplex) {
+      face.push_back(soup_index_[v]);
+      dirty_[v] = true;
+    }
+    for (const auto& w : result.witnesses) c_.witnesses.push_back({w, proved && !w.from_undecided, face});
+    for (const auto& u : result.unsettled) c_.unsettled.push_back({u, face});
+  }
+  bool dirty(VertexId v) const { return dirty_[v]; }
+
+ private:
+  Certificate& c_;
+  const std::vector<std::size_t>& soup_index_;
+  std::vector<bool> dirty_;
+};
+
+}  // namespace
+
+Certificate certify_mesh(const std::vector<Point3>& points, const std::vector<std::array<std::size_t, 3>>& triangles,
+                         const Surface& surface, const Box3& box, const CertificateOptions& options) {
+  const auto start = Clock::now();
+  Certificate c;
+  c.seed = options.seed;
+  c.mesh_triangles = triangles.size();
+
+  // 1. The soup and Σ.
+  if (triangles.empty()) throw InvalidInput("the mesh has no triangle to certify");
+  std::vector<bool> referenced(points.size(), false);
+  for (const auto& t : triangles) {
+    for (std::size_t i : t)
+      if (i >= points.size())
+        throw InvalidInput("a triangle refers to vertex " + std::to_string(i) + " of " + std::to_string(points.size()));
+    if (t[0] == t[1] || t[0] == t[2] || t[1] == t[2]) throw InvalidInput("a triangle repeats a vertex index");
+    for (std::size_t i : t) referenced[i] = true;
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Point3& p = points[i];
+    if (referenced[i] && !(std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z())))
+      throw InvalidInput("vertex " + std::to_string(i) + " has a non-finite coordinate");
+  }
+  c.seconds_validation = validate_input(surface, box).seconds;
+
+  SurfaceOracle oracle(surface, box, SolverBackend::subdivision);
+  oracle.set_run_controls(options.seed, std::nullopt);
+  Delaunay del;
+  std::vector<VertexId> id_of(points.size(), -1);
+  std::vector<std::size_t> soup_index;  // Delaunay id → first soup index of the point
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!referenced[i]) {
+      ++c.unreferenced_vertices;
+      continue;
+    }
+    const Vec3 p{points[i].x(), points[i].y(), points[i].z()};
+    if (const auto id = del.insert(p, false)) {
+      id_of[i] = *id;
+      soup_index.resize(*id + 1);
+      soup_index[*id] = i;
+    } else {
+      id_of[i] = del.nearest(p).first;  // the earlier vertex at the same point
+      ++c.coincident_vertices;
+    }
+  }
+  c.samples = del.size();
+  for (VertexId v : del.vertices()) {
+    const Vec3& p = del.point(v);
+    const Vec3 g = oracle.gradient(p);
+    const double gn = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    const double e = std::abs(oracle.E(p));
+    const double estimate = gn > 0 ? e / gn : (e == 0 ? 0 : std::numeric_limits<double>::infinity());
+    c.max_vertex_distance_estimate = std::max(c.max_vertex_distance_estimate, estimate);
+  }
+
+  RestrictedDelaunay restricted(del, oracle, options.seed);
+  Findings findings(c, soup_index, static_cast<std::size_t>(del.size()));
+  auto stopped = [&] {
+    if (options.interrupt && options.interrupt->load(std::memory_order_relaxed)) c.interrupted = true;
+    return c.interrupted;
+  };
+  auto timed = [&](CheckKind kind, auto&& check) {
+    const auto t0 = Clock::now();
+    auto result = check();
+    c.seconds_per_check[static_cast<int>(kind)] += std::chrono::duration<double>(Clock::now() - t0).count();
+    return result;
+  };
+
+  // 2. VorEdge on every Voronoi edge; Tri S|Σ from the same records.
+  std::set<TriangleKey> restricted_set;
+  std::vector<bool> unresolved_at(del.size(), false);  // some triangle at v has an unresolved record
+  const std::vector<TriangleKey> all_triangles = del.triangles();
+  for (const auto& t : all_triangles) {
+    if (stopped()) break;
+    const CheckResult result = timed(CheckKind::vor_edge, [&] { return vor_edge_witness(restricted, t); });
+    const EdgeRecord& record = restricted.edge_record(t);
+    CheckResult unresolved;
+    for (const auto& x : record.unresolved)
+      unresolved.unsettled.push_back({CheckKind::vor_edge, UnsettledReason::unresolved_crossing, x});
+    if (!record.unresolved.empty())
+      for (VertexId v : t) unresolved_at[v] = true;
+    const std::vector<VertexId> simplex(t.begin(), t.end());
+    findings.add(simplex, result, record.unresolved.empty());
+    findings.add(simplex, unresolved);
+    if (record.restricted) restricted_set.insert(t);
+    ++c.voronoi_edges;
+  }
+
+  // 3. FacetContact, then FacetCycle (its precondition: FacetContact found nothing), per facet.
+  const std::vector<VertexId> vertices = del.vertices();
+  for (VertexId p : vertices) {
+    for (VertexId q : del.neighbours(p)) {
+      if (q < p) continue;
+      if (stopped()) break;
+      const EdgeKey e{p, q};
+      const CheckResult contact = timed(CheckKind::facet_contact, [&] { return facet_contact_witness(restricted, e); });
+      findings.add({p, q}, contact);
+      if (contact.clean()) {
+        const CheckResult cycle = timed(CheckKind::facet_cycle, [&] { return facet_cycle_witness(restricted, e); });
+        findings.add({p, q}, cycle);
+      }
+      restricted.release_facet(e);
+      ++c.voronoi_facets;
+    }
+  }
+
+  // 4. TopoDisk and 5. Silhouette on every cell.
+  for (VertexId p : vertices) {
+    if (stopped()) break;
+    const CheckResult disk = timed(CheckKind::topo_disk, [&] { return topo_disk_witness(restricted, p); });
+    findings.add({p}, disk, !unresolved_at[p]);
+  }
+  for (VertexId p : vertices) {
+    if (stopped()) break;
+    const bool facets_clean = !findings.dirty(p);
+    const CheckResult silhouette =
+        timed(CheckKind::silhouette, [&] { return silhouette_witness(restricted, p, facets_clean); });
+    findings.add({p}, silhouette);
+    ++c.voronoi_cells;
+  }
+
+  // 6. Tri S|Σ against the soup's triangles.
+  c.restricted_triangles = restricted_set.size();
+  std::set<TriangleKey> mesh_set;
+  for (const auto& t : triangles) {
+    const VertexId a = id_of[t[0]], b = id_of[t[1]], d = id_of[t[2]];
+    if (a == b || a == d || b == d) {
+      ++c.mesh_not_restricted;  // coincident points made it degenerate
+      continue;
+    }
+    const TriangleKey key = make_triangle_key(a, b, d);
+    if (!mesh_set.insert(key).second) {
+      ++c.repeated_mesh_triangles;
+      continue;
+    }
+    if (!restricted_set.count(key)) ++c.mesh_not_restricted;
+  }
+  for (const auto& t : restricted_set)
+    if (!mesh_set.count(t)) ++c.restricted_not_in_mesh;
+  c.restricted_matches_mesh = !c.interrupted && c.coincident_vertices == 0 && c.repeated_mesh_triangles == 0 &&
+                              c.mesh_not_restricted == 0 && c.restricted_not_in_mesh == 0;
+
+  const bool proved_witness =
+      std::any_of(c.witnesses.begin(), c.witnesses.end(), [](const CertificateWitness& w) { return w.proved; });
+  if (proved_witness)
+    c.status = CertificateStatus::violated;
+  else if (c.interrupted || !c.witnesses.empty() || !c.unsettled.empty())
+    c.status = CertificateStatus::undecided;
+  else
+    c.status = CertificateStatus::certified;
+  c.solver = oracle.statistics_json();
+  c.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return c;
+}
+
+nlohmann::json to_json(const Certificate& c) {
+  nlohmann::json j;
+  j["status"] = text_of(c.status);
+  j["restricted_matches_mesh"] = c.restricted_matches_mesh;
+  j["faces_checked"] = c.faces_checked();
+  j["voronoi_faces"] = {{"edges", c.voronoi_edges}, {"facets", c.voronoi_facets}, {"cells", c.voronoi_cells}};
+  j["interrupted"] = c.interrupted;
+  j["samples"] = c.samples;
+  j["unreferenced_vertices"] = c.unreferenced_vertices;
+  j["coincident_vertices"] = c.coincident_vertices;
+  j["restricted_triangles"] = c.restricted_triangles;
+  j["mesh_triangles"] = c.mesh_triangles;
+  j["restricted_not_in_mesh"] = c.restricted_not_in_mesh;
+  j["mesh_not_restricted"] = c.mesh_not_restricted;
+  j["repeated_mesh_triangles"] = c.repeated_mesh_triangles;
+
+  nlohmann::json by_check = nlohmann::json::object(), listed = nlohmann::json::array();
+  std::size_t proved = 0;
+  for (const auto& w : c.witnesses) {
+    const std::string name = text_of(w.witness.kind);
+    by_check[name] = by_check.value(name, 0) + 1;
+    if (w.proved) ++proved;
+  }
+  // Proved witnesses first, each group in the order found.
+  for (bool want : {true, false})
+    for (const auto& w : c.witnesses)
+      if (w.proved == want && listed.size() < certificate_findings_listed)
+        listed.push_back(
+            {{"check", text_of(w.witness.kind)}, {"face", w.face}, {"point", w.witness.point}, {"proved", w.proved}});
+  j["witnesses"] = {{"count", c.witnesses.size()}, {"proved", proved}, {"by_check", by_check}, {"listed", listed}};
+
+  nlohmann::json by_reason = nlohmann::json::object(), unsettled = nlohmann::json::array();
+  for (const auto& u : c.unsettled) {
+    const std::string reason = text_of(u.what.reason);
+    by_reason[reason] = by_reason.value(reason, 0) + 1;
+    if (unsettled.size() < certificate_findings_listed)
+      unsettled.push_back({{"check", text_of(u.what.check)}, {"reason", reason}, {"face", u.face},
+                           {"location", u.what.location}});
+  }
+  j["unsettled"] = {{"count", c.unsettled.size()}, {"by_reason", by_reason}, {"listed", unsettled}};
+
+  j["max_vertex_distance_estimate"] = c.max_vertex_distance_estimate;
+  j["seed"] = c.seed;
+  j["seconds"] = c.seconds;
+  j["seconds_validation"] = c.seconds_validation;
+  nlohmann::json per_check = nlohmann::json::object();
+  for (CheckKind k : {CheckKind::vor_edge, CheckKind::facet_contact, CheckKind::topo_disk, CheckKind::facet_cycle,
+                      CheckKind::silhouette})
+    per_check[text_of(k)] = c.seconds_per_check[static_cast<int>(k)];
+  j["seconds_per_check"] = per_check;
+  j["solver"] = c.solver;
+  return j;
+}
+
+}  // namespace delmesh

@@ -1,15 +1,22 @@
 //! \file check_command.cpp
-//! `delmesh check MESH [--lambda L] [--json]`: the independent checker (meshing/mesh_checker.h)
-//! on a mesh file, optionally compared with the bounds of Theorem 6.1 for λ.
+//! `delmesh check MESH [--lambda L] [(--surface NAME | --expr E --box B) --certify [--seed N]]
+//! [--json]`: the independent checker (meshing/mesh_checker.h) on a mesh file, optionally
+//! compared with the bounds of Theorem 6.1 for λ, and with --certify the topology certificate
+//! of the mesh for that surface (meshing/certificate.h).
 
 #include <iostream>
+#include <limits>
 #include <memory>
+#include <optional>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "apps/command_line.h"
 #include "apps/commands.h"
+#include "apps/interrupt.h"
 #include "common/errors.h"
+#include "meshing/certificate.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/mesh_io.h"
 #include "meshing/theorem_bounds.h"
@@ -22,7 +29,11 @@ struct CheckOptions {
   std::string mesh;
   double lambda = 0;
   bool json = false;
+  bool certify = false;
+  std::uint64_t seed = 1;
+  SurfaceOptions surface;
   CLI::Option* lambda_option = nullptr;
+  CLI::Option* seed_option = nullptr;
 };
 
 const char* yes_no(bool b) { return b ? "yes" : "no"; }
@@ -31,6 +42,49 @@ const char* pass_fail(bool b) { return b ? "pass" : "FAIL"; }
 std::string count_of(std::size_t n, const std::string& thing) {
   if (n == 1) return "1 " + thing;
   return std::to_string(n) + " " + (thing.back() == 'x' ? thing.substr(0, thing.size() - 2) + "ices" : thing + "s");
+}
+
+//! "(x, y, z)" with 6 significant digits (the JSON has every digit).
+std::string point_text(const std::array<double, 3>& x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << "(" << x[0] << ", " << x[1] << ", " << x[2] << ")";
+  return s.str();
+}
+
+//! The certificate's lines of the text report: status, the comparison with Tri S|Σ, and the
+//! first witnesses (proved ones first) and unsettled findings.
+void print_certificate(std::ostream& out, const Certificate& c) {
+  std::ostringstream status;
+  status << c.status;
+  out << "certificate:           " << status.str() << (c.interrupted ? " (interrupted)" : "") << ", "
+      << c.faces_checked() << " Voronoi faces checked (" << c.voronoi_edges << " edges, " << c.voronoi_facets
+      << " facets, " << c.voronoi_cells << " cells) in " << c.seconds << " s\n";
+  out << "  Tri S|Sigma = mesh:  " << yes_no(c.restricted_matches_mesh);
+  if (!c.restricted_matches_mesh)
+    out << " (" << c.restricted_not_in_mesh << " restricted triangles not in the mesh, " << c.mesh_not_restricted
+        << " mesh triangles not restricted, " << c.repeated_mesh_triangles << " repeated, " << c.coincident_vertices
+        << " coincident vertices)";
+  out << "\n";
+  if (!c.witnesses.empty()) {
+    std::size_t proved = 0;
+    for (const auto& w : c.witnesses) proved += w.proved ? 1 : 0;
+    out << "  witnesses:           " << c.witnesses.size() << " (" << proved << " proved)\n";
+    std::size_t listed = 0;
+    for (bool want : {true, false})
+      for (const auto& w : c.witnesses)
+        if (w.proved == want && listed < certificate_findings_listed) {
+          ++listed;
+          out << "    " << w.witness.kind << " at " << point_text(w.witness.point)
+              << (w.proved ? "" : " (candidate: from an undecided region)") << "\n";
+        }
+  }
+  if (!c.unsettled.empty()) {
+    out << "  unsettled:           " << c.unsettled.size() << "\n";
+    for (std::size_t i = 0; i < c.unsettled.size() && i < certificate_findings_listed; ++i)
+      out << "    " << c.unsettled[i].what.check << ": " << c.unsettled[i].what.reason << " at "
+          << point_text(c.unsettled[i].what.location) << "\n";
+  }
 }
 
 }  // namespace
@@ -76,16 +130,32 @@ namespace {
 ExitCode run_check(const CheckOptions& o) {
   const bool with_bounds = o.lambda_option->count() > 0;
   if (with_bounds) require_bounds_lambda(o.lambda);
+  if (o.certify && !o.surface.given())
+    throw InvalidInput("--certify needs the surface: --surface NAME, or --expr E with --box B");
+  if (!o.certify && o.surface.given())
+    throw InvalidInput("--surface and --expr are used only with --certify (the certificate of the mesh for that surface)");
+  if (!o.certify && o.seed_option->count() > 0) throw InvalidInput("--seed is used only with --certify");
   // Read as a soup: open, non-manifold and non-orientable meshes are reported, not refused.
   const TriangleSoup soup = read_triangle_soup(o.mesh);
   const CheckVerdict verdict = check_verdict(check_mesh(soup.points, soup.triangles),
                                              with_bounds ? std::optional<double>(o.lambda) : std::nullopt);
+  std::optional<Certificate> certificate;
+  if (o.certify) {
+    const SurfaceInput input = o.surface.resolve();
+    install_interrupt_handlers();
+    CertificateOptions options;
+    options.seed = o.seed;
+    options.interrupt = &interrupt_flag();
+    certificate = certify_mesh(soup.points, soup.triangles, input.surface, input.box, options);
+  }
   for (const std::string& warning : verdict.warnings) print_warning(warning);
   const MeshReport& report = verdict.report;
   const TheoremBounds& bounds = verdict.bounds;
 
   if (o.json) {
-    print_json(std::cout, verdict.to_json());
+    nlohmann::ordered_json out = verdict.to_json();
+    if (certificate) out["certificate"] = nlohmann::ordered_json::parse(to_json(*certificate).dump());
+    print_json(std::cout, out);
   } else {
     std::cout << "mesh:                  " << o.mesh << "\n";
     std::cout << "vertices:              " << report.vertices << "\n";
@@ -128,31 +198,55 @@ ExitCode run_check(const CheckOptions& o) {
       std::cout << "  roughness <= " << bounds.max_roughness_rad << " rad: " << pass_fail(verdict.roughness_ok)
                 << "\n";
     }
+    if (certificate) print_certificate(std::cout, *certificate);
     std::cout.flush();
   }
-  return verdict.all_pass() ? ExitCode::complete : ExitCode::check_failed;
+  if (certificate && certificate->interrupted) {
+    print_warning("interrupted by a signal: the certificate is incomplete (status undecided)");
+    return ExitCode::limit_reached;
+  }
+  const bool certified = !certificate || (certificate->status == CertificateStatus::certified &&
+                                          certificate->restricted_matches_mesh);
+  return verdict.all_pass() && certified ? ExitCode::complete : ExitCode::check_failed;
 }
 
 }  // namespace
 
 Command add_check_command(CLI::App& parent) {
   auto o = std::make_shared<CheckOptions>();
-  CLI::App* sub = parent.add_subcommand("check", "Check a mesh file independently (topology, quality, bounds)");
+  CLI::App* sub =
+      parent.add_subcommand("check", "Check a mesh file independently (topology, quality, bounds, certificate)");
   sub->footer(
       "Check a triangle mesh file (OFF, PLY or OBJ) from the file alone: components, Euler characteristic, "
       "genus per component (where defined: closed orientable 2-manifold components), closed / manifold / "
       "orientable with the counts of boundary edges and loops and of non-manifold edges and vertices, minimum "
       "angle, maximum radius-edge ratio, maximum roughness. Open, non-manifold and non-orientable meshes are "
-      "reported, not refused. With --lambda, compare with the bounds of Theorem 6.1." "\n\n"
-      "Exit codes: 0 checked (and with --lambda every bound holds), 1 some bound fails, "
-              "2 invalid input (missing or corrupt file, lambda out of range), 4 internal error.");
+      "reported, not refused. With --lambda, compare with the bounds of Theorem 6.1. With --certify and the "
+      "surface, certify the topology: build the Delaunay triangulation of the mesh's vertices, run the five "
+      "checks of Sec. 5.3 on every Voronoi face, and compare the restricted Delaunay triangulation Tri S|Sigma "
+      "with the mesh; certified and matching proves the mesh homeomorphic to the surface (Theorem 2.1). The "
+      "vertices need not lie exactly on the surface, so meshes from other programs can be certified." "\n\n"
+      "Exit codes: 0 checked (and with --lambda every bound holds, with --certify the certificate is certified "
+      "and the mesh is Tri S|Sigma), 1 some bound or the certificate fails, "
+              "2 invalid input (missing or corrupt file, lambda out of range, a bad surface), 3 interrupted "
+              "(SIGINT/SIGTERM) during the certificate, 4 internal error.");
   sub->add_option("MESH", o->mesh, "The mesh file (.off, .ply or .obj)")->required();
   o->lambda_option = sub->add_option("--lambda", o->lambda,
                                      "lambda in (0, 1/6): compare with min angle >= asin(1/(2+2 lambda)), "
                                      "radius-edge ratio <= 1+lambda, roughness <= 2 beta(lambda)")->type_name("L")
       ->check(finite_number());
+  o->surface.add_to(*sub);
+  sub->add_flag("--certify", o->certify,
+                "Certify the topology of the mesh for the surface given by --surface or --expr with --box");
+  o->seed_option = sub->add_option("--seed", o->seed,
+                                   "Seed of the certificate's generic directions (FacetCycle, Silhouette), "
+                                   "0 <= N < 2^64")
+                       ->type_name("N")
+                       ->check(whole_number(0, std::numeric_limits<std::uint64_t>::max()))
+                       ->capture_default_str();
   sub->add_flag("--json", o->json,
-                "Print the report as JSON (with --lambda also \"lambda\", \"bounds\" and \"pass\")");
+                "Print the report as JSON (with --lambda also \"lambda\", \"bounds\" and \"pass\"; with "
+                "--certify also \"certificate\")");
   return {sub, [o]() { return run_check(*o); }};
 }
 

@@ -17,7 +17,9 @@
 #include "apps/commands.h"
 #include "apps/interrupt.h"
 #include "common/errors.h"
+#include "meshing/certificate.h"
 #include "meshing/del_mesh.h"
+#include "meshing/mesh_checker.h"
 #include "meshing/mesh_io.h"
 
 namespace delmesh::app {
@@ -41,6 +43,7 @@ struct MeshOptions {
   std::uint64_t seed = 1;
   int threads = 0;
   bool quiet = false;
+  bool certify = false;
   CLI::Option* input_mesh_option = nullptr;
   CLI::Option* size_bound_option = nullptr;
   CLI::Option* out_option = nullptr;
@@ -186,6 +189,33 @@ ExitCode run_mesh(const MeshOptions& o) {
   DelMeshResult result = del_mesh(input.surface, input.box, options);
 
   nlohmann::json statistics = mesh_statistics(result, input, o.seed, out);
+  // The certificate of the finished mesh (meshing/certificate.h), from the mesh alone.  A run
+  // stopped by a limit or a signal, or without triangles, has none (null).
+  bool certificate_interrupted = false;
+  if (o.certify) {
+    std::vector<Point3> points;
+    std::vector<std::array<std::size_t, 3>> triangles;
+    mesh_to_soup(result.mesh, points, triangles);
+    const bool ended = result.status == MeshStatus::complete || result.status == MeshStatus::uncertified;
+    if (ended && !triangles.empty()) {
+      if (!o.quiet) std::cerr << "delmesh: certifying the mesh from scratch" << std::endl;
+      CertificateOptions certificate_options;
+      certificate_options.seed = o.seed;
+      certificate_options.interrupt = &interrupt_flag();
+      const Certificate certificate = certify_mesh(points, triangles, input.surface, input.box, certificate_options);
+      statistics["certificate"] = to_json(certificate);
+      certificate_interrupted = certificate.interrupted;
+      if (!certificate.interrupted &&
+          (certificate.status != CertificateStatus::certified || !certificate.restricted_matches_mesh))
+        print_warning("--certify: the certificate of the mesh is " + to_text(certificate.status) +
+                      (certificate.restricted_matches_mesh ? "" : ", and Tri S|Sigma differs from the mesh") +
+                      " (statistics: \"certificate\")");
+    } else {
+      statistics["certificate"] = nullptr;
+      print_warning(std::string("--certify: no certificate for a run that ") +
+                    (ended ? "has no triangles" : "stopped before its end"));
+    }
+  }
 
   try {
     write_mesh(result.mesh, out);
@@ -200,6 +230,10 @@ ExitCode run_mesh(const MeshOptions& o) {
     std::cerr << "delmesh: " << result.status << ": wrote " << out << " (" << result.mesh.number_of_vertices()
               << " vertices, " << result.mesh.number_of_faces() << " triangles)"
               << (stats == "-" ? "" : " and " + stats) << std::endl;
+  }
+  if (certificate_interrupted) {
+    print_warning("interrupted by a signal during the certificate: the mesh is written, its certificate is incomplete");
+    return ExitCode::limit_reached;
   }
   switch (result.status) {
     case MeshStatus::complete: return ExitCode::complete;
@@ -274,6 +308,9 @@ Command add_mesh_command(CLI::App& parent) {
       ->check(whole_number(0, max_threads))
       ->capture_default_str();
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
+  sub->add_flag("--certify", o->certify,
+                "Certify the finished mesh from scratch, as `delmesh check --certify` does, and put the "
+                "certificate in the statistics (\"certificate\"); a warning if it is not certified and matching");
   return {sub, [o]() { return run_mesh(*o); }};
 }
 

@@ -146,4 +146,76 @@ BOOST_AUTO_TEST_CASE(partial_mesh_of_a_point_limited_run_is_checkable) {
   for (const auto& g : j.at("genus_per_component")) BOOST_TEST(g.is_null());
 }
 
+// The certificate of delmesh's own output: certified, and the mesh is Tri S|Σ of its vertices.
+BOOST_AUTO_TEST_CASE(certify_delmesh_output) {
+  ScratchDirectory dir;
+  const RunResult m = run_delmesh(
+      {"mesh", "--surface", "sphere", "--out", "sphere.off", "--stats", "sphere.json", "--quiet"}, dir.path);
+  BOOST_TEST(m.exit_code == 0, m.err);
+  const RunResult r = run_delmesh({"check", "sphere.off", "--surface", "sphere", "--certify", "--json"}, dir.path);
+  BOOST_TEST(r.exit_code == 0, r.err);
+  const nlohmann::json c = nlohmann::json::parse(r.out).at("certificate");
+  BOOST_TEST(c.at("status").get<std::string>() == "certified", c.dump());
+  BOOST_TEST(c.at("restricted_matches_mesh").get<bool>());
+  BOOST_TEST(c.at("faces_checked").get<std::size_t>() > 0u);
+  BOOST_TEST(c.at("witnesses").at("count").get<int>() == 0);
+  BOOST_TEST(c.at("seconds").get<double>() > 0);
+  // The same with the expression and box, and as text.
+  const RunResult text = run_delmesh(
+      {"check", "sphere.off", "--expr", "x^2+y^2+z^2-1", "--box", "-1.5,1.5,-1.5,1.5,-1.5,1.5", "--certify"}, dir.path);
+  BOOST_TEST(text.exit_code == 0, text.err);
+  BOOST_TEST(text.out.find("certificate:           certified") != std::string::npos, text.out);
+  BOOST_TEST(text.out.find("Tri S|Sigma = mesh:  yes") != std::string::npos, text.out);
+}
+
+// A tetrahedron whose vertices lie on the thin torus misses its handle: never certified (exit 1).
+BOOST_AUTO_TEST_CASE(certify_refuses_a_mesh_that_misses_a_handle) {
+  ScratchDirectory dir;
+  write_text(dir / "tetra.off",
+             "OFF\n4 4 0\n1.08 0 0\n-1.08 0 0\n0 0.92 0\n0 -1 0.08\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+  const RunResult r = run_delmesh({"check", "tetra.off", "--surface", "thin_handle", "--certify", "--json"}, dir.path);
+  BOOST_TEST(r.exit_code == 1, r.err);
+  const nlohmann::json c = nlohmann::json::parse(r.out).at("certificate");
+  BOOST_TEST(c.at("status").get<std::string>() != "certified", c.dump());
+  const RunResult text = run_delmesh({"check", "tetra.off", "--surface", "thin_handle", "--certify"}, dir.path);
+  BOOST_TEST(text.exit_code == 1);
+  BOOST_TEST(text.out.find("certificate:           certified") == std::string::npos, text.out);
+}
+
+BOOST_AUTO_TEST_CASE(certify_options_are_validated) {
+  ScratchDirectory dir;
+  write_text(dir / "octahedron.off", octahedron_off);
+  require_invalid_input(run_delmesh({"check", "octahedron.off", "--certify"}, dir.path), "--certify");
+  require_invalid_input(run_delmesh({"check", "octahedron.off", "--surface", "sphere"}, dir.path), "--certify");
+  require_invalid_input(run_delmesh({"check", "octahedron.off", "--seed", "3"}, dir.path), "--certify");
+  require_invalid_input(run_delmesh({"check", "octahedron.off", "--surface", "nosuch", "--certify"}, dir.path));
+  require_invalid_input(run_delmesh({"check", "octahedron.off", "--expr", "x^2+y^2+z^2-1", "--certify"}, dir.path),
+                        "--box");
+  // Σ reaches the box: not a valid surface for the certificate.
+  require_invalid_input(run_delmesh({"check", "octahedron.off", "--expr", "x^2+y^2+z^2-1", "--box",
+                                     "-1,1,-1,1,-1,1", "--certify"}, dir.path));
+}
+
+// Acceptance: `check --certify` on delmesh's own output at lambda 0.06, every catalog surface.
+BOOST_AUTO_TEST_CASE(certify_every_catalog_output, *boost::unit_test::label("slow")) {
+  ScratchDirectory dir;
+  const nlohmann::json catalog = nlohmann::json::parse(run_delmesh({"surfaces", "--json"}, dir.path).out);
+  BOOST_REQUIRE(catalog.size() >= 10u);
+  for (const auto& entry : catalog) {
+    const std::string name = entry.at("name").get<std::string>();
+    const RunResult m = run_delmesh({"mesh", "--surface", name, "--lambda", "0.06", "--out", name + ".off", "--stats",
+                                     name + ".json", "--quiet"},
+                                    dir.path);
+    BOOST_TEST(m.exit_code == 0, name << ": " << m.err);
+    const RunResult r = run_delmesh({"check", name + ".off", "--surface", name, "--certify", "--json"}, dir.path);
+    BOOST_TEST(r.exit_code == 0, name << ": " << r.err);
+    const nlohmann::json c = nlohmann::json::parse(r.out).at("certificate");
+    BOOST_TEST(c.at("status").get<std::string>() == "certified", name << ": " << c.dump());
+    BOOST_TEST(c.at("restricted_matches_mesh").get<bool>(), name);
+    const nlohmann::json stats = nlohmann::json::parse(read_text(dir / (name + ".json")));
+    BOOST_TEST_MESSAGE(name << ": meshing " << stats.at("seconds").get<double>() << " s, certificate "
+                            << c.at("seconds").get<double>() << " s");
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -278,4 +278,23 @@ BOOST_AUTO_TEST_CASE(three_seeds_same_topology_on_the_catalog, *boost::unit_test
                               entry.at("genus_per_component").get<std::vector<int>>());
 }
 
+// --certify: the certificate of the run's own mesh in the statistics.
+BOOST_AUTO_TEST_CASE(certify_puts_the_certificate_in_the_statistics) {
+  ScratchDirectory dir;
+  const RunResult r = run_delmesh(
+      {"mesh", "--surface", "torus", "--out", "torus.off", "--stats", "torus.json", "--certify", "--quiet"}, dir.path);
+  BOOST_TEST(r.exit_code == 0, r.err);
+  const nlohmann::json stats = nlohmann::json::parse(read_text(dir / "torus.json"));
+  const nlohmann::json& c = stats.at("certificate");
+  BOOST_TEST(c.at("status").get<std::string>() == "certified", c.dump());
+  BOOST_TEST(c.at("restricted_matches_mesh").get<bool>());
+  BOOST_TEST(c.at("faces_checked").get<std::size_t>() > stats.at("vertices").get<std::size_t>());
+  // A run stopped by a limit gets no certificate.
+  const RunResult limited = run_delmesh(
+      {"mesh", "--surface", "torus", "--max-points", "8", "--out", "t.off", "--stats", "t.json", "--certify", "--quiet"},
+      dir.path);
+  BOOST_TEST(limited.exit_code == 3, limited.err);
+  BOOST_TEST(nlohmann::json::parse(read_text(dir / "t.json")).at("certificate").is_null());
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -133,6 +133,17 @@ std::string path_option(const py::handle& value) {
 
 py::object from_json(const std::string& dumped) { return py::module_::import("json").attr("loads")(dumped); }
 
+//! An n × 3 numpy array of T whose entry (i, k) is at(i, k).  Needs the GIL.
+template <class T, class At>
+py::array_t<T> rows_of_three(std::size_t n, const At& at) {
+  py::array_t<T> a({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+  auto r = a.template mutable_unchecked<2>();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) r(i, k) = static_cast<T>(at(i, k));
+  }
+  return a;
+}
+
 // ---------------------------------------------------------------------------------------------
 // mesh
 // ---------------------------------------------------------------------------------------------
@@ -254,16 +265,8 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
   }
 
   MeshResult out;
-  out.vertices = py::array_t<double>({static_cast<py::ssize_t>(points.size()), py::ssize_t{3}});
-  auto v = out.vertices.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    for (int k = 0; k < 3; ++k) v(i, k) = points[i][k];
-  }
-  out.triangles = py::array_t<std::int64_t>({static_cast<py::ssize_t>(faces.size()), py::ssize_t{3}});
-  auto t = out.triangles.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < faces.size(); ++i) {
-    for (int k = 0; k < 3; ++k) t(i, k) = static_cast<std::int64_t>(faces[i][k]);
-  }
+  out.vertices = rows_of_three<double>(points.size(), [&](std::size_t i, int k) { return points[i][k]; });
+  out.triangles = rows_of_three<std::int64_t>(faces.size(), [&](std::size_t i, int k) { return faces[i][k]; });
   out.stats = from_json(statistics);
   out.status = status;
   return out;
@@ -373,11 +376,8 @@ SolveAnswer solve(const std::string& primitive, const py::object& expr, const py
   std::ostringstream status;
   status << o.result.status;
   a.status = status.str();
-  a.roots = py::array_t<double>({static_cast<py::ssize_t>(o.result.roots.size()), py::ssize_t{3}});
-  auto r = a.roots.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < o.result.roots.size(); ++i) {
-    for (int k = 0; k < 3; ++k) r(i, k) = o.result.roots[i].world[k];
-  }
+  a.roots = rows_of_three<double>(o.result.roots.size(),
+                                  [&](std::size_t i, int k) { return o.result.roots[i].world[k]; });
   a.undecided = py::array_t<double>({static_cast<py::ssize_t>(o.undecided.size()), py::ssize_t{3}, py::ssize_t{2}});
   auto u = a.undecided.mutable_unchecked<3>();
   for (std::size_t i = 0; i < o.undecided.size(); ++i) {

@@ -24,8 +24,6 @@ print("genus per component:", report["genus_per_component"],
 for key in ("min_angle_deg", "max_radius_edge_ratio", "max_roughness_rad"):
     print(f"{key}: {report[key]:.4f} (Theorem 6.1 bound {report['bounds'][key]:.4f}):",
           "pass" if report["pass"][key] else "FAIL")
-print("solver systems:", result.stats["solver"]["systems"],
-      "certified roots:", result.stats["solver"]["certified_roots"])
 
 # OFF with the standard library: repr() writes each coordinate so that it reads back exactly.
 off = os.path.join(out_dir, "torus.off")

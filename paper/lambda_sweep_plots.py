@@ -76,7 +76,7 @@ def lfs_estimate_figure(out):
     _, points = read_csv(os.path.join(out, "lfs_estimate.csv"))
     _, references = read_csv(os.path.join(out, "eps_reference.csv"))
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
-    exact = [p for p in points if isinstance(p["lfs_analytic"], float) and not math.isnan(p["lfs_analytic"])]
+    exact = [p for p in points if isinstance(p["lfs_analytic"], (int, float)) and not math.isnan(p["lfs_analytic"])]
     ax = axes[0]
     for name in sorted({p["surface"] for p in exact}):
         sel = [p for p in exact if p["surface"] == name]

@@ -1,6 +1,7 @@
 #include "symbolic/line_polynomial.h"
 
 #include <array>
+#include <type_traits>
 
 #include "common/errors.h"
 
@@ -35,10 +36,16 @@ LinePolynomial::LinePolynomial(const Surface& surface)
     : parameters_(line_parameters()),
       coefficient_expressions_(expand_along_line(surface, parameters_)),
       degree_(static_cast<int>(coefficient_expressions_.size()) - 1),
-      program_(coefficient_expressions_, {}, parameters_) {}
+      program_(coefficient_expressions_, {}, parameters_),
+      along_line_({surface.E()}, {coordinate_x(), coordinate_y(), coordinate_z()}) {}
 
 template <class T>
 void LinePolynomial::coefficients(const double* p_and_v, T* coefficients) const {
+  if constexpr (std::is_same_v<T, double> || std::is_same_v<T, Interval>) {
+    const std::array<T, 3> p{T(p_and_v[0]), T(p_and_v[1]), T(p_and_v[2])};
+    const std::array<T, 3> v{T(p_and_v[3]), T(p_and_v[4]), T(p_and_v[5])};
+    if (along_line_.evaluate_along_line(p.data(), v.data(), degree_, coefficients)) return;
+  }
   std::array<T, 6> parameters;
   for (std::size_t i = 0; i < 6; ++i) parameters[i] = T(p_and_v[i]);
   program_.values<T>(nullptr, parameters.data(), coefficients);

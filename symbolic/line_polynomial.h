@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "symbolic/compiled_system.h"
+#include "symbolic/detail/straight_line_program.h"
 #include "symbolic/surface.h"
 
 namespace delmesh {
@@ -22,7 +23,10 @@ class LinePolynomial {
   //! coefficients[k] = c_k(p, v) with E(p + t v) = Σ_k c_k t^k; parameters are (p, v), 6 doubles.
   //! Output is degree()+1 values, lowest degree first.  Instantiated for double, Interval (needs a
   //! live RoundingGuard; the result encloses the exact coefficient at the given doubles),
-  //! MpfrReal, MpfiInterval (at the current default precision) and Complex.
+  //! MpfrReal, MpfiInterval (at the current default precision) and Complex.  Double and Interval
+  //! evaluate E's own program on truncated series in t (StraightLineProgram::evaluate_along_line:
+  //! exact in exact arithmetic, far fewer operations than the expanded coefficients); the other
+  //! types evaluate the expanded coefficient expressions.
   template <class T>
   void coefficients(const double* p_and_v, T* coefficients) const;
 
@@ -36,6 +40,7 @@ class LinePolynomial {
   std::vector<GiNaC::ex> coefficient_expressions_;  // c_0 … c_deg
   int degree_ = 0;
   CompiledSystem program_;  // no unknowns; parameters (p, v); outputs c_0 … c_deg
+  detail::StraightLineProgram along_line_;  // E in (x, y, z), evaluated on series in t
 };
 
 #define DELMESH_DECLARE_LINE_POLYNOMIAL(T) \

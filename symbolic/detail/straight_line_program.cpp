@@ -537,6 +537,100 @@ void StraightLineProgram::evaluate(const T* in_first, std::size_t n_first, const
   }
 }
 
+bool StraightLineProgram::is_polynomial_program() const {
+  for (const Instruction& ins : code_) {
+    switch (ins.op) {
+      case OpCode::add:
+      case OpCode::sub:
+      case OpCode::mul:
+      case OpCode::neg:
+      case OpCode::square: break;
+      case OpCode::pow:
+        if (ins.b < 0) return false;
+        break;
+      default: return false;
+    }
+  }
+  return true;
+}
+
+namespace {
+
+//! c = a·b truncated after t^(n−1); c must not alias a or b.
+template <class T>
+void multiply_truncated(const T* a, const T* b, std::size_t n, T* c) {
+  for (std::size_t k = 0; k < n; ++k) {
+    T sum = a[0] * b[k];
+    for (std::size_t i = 1; i <= k; ++i) sum += a[i] * b[k - i];
+    c[k] = sum;
+  }
+}
+
+}  // namespace
+
+template <class T>
+bool StraightLineProgram::evaluate_along_line(const T* point, const T* direction, int order, T* outputs) const {
+  if (order < 0 || !is_polynomial_program()) return false;
+  const std::size_t n = static_cast<std::size_t>(order) + 1;
+  const std::size_t n_c = constants_.size();
+  thread_local std::vector<T> registers, power, product;
+  registers.assign((n_inputs_ + n_c + code_.size()) * n, T(0));
+  power.resize(n);
+  product.resize(n);
+  auto reg = [&](std::int32_t i) { return registers.data() + static_cast<std::size_t>(i) * n; };
+  for (std::size_t i = 0; i < n_inputs_; ++i) {
+    reg(static_cast<std::int32_t>(i))[0] = point[i];
+    if (n > 1) reg(static_cast<std::int32_t>(i))[1] = direction[i];
+  }
+  thread_local std::vector<T> constant_values;
+  constant_values.resize(n_c);
+  load_constants(constant_values.data());
+  for (std::size_t k = 0; k < n_c; ++k) reg(static_cast<std::int32_t>(n_inputs_ + k))[0] = constant_values[k];
+  const std::int32_t first = static_cast<std::int32_t>(n_inputs_ + n_c);
+  for (std::size_t k = 0; k < code_.size(); ++k) {
+    const Instruction& ins = code_[k];
+    T* out = reg(first + static_cast<std::int32_t>(k));
+    const T* a = reg(ins.a);
+    switch (ins.op) {
+      case OpCode::add:
+        for (std::size_t i = 0; i < n; ++i) out[i] = a[i] + reg(ins.b)[i];
+        break;
+      case OpCode::sub:
+        for (std::size_t i = 0; i < n; ++i) out[i] = a[i] - reg(ins.b)[i];
+        break;
+      case OpCode::neg:
+        for (std::size_t i = 0; i < n; ++i) out[i] = -a[i];
+        break;
+      case OpCode::mul: multiply_truncated(a, reg(ins.b), n, out); break;
+      case OpCode::square: multiply_truncated(a, a, n, out); break;
+      case OpCode::pow: {
+        // Square-and-multiply on truncated series: out = a^e.
+        std::fill(out, out + n, T(0));
+        out[0] = T(1);
+        std::copy(a, a + n, power.begin());
+        for (std::int32_t e = ins.b; e > 0; e >>= 1) {
+          if (e & 1) {
+            multiply_truncated(out, power.data(), n, product.data());
+            std::copy(product.begin(), product.end(), out);
+          }
+          if (e > 1) {
+            multiply_truncated(power.data(), power.data(), n, product.data());
+            std::copy(product.begin(), product.end(), power.begin());
+          }
+        }
+        break;
+      }
+      default: return false;  // excluded by is_polynomial_program()
+    }
+  }
+  for (std::size_t j = 0; j < outputs_.size(); ++j) std::copy(reg(outputs_[j]), reg(outputs_[j]) + n, outputs + j * n);
+  return true;
+}
+
+template bool StraightLineProgram::evaluate_along_line<double>(const double*, const double*, int, double*) const;
+template bool StraightLineProgram::evaluate_along_line<Interval>(const Interval*, const Interval*, int,
+                                                                 Interval*) const;
+
 #define DELMESH_DEFINE_SLP_EVALUATE(T)                                                                   \
   template void StraightLineProgram::evaluate<T>(const T*, std::size_t, const T*, T*, std::size_t, T*) \
       const;

@@ -71,6 +71,20 @@ class StraightLineProgram {
              static_cast<T*>(nullptr));
   }
 
+  //! Taylor evaluation along a line.  Input i is the polynomial point[i] + t·direction[i]; every
+  //! register holds a polynomial in t truncated after t^order, and output j's coefficients of
+  //! t^0 … t^order are written to outputs[j·(order+1) + k].  Truncated power-series arithmetic is
+  //! the ring homomorphism R[t] → R[t]/(t^(order+1)), so when every output is a polynomial of
+  //! degree ≤ order in t its coefficients are exact whatever the degrees of the intermediate
+  //! registers.  Only programs of add, sub, mul, neg, square and pow (non-negative exponent) —
+  //! polynomial programs — are supported: returns false, writing nothing, if another opcode occurs.
+  //! Instantiated for double and Interval (Interval: needs a live RoundingGuard; each coefficient
+  //! then encloses the exact one at the given doubles).  Uses thread-local scratch registers.
+  template <class T>
+  bool evaluate_along_line(const T* point, const T* direction, int order, T* outputs) const;
+  //! Whether evaluate_along_line() supports this program.
+  bool is_polynomial_program() const;
+
  private:
   class Compiler;
   struct Constant {
@@ -108,5 +122,9 @@ DELMESH_DECLARE_SLP_EVALUATE(MpfrReal)
 DELMESH_DECLARE_SLP_EVALUATE(MpfiInterval)
 DELMESH_DECLARE_SLP_EVALUATE(Complex)
 #undef DELMESH_DECLARE_SLP_EVALUATE
+extern template bool StraightLineProgram::evaluate_along_line<double>(const double*, const double*, int,
+                                                                      double*) const;
+extern template bool StraightLineProgram::evaluate_along_line<Interval>(const Interval*, const Interval*, int,
+                                                                        Interval*) const;
 
 }  // namespace delmesh::detail

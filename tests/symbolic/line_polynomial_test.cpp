@@ -159,3 +159,20 @@ BOOST_AUTO_TEST_CASE(line_through_sphere_centre) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_CASE(cancelling_terms_of_higher_degree_leave_the_coefficients_exact) {
+  // The cubic terms cancel: E has degree 2 though E's own program computes cubes.
+  const Surface s = Surface::parse("(x+1)^3 - x^3 - 3*y^2 - 3*z^2 - 1");
+  const LinePolynomial line(s);
+  BOOST_TEST_REQUIRE(line.degree() == 2);
+  const double pv[6] = {0.5, -0.25, 2, 1, 2, -3};
+  const std::vector<GiNaC::numeric> reference = reference_coefficients(s, pv, 2);
+  RoundingGuard guard;
+  Interval c[3];
+  line.coefficients(pv, c);
+  for (int k = 0; k < 3; ++k) {
+    BOOST_TEST(exact(c[k].inf()) <= reference[k]);
+    BOOST_TEST(reference[k] <= exact(c[k].sup()));
+    BOOST_TEST(c[k].sup() - c[k].inf() <= 1e-13);
+  }
+}

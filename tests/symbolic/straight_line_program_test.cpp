@@ -256,3 +256,44 @@ BOOST_AUTO_TEST_CASE(multiprecision_registers_follow_the_default_precision) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_CASE(evaluation_along_a_line_gives_the_exact_coefficients) {
+  // f = (x + 2y)^3 − x·y² + 5 along (1, −1) + t (2, 3): the truncation order may be below the
+  // degree of intermediate registers (here order 2 < 3): the low coefficients stay exact.
+  const GiNaC::symbol x("x"), y("y"), t("t");
+  const GiNaC::ex f = GiNaC::pow(x + 2 * y, 3) - x * GiNaC::pow(y, 2) + 5;
+  const StraightLineProgram program({f}, {x, y});
+  BOOST_TEST(program.is_polynomial_program());
+  const GiNaC::ex along = f.subs(GiNaC::lst{x == 1 + 2 * t, y == -1 + 3 * t}).expand();
+  for (int order : {1, 2, 3, 5}) {
+    std::vector<double> coefficients(static_cast<std::size_t>(order) + 1);
+    const double point[2] = {1, -1}, direction[2] = {2, 3};
+    BOOST_TEST_REQUIRE(program.evaluate_along_line(point, direction, order, coefficients.data()));
+    for (int k = 0; k <= order; ++k)
+      BOOST_TEST(coefficients[k] == GiNaC::ex_to<GiNaC::numeric>(along.coeff(t, k)).to_double());
+  }
+  // Over intervals, with a constant that is not a double: 1/3 is enclosed, so is each coefficient.
+  const GiNaC::ex g = GiNaC::pow(x, 2) / 3 - y;
+  const StraightLineProgram third({g}, {x, y});
+  RoundingGuard guard;
+  const Interval point[2] = {Interval(1), Interval(0)}, direction[2] = {Interval(1), Interval(1)};
+  Interval c[3];
+  BOOST_TEST_REQUIRE(third.evaluate_along_line(point, direction, 2, c));
+  // (1 + t)²/3 − t = 1/3 − t/3 + t²/3.
+  for (int k = 0; k < 3; ++k) {
+    const double third_value = (k == 1 ? -1.0 : 1.0) / 3;
+    BOOST_TEST(c[k].inf() <= third_value);
+    BOOST_TEST(c[k].sup() >= third_value);
+    BOOST_TEST(c[k].sup() - c[k].inf() <= 1e-15);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(evaluation_along_a_line_refuses_non_polynomial_programs) {
+  const GiNaC::symbol x("x");
+  const StraightLineProgram program({GiNaC::exp(x) + x}, {x});
+  BOOST_TEST(!program.is_polynomial_program());
+  const double point[1] = {0}, direction[1] = {1};
+  double c[3] = {7, 7, 7};
+  BOOST_TEST(!program.evaluate_along_line(point, direction, 2, c));
+  BOOST_TEST(c[0] == 7.0);
+}

@@ -7,6 +7,7 @@
 
 #include "common/tolerances.h"
 #include "meshing/detail/vec3.h"
+#include "symbolic/scalar_types.h"
 
 namespace delmesh {
 
@@ -211,13 +212,23 @@ bool RestrictedDelaunay::certify_section(const EdgeKey& e, const VoronoiFacet& f
   const Vec3 m = normalized(f.normal);
   Vec3 w = g - dot(g, m) * m;
   if (!(norm(w) > 0)) w = f.a;
-  AffineChart chart;
-  chart.origin = f.origin;
-  chart.columns = {f.a, f.b};
-  return oracle_.prove_gradient_cone(chart, f.domain, normalized(w));
+  return oracle_.prove_gradient_cone(f.chart(), f.domain, normalized(w));
 }
 
 namespace {
+
+//! A box holding the exact segment {p + t·v : t ∈ [t0, t1]} of e (outward rounding).
+std::array<Vec3, 2> segment_box(const VoronoiEdge& e) {
+  RoundingGuard guard;
+  const Interval t(e.t0, e.t1);
+  std::array<Vec3, 2> box;
+  for (int k = 0; k < 3; ++k) {
+    const Interval x = Interval(e.point[k]) + t * Interval(e.direction[k]);
+    box[0][k] = x.inf();
+    box[1][k] = x.sup();
+  }
+  return box;
+}
 
 // The zero of E on the edge's parameter range between tv and tf, where E is proved monotone and
 // E(at(tv)) has proved sign sv ≠ 0: nothing if E(at(tf)) has the same sign (no zero), else the
@@ -251,6 +262,9 @@ EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<Ve
   }
   if (!r.edge.valid) return r;
   const auto& e = r.edge;
+  // E keeps one sign on a box holding e: e ∩ Σ = ∅, which is all SurfaceLine could answer.
+  const auto box = segment_box(e);
+  if (oracle_.value_sign(box[0], box[1]) != 0) return r;
   const auto result = oracle_.surface_line(e.point, e.direction, e.t0, e.t1);
   const double face_tol = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
   // Zeros at Voronoi vertices: whether each would be excluded by §5.1 if it were the only one.

@@ -149,8 +149,9 @@ class RestrictedDelaunay {
   std::vector<std::pair<TriangleKey, Vec3>> unresolved_regions() const;
 
  private:
-  //! Solves the record of t (SurfaceLine on its dual edge).  Touches no member: safe to call
-  //! from several threads at once.
+  //! Solves the record of t: SurfaceLine on its dual edge, unless one interval evaluation of E on
+  //! a box holding the edge proves E ≠ 0 there (then e ∩ Σ = ∅).  Touches no member: safe to
+  //! call from several threads at once.
   EdgeRecord compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes) const;
   //! The record of t restricted from its shrunk one, or nothing with `current` set to the
   //! cached record if it is up to date (nullptr if none or if it must be solved).

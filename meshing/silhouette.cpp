@@ -58,6 +58,8 @@ CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool 
     if (facets_clean && !std::binary_search(crossing.begin(), crossing.end(), q)) continue;
     const VoronoiFacet& f = restricted.facet(make_edge_key(p, q));
     if (!f.valid) continue;
+    // J_{n_p} ∩ F = ∅ proved by the gradient cone over F: nothing to solve on this facet.
+    if (oracle.prove_gradient_cone(f.chart(), f.domain, n_p)) continue;
     const auto result = oracle.silhouette_plane(f.origin, f.a, f.b, n_p, f.domain);
     for (const auto& root : result.roots) collector.add(root.world);
     for (const auto& u : result.undecided) collector.add_region(oracle, f, u);

@@ -26,6 +26,12 @@ Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, cons
 //! given a FacetCycle witness, and Σ does not reach ∂B), so a facet none of whose Voronoi edges
 //! (the duals of the triangles pqr) meets Σ has F ∩ Σ = ∅ ⊇ F ∩ J_{n_p}, and SilhouettePlane is
 //! skipped for it.  With facets_clean = false every facet is solved.
+//!
+//! Before each solve a gradient-cone certificate (solvers/gradient_cone.h, w = n_p) is tried on
+//! the domain: when it proves ⟨∇E, n_p⟩ ≠ 0 on Σ ∩ V_p (resp. Σ ∩ F), that domain holds no point
+//! of J_{n_p}, hence no root of SilhouetteCritical (resp. SilhouettePlane), and the solve is
+//! skipped.  The certificate proves what an empty solver answer would say, so no root is lost;
+//! only undecided regions (which it shows to hold no root) are not reported.
 CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool facets_clean = false);
 
 }  // namespace delmesh

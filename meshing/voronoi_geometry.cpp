@@ -251,7 +251,17 @@ VoronoiCell voronoi_cell(const Delaunay& del, VertexId site, const Box3& box) {
   // One polytope per thread, reset for each cell: its buffers outlive the call.
   thread_local ConvexPolytope polytope;
   polytope.reset(box);
-  const std::vector<VertexId> neighbours = del.neighbours(site);
+  // Nearest neighbours first: their bisectors cut the box down to about V_p at once, so most
+  // later clips find every vertex inside and return early.
+  std::vector<VertexId> neighbours = del.neighbours(site);
+  std::vector<std::pair<double, VertexId>> by_distance;
+  by_distance.reserve(neighbours.size());
+  for (VertexId s : neighbours) {
+    const Vec3 w = del.point(s) - p;
+    by_distance.push_back({dot(w, w), s});
+  }
+  std::sort(by_distance.begin(), by_distance.end());
+  for (std::size_t i = 0; i < neighbours.size(); ++i) neighbours[i] = by_distance[i].second;
   struct Plane {
     VertexId s;
     Vec3 w;

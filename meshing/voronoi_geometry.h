@@ -26,6 +26,7 @@
 
 #include "meshing/delaunay.h"
 #include "solvers/domain.h"
+#include "solvers/gradient_cone.h"
 #include "symbolic/surface.h"
 
 namespace delmesh {
@@ -58,6 +59,8 @@ struct VoronoiFacet {
   //! points the clipping left, whose hull contains the computed F.
   bool degenerate = false;
   Vec3 world(double u, double v) const;
+  //! The plane frame as a chart x = origin + u a + v b (for solvers/gradient_cone.h).
+  AffineChart chart() const { return AffineChart{origin, {a, b}}; }
   //! (u, v) of the orthogonal projection of x onto Π.
   std::array<double, 2> plane_coordinates(const Vec3& x) const;
   //! Whether (u, v) lies in F up to `tolerance` (absolute, world units).

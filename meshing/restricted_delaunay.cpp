@@ -44,39 +44,39 @@ void RestrictedDelaunay::track(const TriangleKey& t, bool was_restricted, bool i
   }
 }
 
-void RestrictedDelaunay::erase_at(RecordTable::iterator it) {
-  track(it->first, it->second.restricted, false);
-  edges_.erase(it);
+void RestrictedDelaunay::erase_at(const TriangleKey& t, const EdgeRecord& record) {
+  track(t, record.restricted, false);
+  edges_.erase(t);
 }
 
 void RestrictedDelaunay::erase_record(const TriangleKey& t) {
-  if (const auto it = edges_.find(t); it != edges_.end()) erase_at(it);
+  if (const EdgeRecord* r = edges_.find(t)) erase_at(t, *r);
 }
 
-const EdgeRecord& RestrictedDelaunay::assign(RecordTable::iterator it, bool was_restricted, EdgeRecord&& record,
-                                             bool solved) {
+const EdgeRecord& RestrictedDelaunay::assign(const TriangleKey& t, EdgeRecord& slot, bool was_restricted,
+                                             EdgeRecord&& record, bool solved) {
   ++(solved ? records_solved_ : records_restricted_);
-  it->second = std::move(record);
-  track(it->first, was_restricted, it->second.restricted);
-  return it->second;
+  slot = std::move(record);
+  track(t, was_restricted, slot.restricted);
+  return slot;
 }
 
 const EdgeRecord& RestrictedDelaunay::install(const TriangleKey& t, EdgeRecord&& record, bool solved) {
-  const auto [it, inserted] = edges_.try_emplace(t);
-  return assign(it, !inserted && it->second.restricted, std::move(record), solved);
+  const auto [slot, inserted] = edges_.try_emplace(t);
+  return assign(t, *slot, !inserted && slot->restricted, std::move(record), solved);
 }
 
 std::optional<EdgeRecord> RestrictedDelaunay::update_without_solving(const TriangleKey& t,
                                                                     const std::array<VertexId, 2>* apexes,
                                                                     const EdgeRecord*& current) {
-  const auto it = edges_.find(t);
+  const EdgeRecord* cached = edges_.find(t);
   current = nullptr;
-  if (it == edges_.end()) return std::nullopt;
-  if (!it->second.shrunk) {
-    current = &it->second;
+  if (!cached) return std::nullopt;
+  if (!cached->shrunk) {
+    current = cached;
     return std::nullopt;
   }
-  return restrict_record(it->second, voronoi_edge(del_, t, oracle_.box(), apexes));
+  return restrict_record(*cached, voronoi_edge(del_, t, oracle_.box(), apexes));
 }
 
 const EdgeRecord& RestrictedDelaunay::edge_record(const TriangleKey& t, const std::array<VertexId, 2>* apexes) {
@@ -89,9 +89,9 @@ const EdgeRecord& RestrictedDelaunay::edge_record(const TriangleKey& t, const st
 std::vector<TriangleKey> RestrictedDelaunay::forget_destroyed(const InsertionChange& change) {
   std::vector<TriangleKey> left;
   for (const auto& t : change.destroyed_triangles) {
-    const auto it = edges_.find(t);
-    if (it == edges_.end() || it->second.restricted || it->second.shrunk) left.push_back(t);
-    if (it != edges_.end()) erase_at(it);
+    const EdgeRecord* r = edges_.find(t);
+    if (!r || r->restricted || r->shrunk) left.push_back(t);
+    if (r) erase_at(t, *r);
   }
   forget({}, change.destroyed_edges);
   forget({}, change.shrunk_edges);
@@ -107,22 +107,22 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
   std::vector<std::size_t> to_solve;
   for (std::size_t i = 0; i < star.size(); ++i) {
     const auto& s = star[i];
-    const auto it = edges_.find(s.key);
-    if (it == edges_.end() || s.contains_vertex) {
+    EdgeRecord* cached = edges_.find(s.key);
+    if (!cached || s.contains_vertex) {
       to_solve.push_back(i);
       continue;
     }
-    if (!it->second.shrunk) {
+    if (!cached->shrunk) {
       out[i].had_record = true;
-      out[i].was_restricted = it->second.restricted;
-      out[i].old_dual_point = it->second.dual_point;
+      out[i].was_restricted = cached->restricted;
+      out[i].old_dual_point = cached->dual_point;
     }
-    auto restricted = restrict_record(it->second, voronoi_edge(del_, s.key, oracle_.box(), &s.apexes));
+    auto restricted = restrict_record(*cached, voronoi_edge(del_, s.key, oracle_.box(), &s.apexes));
     if (!restricted) {
       to_solve.push_back(i);
       continue;
     }
-    out[i].record = &assign(it, it->second.restricted, std::move(*restricted), false);
+    out[i].record = &assign(s.key, *cached, cached->restricted, std::move(*restricted), false);
   }
   std::vector<EdgeRecord> solved(to_solve.size());
   parallel.run(to_solve.size(), [&](std::size_t k) {
@@ -146,8 +146,7 @@ void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std
 }
 
 const EdgeRecord* RestrictedDelaunay::cached_record(const TriangleKey& t) const {
-  const auto it = edges_.find(t);
-  return it == edges_.end() ? nullptr : &it->second;
+  return edges_.find(t);
 }
 
 std::optional<EdgeRecord> RestrictedDelaunay::restrict_record(const EdgeRecord& old, const VoronoiEdge& edge) const {
@@ -358,7 +357,7 @@ void RestrictedDelaunay::shrink(const InsertionChange& change) {
   }
   forget_destroyed(change);
   for (const auto& t : change.shrunk_triangles)
-    if (auto it = edges_.find(t); it != edges_.end()) it->second.shrunk = true;
+    if (EdgeRecord* r = edges_.find(t)) r->shrunk = true;
 }
 
 std::vector<TriangleKey> RestrictedDelaunay::star(VertexId p) {
@@ -375,8 +374,9 @@ std::vector<TriangleKey> RestrictedDelaunay::star(VertexId p) {
 
 std::vector<std::pair<TriangleKey, Vec3>> RestrictedDelaunay::unresolved_regions() const {
   std::vector<std::pair<TriangleKey, Vec3>> out;
-  for (const auto& [t, r] : edges_)
+  edges_.for_each([&](const TriangleKey& t, const EdgeRecord& r) {
     for (const auto& x : r.unresolved) out.push_back({t, x});
+  });
   std::sort(out.begin(), out.end());
   return out;
 }

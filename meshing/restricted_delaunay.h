@@ -5,8 +5,8 @@
 //! ⟨u − v, n_v⟩ > 0 and uv meets Σ nowhere else, the triangle is excluded; otherwise it is kept.
 //!
 //! The intersections of every Voronoi edge with Σ are computed once (SurfaceLine on the clipped
-//! edge) and cached per Delaunay triangle (a hash table keyed by sorted vertex ids) until the
-//! triangle's dual edge changes.  Facet geometry (Voronoi facets with their seeded generic
+//! edge) and cached per Delaunay triangle (an open-addressing table keyed by sorted vertex ids,
+//! meshing/detail/flat_table.h) until the triangle's dual edge changes.  Facet geometry (Voronoi facets with their seeded generic
 //! frames) is cached per Delaunay edge in the same way.  The driver reports every change:
 //! forget() and invalidate() drop records, shrink() marks the records of an insertion's cavity
 //! boundary.
@@ -45,6 +45,7 @@
 #include <vector>
 
 #include "meshing/delaunay.h"
+#include "meshing/detail/flat_table.h"
 #include "meshing/detail/parallel_for.h"
 #include "meshing/surface_oracle.h"
 #include "meshing/voronoi_geometry.h"
@@ -53,7 +54,7 @@ namespace delmesh {
 
 //! The Voronoi edge of one Delaunay triangle and its intersections with Σ.
 struct EdgeRecord {
-  // The fields read on every lookup come first (one cache line with the hash node's key).
+  // The fields read on every lookup come first (one cache line).
   bool restricted = false;       //!< the triangle is in Tri S|Σ (with the §5.1 rule)
   bool shrunk = false;           //!< the dual edge shrank since: restrict or solve again on use
   //! Centres of the undecided regions on e that are neither a zero at a Voronoi vertex nor a
@@ -157,17 +158,18 @@ class RestrictedDelaunay {
   //! cached record if it is up to date (nullptr if none or if it must be solved).
   std::optional<EdgeRecord> update_without_solving(const TriangleKey& t, const std::array<VertexId, 2>* apexes,
                                                    const EdgeRecord*& current);
-  using RecordTable = std::unordered_map<TriangleKey, EdgeRecord, SimplexKeyHash, SimplexKeyEqual>;
+  using RecordTable = detail::FlatTable<3, EdgeRecord>;
   //! Stores the record of t (counting it as solved or restricted) and keeps stars_ in step.
   const EdgeRecord& install(const TriangleKey& t, EdgeRecord&& record, bool solved);
   //! The same at a known slot whose previous record had restricted status `was_restricted`.
-  const EdgeRecord& assign(RecordTable::iterator it, bool was_restricted, EdgeRecord&& record, bool solved);
+  const EdgeRecord& assign(const TriangleKey& t, EdgeRecord& slot, bool was_restricted, EdgeRecord&& record,
+                           bool solved);
   //! The gradient-cone certificate of facet_section_certified().  Thread-safe.
   bool certify_section(const EdgeKey& e, const VoronoiFacet& f) const;
   //! Keeps stars_ in step with a record of t whose restricted status went from `was` to `is`.
   void track(const TriangleKey& t, bool was_restricted, bool is_restricted);
   void erase_record(const TriangleKey& t);
-  void erase_at(RecordTable::iterator it);
+  void erase_at(const TriangleKey& t, const EdgeRecord& record);
   //! The record of the shrunk edge `edge` restricted from `old`, or nothing if it must be solved.
   std::optional<EdgeRecord> restrict_record(const EdgeRecord& old, const VoronoiEdge& edge) const;
 

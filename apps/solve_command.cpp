@@ -1,14 +1,15 @@
 //! \file solve_command.cpp
-//! `delmesh solve`: one numerical primitive of §5.2 on a surface, solved by a certified solver,
-//! printed in world coordinates.  The primitive's parameters are built from directions, a point
-//! and a plane with solvers/query_geometry.h (the same helpers the mesher uses).
+//! `delmesh solve`: one numerical primitive of the registry (solvers/primitive_registry.h) on a
+//! surface, solved by a certified solver, printed in world coordinates.  The registry row checks
+//! the options, turns them and the box into the parameters and the domain, and supplies the help
+//! text; solve_query (solvers/primitive_query.h) picks the solver.
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
 #include <map>
 #include <memory>
-#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -17,13 +18,10 @@
 #include "apps/commands.h"
 #include "common/errors.h"
 #include "common/tolerances.h"
-#include "solvers/homotopy_solver.h"
-#include "solvers/query_geometry.h"
-#include "solvers/subdivision_solver.h"
-#include "solvers/univariate_isolator.h"
+#include "solvers/primitive_query.h"
+#include "solvers/primitive_registry.h"
 #include "symbolic/compiled_system.h"
 #include "symbolic/line_polynomial.h"
-#include "symbolic/primitives.h"
 
 namespace delmesh::app {
 
@@ -47,138 +45,21 @@ struct SolveOptions {
   }
 };
 
-//! The parameter options each primitive takes, and which of them it requires.
-struct PrimitiveParameters {
-  std::set<std::string> allowed;
-  std::set<std::string> required;
-};
-
-const std::map<std::string, PrimitiveParameters>& primitive_parameters() {
-  static const std::map<std::string, PrimitiveParameters> table{
-      {"surface_critical", {{"--direction"}, {}}},
-      {"surface_line", {{"--point", "--direction"}, {"--point", "--direction"}}},
-      {"surface_plane_contact", {{"--plane-origin", "--plane-normal"}, {"--plane-origin", "--plane-normal"}}},
-      {"curve_critical",
-       {{"--plane-origin", "--plane-normal", "--direction"}, {"--plane-origin", "--plane-normal", "--direction"}}},
-      {"silhouette_plane",
-       {{"--plane-origin", "--plane-normal", "--direction"}, {"--plane-origin", "--plane-normal", "--direction"}}},
-      {"silhouette_critical", {{"--direction", "--direction2"}, {"--direction", "--direction2"}}},
-  };
-  return table;
-}
-
-double dot(const Vec3& p, const Vec3& q) { return p[0] * q[0] + p[1] * q[1] + p[2] * q[2]; }
-Vec3 cross(const Vec3& p, const Vec3& q) {
-  return {p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]};
-}
-void append(std::vector<double>& to, const Vec3& v) { to.insert(to.end(), v.begin(), v.end()); }
-
-//! A primitive's parameter vector and solver domain.  `empty`: the line or plane misses the box,
-//! so there is nothing to solve (no roots).
-struct Query {
-  std::vector<double> parameters;
-  Domain domain;
-  bool line = false;
-  Vec3 line_point{}, line_direction{};
-  bool empty = false;
-  std::string description;  // the parameters as used, for the text output
-};
-
-std::string text_of(const Vec3& v) {
-  return format_number(v[0]) + "," + format_number(v[1]) + "," + format_number(v[2]);
-}
-
-Query build_query(const SolveRequest& o, const Box3& box) {
-  Query q;
-  const std::string& name = o.primitive;
-  auto vector_of = [&](const std::string& option) { return parse_vector3(o.parameters.at(option), option); };
-  if (name == "surface_critical") {
-    const Vec3 d = o.parameters.count("--direction") > 0 ? vector_of("--direction") : Vec3{0, 0, 1};
-    const OrthonormalFrame f = orthonormal_frame(d);
-    append(q.parameters, f.a);
-    append(q.parameters, f.b);
-    q.domain = box_domain(box);
-    q.description = "direction " + text_of(f.d);
-  } else if (name == "surface_line") {
-    const Vec3 p = vector_of("--point");
-    const Vec3 v = unit_vector(vector_of("--direction"));
-    append(q.parameters, p);
-    append(q.parameters, v);
-    q.line = true;
-    q.line_point = p;
-    q.line_direction = v;
-    const auto range = clip_line_to_box(p, v, box);
-    if (!range) {
-      q.empty = true;
-    } else {
-      q.domain = Domain::from_box({{(*range)[0], (*range)[1]}});
-    }
-    q.description = "line " + text_of(p) + " + t (" + text_of(v) + ")";
-  } else if (name == "surface_plane_contact" || name == "curve_critical" ||
-             name == "silhouette_plane") {
-    const Vec3 origin = vector_of("--plane-origin");
-    const Vec3 normal = unit_vector(vector_of("--plane-normal"));
-    OrthonormalFrame frame = orthonormal_frame(normal);
-    Vec3 d{};
-    if (name == "curve_critical") {
-      // The direction d must be parallel to the plane: its component in the plane becomes a.
-      const Vec3 given = vector_of("--direction");
-      const double along = dot(given, normal);
-      const Vec3 in_plane{given[0] - along * normal[0], given[1] - along * normal[1], given[2] - along * normal[2]};
-      if (std::sqrt(dot(in_plane, in_plane)) <= 1e-12 * std::sqrt(dot(given, given))) {
-        throw InvalidInput("--direction must not be normal to the plane for curve_critical");
-      }
-      frame.a = unit_vector(in_plane);
-      frame.b = cross(frame.d, frame.a);
-    } else if (name == "silhouette_plane") {
-      d = unit_vector(vector_of("--direction"));
-    }
-    append(q.parameters, origin);
-    append(q.parameters, frame.a);
-    append(q.parameters, frame.b);
-    if (name == "silhouette_plane") append(q.parameters, d);
-    const auto section = plane_box_section(origin, frame, box);
-    if (!section) {
-      q.empty = true;
-    } else {
-      q.domain = polygon_domain(section->polygon);
-    }
-    q.description = "plane origin " + text_of(origin) + " normal " + text_of(normal) + ", frame a " +
-                    text_of(frame.a) + " b " + text_of(frame.b);
-    if (name == "silhouette_plane") q.description += ", direction " + text_of(d);
-  } else if (name == "silhouette_critical") {
-    const Vec3 d = unit_vector(vector_of("--direction"));
-    const Vec3 e = unit_vector(vector_of("--direction2"));
-    const Vec3 c = cross(d, e);
-    if (std::sqrt(dot(c, c)) <= 1e-12) throw InvalidInput("--direction and --direction2 must not be parallel");
-    append(q.parameters, d);
-    append(q.parameters, e);
-    q.domain = box_domain(box);
-    q.description = "direction " + text_of(d) + ", direction2 " + text_of(e);
-  } else {
-    throw InvalidInput("delmesh solve does not know the parameters of primitive " + name);
+//! The primitive's row, and the parameter options given as numbers (their text parsed).
+std::pair<const PrimitiveInfo*, QueryOptions> query_options(const SolveRequest& o) {
+  const PrimitiveInfo& row = find_primitive(o.primitive);
+  QueryOptions given;
+  for (QueryOption option : all_query_options) {
+    const auto it = o.parameters.find(option_flag(option));
+    if (it != o.parameters.end()) given.values[option] = parse_vector3(it->second, it->first);
   }
-  return q;
-}
-
-void check_parameter_options(const SolveRequest& o) {
-  bool registered = false;
-  std::string known;
-  for (const PrimitiveInfo& info : primitive_registry()) {
-    registered = registered || info.name == o.primitive;
-    known += (known.empty() ? "" : ", ") + info.name;
+  for (const auto& entry : o.parameters) {
+    const bool known = std::any_of(all_query_options.begin(), all_query_options.end(),
+                                   [&](QueryOption option) { return option_flag(option) == entry.first; });
+    if (!known) throw InvalidInput("delmesh solve has no parameter option " + entry.first);
   }
-  if (!registered) throw InvalidInput("unknown primitive '" + o.primitive + "' (known: " + known + ")");
-  const auto entry = primitive_parameters().find(o.primitive);
-  if (entry == primitive_parameters().end()) {
-    throw InvalidInput("delmesh solve does not know the parameters of primitive " + o.primitive);
-  }
-  for (const auto& [option, value] : o.parameters) {
-    if (entry->second.allowed.count(option) == 0) throw InvalidInput(option + " is not a parameter of " + o.primitive);
-  }
-  for (const std::string& option : entry->second.required) {
-    if (o.parameters.count(option) == 0) throw InvalidInput(o.primitive + " needs " + option);
-  }
+  row.check_query_options(given);
+  return {&row, given};
 }
 
 //! World bounding box of a solver box: the compiled world point (affine in the unknowns)
@@ -206,8 +87,11 @@ std::string to_text(const T& value) {
 }  // namespace
 
 const std::vector<std::string>& solve_parameter_options() {
-  static const std::vector<std::string> names{"--direction", "--direction2", "--point", "--plane-origin",
-                                              "--plane-normal"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> flags;
+    for (QueryOption option : all_query_options) flags.push_back(option_flag(option));
+    return flags;
+  }();
   return names;
 }
 
@@ -223,44 +107,32 @@ SolveOutcome solve_primitive(const SolveRequest& o) {
   if (!std::isfinite(o.time_limit) || o.time_limit < 0 || o.time_limit > max_time_limit_seconds) {
     throw InvalidInput("--time-limit must be >= 0 and <= 1e9 seconds (0: none), got " + format_number(o.time_limit));
   }
-  check_parameter_options(o);
+  const auto [row, given] = query_options(o);
   const SurfaceInput input = o.surface.resolve();
-  const Query query = build_query(o, input.box);
-  const PrimitiveSystem system = build_primitive(o.primitive, input.surface);
-  const CompiledSystem compiled(system);
-
-  SolveResult result;
-  const auto start = std::chrono::steady_clock::now();
-  if (query.empty) {
-    result.status = SolveStatus::complete;
-  } else if (o.solver == "homotopy") {
-    if (!system.is_square()) {
-      throw InvalidInput("--solver homotopy needs a square system; " + o.primitive +
-                         " is over-determined (use --solver subdivision)");
-    }
-    HomotopyOptions options;
-    options.time_limit_seconds = o.time_limit;
-    result = solve_homotopy(compiled, equation_degrees(system), query.parameters, query.domain, options);
-  } else if (query.line) {
-    std::unique_ptr<LinePolynomial> polynomial;
-    if (input.surface.is_polynomial()) polynomial = std::make_unique<LinePolynomial>(input.surface);
-    UnivariateOptions options;
-    options.box_budget = o.max_boxes;
-    const auto& t = query.domain.box.bounds[0];
-    result = isolate_line_roots(compiled, polynomial.get(), query.line_point, query.line_direction, t[0], t[1],
-                                options);
-  } else {
-    SubdivisionOptions options;
-    options.box_budget = o.max_boxes;
-    options.time_limit_seconds = o.time_limit;
-    options.exclusion_mode = !system.is_square();
-    options.taylor_forms = taylor_choices.at(o.taylor_forms);
-    result = solve_subdivision(compiled, query.parameters, query.domain, options);
+  const PrimitiveQuery query = row->make_query(given, input.box);
+  const CompiledPrimitive primitive(row->build(input.surface));
+  if (o.solver == "homotopy" && !primitive.system.is_square()) {
+    throw InvalidInput("--solver homotopy needs a square system; " + o.primitive +
+                       " is over-determined (use --solver subdivision)");
   }
+  std::unique_ptr<LinePolynomial> polynomial;
+  if (query.line && query.domain && input.surface.is_polynomial()) {
+    polynomial = std::make_unique<LinePolynomial>(input.surface);
+  }
+  QuerySolveOptions options;
+  options.solver = o.solver == "homotopy" ? QuerySolver::homotopy : QuerySolver::subdivision;
+  options.box_budget = o.max_boxes;
+  options.time_limit_seconds = o.time_limit;
+  options.taylor_forms = taylor_choices.at(o.taylor_forms);
+
+  const auto start = std::chrono::steady_clock::now();
+  SolveResult result = solve_query(primitive, query, options, polynomial.get());
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   std::vector<WorldBox> undecided;
-  for (const UndecidedBox& u : result.undecided) undecided.push_back(world_box(compiled, query.parameters, u.box));
+  for (const UndecidedBox& u : result.undecided) {
+    undecided.push_back(world_box(primitive.compiled, query.parameters, u.box));
+  }
   const std::string solver = query.line && o.solver == "subdivision" ? "univariate isolator" : o.solver;
   return SolveOutcome{input, query.description, solver, std::move(result), std::move(undecided), seconds};
 }
@@ -320,46 +192,31 @@ ExitCode run_solve(const SolveOptions& options) {
 Command add_solve_command(CLI::App& parent) {
   auto o = std::make_shared<SolveOptions>();
   CLI::App* sub = parent.add_subcommand("solve", "Solve one numerical primitive of Sec. 5.2 (certified)");
-  sub->footer(
-      "Solve one numerical primitive of Sec. 5.2 on a surface with a certified solver and print its roots in "
-      "world coordinates, and the regions it could neither exclude nor certify (undecided)." "\n\n"
-      
-      "Parameters per primitive:\n"
-      "  surface_critical       [--direction] (default 0,0,1), domain: the box\n"
-      "  surface_line           --point --direction, domain: the line clipped to the box\n"
-      "  surface_plane_contact  --plane-origin --plane-normal, domain: the polygon plane & box\n"
-      "  curve_critical         --plane-origin --plane-normal --direction (in-plane)\n"
-      "  silhouette_plane       --plane-origin --plane-normal --direction\n"
-      "  silhouette_critical    --direction --direction2, domain: the box\n"
-      "Exit codes: 0 solved (whatever the status), 2 invalid input, 4 internal error.");
+  sub->footer("Solve one numerical primitive on a surface with a certified solver and print its roots in world "
+              "coordinates, and the regions it could neither exclude nor certify (undecided).\n\n"
+              "Primitives (the registry, solvers/primitive_registry.h), their options and domains:\n" +
+              primitive_table_text(primitive_registry()) +
+              "Exit codes: 0 solved (whatever the status), 2 invalid input, 4 internal error.");
   o->surface.add_to(*sub);
   std::string names;
   for (const PrimitiveInfo& info : primitive_registry()) names += (names.empty() ? "" : "|") + info.name;
   sub->add_option("--primitive", o->request.primitive, names)->required()->type_name("P");
-  o->parameter_options["--direction"] = sub->add_option(
-      "--direction", o->parameters["--direction"],
-      "dx,dy,dz: height direction (surface_critical, default 0,0,1), line direction (surface_line), "
-      "in-plane direction (curve_critical; its component in the plane is used), silhouette direction "
-      "(silhouette_plane, silhouette_critical)")
-      ->type_name("DX,DY,DZ");
-  o->parameter_options["--direction2"] = sub->add_option(
-      "--direction2", o->parameters["--direction2"],
-      "dx,dy,dz: direction d' of the critical points of the silhouette (silhouette_critical)")
-      ->type_name("DX,DY,DZ");
-  o->parameter_options["--point"] =
-      sub->add_option("--point", o->parameters["--point"],
-                      "px,py,pz: a point of the line (surface_line); the line is clipped to the box")
-          ->type_name("PX,PY,PZ");
-  o->parameter_options["--plane-origin"] = sub->add_option(
-      "--plane-origin", o->parameters["--plane-origin"],
-      "ox,oy,oz: a point of the plane (surface_plane_contact, curve_critical, silhouette_plane); the domain is the "
-      "polygon plane & box")
-      ->type_name("OX,OY,OZ");
-  o->parameter_options["--plane-normal"] =
-      sub->add_option("--plane-normal", o->parameters["--plane-normal"], "nx,ny,nz: the plane's normal (non-zero)")
-      ->type_name("NX,NY,NZ");
+  for (QueryOption option : all_query_options) {
+    // The help of an option: its kind, and what it means to each primitive that reads it.
+    std::string help = is_position(option) ? "x,y,z: a point" : "dx,dy,dz: a non-zero direction";
+    std::string uses;
+    for (const PrimitiveInfo& info : primitive_registry()) {
+      for (const OptionUse& use : info.options) {
+        if (use.option == option) uses += (uses.empty() ? "" : "; ") + info.name + ": " + use.meaning;
+      }
+    }
+    help += " (" + (uses.empty() ? std::string("read by no primitive") : uses) + ")";
+    const std::string flag = option_flag(option);
+    o->parameter_options[flag] =
+        sub->add_option(flag, o->parameters[flag], help)->type_name(is_position(option) ? "X,Y,Z" : "DX,DY,DZ");
+  }
   sub->add_option("--solver", o->request.solver,
-                  "subdivision (certified interval subdivision; the univariate isolator for surface_line) "
+                  "subdivision (certified interval subdivision; the univariate isolator for a line) "
                   "or homotopy (total-degree homotopy, polynomial E and square systems only)")
       ->capture_default_str()
       ->type_name("SOLVER");

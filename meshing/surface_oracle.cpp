@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
-#include <sstream>
 
 #include "common/errors.h"
 #include "common/tolerances.h"
@@ -15,44 +14,44 @@
 #include "solvers/univariate_isolator.h"
 #include "symbolic/compiled_system.h"
 #include "symbolic/line_polynomial.h"
-#include "symbolic/primitives.h"
+#include "solvers/primitive_query.h"
+#include "solvers/primitive_registry.h"
 
 namespace delmesh {
 
 using namespace detail;
 
-std::ostream& operator<<(std::ostream& out, Primitive primitive) {
-  switch (primitive) {
-    case Primitive::surface_critical: return out << "surface_critical";
-    case Primitive::surface_line: return out << "surface_line";
-    case Primitive::surface_plane_contact: return out << "surface_plane_contact";
-    case Primitive::curve_critical: return out << "curve_critical";
-    case Primitive::silhouette_plane: return out << "silhouette_plane";
-    case Primitive::silhouette_critical: return out << "silhouette_critical";
-  }
-  return out << "unknown";
+namespace {
+
+//! The registry index of a primitive the oracle has a method for.
+std::size_t registry_index(const std::string& name) {
+  const auto& registry = primitive_registry();
+  for (std::size_t i = 0; i < registry.size(); ++i)
+    if (registry[i].name == name) return i;
+  throw PreconditionViolation("the primitive registry has no " + name + ", which the mesher uses");
 }
+
+}  // namespace
 
 struct SurfaceOracle::Impl {
   Surface surface;
-  std::vector<PrimitiveSystem> systems;   // in Primitive order
-  std::vector<CompiledSystem> compiled;   // in Primitive order
-  std::vector<std::vector<int>> degrees;  // for homotopy (square polynomial systems), else empty
+  std::vector<CompiledPrimitive> primitives;  // in registry order
+  std::vector<std::vector<int>> degrees;      // for homotopy (square polynomial systems), else empty
   std::unique_ptr<LinePolynomial> line_polynomial;
   std::unique_ptr<CompiledSystem> gradient;  // E with its Jacobian = ∇E
   std::mutex statistics_mutex;                 // statistics updates from concurrent calls
+  // The registry indices of the primitives with a method of their own.
+  std::size_t surface_critical = registry_index("surface_critical"), surface_line = registry_index("surface_line"),
+              surface_plane_contact = registry_index("surface_plane_contact"),
+              curve_critical = registry_index("curve_critical"), silhouette_plane = registry_index("silhouette_plane"),
+              silhouette_critical = registry_index("silhouette_critical");
 
   // The degrees cost a symbolic expansion of every system (minutes for a degree-12 E), so they
   // are computed only for the homotopy backend, the one that reads them.
   Impl(const Surface& s, bool with_degrees) : surface(s) {
-    systems.push_back(surface_critical_system(s));
-    systems.push_back(surface_line_system(s));
-    systems.push_back(surface_plane_contact_system(s));
-    systems.push_back(curve_critical_system(s));
-    systems.push_back(silhouette_plane_system(s));
-    systems.push_back(silhouette_critical_system(s));
-    for (const auto& sys : systems) {
-      compiled.emplace_back(sys);
+    for (const PrimitiveInfo& row : primitive_registry()) {
+      primitives.emplace_back(row.build(s));
+      const PrimitiveSystem& sys = primitives.back().system;
       std::vector<int> deg;
       if (with_degrees && s.is_polynomial() && sys.is_square()) {
         try {
@@ -71,7 +70,10 @@ struct SurfaceOracle::Impl {
 };
 
 SurfaceOracle::SurfaceOracle(const Surface& surface, const Box3& box, SolverBackend backend)
-    : impl_(std::make_unique<Impl>(surface, backend == SolverBackend::homotopy)), box_(box), backend_(backend) {}
+    : impl_(std::make_unique<Impl>(surface, backend == SolverBackend::homotopy)),
+      box_(box),
+      backend_(backend),
+      stats_(impl_->primitives.size()) {}
 SurfaceOracle::~SurfaceOracle() = default;
 SurfaceOracle::SurfaceOracle(SurfaceOracle&&) noexcept = default;
 SurfaceOracle& SurfaceOracle::operator=(SurfaceOracle&&) noexcept = default;
@@ -89,21 +91,22 @@ double SurfaceOracle::seconds_left() const {
   return std::max(left, std::numeric_limits<double>::min());
 }
 
-void SurfaceOracle::count_fallback(Primitive primitive) {
+void SurfaceOracle::count_fallback(std::size_t primitive) {
   if (backend_ != SolverBackend::homotopy) return;
   const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
-  ++stats_[static_cast<int>(primitive)].homotopy_fallbacks;
+  ++stats_[primitive].homotopy_fallbacks;
 }
 
-SolveResult SurfaceOracle::finish(Primitive primitive, SolveResult result,
+SolveResult SurfaceOracle::finish(std::size_t primitive, const std::vector<double>& parameters, SolveResult result,
                                   std::chrono::steady_clock::time_point start) {
   // Only roots inside the domain count; the solver classifies them.
   std::vector<CertifiedRoot> inside;
   for (auto& r : result.roots)
     if (r.inside_domain) inside.push_back(std::move(r));
   result.roots = std::move(inside);
+  drop_spurious_roots(impl_->primitives[primitive], parameters, result);
   const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
-  auto& s = stats_[static_cast<int>(primitive)];
+  auto& s = stats_[primitive];
   ++s.calls;
   s.certified_roots += result.roots.size();
   s.undecided += result.undecided.size();
@@ -113,10 +116,10 @@ SolveResult SurfaceOracle::finish(Primitive primitive, SolveResult result,
   return result;
 }
 
-SolveResult SurfaceOracle::solve_square(Primitive primitive, const std::vector<double>& parameters,
+SolveResult SurfaceOracle::solve_square(std::size_t primitive, const std::vector<double>& parameters,
                                         const Domain& domain, std::size_t box_budget) {
-  const int index = static_cast<int>(primitive);
-  const auto& sys = impl_->compiled[index];
+  const std::size_t index = primitive;
+  const auto& sys = impl_->primitives[index].compiled;
   if (backend_ == SolverBackend::homotopy && !impl_->degrees[index].empty()) {
     HomotopyOptions options;
     options.seed = seed_;
@@ -138,55 +141,79 @@ SolveResult SurfaceOracle::solve_square(Primitive primitive, const std::vector<d
   return solve_subdivision(sys, parameters, domain, options);
 }
 
+SolveResult SurfaceOracle::solve_over_determined(std::size_t primitive, const std::vector<double>& parameters,
+                                                 const Domain& domain, std::size_t box_budget) {
+  SubdivisionOptions options;
+  options.box_budget = box_budget;
+  options.exclusion_mode = true;
+  options.time_limit_seconds = seconds_left();
+  count_fallback(primitive);
+  return solve_subdivision(impl_->primitives[primitive].compiled, parameters, domain, options);
+}
+
+SolveResult SurfaceOracle::solve(const std::string& primitive, const std::vector<double>& parameters,
+                                 const Domain& domain, std::size_t box_budget) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto& registry = primitive_registry();
+  const std::size_t index =
+      static_cast<std::size_t>(&find_primitive(primitive) - registry.data());  // throws for unknown names
+  const PrimitiveSystem& system = impl_->primitives[index].system;
+  if (system.n_unknowns() == 1) throw PreconditionViolation("SurfaceOracle::solve: use surface_line() for " + primitive);
+  if (parameters.size() != system.n_parameters()) {
+    throw PreconditionViolation("SurfaceOracle::solve: " + std::to_string(parameters.size()) + " parameters given, " +
+                                primitive + " has " + std::to_string(system.n_parameters()));
+  }
+  SolveResult result = system.is_square() ? solve_square(index, parameters, domain, box_budget)
+                                          : solve_over_determined(index, parameters, domain, box_budget);
+  return finish(index, parameters, std::move(result), start);
+}
+
 SolveResult SurfaceOracle::surface_line(const Vec3& p, const Vec3& v, double t0, double t1) {
   const auto start = std::chrono::steady_clock::now();
   UnivariateOptions options;
   options.box_budget = tolerances::mesher_box_budget_1d;
   options.time_limit_seconds = seconds_left();
-  auto r = isolate_line_roots(impl_->compiled[1], impl_->line_polynomial.get(), p, v, t0, t1, options);
-  return finish(Primitive::surface_line, std::move(r), start);
+  const std::size_t index = impl_->surface_line;
+  auto r = isolate_line_roots(impl_->primitives[index].compiled, impl_->line_polynomial.get(), p, v, t0, t1, options);
+  return finish(index, {p[0], p[1], p[2], v[0], v[1], v[2]}, std::move(r), start);
 }
 
 SolveResult SurfaceOracle::surface_critical(const Vec3& d, const Domain& domain, std::size_t box_budget) {
   const auto start = std::chrono::steady_clock::now();
   const auto frame = orthonormal_frame(d);
   std::vector<double> params{frame.a[0], frame.a[1], frame.a[2], frame.b[0], frame.b[1], frame.b[2]};
-  return finish(Primitive::surface_critical, solve_square(Primitive::surface_critical, params, domain, box_budget), start);
+  const std::size_t index = impl_->surface_critical;
+  return finish(index, params, solve_square(index, params, domain, box_budget), start);
 }
 
 SolveResult SurfaceOracle::surface_plane_contact(const Vec3& o, const Vec3& a, const Vec3& b,
                                                  const Domain& domain) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> params{o[0], o[1], o[2], a[0], a[1], a[2], b[0], b[1], b[2]};
-  SubdivisionOptions options;
-  options.box_budget = tolerances::mesher_box_budget_2d;
-  options.exclusion_mode = true;
-  options.time_limit_seconds = seconds_left();
-  count_fallback(Primitive::surface_plane_contact);
-  auto r = solve_subdivision(impl_->compiled[2], params, domain, options);
-  return finish(Primitive::surface_plane_contact, std::move(r), start);
+  const std::size_t index = impl_->surface_plane_contact;
+  return finish(index, params, solve_over_determined(index, params, domain, tolerances::mesher_box_budget_2d), start);
 }
 
 SolveResult SurfaceOracle::curve_critical(const Vec3& o, const Vec3& a, const Vec3& b, const Domain& domain) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> params{o[0], o[1], o[2], a[0], a[1], a[2], b[0], b[1], b[2]};
-  return finish(Primitive::curve_critical,
-                solve_square(Primitive::curve_critical, params, domain, tolerances::mesher_box_budget_2d), start);
+  const std::size_t index = impl_->curve_critical;
+  return finish(index, params, solve_square(index, params, domain, tolerances::mesher_box_budget_2d), start);
 }
 
 SolveResult SurfaceOracle::silhouette_plane(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& d,
                                             const Domain& domain) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> params{o[0], o[1], o[2], a[0], a[1], a[2], b[0], b[1], b[2], d[0], d[1], d[2]};
-  return finish(Primitive::silhouette_plane,
-                solve_square(Primitive::silhouette_plane, params, domain, tolerances::mesher_box_budget_2d), start);
+  const std::size_t index = impl_->silhouette_plane;
+  return finish(index, params, solve_square(index, params, domain, tolerances::mesher_box_budget_2d), start);
 }
 
 SolveResult SurfaceOracle::silhouette_critical(const Vec3& d, const Vec3& d2, const Domain& domain) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> params{d[0], d[1], d[2], d2[0], d2[1], d2[2]};
-  return finish(Primitive::silhouette_critical,
-                solve_square(Primitive::silhouette_critical, params, domain, tolerances::mesher_box_budget_3d), start);
+  const std::size_t index = impl_->silhouette_critical;
+  return finish(index, params, solve_square(index, params, domain, tolerances::mesher_box_budget_3d), start);
 }
 
 bool SurfaceOracle::prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) {
@@ -240,6 +267,10 @@ std::optional<Vec3> SurfaceOracle::project(const Vec3& start) const {
   return std::nullopt;
 }
 
+const PrimitiveStatistics& SurfaceOracle::statistics(const std::string& primitive) const {
+  return stats_[static_cast<std::size_t>(&find_primitive(primitive) - primitive_registry().data())];
+}
+
 nlohmann::json SurfaceOracle::statistics_json() const {
   const auto counts = [](const PrimitiveStatistics& s) {
     return nlohmann::json{{"calls", s.calls},
@@ -255,11 +286,10 @@ nlohmann::json SurfaceOracle::statistics_json() const {
   };
   nlohmann::json per = nlohmann::json::object();
   PrimitiveStatistics total;
-  for (int i = 0; i < primitive_count; ++i) {
+  const auto& registry = primitive_registry();
+  for (std::size_t i = 0; i < stats_.size(); ++i) {
     const auto& s = stats_[i];
-    std::ostringstream name;
-    name << static_cast<Primitive>(i);
-    per[name.str()] = counts(s);
+    per[registry[i].name] = counts(s);
     total.calls += s.calls;
     total.certified_roots += s.certified_roots;
     total.undecided += s.undecided;

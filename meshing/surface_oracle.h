@@ -1,7 +1,9 @@
 #pragma once
 //! \file surface_oracle.h
-//! The numerical primitives of §5.2 for one surface Σ = {E = 0} inside a box B, compiled once,
-//! behind one interface used by every check of the mesher: a solver backend (certified
+//! The numerical primitives for one surface Σ = {E = 0} inside a box B, compiled once, behind
+//! one interface used by every check of the mesher.  The primitives are those of the registry
+//! (solvers/primitive_registry.h), in its order: the six of §5.2 have a method each below, and
+//! any primitive can be solved by name with solve().  The oracle has a solver backend (certified
 //! subdivision, or homotopy for square polynomial systems), per-call budgets from tolerances.h,
 //! the run's controls (seed and deadline, set_run_controls()), and statistics (calls, certified
 //! roots, undecided regions, boxes, seconds, homotopy fallbacks and solves cut by the deadline per
@@ -29,7 +31,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
-#include <ostream>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -43,18 +45,6 @@
 namespace delmesh {
 
 using Vec3 = std::array<double, 3>;
-
-//! The six primitives of §5.2, in the paper's order.
-enum class Primitive {
-  surface_critical,
-  surface_line,
-  surface_plane_contact,
-  curve_critical,
-  silhouette_plane,
-  silhouette_critical
-};
-std::ostream& operator<<(std::ostream& out, Primitive primitive);
-inline constexpr int primitive_count = 6;
 
 struct PrimitiveStatistics {
   std::size_t calls = 0, certified_roots = 0, undecided = 0, boxes = 0;
@@ -70,7 +60,8 @@ struct PrimitiveStatistics {
 
 class SurfaceOracle {
  public:
-  //! Compiles the six primitive systems of `surface`.  Precondition: box is non-empty.
+  //! Compiles the system of every primitive of the registry for `surface`.  Precondition: box is
+  //! non-empty; the registry holds the six primitives of §5.2 (else PreconditionViolation).
   SurfaceOracle(const Surface& surface, const Box3& box, SolverBackend backend);
   ~SurfaceOracle();
   SurfaceOracle(SurfaceOracle&&) noexcept;
@@ -106,6 +97,15 @@ class SurfaceOracle {
   //! SilhouetteCritical: critical points of J_d in direction d2 over a 3-D polytope.
   SolveResult silhouette_critical(const Vec3& d, const Vec3& d2, const Domain& domain);
 
+  //! The primitive called `primitive` (a registry name) with the given parameters (in the order
+  //! of its system's parameters) over `domain`: a square system as the six above are (homotopy
+  //! under that backend, else subdivision with box_budget), an over-determined one by
+  //! subdivision in exclusion mode.  Spurious roots are dropped (drop_spurious_roots).  Throws
+  //! InvalidInput for an unknown name, PreconditionViolation for a line system (use
+  //! surface_line()) or a wrong number of parameters.
+  SolveResult solve(const std::string& primitive, const std::vector<double>& parameters, const Domain& domain,
+                    std::size_t box_budget);
+
   //! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P, P = domain in the chart (solvers/gradient_cone.h):
   //! true is a proof, false proves nothing.  Counted under `cone_certificates`.
   bool prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w);
@@ -126,7 +126,10 @@ class SurfaceOracle {
   //! tolerance; nothing if it does not converge or leaves the box.
   std::optional<Vec3> project(const Vec3& x) const;
 
-  const std::array<PrimitiveStatistics, primitive_count>& statistics() const { return stats_; }
+  //! Per primitive, in the registry's order.
+  const std::vector<PrimitiveStatistics>& statistics() const { return stats_; }
+  //! The statistics of the primitive called `primitive`; throws InvalidInput for an unknown name.
+  const PrimitiveStatistics& statistics(const std::string& primitive) const;
   //! {systems, certified_roots, undecided, boxes, seconds, homotopy_fallbacks, time_limited,
   //!  homotopy_paths, homotopy_near_real, homotopy_diverging_near_domain, per_primitive: {name:
   //!  {the same counts for that primitive}}, cone_certificates: {attempts, proved, boxes, seconds},
@@ -134,13 +137,17 @@ class SurfaceOracle {
   nlohmann::json statistics_json() const;
 
  private:
-  SolveResult finish(Primitive primitive, SolveResult result, std::chrono::steady_clock::time_point start);
-  SolveResult solve_square(Primitive primitive, const std::vector<double>& parameters, const Domain& domain,
+  //! Keeps the roots inside the domain that no side condition disproves, and counts the call.
+  SolveResult finish(std::size_t primitive, const std::vector<double>& parameters, SolveResult result,
+                     std::chrono::steady_clock::time_point start);
+  SolveResult solve_square(std::size_t primitive, const std::vector<double>& parameters, const Domain& domain,
                            std::size_t box_budget);
+  SolveResult solve_over_determined(std::size_t primitive, const std::vector<double>& parameters,
+                                    const Domain& domain, std::size_t box_budget);
   //! time_limit_seconds for a subdivision solve or univariate isolation started now: 0 without a
   //! deadline, else the time left (at least the least positive double).
   double seconds_left() const;
-  void count_fallback(Primitive primitive);
+  void count_fallback(std::size_t primitive);
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
@@ -148,7 +155,7 @@ class SurfaceOracle {
   SolverBackend backend_;
   std::uint64_t seed_ = 1;
   std::optional<std::chrono::steady_clock::time_point> deadline_;
-  std::array<PrimitiveStatistics, primitive_count> stats_{};
+  std::vector<PrimitiveStatistics> stats_;
   struct ConeStatistics {
     std::size_t attempts = 0, proved = 0, boxes = 0;
     double seconds = 0;

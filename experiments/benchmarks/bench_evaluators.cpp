@@ -21,7 +21,7 @@
 #include "experiments/experiment_support.h"
 #include "symbolic/catalog.h"
 #include "symbolic/compiled_system.h"
-#include "symbolic/primitives.h"
+#include "solvers/primitives.h"
 
 using namespace delmesh;
 

@@ -26,7 +26,7 @@
 #include "solvers/query_geometry.h"
 #include "solvers/subdivision_solver.h"
 #include "symbolic/catalog.h"
-#include "symbolic/primitives.h"
+#include "solvers/primitives.h"
 
 using namespace delmesh;
 

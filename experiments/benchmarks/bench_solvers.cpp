@@ -4,9 +4,13 @@
 //!     at degree 4–10: E = Π_i (x − r_i) + y² + z² − 1/100 with d random r_i ∈ [−0.9, 0.9], on
 //!     random lines near the x axis, t ∈ [0, 1] covering x ∈ [−1.2, 1.2] (up to d real roots).
 //!     Target (issue 3): ≤ 3 µs per polynomial at degree 10.
-//!  2. Each of the six primitives of §5.2 on torus, genus2, tanglecube with random parameters over
-//!     a domain the size of a typical Voronoi cell: a box (3-D) or square (plane) of side `side`
-//!     around a random surface point (found by isolating a random line through the catalog box).
+//!  2. Each primitive of the registry (solvers/primitive_registry.h) on torus, genus2, tanglecube
+//!     with random options over a domain the size of a typical Voronoi cell: around a random
+//!     surface point x (found by isolating a random line through the catalog box), the box is the
+//!     cube of side `side` centred at x; every position option (--point, --plane-origin) is x and
+//!     every direction option a random unit vector; the row's make_query turns them into the
+//!     parameters and the domain (the cube, the line or the polygon plane ∩ cube), and
+//!     solve_query solves it (the univariate isolator for a line, subdivision otherwise).
 //!
 //!   bench_solvers [--queries N] [--side S] [--seed K] [--taylor-forms automatic|always|never] [--csv FILE]
 
@@ -25,12 +29,13 @@
 #include <CLI/CLI.hpp>
 
 #include "experiments/experiment_support.h"
+#include "solvers/primitive_registry.h"
+#include "solvers/primitives.h"
 #include "solvers/query_geometry.h"
 #include "solvers/subdivision_solver.h"
 #include "solvers/univariate_isolator.h"
 #include "symbolic/catalog.h"
 #include "symbolic/line_polynomial.h"
-#include "symbolic/primitives.h"
 
 using namespace delmesh;
 
@@ -146,10 +151,10 @@ int main(int argc, char** argv) {
                 std::to_string(stats.undecided), stats.status_text()});
   }
 
-  // ---- 2. the six primitives over Voronoi-cell-sized domains ----
+  // ---- 2. every primitive of the registry over Voronoi-cell-sized domains ----
   std::printf("\nprimitives over a domain of side %.3g around a random surface point (%d queries each)\n", side,
               queries);
-  std::printf("%-11s %-22s %12s %12s %8s %10s   %s\n", "surface", "primitive", "median_us", "median_box", "roots",
+  std::printf("%-11s %-25s %12s %12s %8s %10s   %s\n", "surface", "primitive", "median_us", "median_box", "roots",
               "undecided", "statuses");
   for (const std::string name : {"torus", "genus2", "tanglecube"}) {
     const CatalogEntry& entry = catalog_entry(name);
@@ -169,39 +174,19 @@ int main(int argc, char** argv) {
     }
     const double h = 0.5 * side;
     for (const PrimitiveInfo& info : primitive_registry()) {
-      const PrimitiveSystem primitive = info.build(surface);
-      const CompiledSystem system(primitive);
+      const CompiledPrimitive primitive(info.build(surface));
+      QuerySolveOptions options;
+      options.taylor_forms = taylor_forms;
       Stats stats;
       for (const Vec3& x : points) {
-        const Vec3 d = random_unit(rng), d2 = random_unit(rng);
-        const OrthonormalFrame frame = orthonormal_frame(d);
-        SolveResult r;
+        QueryOptions given;
+        for (const OptionUse& use : info.options) given.values[use.option] = is_position(use.option) ? x : random_unit(rng);
+        const Box3 cube{{x[0] - h, x[1] - h, x[2] - h}, {x[0] + h, x[1] + h, x[2] + h}};
         const auto start = Clock::now();
-        if (info.name == "surface_line") {
-          r = isolate_line_roots(line, &polynomial, x, d, -h, h);
-        } else if (primitive.n_unknowns() == 3) {
-          const Domain domain = Domain::from_box({{x[0] - h, x[0] + h}, {x[1] - h, x[1] + h}, {x[2] - h, x[2] + h}});
-          std::vector<double> params;
-          if (info.name == "surface_critical")
-            params = {frame.a[0], frame.a[1], frame.a[2], frame.b[0], frame.b[1], frame.b[2]};
-          else
-            params = {d[0], d[1], d[2], d2[0], d2[1], d2[2]};
-          SubdivisionOptions options;
-          options.taylor_forms = taylor_forms;
-          r = solve_subdivision(system, params, domain, options);
-        } else {
-          // A plane through x with normal d, frame (a, b); the square [−h, h]² in (u, v).
-          std::vector<double> params = {x[0], x[1], x[2], frame.a[0], frame.a[1], frame.a[2],
-                                        frame.b[0], frame.b[1], frame.b[2]};
-          if (primitive.n_parameters() == 12) params.insert(params.end(), {d2[0], d2[1], d2[2]});
-          SubdivisionOptions options;
-          options.exclusion_mode = !primitive.is_square();
-          options.taylor_forms = taylor_forms;
-          r = solve_subdivision(system, params, Domain::from_box({{-h, h}, {-h, h}}), options);
-        }
+        const SolveResult r = solve_query(primitive, info.query(given, cube), options, &polynomial);
         stats.add(r, std::chrono::duration<double>(Clock::now() - start).count());
       }
-      std::printf("%-11s %-22s %12.1f %12.0f %8zu %10zu   %s\n", name.c_str(), info.name.c_str(),
+      std::printf("%-11s %-25s %12.1f %12.0f %8zu %10zu   %s\n", name.c_str(), info.name.c_str(),
                   1e6 * median(stats.seconds), median(stats.boxes), stats.roots, stats.undecided,
                   stats.status_text().c_str());
       if (out)

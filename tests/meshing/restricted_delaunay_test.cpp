@@ -43,12 +43,12 @@ BOOST_AUTO_TEST_CASE(voronoi_vertex_on_the_surface_follows_section_5_1) {
 BOOST_AUTO_TEST_CASE(octahedron_is_its_own_restricted_triangulation) {
   CheckFixture f(test::unit_sphere, 1.5, {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
   BOOST_TEST(f.restricted.triangles().size() == 8u);
-  const auto calls = f.oracle.statistics()[static_cast<int>(Primitive::surface_line)].calls;
+  const auto calls = f.oracle.statistics("surface_line").calls;
   (void)f.restricted.triangles();
-  BOOST_TEST(f.oracle.statistics()[static_cast<int>(Primitive::surface_line)].calls == calls);  // cached
+  BOOST_TEST(f.oracle.statistics("surface_line").calls == calls);  // cached
   f.restricted.invalidate({0, 2, 4});
   (void)f.restricted.triangles();
-  BOOST_TEST(f.oracle.statistics()[static_cast<int>(Primitive::surface_line)].calls == calls + 1);
+  BOOST_TEST(f.oracle.statistics("surface_line").calls == calls + 1);
 }
 
 // An insertion shrinks the dual edges of its cavity's boundary; their records are restricted from

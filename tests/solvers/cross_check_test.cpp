@@ -16,7 +16,7 @@
 #include "solvers/kostlan_system.h"
 #include "solvers/query_geometry.h"
 #include "solvers/subdivision_solver.h"
-#include "symbolic/primitives.h"
+#include "solvers/primitives.h"
 
 using namespace delmesh;
 

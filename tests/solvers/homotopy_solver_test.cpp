@@ -12,7 +12,7 @@
 #include "solvers/kostlan_system.h"
 #include "solvers/query_geometry.h"
 #include "symbolic/catalog.h"
-#include "symbolic/primitives.h"
+#include "solvers/primitives.h"
 
 using namespace delmesh;
 using GiNaC::ex;

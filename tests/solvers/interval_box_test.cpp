@@ -8,7 +8,7 @@
 
 #include "solvers/krawczyk.h"
 #include "solvers/univariate_isolator.h"
-#include "symbolic/primitives.h"
+#include "solvers/primitives.h"
 #include "symbolic/scalar_traits.h"
 
 using namespace delmesh;

@@ -14,7 +14,7 @@
 #include "solvers/univariate_isolator.h"
 #include "symbolic/line_polynomial.h"
 #include "symbolic/catalog.h"
-#include "symbolic/primitives.h"
+#include "solvers/primitives.h"
 
 using namespace delmesh;
 

@@ -9,7 +9,7 @@
 
 #include "common/errors.h"
 #include "symbolic/catalog.h"
-#include "symbolic/primitives.h"
+#include "solvers/primitives.h"
 
 using namespace delmesh;
 

@@ -11,7 +11,7 @@
 
 #include "common/errors.h"
 #include "symbolic/catalog.h"
-#include "symbolic/primitives.h"
+#include "solvers/primitives.h"
 #include "symbolic/scalar_traits.h"
 #include "tests/symbolic/exact_rational.h"
 

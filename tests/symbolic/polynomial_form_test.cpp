@@ -6,7 +6,7 @@
 
 #include "common/tolerances.h"
 #include "symbolic/catalog.h"
-#include "symbolic/primitives.h"
+#include "solvers/primitives.h"
 #include "symbolic/scalar_traits.h"
 #include "tests/symbolic/exact_rational.h"
 

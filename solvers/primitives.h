@@ -1,7 +1,8 @@
 #pragma once
 //! \file primitives.h
-//! The six numerical primitives of §5.2, each derived once per surface as a PrimitiveSystem.
-//! Parameter conventions (all in world coordinates, doubles supplied per query):
+//! The six numerical primitives of §5.2: their builders, and their rows of the registry
+//! (builtin_primitives(), solvers/primitive_registry.h), both in primitives.cpp.  Parameter
+//! conventions (all in world coordinates, doubles supplied per query):
 //!
 //! | primitive              | unknowns | parameters                         | equations |
 //! |------------------------|----------|------------------------------------|-----------|
@@ -16,13 +17,11 @@
 //! by component (a0 a1 a2 b0 b1 b2, p0 … v2, o0 … b2, d0 d1 d2), except d' whose components are
 //! e0 e1 e2.  world_point is (x, y, z) for the 3 × 3 systems, p + t v and o + u a + v b otherwise.
 //! Every builder derives fresh parameter and reduced-unknown symbols; x, y, z are the shared
-//! coordinate symbols of surface.h.  Adding a primitive means adding one builder function and
-//! its row in the registry, both in primitives.cpp.
+//! coordinate symbols of surface.h.  The functions below are build_primitive(name, surface) for
+//! each of the six (the system with its Jacobian, ready to compile), for the tests and
+//! benchmarks that use one primitive directly; a new primitive needs no such function.
 
-#include <functional>
-#include <string>
-#include <vector>
-
+#include "solvers/primitive_registry.h"
 #include "symbolic/primitive_system.h"
 #include "symbolic/surface.h"
 
@@ -43,17 +42,5 @@ PrimitiveSystem curve_critical_system(const Surface& surface);
 PrimitiveSystem silhouette_plane_system(const Surface& surface);
 //! SilhouetteCritical(Σ, d, d'): critical points of J_d in direction d'.  §5.2, Lemma 4.14.
 PrimitiveSystem silhouette_critical_system(const Surface& surface);
-
-using PrimitiveBuilder = std::function<PrimitiveSystem(const Surface&)>;
-//! One row of the registry: a primitive of §5.2 and its builder.
-struct PrimitiveInfo {
-  std::string name;        //!< e.g. "surface_line" (the builder's name without "_system")
-  PrimitiveBuilder build;  //!< derives the primitive's system for a surface
-  std::string summary;     //!< one line: what it solves, its equations, unknowns and parameters
-};
-//! The registry of primitives, in the order of §5.2.
-const std::vector<PrimitiveInfo>& primitive_registry();
-//! Builds the primitive called name; throws InvalidInput listing the known names otherwise.
-PrimitiveSystem build_primitive(const std::string& name, const Surface& surface);
 
 }  // namespace delmesh

@@ -184,14 +184,7 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
   j["solver"] = oracle.statistics_json();
   j["solver"]["unresolved_edge_regions"] = certification.unresolved_edge_regions;
   j["unsettled"] = unsettled_json(certification.unsettled, defects);
-  nlohmann::json per_check = nlohmann::json::object();
-  for (CheckKind k : {CheckKind::vor_edge, CheckKind::facet_contact, CheckKind::topo_disk, CheckKind::facet_cycle,
-                      CheckKind::silhouette, CheckKind::quality, CheckKind::smooth}) {
-    std::ostringstream name;
-    name << k;
-    per_check[name.str()] = refinement.seconds(k);
-  }
-  j["seconds_per_check"] = per_check;
+  j["seconds_per_check"] = refinement.seconds_json();
   j["checks"] = refinement.checks_json();
   j["seconds_insertion"] = refinement.seconds_insertion();
   j["edge_records"] = {{"solved", refinement.restricted().records_solved()},

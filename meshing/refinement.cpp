@@ -26,22 +26,22 @@ EdgeKey as_edge(const std::array<VertexId, 3>& s) { return {s[0], s[1]}; }
 std::vector<Refinement::Step> Refinement::make_table() {
   // Quality and Smooth start disabled (enable_geometry()).
   std::vector<Step> table(step_count);
-  table[vor_edge_step] = {CheckKind::vor_edge, "vor_edge", [](Refinement& r, const Simplex& s) -> CheckResult {
+  table[vor_edge_step] = {CheckKind::vor_edge, [](Refinement& r, const Simplex& s) -> CheckResult {
                             const TriangleKey t = as_triangle(s);
                             if (!r.current(t)) return {};
                             return vor_edge_witness(r.restricted_, t);
                           }, {}, true};
-  table[facet_contact_step] = {CheckKind::facet_contact, "facet_contact",
+  table[facet_contact_step] = {CheckKind::facet_contact,
                                [](Refinement& r, const Simplex& s) -> CheckResult {
                                  const EdgeKey e = as_edge(s);
                                  if (!r.current(e)) return {};
                                  return facet_contact_witness(r.restricted_, e);
                                }, {}, true};
-  table[topo_disk_step] = {CheckKind::topo_disk, "topo_disk", [](Refinement& r, const Simplex& s) -> CheckResult {
+  table[topo_disk_step] = {CheckKind::topo_disk, [](Refinement& r, const Simplex& s) -> CheckResult {
                              if (!r.del_.contains(s[0])) return {};
                              return topo_disk_witness(r.restricted_, s[0]);
                            }, {}, true};
-  table[facet_cycle_step] = {CheckKind::facet_cycle, "facet_cycle",
+  table[facet_cycle_step] = {CheckKind::facet_cycle,
                              [](Refinement& r, const Simplex& s) -> CheckResult {
                                const EdgeKey e = as_edge(s);
                                if (!r.current(e)) return {};
@@ -51,12 +51,12 @@ std::vector<Refinement::Step> Refinement::make_table() {
                                return result;
                              }, {}, true};
   // Step (e) runs only once (a)–(d) have nothing queued: the facets of V_p are clean.
-  table[silhouette_step] = {CheckKind::silhouette, "silhouette",
+  table[silhouette_step] = {CheckKind::silhouette,
                             [](Refinement& r, const Simplex& s) -> CheckResult {
                               if (!r.del_.contains(s[0])) return {};
                               return silhouette_witness(r.restricted_, s[0], /*facets_clean=*/true);
                             }, {}, true};
-  table[quality_step] = {CheckKind::quality, "quality", [](Refinement& r, const Simplex& s) -> CheckResult {
+  table[quality_step] = {CheckKind::quality, [](Refinement& r, const Simplex& s) -> CheckResult {
                            const TriangleKey t = as_triangle(s);
                            CheckResult result;
                            if (!r.current(t)) return result;
@@ -65,7 +65,7 @@ std::vector<Refinement::Step> Refinement::make_table() {
                            if (w) result.witnesses.push_back(*w);
                            return result;
                          }, {}, false};
-  table[smooth_step] = {CheckKind::smooth, "smooth", [](Refinement& r, const Simplex& s) -> CheckResult {
+  table[smooth_step] = {CheckKind::smooth, [](Refinement& r, const Simplex& s) -> CheckResult {
                           const TriangleKey t = as_triangle(s);
                           CheckResult result;
                           if (!r.current(t) || !r.restricted_.edge_record(t).restricted) return result;
@@ -272,7 +272,7 @@ std::optional<MeshStatus> Refinement::limit_reached(std::chrono::steady_clock::t
     std::ostringstream s;
     s << (steps_[quality_step].enabled ? "geometry" : "topology") << ": points " << del_.size() << ", queued";
     for (const auto& step : steps_)
-      if (step.enabled) s << ' ' << step.name << '=' << step.queue.size();
+      if (step.enabled) s << ' ' << step.kind << '=' << step.queue.size();
     limits_.progress(s.str());
   }
   if (limits_.interrupt && limits_.interrupt->load(std::memory_order_relaxed)) return MeshStatus::interrupted;
@@ -379,9 +379,18 @@ nlohmann::json Refinement::insertions_json() const {
   return j;
 }
 
-nlohmann::json Refinement::checks_json() const {
+nlohmann::json Refinement::checks_json() const { return per_step(checks_); }
+
+nlohmann::json Refinement::seconds_json() const { return per_step(seconds_); }
+
+template <class T>
+nlohmann::json Refinement::per_step(const std::array<T, check_kind_count>& counts) const {
   nlohmann::json j = nlohmann::json::object();
-  for (const auto& step : steps_) j[step.name] = checks_[static_cast<int>(step.kind)];
+  for (const auto& step : steps_) {
+    std::ostringstream name;
+    name << step.kind;
+    j[name.str()] = counts[static_cast<int>(step.kind)];
+  }
   return j;
 }
 

@@ -179,8 +179,10 @@ class Refinement {
 
   //! {seeds, vor_edge, …, size, seeds_deleted, rejected_witnesses}
   nlohmann::json insertions_json() const;
-  //! {vor_edge: n, …}: items examined per step.
+  //! {vor_edge: n, …}: items examined per step, keyed by the step's CheckKind.
   nlohmann::json checks_json() const;
+  //! {vor_edge: s, …}: seconds spent in each step's check, keyed by the step's CheckKind.
+  nlohmann::json seconds_json() const;
 
  private:
   //! A queued simplex: a vertex {v, −1, −1}, an edge {p, q, −1} or a triangle {p, q, r}, sorted.
@@ -210,10 +212,10 @@ class Refinement {
    private:
     std::vector<Simplex> heap_;
   };
-  //! One row of the table: the check, who it is counted for, what it examines.
+  //! One row of the table: the check, who it is counted for (its CheckKind also names it in the
+  //! progress line and the statistics), what it examines.
   struct Step {
     CheckKind kind;
-    const char* name;
     std::function<CheckResult(Refinement&, const Simplex&)> check;
     WorkQueue queue;
     bool enabled = true;
@@ -222,6 +224,9 @@ class Refinement {
                    quality_step, smooth_step, step_count };
 
   static std::vector<Step> make_table();
+  //! {name of the step's CheckKind: counts[kind]} for the steps of the table.
+  template <class T>
+  nlohmann::json per_step(const std::array<T, check_kind_count>& counts) const;
   std::optional<VertexId> insert_and_queue(const Witness& witness);
   //! Builds the facets of the edges xq of x's closed star and queues their checks; returns the
   //! neighbours q, ascending.

@@ -229,6 +229,10 @@ inline constexpr int singular_evidence_iterations = 100;
 //! w/16², … (w the undecided box's width), at most this many times: near a nearly degenerate
 //! critical point the interval Hessian is contractive only on boxes much smaller than w.
 inline constexpr int singular_evidence_krawczyk_attempts = 8;
+//! Remeshing a triangle mesh (meshing/input_mesh.h): the default domain box is the bounding box of
+//! the input's vertices with every side pushed out by this fraction of its diagonal, so that the
+//! surface lies well inside it and the clipped Voronoi cells of the samples reach beyond it.
+inline constexpr double input_mesh_box_margin = 0.1;
 //! The mesher reports progress at most this often (seconds).
 inline constexpr double progress_interval_seconds = 0.5;
 

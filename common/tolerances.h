@@ -233,6 +233,19 @@ inline constexpr int singular_evidence_krawczyk_attempts = 8;
 //! the input's vertices with every side pushed out by this fraction of its diagonal, so that the
 //! surface lies well inside it and the clipped Voronoi cells of the samples reach beyond it.
 inline constexpr double input_mesh_box_margin = 0.1;
+//! Remeshing a triangle mesh: the default termination floor (delmesh mesh --min-spacing) is this
+//! fraction of the input's median edge length.  A triangle mesh is not C², so Lemma 5.1's spacing
+//! bound does not hold at its creases and cone vertices; below the floor a witness is recorded
+//! instead of inserted.  A tenth of an input edge is far below the spacing the checks need on
+//! the input's smooth parts at the sizes Theorem 6.1's λ gives.
+inline constexpr double min_spacing_median_edge_fraction = 0.1;
+//! The statistics list the locations of at most this many witnesses below the termination floor
+//! (all are counted).
+inline constexpr std::size_t floor_locations_listed = 10;
+//! The mesh oracle (meshing/mesh_oracle.h): a point of a triangle mesh within this distance
+//! (relative to the box diagonal) of a vertex or an edge of its face gets that vertex's or edge's
+//! normal rather than the face's.
+inline constexpr double mesh_feature_relative_distance = 1e-12;
 //! The mesher reports progress at most this often (seconds).
 inline constexpr double progress_interval_seconds = 0.5;
 

@@ -32,7 +32,7 @@
 #include "meshing/input_validation.h"
 #include "meshing/restricted_delaunay.h"
 #include "meshing/silhouette.h"
-#include "meshing/surface_oracle.h"
+#include "meshing/implicit_oracle.h"
 #include "meshing/topo_disk.h"
 #include "meshing/vor_edge.h"
 
@@ -110,7 +110,7 @@ Certificate certify_mesh(const std::vector<Point3>& points, const std::vector<st
   }
   c.seconds_validation = validate_input(surface, box).seconds;
 
-  SurfaceOracle oracle(surface, box, SolverBackend::subdivision);
+  ImplicitOracle oracle(surface, box, SolverBackend::subdivision);
   oracle.set_run_controls(options.seed, std::nullopt);
   Delaunay del;
   std::vector<VertexId> id_of(points.size(), -1);

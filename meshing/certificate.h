@@ -118,7 +118,7 @@ struct [[nodiscard]] Certificate {
   double seconds = 0;                  //!< wall-clock time, validation included
   double seconds_validation = 0;
   std::array<double, check_kind_count> seconds_per_check{};
-  nlohmann::json solver;               //!< SurfaceOracle::statistics_json() of the certificate's solves
+  nlohmann::json solver;               //!< the oracle's statistics_json() of the certificate's solves
   std::uint64_t seed = 1;
 };
 

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <set>
 #include <sstream>
@@ -20,7 +21,7 @@
 #include "meshing/input_validation.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/sample_topology.h"
-#include "meshing/surface_oracle.h"
+#include "meshing/implicit_oracle.h"
 #include "meshing/theorem_bounds.h"
 #include "meshing/refinement.h"
 
@@ -100,22 +101,24 @@ nlohmann::json unsettled_json(const std::vector<Unsettled>& unsettled, const std
   return {{"count", unsettled.size()}, {"by_reason", by_reason}, {"regions", listed}, {"output_defects", defects}};
 }
 
-}  // namespace
-
-DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+void check_options(const Box3& box, const DelMeshOptions& options) {
   if (!(options.lambda > 0) || !(options.lambda < 1.0 / 3.0))
     throw InvalidInput("lambda must satisfy 0 < lambda < 1/3 (Theorem 6.1 covers lambda <= 0.06)");
   if (options.size_bound && !(*options.size_bound > 0)) throw InvalidInput("the size bound must be positive");
   if (options.max_points < 1) throw InvalidInput("max_points must be at least 1");
   if (options.time_limit_seconds < 0) throw InvalidInput("the time limit must be non-negative");
   if (options.threads < 0) throw InvalidInput("the number of threads must be non-negative (0: all)");
+  if (!(options.min_spacing >= 0) || !std::isfinite(options.min_spacing))
+    throw InvalidInput("the minimum spacing must be a non-negative number");
   for (int k = 0; k < 3; ++k)
     if (!(box.lo[k] < box.hi[k])) throw InvalidInput("the box is empty");
+}
 
-  const ValidationReport validation = validate_input(surface, box);
-  SurfaceOracle oracle(surface, box, options.solver);
+// The run on a validated input whose clock (time limit, seconds) started at `start`.
+DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double seconds_validation,
+                  std::chrono::steady_clock::time_point start) {
   RefinementLimits limits;
+  limits.min_spacing = options.min_spacing;
   limits.max_points = options.max_points;
   if (options.time_limit_seconds > 0)
     limits.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -129,6 +132,8 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
   MeshStatus status = sample_topology(refinement, seeds);
   const std::size_t topology_vertices = refinement.delaunay().size();
   const double topology_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const nlohmann::json topology_insertions = refinement.insertions_json();
+  const nlohmann::json topology_floor = refinement.floor_json();
   const bool smooth_enabled = options.lambda < 1.0 / 6.0;
   if (status == MeshStatus::complete && options.phase == MeshPhase::all) {
     refinement.enable_geometry(options.lambda, options.size_bound);
@@ -194,11 +199,31 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
   j["seed_undecided"] = seeds.undecided;
   j["seed"] = options.seed;
   j["threads"] = refinement.threads();
-  j["topology_phase"] = {{"vertices", topology_vertices}, {"seconds", topology_seconds}};
-  j["seconds_validation"] = validation.seconds;
+  j["topology_phase"] = {{"vertices", topology_vertices},
+                         {"seconds", topology_seconds},
+                         {"insertions", topology_insertions},
+                         {"min_spacing", topology_floor}};
+  j["seconds_validation"] = seconds_validation;
+  j["min_spacing"] = refinement.floor_json();
   j["points"] = refinement.delaunay().size();
   j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+}  // namespace
+
+DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  check_options(box, options);
+  const ValidationReport validation = validate_input(surface, box);
+  ImplicitOracle oracle(surface, box, options.solver);
+  return run(oracle, options, validation.seconds, start);
+}
+
+DelMeshResult del_mesh(SurfaceOracle& oracle, const DelMeshOptions& options, double seconds_validation) {
+  const auto start = std::chrono::steady_clock::now();
+  check_options(oracle.box(), options);
+  return run(oracle, options, seconds_validation, start);
 }
 
 }  // namespace delmesh

@@ -38,6 +38,10 @@ struct DelMeshOptions {
   MeshPhase phase = MeshPhase::all;
   SolverBackend solver = SolverBackend::subdivision;
   std::optional<double> size_bound;      //!< H: also refine triangles with Delaunay-ball radius > H
+  //! The termination floor: a witness closer than this (world units) to its nearest sample is
+  //! not inserted but recorded (statistics "min_spacing"), and the run is then uncertified.
+  //! 0: no floor.  Meant for surfaces that are not C² (Lemma 5.1's spacing argument needs C²).
+  double min_spacing = 0;
   std::size_t max_points = 200000;
   double time_limit_seconds = 0;         //!< 0: none
   std::uint64_t seed = 1;                //!< generic directions; same seed → same mesh
@@ -60,5 +64,11 @@ struct [[nodiscard]] DelMeshResult {
 //! Meshes Σ = {E = 0} ⊂ interior(box).  Throws InvalidInput if Σ is empty in the box, meets the
 //! box boundary, or is singular (∇E = 0 somewhere on Σ), or if options are out of range.
 DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOptions& options);
+
+class SurfaceOracle;
+//! Meshes the surface of `oracle` (any implementation of meshing/surface_oracle.h) in its box.
+//! The caller has validated the input (its seconds go to the statistics' seconds_validation);
+//! options.solver is not read (the oracle has its own backend).  Throws InvalidInput as above.
+DelMeshResult del_mesh(SurfaceOracle& oracle, const DelMeshOptions& options, double seconds_validation = 0);
 
 }  // namespace delmesh

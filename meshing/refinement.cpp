@@ -168,6 +168,12 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
       ++rejected_;
       return std::nullopt;
     }
+    if (d < limits_.min_spacing) {
+      // The termination floor: recorded, not inserted.
+      ++floor_hits_;
+      if (floor_locations_.size() < tolerances::floor_locations_listed) floor_locations_.push_back(w.point);
+      return std::nullopt;
+    }
   }
   InsertionChange change;
   const auto id = del_.insert(w.point, w.kind == CheckKind::seed, change, record.nearest);
@@ -377,6 +383,13 @@ nlohmann::json Refinement::insertions_json() const {
   j["seeds_deleted"] = seeds_deleted_;
   j["rejected_witnesses"] = rejected_;
   return j;
+}
+
+nlohmann::json Refinement::floor_json() const {
+  return {{"value", limits_.min_spacing},
+          {"reached", floor_hits_ > 0},
+          {"witnesses_below", floor_hits_},
+          {"locations", floor_locations_}};
 }
 
 nlohmann::json Refinement::checks_json() const { return per_step(checks_); }

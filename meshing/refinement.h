@@ -109,6 +109,10 @@ struct RefinementLimits {
   const std::atomic<bool>* interrupt = nullptr;
   //! A witness this close to a sample (relative to the box diagonal) is rejected as a duplicate.
   double duplicate_relative_distance = tolerances::duplicate_sample_relative_distance;
+  //! The termination floor (world units, 0: none): a witness closer than this to its nearest
+  //! sample is not inserted but recorded (floor_json()); its face is then left unsettled
+  //! (rejected_witness), so the run cannot end complete.
+  double min_spacing = 0;
 };
 
 //! How a finished run stands: its status, judged on the final Vor S and Tri S|Σ.
@@ -179,6 +183,9 @@ class Refinement {
 
   //! {seeds, vor_edge, …, size, seeds_deleted, rejected_witnesses}
   nlohmann::json insertions_json() const;
+  //! The termination floor: {value, reached, witnesses_below (count), locations (the first
+  //! tolerances::floor_locations_listed of them)}.
+  nlohmann::json floor_json() const;
   //! {vor_edge: n, …}: items examined per step, keyed by the step's CheckKind.
   nlohmann::json checks_json() const;
   //! {vor_edge: s, …}: seconds spent in each step's check, keyed by the step's CheckKind.
@@ -272,6 +279,8 @@ class Refinement {
   };
   std::map<std::pair<int, Simplex>, UnsettledFace> unsettled_;
   std::vector<Unsettled> standing_unsettled_;
+  std::size_t floor_hits_ = 0;           //!< witnesses not inserted because of min_spacing
+  std::vector<Vec3> floor_locations_;    //!< the first of them
   std::chrono::steady_clock::time_point last_progress_;
 };
 

@@ -1,42 +1,39 @@
 #pragma once
 //! \file surface_oracle.h
-//! The numerical primitives for one surface Σ = {E = 0} inside a box B, compiled once, behind
-//! one interface used by every check of the mesher.  The primitives are those of the registry
-//! (solvers/primitive_registry.h), in its order: the six of §5.2 have a method each below, and
-//! any primitive can be solved by name with solve().  The oracle has a solver backend (certified
-//! subdivision, or homotopy for square polynomial systems), per-call budgets from tolerances.h,
-//! the run's controls (seed and deadline, set_run_controls()), and statistics (calls, certified
-//! roots, undecided regions, boxes, seconds, homotopy fallbacks and solves cut by the deadline per
-//! primitive).
+//! What the mesher asks of a surface Σ inside a box B: the six primitives of §5.2, the sign of
+//! Σ's defining function (or inside/outside), the outward normal, projection onto Σ and the box.
+//! Every check (vor_edge, facet_contact, facet_cycle, silhouette, sample_topology, the restricted
+//! Delaunay records) and the drivers (refinement, del_mesh) talk to Σ through this interface
+//! only.  Two kinds of input implement it:
+//!  - ImplicitOracle (meshing/implicit_oracle.h): Σ = {E = 0} for a symbolic E, answered by the
+//!    certified solvers;
+//!  - MeshOracle (meshing/mesh_oracle.h): Σ a closed, outward-oriented triangle mesh, answered
+//!    exactly with CGAL's predicates.
+//! A third kind of input is one more implementation of this class.
 //!
-//! Backend homotopy: the square systems of surface_critical, curve_critical, silhouette_plane and
-//! silhouette_critical are solved by solve_homotopy() when E is polynomial; when E is not
-//! polynomial (or a system's degrees cannot be computed) they are solved by subdivision instead,
-//! and every such call counts one homotopy fallback of its primitive.  surface_plane_contact (an
-//! over-determined system, exclusion mode) is always solved by subdivision, and counts one
-//! fallback per call under this backend too.  surface_line always uses the univariate isolator
-//! (certified, under either backend) and counts none.
+//! Conventions shared by every implementation.  "E" below is the implementation's defining
+//! function: negative inside Σ, positive outside, zero on Σ (for a mesh: the side of the mesh).
+//! Each primitive returns a SolveResult (solvers/solve_result.h): its roots are points of Σ the
+//! answer proves, its undecided regions are what the oracle could not decide (a tangency is
+//! reported as an undecided region with reason singular_root, a zero at the end of a segment as
+//! boundary_root); the checks turn undecided regions into candidate witnesses by project()
+//! (meshing/detail/candidates.h).  The unknowns of the roots and regions are those of the
+//! registry's systems (solvers/primitive_registry.h): t for surface_line, (u, v) in the plane
+//! frame (o, a, b) for the facet primitives, world (x, y, z) for the cell primitives; `world`
+//! always holds the world point.
 //!
-//! The primitives and the certificate may be called from several threads at once: the compiled
-//! systems keep their scratch per thread, and the statistics are updated under a lock.
-//!
-//! Policy for undecided regions (design notes, "Meaning of a certified result"): a region that the
-//! solver can neither exclude nor certify is a candidate witness.  project() moves its centre onto
-//! Σ by Newton steps along ∇E; the caller inserts the projected point if it lies in the Voronoi
-//! face under test.  Inserting a false witness is harmless (§3, Lemma 5.1).  Undecided regions
-//! are counted here (`undecided`) and never dropped silently.
+//! Threads: the primitives may be called from several threads at once (implementations keep
+//! their statistics under a lock); set_run_controls() is called before that.
 
 #include <array>
 #include <chrono>
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "meshing/del_mesh.h"
 #include "solvers/domain.h"
 #include "solvers/gradient_cone.h"
 #include "solvers/solve_result.h"
@@ -46,120 +43,70 @@ namespace delmesh {
 
 using Vec3 = std::array<double, 3>;
 
-struct PrimitiveStatistics {
-  std::size_t calls = 0, certified_roots = 0, undecided = 0, boxes = 0;
-  //! Calls answered by subdivision although the backend is homotopy (see the file comment).
-  std::size_t homotopy_fallbacks = 0;
-  //! Calls whose solve the deadline stopped (status time_limit; the rest is undecided, budget).
-  std::size_t time_limited = 0;
-  //! Homotopy solves: paths tracked, near-real endpoints and diverging paths near the domain
-  //! (solve_homotopy(), rules 2–4).
-  std::size_t homotopy_paths = 0, homotopy_near_real = 0, homotopy_diverging_near_domain = 0;
-  double seconds = 0;
-};
-
 class SurfaceOracle {
  public:
-  //! Compiles the system of every primitive of the registry for `surface`.  Precondition: box is
-  //! non-empty; the registry holds the six primitives of §5.2 (else PreconditionViolation).
-  SurfaceOracle(const Surface& surface, const Box3& box, SolverBackend backend);
-  ~SurfaceOracle();
-  SurfaceOracle(SurfaceOracle&&) noexcept;
-  SurfaceOracle& operator=(SurfaceOracle&&) noexcept;
+  virtual ~SurfaceOracle() = default;
 
-  //! The run's controls, for every later call: `seed` seeds each homotopy solve (γ and the
-  //! projective patch; HomotopyOptions::seed), and `deadline`, if set, is an absolute end for every
-  //! solve: each homotopy solve gets it as HomotopyOptions::deadline (read before every path step),
-  //! each subdivision solve and univariate isolation the time left as time_limit_seconds (the least
-  //! positive double once it has passed, so they stop at their first clock check).  A solve the
-  //! deadline stops returns status time_limit with its unexplored region undecided (budget).
-  //! Defaults until called: seed 1, no deadline.  Call before the primitives are used from
-  //! several threads (the controls are read without a lock).
-  void set_run_controls(std::uint64_t seed, std::optional<std::chrono::steady_clock::time_point> deadline);
+  //! The run's controls for every later call: `seed` for any seeded choice of the oracle, and
+  //! `deadline`, if set, an absolute end after which a primitive returns status time_limit with
+  //! what it did not examine undecided (budget).  Defaults until called: seed 1, no deadline.
+  virtual void set_run_controls(std::uint64_t seed, std::optional<std::chrono::steady_clock::time_point> deadline) = 0;
 
-  const Box3& box() const { return box_; }
-  const Surface& surface() const;
-  double diagonal() const { return box_.diagonal(); }
+  //! The box B; Σ lies in its interior.
+  virtual const Box3& box() const = 0;
+  double diagonal() const { return box().diagonal(); }
 
-  //! SurfaceLine: zeros of E(p + t v) for t ∈ [t0, t1] (certified, or undecided regions:
-  //! singular_root for a tangency, boundary_root for a zero at t0 or t1).
-  SolveResult surface_line(const Vec3& p, const Vec3& v, double t0, double t1);
-  //! SurfaceCritical in direction d over a 3-D domain.
-  SolveResult surface_critical(const Vec3& d, const Domain& domain, std::size_t box_budget);
-  //! SurfacePlaneContact over a facet polygon (exclusion mode: never certifies, undecided boxes
-  //! are possible contacts).
-  SolveResult surface_plane_contact(const Vec3& o, const Vec3& a, const Vec3& b, const Domain& domain);
-  //! CurveCritical in direction a of Σ ∩ {o + u a + v b} over a facet polygon.
-  SolveResult curve_critical(const Vec3& o, const Vec3& a, const Vec3& b, const Domain& domain);
-  //! SilhouettePlane: J_d ∩ {o + u a + v b} over a facet polygon.
-  SolveResult silhouette_plane(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& d,
-                               const Domain& domain);
-  //! SilhouetteCritical: critical points of J_d in direction d2 over a 3-D polytope.
-  SolveResult silhouette_critical(const Vec3& d, const Vec3& d2, const Domain& domain);
-
+  //! SurfaceLine: the points of Σ on {p + t v : t ∈ [t0, t1]} (roots: transversal crossings;
+  //! undecided: tangencies as singular_root, zeros at t0 or t1 as boundary_root).
+  virtual SolveResult surface_line(const Vec3& p, const Vec3& v, double t0, double t1) = 0;
+  //! SurfaceCritical: the critical points of the height ⟨x, d⟩ on Σ in a 3-D domain.
+  virtual SolveResult surface_critical(const Vec3& d, const Domain& domain, std::size_t box_budget) = 0;
+  //! SurfacePlaneContact: the points of the facet polygon (domain, in the plane frame o, a, b)
+  //! where Σ touches the plane (the plane's normal is normal to Σ there).
+  virtual SolveResult surface_plane_contact(const Vec3& o, const Vec3& a, const Vec3& b, const Domain& domain) = 0;
+  //! CurveCritical: the critical points in direction a of the curve Σ ∩ {o + u a + v b} over a
+  //! facet polygon.
+  virtual SolveResult curve_critical(const Vec3& o, const Vec3& a, const Vec3& b, const Domain& domain) = 0;
+  //! SilhouettePlane: the silhouette J_d of Σ in direction d (points where d is tangent to Σ)
+  //! intersected with the plane {o + u a + v b} over a facet polygon.
+  virtual SolveResult silhouette_plane(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& d,
+                                       const Domain& domain) = 0;
+  //! SilhouetteCritical: the critical points of the curve J_d in direction d2 over a 3-D polytope.
+  virtual SolveResult silhouette_critical(const Vec3& d, const Vec3& d2, const Domain& domain) = 0;
   //! The primitive called `primitive` (a registry name) with the given parameters (in the order
-  //! of its system's parameters) over `domain`: a square system as the six above are (homotopy
-  //! under that backend, else subdivision with box_budget), an over-determined one by
-  //! subdivision in exclusion mode.  Spurious roots are dropped (drop_spurious_roots).  Throws
-  //! InvalidInput for an unknown name, PreconditionViolation for a line system (use
+  //! of its system's parameters) over `domain`.  Throws InvalidInput for an unknown name (or one
+  //! the implementation does not answer by name), PreconditionViolation for a line system (use
   //! surface_line()) or a wrong number of parameters.
-  SolveResult solve(const std::string& primitive, const std::vector<double>& parameters, const Domain& domain,
-                    std::size_t box_budget);
+  virtual SolveResult solve(const std::string& primitive, const std::vector<double>& parameters,
+                            const Domain& domain, std::size_t box_budget) = 0;
 
-  //! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P, P = domain in the chart (solvers/gradient_cone.h):
-  //! true is a proof, false proves nothing.  Counted under `cone_certificates`.
-  bool prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w);
-  //! The proved sign of ⟨∇E, w⟩ on the segment [a, b], or 0 (solvers/gradient_cone.h).
-  int gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const;
-  //! The proved sign of E(x), or 0 if E(x) is zero up to rounding (solvers/gradient_cone.h).
+  //! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P, P = domain in the chart: true is a proof, false
+  //! proves nothing (an implementation may never prove).
+  virtual bool prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) = 0;
+  //! The proved sign of ⟨∇E, w⟩ on the segment [a, b], or 0 (nothing proved).
+  virtual int gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const = 0;
+  //! The proved sign of E(x): −1 inside Σ, +1 outside, 0 on Σ or not decided.
   int value_sign(const Vec3& x) const { return value_sign(x, x); }
   //! The proved sign of E on the box [lo, hi], or 0: non-zero proves Σ misses the box.
-  int value_sign(const Vec3& lo, const Vec3& hi) const;
+  virtual int value_sign(const Vec3& lo, const Vec3& hi) const = 0;
 
-  //! E(x) in double.
-  double E(const Vec3& x) const;
-  //! ∇E(x) in double.
-  Vec3 gradient(const Vec3& x) const;
-  //! The unit outward normal ∇E/|∇E| at x (zero vector if ∇E(x) = 0).
-  Vec3 normal(const Vec3& x) const;
-  //! Newton iteration x ← x − E(x) ∇E(x)/|∇E(x)|² until |E|/|∇E| is below the projection
-  //! tolerance; nothing if it does not converge or leaves the box.
-  std::optional<Vec3> project(const Vec3& x) const;
+  //! A vector along the outward normal of Σ near x (∇E(x) for an implicit surface; not
+  //! necessarily of unit length); the zero vector if there is none.
+  virtual Vec3 gradient(const Vec3& x) const = 0;
+  //! The unit outward normal at x (zero vector if there is none).
+  virtual Vec3 normal(const Vec3& x) const = 0;
+  //! A point of Σ near x (within the box), or nothing if the implementation cannot find one.
+  virtual std::optional<Vec3> project(const Vec3& x) const = 0;
 
-  //! Per primitive, in the registry's order.
-  const std::vector<PrimitiveStatistics>& statistics() const { return stats_; }
-  //! The statistics of the primitive called `primitive`; throws InvalidInput for an unknown name.
-  const PrimitiveStatistics& statistics(const std::string& primitive) const;
-  //! {systems, certified_roots, undecided, boxes, seconds, homotopy_fallbacks, time_limited,
-  //!  homotopy_paths, homotopy_near_real, homotopy_diverging_near_domain, per_primitive: {name:
-  //!  {the same counts for that primitive}}, cone_certificates: {attempts, proved, boxes, seconds},
-  //!  backend: "subdivision" or "homotopy"}
-  nlohmann::json statistics_json() const;
+  //! The oracle's work counters as JSON for the statistics (implementation-specific keys; every
+  //! implementation has "systems", the number of primitive calls, and "backend").
+  virtual nlohmann::json statistics_json() const = 0;
 
- private:
-  //! Keeps the roots inside the domain that no side condition disproves, and counts the call.
-  SolveResult finish(std::size_t primitive, const std::vector<double>& parameters, SolveResult result,
-                     std::chrono::steady_clock::time_point start);
-  SolveResult solve_square(std::size_t primitive, const std::vector<double>& parameters, const Domain& domain,
-                           std::size_t box_budget);
-  SolveResult solve_over_determined(std::size_t primitive, const std::vector<double>& parameters,
-                                    const Domain& domain, std::size_t box_budget);
-  //! time_limit_seconds for a subdivision solve or univariate isolation started now: 0 without a
-  //! deadline, else the time left (at least the least positive double).
-  double seconds_left() const;
-  void count_fallback(std::size_t primitive);
-
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-  Box3 box_;
-  SolverBackend backend_;
-  std::uint64_t seed_ = 1;
-  std::optional<std::chrono::steady_clock::time_point> deadline_;
-  std::vector<PrimitiveStatistics> stats_;
-  struct ConeStatistics {
-    std::size_t attempts = 0, proved = 0, boxes = 0;
-    double seconds = 0;
-  } cone_stats_;
+ protected:
+  // Copied or moved only as part of an implementation (no slicing through the interface).
+  SurfaceOracle() = default;
+  SurfaceOracle(const SurfaceOracle&) = default;
+  SurfaceOracle& operator=(const SurfaceOracle&) = default;
 };
 
 }  // namespace delmesh

@@ -11,7 +11,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
-#include "meshing/surface_oracle.h"
+#include "meshing/implicit_oracle.h"
 #include "solvers/primitive_registry.h"
 #include "symbolic/catalog.h"
 
@@ -123,7 +123,7 @@ BOOST_AUTO_TEST_CASE(the_torus_answer_for_a_point_in_its_equatorial_plane) {
 
 BOOST_AUTO_TEST_CASE(a_check_solves_it_through_the_mesher_oracle) {
   // The oracle compiles every registered primitive; a check would call it by name.
-  SurfaceOracle oracle(catalog_entry("sphere").surface(), catalog_entry("sphere").box, SolverBackend::subdivision);
+  ImplicitOracle oracle(catalog_entry("sphere").surface(), catalog_entry("sphere").box, SolverBackend::subdivision);
   const OrthonormalFrame f = orthonormal_frame({3, -4, 12});
   const SolveResult r = oracle.solve("surface_distance_critical", {0.3, -0.4, 1.2, f.a[0], f.a[1], f.a[2], f.b[0], f.b[1], f.b[2]},
                                      box_domain(oracle.box()), 100000);

@@ -9,7 +9,7 @@
 #include "meshing/delaunay.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/restricted_delaunay.h"
-#include "meshing/surface_oracle.h"
+#include "meshing/implicit_oracle.h"
 #include "symbolic/catalog.h"
 
 using namespace delmesh;
@@ -45,7 +45,7 @@ std::string findings(const Certificate& c) { return to_json(c).dump(); }
 //! Tri S|Σ of the points, computed independently of the certificate (a fresh RestrictedDelaunay).
 Soup restricted_delaunay_soup(const std::string& name, const std::vector<Vec3>& points) {
   const auto& entry = catalog_entry(name);
-  SurfaceOracle oracle(entry.surface(), entry.box, SolverBackend::subdivision);
+  ImplicitOracle oracle(entry.surface(), entry.box, SolverBackend::subdivision);
   Delaunay del;
   for (const auto& p : points) BOOST_REQUIRE(del.insert(p, false));
   RestrictedDelaunay restricted(del, oracle, 1);

@@ -15,7 +15,7 @@
 #include "meshing/mesh_checker.h"
 #include "meshing/restricted_delaunay.h"
 #include "meshing/surface_mesh.h"
-#include "meshing/surface_oracle.h"
+#include "meshing/implicit_oracle.h"
 #include "meshing/theorem_bounds.h"
 #include "symbolic/catalog.h"
 
@@ -23,7 +23,7 @@ namespace delmesh::test {
 
 struct CheckFixture {
   Box3 box;
-  SurfaceOracle oracle;
+  ImplicitOracle oracle;
   Delaunay del;
   RestrictedDelaunay restricted;
   CheckFixture(const std::string& equation, double half_width, const std::vector<Vec3>& points)

@@ -7,6 +7,7 @@
 #include "common/errors.h"
 #include "meshing/del_mesh.h"
 #include "meshing/detail/vec3.h"
+#include "meshing/implicit_oracle.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/refinement.h"
 #include "meshing/sample_topology.h"
@@ -138,7 +139,7 @@ BOOST_AUTO_TEST_CASE(size_bound_refines) {
 BOOST_AUTO_TEST_CASE(size_bound_holds_for_every_surface_delaunay_ball) {
   const auto& entry = catalog_entry("torus");
   const double H = 0.25;
-  SurfaceOracle oracle(entry.surface(), entry.box, SolverBackend::subdivision);
+  ImplicitOracle oracle(entry.surface(), entry.box, SolverBackend::subdivision);
   Refinement refinement(oracle, 1, RefinementLimits{});
   SeedReport seeds;
   BOOST_TEST_REQUIRE(sample_topology(refinement, seeds) == MeshStatus::complete);

@@ -10,7 +10,7 @@
 #include "common/tolerances.h"
 #include "meshing/del_mesh.h"
 #include "meshing/mesh_checker.h"
-#include "meshing/surface_oracle.h"
+#include "meshing/implicit_oracle.h"
 #include "meshing/theorem_bounds.h"
 #include "solvers/query_geometry.h"
 #include "symbolic/catalog.h"
@@ -23,14 +23,14 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-SurfaceOracle homotopy_oracle(const std::string& name) {
+ImplicitOracle homotopy_oracle(const std::string& name) {
   const auto& entry = catalog_entry(name);
-  return SurfaceOracle(entry.surface(), entry.box, SolverBackend::homotopy);
+  return ImplicitOracle(entry.surface(), entry.box, SolverBackend::homotopy);
 }
 
 // SilhouetteCritical over the whole box: a 3-D homotopy solve with many paths (60 for the torus,
 // 616 for genus2).
-SolveResult whole_box_silhouette_critical(SurfaceOracle& oracle) {
+SolveResult whole_box_silhouette_critical(ImplicitOracle& oracle) {
   return oracle.silhouette_critical(unit_vector({3, -5, 8}), unit_vector({1, 2, -2}), box_domain(oracle.box()));
 }
 
@@ -131,7 +131,7 @@ BOOST_AUTO_TEST_CASE(fallbacks_are_counted_per_primitive) {
 
   // The subdivision backend counts none.
   const auto& entry = catalog_entry("sphere");
-  SurfaceOracle subdivision(entry.surface(), entry.box, SolverBackend::subdivision);
+  ImplicitOracle subdivision(entry.surface(), entry.box, SolverBackend::subdivision);
   (void)subdivision.surface_plane_contact({0, 0, 0.5}, {1, 0, 0}, {0, 1, 0},
                                           Domain::from_box({{{-0.1, 0.1}}, {{-0.1, 0.1}}}));
   BOOST_TEST(subdivision.statistics_json()["backend"] == "subdivision");

@@ -6,6 +6,7 @@
 
 #include "meshing/del_mesh.h"
 #include "meshing/detail/vec3.h"
+#include "meshing/implicit_oracle.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/sample_topology.h"
 #include "meshing/refinement.h"
@@ -16,7 +17,7 @@ using namespace delmesh;
 namespace {
 
 struct TopologyRun {
-  SurfaceOracle oracle;
+  ImplicitOracle oracle;
   Refinement topology;
   SeedReport seeds;
   MeshStatus status;
@@ -145,7 +146,7 @@ BOOST_AUTO_TEST_CASE(clean_run_certifies_complete) {
 // certify as complete.
 BOOST_AUTO_TEST_CASE(rejected_witnesses_leave_the_run_uncertified) {
   const auto& entry = catalog_entry("torus");
-  SurfaceOracle oracle(entry.surface(), entry.box, SolverBackend::subdivision);
+  ImplicitOracle oracle(entry.surface(), entry.box, SolverBackend::subdivision);
   RefinementLimits limits;
   limits.duplicate_relative_distance = 0.15;
   Refinement refinement(oracle, 1, limits);
@@ -166,7 +167,7 @@ BOOST_AUTO_TEST_CASE(rejected_witnesses_leave_the_run_uncertified) {
 // cospherical: the Voronoi edges of the inner triangles shrink to the point (1,0,0), which Σ
 // passes through.  Those degenerate edges are unresolved, and the run cannot certify as complete.
 BOOST_AUTO_TEST_CASE(degenerate_voronoi_edge_on_the_surface_is_unresolved) {
-  SurfaceOracle oracle(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.6), SolverBackend::subdivision);
+  ImplicitOracle oracle(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.6), SolverBackend::subdivision);
   Refinement refinement(oracle, 1, RefinementLimits{});
   for (const Vec3& x : std::vector<Vec3>{{1.5, 0, 0}, {0.5, 0, 0}, {1, 0.5, 0}, {1, -0.5, 0}, {1, 0, 0.5}, {1, 0, -0.5}})
     BOOST_TEST_REQUIRE(refinement.insert(Witness{x, CheckKind::seed, -1, false}).has_value());
@@ -182,7 +183,7 @@ BOOST_AUTO_TEST_CASE(degenerate_voronoi_edge_on_the_surface_is_unresolved) {
 // The same octahedron centred at (0.5,0,0), inside the ball: its degenerate edges are far from Σ
 // and nothing is unresolved.
 BOOST_AUTO_TEST_CASE(degenerate_voronoi_edge_off_the_surface_is_settled) {
-  SurfaceOracle oracle(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.6), SolverBackend::subdivision);
+  ImplicitOracle oracle(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.6), SolverBackend::subdivision);
   Refinement refinement(oracle, 1, RefinementLimits{});
   for (const Vec3& x : std::vector<Vec3>{{1, 0, 0}, {0, 0, 0}, {0.5, 0.5, 0}, {0.5, -0.5, 0}, {0.5, 0, 0.5}, {0.5, 0, -0.5}})
     BOOST_TEST_REQUIRE(refinement.insert(Witness{x, CheckKind::seed, -1, false}).has_value());

@@ -4,6 +4,7 @@
 
 #include "common/errors.h"
 #include "meshing/detail/vec3.h"
+#include "meshing/implicit_oracle.h"
 #include "meshing/sample_topology.h"
 #include "symbolic/catalog.h"
 
@@ -23,7 +24,7 @@ BOOST_AUTO_TEST_CASE(generic_directions_are_unit_seeded_and_distinct) {
 BOOST_AUTO_TEST_CASE(seeds_are_the_critical_points) {
   for (const auto& [name, count] : std::vector<std::pair<std::string, std::size_t>>{{"sphere", 2}, {"torus", 4}}) {
     const auto& entry = catalog_entry(name);
-    SurfaceOracle oracle(entry.surface(), entry.box, SolverBackend::subdivision);
+    ImplicitOracle oracle(entry.surface(), entry.box, SolverBackend::subdivision);
     Refinement topology(oracle, 5, RefinementLimits{});
     const auto report = insert_seeds(topology);
     BOOST_TEST(report.seeds == count, name);
@@ -36,7 +37,7 @@ BOOST_AUTO_TEST_CASE(empty_surface_throws) {
   Box3 box;
   box.lo = {-1, -1, -1};
   box.hi = {1, 1, 1};
-  SurfaceOracle oracle(Surface::parse("x^2+y^2+z^2+1"), box, SolverBackend::subdivision);
+  ImplicitOracle oracle(Surface::parse("x^2+y^2+z^2+1"), box, SolverBackend::subdivision);
   Refinement topology(oracle, 1, RefinementLimits{});
   BOOST_CHECK_THROW(insert_seeds(topology), InvalidInput);
 }

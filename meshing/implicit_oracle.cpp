@@ -1,4 +1,4 @@
-#include "meshing/surface_oracle.h"
+#include "meshing/implicit_oracle.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +33,7 @@ std::size_t registry_index(const std::string& name) {
 
 }  // namespace
 
-struct SurfaceOracle::Impl {
+struct ImplicitOracle::Impl {
   Surface surface;
   std::vector<CompiledPrimitive> primitives;  // in registry order
   std::vector<std::vector<int>> degrees;      // for homotopy (square polynomial systems), else empty
@@ -69,35 +69,35 @@ struct SurfaceOracle::Impl {
   }
 };
 
-SurfaceOracle::SurfaceOracle(const Surface& surface, const Box3& box, SolverBackend backend)
+ImplicitOracle::ImplicitOracle(const Surface& surface, const Box3& box, SolverBackend backend)
     : impl_(std::make_unique<Impl>(surface, backend == SolverBackend::homotopy)),
       box_(box),
       backend_(backend),
       stats_(impl_->primitives.size()) {}
-SurfaceOracle::~SurfaceOracle() = default;
-SurfaceOracle::SurfaceOracle(SurfaceOracle&&) noexcept = default;
-SurfaceOracle& SurfaceOracle::operator=(SurfaceOracle&&) noexcept = default;
+ImplicitOracle::~ImplicitOracle() = default;
+ImplicitOracle::ImplicitOracle(ImplicitOracle&&) noexcept = default;
+ImplicitOracle& ImplicitOracle::operator=(ImplicitOracle&&) noexcept = default;
 
-const Surface& SurfaceOracle::surface() const { return impl_->surface; }
+const Surface& ImplicitOracle::surface() const { return impl_->surface; }
 
-void SurfaceOracle::set_run_controls(std::uint64_t seed, std::optional<std::chrono::steady_clock::time_point> deadline) {
+void ImplicitOracle::set_run_controls(std::uint64_t seed, std::optional<std::chrono::steady_clock::time_point> deadline) {
   seed_ = seed;
   deadline_ = deadline;
 }
 
-double SurfaceOracle::seconds_left() const {
+double ImplicitOracle::seconds_left() const {
   if (!deadline_) return 0;
   const double left = std::chrono::duration<double>(*deadline_ - std::chrono::steady_clock::now()).count();
   return std::max(left, std::numeric_limits<double>::min());
 }
 
-void SurfaceOracle::count_fallback(std::size_t primitive) {
+void ImplicitOracle::count_fallback(std::size_t primitive) {
   if (backend_ != SolverBackend::homotopy) return;
   const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
   ++stats_[primitive].homotopy_fallbacks;
 }
 
-SolveResult SurfaceOracle::finish(std::size_t primitive, const std::vector<double>& parameters, SolveResult result,
+SolveResult ImplicitOracle::finish(std::size_t primitive, const std::vector<double>& parameters, SolveResult result,
                                   std::chrono::steady_clock::time_point start) {
   // Only roots inside the domain count; the solver classifies them.
   std::vector<CertifiedRoot> inside;
@@ -116,7 +116,7 @@ SolveResult SurfaceOracle::finish(std::size_t primitive, const std::vector<doubl
   return result;
 }
 
-SolveResult SurfaceOracle::solve_square(std::size_t primitive, const std::vector<double>& parameters,
+SolveResult ImplicitOracle::solve_square(std::size_t primitive, const std::vector<double>& parameters,
                                         const Domain& domain, std::size_t box_budget) {
   const std::size_t index = primitive;
   const auto& sys = impl_->primitives[index].compiled;
@@ -141,7 +141,7 @@ SolveResult SurfaceOracle::solve_square(std::size_t primitive, const std::vector
   return solve_subdivision(sys, parameters, domain, options);
 }
 
-SolveResult SurfaceOracle::solve_over_determined(std::size_t primitive, const std::vector<double>& parameters,
+SolveResult ImplicitOracle::solve_over_determined(std::size_t primitive, const std::vector<double>& parameters,
                                                  const Domain& domain, std::size_t box_budget) {
   SubdivisionOptions options;
   options.box_budget = box_budget;
@@ -151,16 +151,16 @@ SolveResult SurfaceOracle::solve_over_determined(std::size_t primitive, const st
   return solve_subdivision(impl_->primitives[primitive].compiled, parameters, domain, options);
 }
 
-SolveResult SurfaceOracle::solve(const std::string& primitive, const std::vector<double>& parameters,
+SolveResult ImplicitOracle::solve(const std::string& primitive, const std::vector<double>& parameters,
                                  const Domain& domain, std::size_t box_budget) {
   const auto start = std::chrono::steady_clock::now();
   const auto& registry = primitive_registry();
   const std::size_t index =
       static_cast<std::size_t>(&find_primitive(primitive) - registry.data());  // throws for unknown names
   const PrimitiveSystem& system = impl_->primitives[index].system;
-  if (system.n_unknowns() == 1) throw PreconditionViolation("SurfaceOracle::solve: use surface_line() for " + primitive);
+  if (system.n_unknowns() == 1) throw PreconditionViolation("ImplicitOracle::solve: use surface_line() for " + primitive);
   if (parameters.size() != system.n_parameters()) {
-    throw PreconditionViolation("SurfaceOracle::solve: " + std::to_string(parameters.size()) + " parameters given, " +
+    throw PreconditionViolation("ImplicitOracle::solve: " + std::to_string(parameters.size()) + " parameters given, " +
                                 primitive + " has " + std::to_string(system.n_parameters()));
   }
   SolveResult result = system.is_square() ? solve_square(index, parameters, domain, box_budget)
@@ -168,7 +168,7 @@ SolveResult SurfaceOracle::solve(const std::string& primitive, const std::vector
   return finish(index, parameters, std::move(result), start);
 }
 
-SolveResult SurfaceOracle::surface_line(const Vec3& p, const Vec3& v, double t0, double t1) {
+SolveResult ImplicitOracle::surface_line(const Vec3& p, const Vec3& v, double t0, double t1) {
   const auto start = std::chrono::steady_clock::now();
   UnivariateOptions options;
   options.box_budget = tolerances::mesher_box_budget_1d;
@@ -178,7 +178,7 @@ SolveResult SurfaceOracle::surface_line(const Vec3& p, const Vec3& v, double t0,
   return finish(index, {p[0], p[1], p[2], v[0], v[1], v[2]}, std::move(r), start);
 }
 
-SolveResult SurfaceOracle::surface_critical(const Vec3& d, const Domain& domain, std::size_t box_budget) {
+SolveResult ImplicitOracle::surface_critical(const Vec3& d, const Domain& domain, std::size_t box_budget) {
   const auto start = std::chrono::steady_clock::now();
   const auto frame = orthonormal_frame(d);
   std::vector<double> params{frame.a[0], frame.a[1], frame.a[2], frame.b[0], frame.b[1], frame.b[2]};
@@ -186,7 +186,7 @@ SolveResult SurfaceOracle::surface_critical(const Vec3& d, const Domain& domain,
   return finish(index, params, solve_square(index, params, domain, box_budget), start);
 }
 
-SolveResult SurfaceOracle::surface_plane_contact(const Vec3& o, const Vec3& a, const Vec3& b,
+SolveResult ImplicitOracle::surface_plane_contact(const Vec3& o, const Vec3& a, const Vec3& b,
                                                  const Domain& domain) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> params{o[0], o[1], o[2], a[0], a[1], a[2], b[0], b[1], b[2]};
@@ -194,14 +194,14 @@ SolveResult SurfaceOracle::surface_plane_contact(const Vec3& o, const Vec3& a, c
   return finish(index, params, solve_over_determined(index, params, domain, tolerances::mesher_box_budget_2d), start);
 }
 
-SolveResult SurfaceOracle::curve_critical(const Vec3& o, const Vec3& a, const Vec3& b, const Domain& domain) {
+SolveResult ImplicitOracle::curve_critical(const Vec3& o, const Vec3& a, const Vec3& b, const Domain& domain) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> params{o[0], o[1], o[2], a[0], a[1], a[2], b[0], b[1], b[2]};
   const std::size_t index = impl_->curve_critical;
   return finish(index, params, solve_square(index, params, domain, tolerances::mesher_box_budget_2d), start);
 }
 
-SolveResult SurfaceOracle::silhouette_plane(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& d,
+SolveResult ImplicitOracle::silhouette_plane(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& d,
                                             const Domain& domain) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> params{o[0], o[1], o[2], a[0], a[1], a[2], b[0], b[1], b[2], d[0], d[1], d[2]};
@@ -209,14 +209,14 @@ SolveResult SurfaceOracle::silhouette_plane(const Vec3& o, const Vec3& a, const 
   return finish(index, params, solve_square(index, params, domain, tolerances::mesher_box_budget_2d), start);
 }
 
-SolveResult SurfaceOracle::silhouette_critical(const Vec3& d, const Vec3& d2, const Domain& domain) {
+SolveResult ImplicitOracle::silhouette_critical(const Vec3& d, const Vec3& d2, const Domain& domain) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> params{d[0], d[1], d[2], d2[0], d2[1], d2[2]};
   const std::size_t index = impl_->silhouette_critical;
   return finish(index, params, solve_square(index, params, domain, tolerances::mesher_box_budget_3d), start);
 }
 
-bool SurfaceOracle::prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) {
+bool ImplicitOracle::prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) {
   const auto start = std::chrono::steady_clock::now();
   const auto r = delmesh::prove_gradient_cone(*impl_->gradient, chart, domain, w, tolerances::gradient_cone_box_budget);
   const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
@@ -227,30 +227,30 @@ bool SurfaceOracle::prove_gradient_cone(const AffineChart& chart, const Domain& 
   return r.proved;
 }
 
-int SurfaceOracle::gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const {
+int ImplicitOracle::gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const {
   return gradient_functional_sign(*impl_->gradient, a, b, w);
 }
 
-int SurfaceOracle::value_sign(const Vec3& lo, const Vec3& hi) const {
+int ImplicitOracle::value_sign(const Vec3& lo, const Vec3& hi) const {
   return delmesh::value_sign(*impl_->gradient, lo, hi);
 }
 
-double SurfaceOracle::E(const Vec3& x) const {
+double ImplicitOracle::E(const Vec3& x) const {
   double value = 0;
   impl_->gradient->values<double>(x.data(), nullptr, &value);
   return value;
 }
 
-Vec3 SurfaceOracle::gradient(const Vec3& x) const {
+Vec3 ImplicitOracle::gradient(const Vec3& x) const {
   double value = 0;
   Vec3 g{};
   impl_->gradient->values_and_jacobian<double>(x.data(), nullptr, &value, g.data());
   return g;
 }
 
-Vec3 SurfaceOracle::normal(const Vec3& x) const { return normalized(gradient(x)); }
+Vec3 ImplicitOracle::normal(const Vec3& x) const { return normalized(gradient(x)); }
 
-std::optional<Vec3> SurfaceOracle::project(const Vec3& start) const {
+std::optional<Vec3> ImplicitOracle::project(const Vec3& start) const {
   Vec3 x = start;
   const double tol = tolerances::projection_relative_tolerance * diagonal();
   for (int it = 0; it < tolerances::projection_iterations; ++it) {
@@ -267,11 +267,11 @@ std::optional<Vec3> SurfaceOracle::project(const Vec3& start) const {
   return std::nullopt;
 }
 
-const PrimitiveStatistics& SurfaceOracle::statistics(const std::string& primitive) const {
+const PrimitiveStatistics& ImplicitOracle::statistics(const std::string& primitive) const {
   return stats_[static_cast<std::size_t>(&find_primitive(primitive) - primitive_registry().data())];
 }
 
-nlohmann::json SurfaceOracle::statistics_json() const {
+nlohmann::json ImplicitOracle::statistics_json() const {
   const auto counts = [](const PrimitiveStatistics& s) {
     return nlohmann::json{{"calls", s.calls},
                           {"certified_roots", s.certified_roots},

@@ -4,7 +4,7 @@
 
 #include "meshing/detail/vec3.h"
 #include "common/errors.h"
-#include "meshing/surface_oracle.h"
+#include "meshing/implicit_oracle.h"
 #include "solvers/domain.h"
 #include "solvers/query_geometry.h"
 
@@ -13,7 +13,7 @@ using namespace delmesh;
 BOOST_AUTO_TEST_SUITE(surface_oracle)
 
 BOOST_AUTO_TEST_CASE(line_through_the_centre_meets_the_sphere_at_distance_one) {
-  SurfaceOracle oracle(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.5), SolverBackend::subdivision);
+  ImplicitOracle oracle(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.5), SolverBackend::subdivision);
   const auto r = oracle.surface_line({0, 0, 0}, {0.6, 0.8, 0}, -1.4, 1.4);
   BOOST_TEST_REQUIRE(r.roots.size() == 2u);
   for (const auto& root : r.roots) BOOST_TEST(std::abs(detail::norm(root.world) - 1) < 1e-12);
@@ -24,7 +24,7 @@ BOOST_AUTO_TEST_CASE(line_through_the_centre_meets_the_sphere_at_distance_one) {
 }
 
 BOOST_AUTO_TEST_CASE(critical_points_of_the_sphere_are_plus_minus_d) {
-  SurfaceOracle oracle(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.5), SolverBackend::subdivision);
+  ImplicitOracle oracle(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.5), SolverBackend::subdivision);
   const Vec3 d = detail::normalized(Vec3{0.3, -0.5, 0.8});
   const auto r = oracle.surface_critical(
       d, Domain::from_box({{-1.5, 1.5}, {-1.5, 1.5}, {-1.5, 1.5}}), 100000);
@@ -34,7 +34,7 @@ BOOST_AUTO_TEST_CASE(critical_points_of_the_sphere_are_plus_minus_d) {
 
 BOOST_AUTO_TEST_CASE(a_primitive_solved_by_name_is_the_same_solve) {
   // solve("surface_critical", (a, b), …) is the method surface_critical(d) for the frame (a, b) of d.
-  SurfaceOracle oracle(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.5), SolverBackend::subdivision);
+  ImplicitOracle oracle(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.5), SolverBackend::subdivision);
   const Domain box = Domain::from_box({{-1.5, 1.5}, {-1.5, 1.5}, {-1.5, 1.5}});
   const Vec3 d{0.3, -0.5, 0.8};
   const OrthonormalFrame f = orthonormal_frame(d);
@@ -56,7 +56,7 @@ BOOST_AUTO_TEST_CASE(a_primitive_solved_by_name_is_the_same_solve) {
 }
 
 BOOST_AUTO_TEST_CASE(projection_lands_on_the_surface) {
-  SurfaceOracle oracle(Surface::parse("(x^2+y^2+z^2+0.84)^2-4*(x^2+y^2)"), Box3::cube(1.65), SolverBackend::subdivision);
+  ImplicitOracle oracle(Surface::parse("(x^2+y^2+z^2+0.84)^2-4*(x^2+y^2)"), Box3::cube(1.65), SolverBackend::subdivision);
   const auto x = oracle.project({1.3, 0.2, 0.1});
   BOOST_TEST_REQUIRE(x.has_value());
   BOOST_TEST(std::abs(oracle.E(*x)) < 1e-12);

@@ -242,6 +242,13 @@ inline constexpr double min_spacing_median_edge_fraction = 0.1;
 //! The statistics list the locations of at most this many witnesses below the termination floor
 //! (all are counted).
 inline constexpr std::size_t floor_locations_listed = 10;
+//! The termination floor of the topology checks (VorEdge, FacetContact, TopoDisk, FacetCycle,
+//! Silhouette) and the seeds, as a fraction of the floor of Quality, Smooth and the size bound.
+//! Smooth cannot be satisfied across a crease whose dihedral angle exceeds 2β(λ), so refinement
+//! for the geometry stops at the floor there; the topology checks keep inserting down to this
+//! fraction of it, so that their witnesses, which the floor would otherwise leave unsettled and
+//! Tri S|Σ wrong, are still inserted.
+inline constexpr double topology_floor_fraction = 0.01;
 //! The mesh oracle (meshing/mesh_oracle.h): a point of a triangle mesh within this distance
 //! (relative to the box diagonal) of a vertex or an edge of its face gets that vertex's or edge's
 //! normal rather than the face's.

@@ -168,10 +168,12 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
       ++rejected_;
       return std::nullopt;
     }
-    if (d < limits_.min_spacing) {
+    if (d < floor_for(w.kind)) {
       // The termination floor: recorded, not inserted.
       ++floor_hits_;
-      if (floor_locations_.size() < tolerances::floor_locations_listed) floor_locations_.push_back(w.point);
+      if (floor_locations_.size() < tolerances::floor_locations_listed &&
+          std::find(floor_locations_.begin(), floor_locations_.end(), w.point) == floor_locations_.end())
+        floor_locations_.push_back(w.point);
       return std::nullopt;
     }
   }
@@ -385,8 +387,14 @@ nlohmann::json Refinement::insertions_json() const {
   return j;
 }
 
+double Refinement::floor_for(CheckKind kind) const {
+  const bool geometry = kind == CheckKind::quality || kind == CheckKind::smooth || kind == CheckKind::size;
+  return geometry ? limits_.min_spacing : tolerances::topology_floor_fraction * limits_.min_spacing;
+}
+
 nlohmann::json Refinement::floor_json() const {
   return {{"value", limits_.min_spacing},
+          {"topology_value", floor_for(CheckKind::vor_edge)},
           {"reached", floor_hits_ > 0},
           {"witnesses_below", floor_hits_},
           {"locations", floor_locations_}};

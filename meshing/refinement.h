@@ -109,9 +109,11 @@ struct RefinementLimits {
   const std::atomic<bool>* interrupt = nullptr;
   //! A witness this close to a sample (relative to the box diagonal) is rejected as a duplicate.
   double duplicate_relative_distance = tolerances::duplicate_sample_relative_distance;
-  //! The termination floor (world units, 0: none): a witness closer than this to its nearest
-  //! sample is not inserted but recorded (floor_json()); its face is then left unsettled
-  //! (rejected_witness), so the run cannot end complete.
+  //! The termination floor (world units, 0: none): a witness of Quality, Smooth or the size
+  //! bound closer than this to its nearest sample, or a witness of a topology check (or a seed)
+  //! closer than tolerances::topology_floor_fraction times this, is not inserted but recorded
+  //! (floor_json()); its face is then left unsettled (rejected_witness), so the run cannot end
+  //! complete.  Either floor bounds the number of insertions (a packing argument in the box).
   double min_spacing = 0;
 };
 
@@ -183,8 +185,8 @@ class Refinement {
 
   //! {seeds, vor_edge, …, size, seeds_deleted, rejected_witnesses}
   nlohmann::json insertions_json() const;
-  //! The termination floor: {value, reached, witnesses_below (count), locations (the first
-  //! tolerances::floor_locations_listed of them)}.
+  //! The termination floor: {value, topology_value, reached, witnesses_below (count), locations
+  //! (the first tolerances::floor_locations_listed distinct ones)}.
   nlohmann::json floor_json() const;
   //! {vor_edge: n, …}: items examined per step, keyed by the step's CheckKind.
   nlohmann::json checks_json() const;
@@ -279,6 +281,8 @@ class Refinement {
   };
   std::map<std::pair<int, Simplex>, UnsettledFace> unsettled_;
   std::vector<Unsettled> standing_unsettled_;
+  //! The floor of min_spacing for a witness of this kind.
+  double floor_for(CheckKind kind) const;
   std::size_t floor_hits_ = 0;           //!< witnesses not inserted because of min_spacing
   std::vector<Vec3> floor_locations_;    //!< the first of them
   std::chrono::steady_clock::time_point last_progress_;

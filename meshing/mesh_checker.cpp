@@ -212,12 +212,14 @@ MeshReport check_mesh(const std::vector<Point3>& input_points,
     if (count != 2) {
       comp_closed[c] = 0;
       if (count == 1) {
+        if (!report.first_boundary_edge) report.first_boundary_edge = {{uses[begin].lo, uses[begin].hi}};
         ++report.boundary_edges;
         ++components[c].boundary_edges;
         boundary_graph.unite(uses[begin].lo, uses[begin].hi);
         on_boundary[uses[begin].lo] = 1;
       }
       if (count >= 3) {
+        if (!report.first_nonmanifold_edge) report.first_nonmanifold_edge = {{uses[begin].lo, uses[begin].hi}};
         ++report.nonmanifold_edges;
         ++components[c].nonmanifold_edges;
         comp_orientable[c] = 0;
@@ -227,7 +229,11 @@ MeshReport check_mesh(const std::vector<Point3>& input_points,
       const EdgeUse& u = uses[begin];
       const EdgeUse& w = uses[begin + 1];
       const bool same = u.forward == w.forward;
-      if (same) oriented = false;
+      if (same) {
+        oriented = false;
+        ++report.misoriented_edges;
+        if (!report.first_misoriented_edge) report.first_misoriented_edge = {{u.lo, u.hi}};
+      }
       across[u.triangle].push_back({w.triangle, same});
       across[w.triangle].push_back({u.triangle, same});
       // Roughness: the angle between the normals of the consistently oriented pair.
@@ -284,6 +290,7 @@ MeshReport check_mesh(const std::vector<Point3>& input_points,
     }
     const LinkKind kind = link_kind(link);
     if (kind == LinkKind::other) {
+      if (!report.first_nonmanifold_vertex) report.first_nonmanifold_vertex = v;
       ++report.nonmanifold_vertices;
       ++components[component_of[incident[first[v]]]].nonmanifold_vertices;
     }

@@ -30,6 +30,7 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <ostream>
 #include <vector>
 
@@ -70,6 +71,14 @@ struct MeshReport {
   double max_radius_edge_ratio = 0;      //!< circumradius / shortest edge
   double max_roughness_rad = 0;          //!< π − dihedral angle, over interior edges
   double min_edge_length = 0, max_edge_length = 0;
+  //! Edges that both of their triangles traverse in the same direction (so oriented is false).
+  std::size_t misoriented_edges = 0;
+  //! Where the first defect of each kind lies, for messages that say where: edges as vertex
+  //! indices {lo, hi} with lo < hi, the lexicographically smallest of their kind; the vertex of
+  //! smallest index.  Empty when the mesh has no such defect.  (Not written by to_json.)
+  std::optional<std::array<std::size_t, 2>> first_boundary_edge, first_nonmanifold_edge,
+      first_misoriented_edge;
+  std::optional<std::size_t> first_nonmanifold_vertex;
 
   //! True iff closed, manifold and orientable with exactly these genera (sorted ascending).
   bool has_topology(const std::vector<int>& genus_per_component) const;
@@ -88,8 +97,8 @@ MeshReport check_mesh(const SurfaceMesh& mesh);
 void mesh_to_soup(const SurfaceMesh& mesh, std::vector<Point3>& points,
                   std::vector<std::array<std::size_t, 3>>& triangles);
 
-//! Every field, with the key names of the statistics contract (design.md): vertices, edges,
-//! triangles, components, euler_characteristic, genus_per_component, closed, manifold,
+//! Every field but misoriented_edges and the first-defect locations, with the key names of the
+//! statistics contract (design.md): vertices, edges, triangles, components, euler_characteristic, genus_per_component, closed, manifold,
 //! closed_manifold, orientable, oriented, min_angle_deg, max_radius_edge_ratio, max_roughness_rad…
 //! plus boundary_edges, boundary_loops, nonmanifold_edges, nonmanifold_vertices (also per
 //! component).  A radius-edge ratio of +∞ and an undefined genus are written as null.

@@ -198,6 +198,31 @@ BOOST_AUTO_TEST_CASE(edge_in_three_triangles) {
   BOOST_TEST(!r.oriented);
 }
 
+BOOST_AUTO_TEST_CASE(first_defects_are_located) {
+  // The open disk: its boundary edges are {1, 2}, {2, 3}, ..., {1, 6}; the smallest is {1, 2}.
+  const MeshReport disk = check(test::open_disk(6));
+  BOOST_REQUIRE(disk.first_boundary_edge.has_value());
+  BOOST_TEST((*disk.first_boundary_edge == std::array<std::size_t, 2>{1, 2}));
+  BOOST_TEST(!disk.first_nonmanifold_edge.has_value());
+  BOOST_TEST(!disk.first_misoriented_edge.has_value());
+  // The bow-tie is pinched at vertex 0.
+  BOOST_TEST((check(test::bow_tie()).first_nonmanifold_vertex == std::optional<std::size_t>(0)));
+  // The flipped hinge traverses its shared edge {0, 1} twice the same way.
+  const MeshReport hinge = check(test::hinge(2.0, true));
+  BOOST_TEST(hinge.misoriented_edges == 1u);
+  BOOST_TEST((hinge.first_misoriented_edge == std::optional<std::array<std::size_t, 2>>({0, 1})));
+  // A third triangle on the hinge's edge {0, 1}.
+  Soup three = test::hinge(2.0);
+  three.points.push_back(Point3(0.5, 0, -1));
+  three.triangles.push_back({0, 1, 4});
+  BOOST_TEST((check(three).first_nonmanifold_edge == std::optional<std::array<std::size_t, 2>>({0, 1})));
+  // A closed manifold has none of them.
+  const MeshReport sphere = check(test::icosahedron());
+  BOOST_TEST(!sphere.first_boundary_edge.has_value());
+  BOOST_TEST(!sphere.first_nonmanifold_vertex.has_value());
+  BOOST_TEST(sphere.misoriented_edges == 0u);
+}
+
 BOOST_AUTO_TEST_CASE(hinge_roughness_closed_form) {
   for (double phi : {pi, 0.9 * pi, 2.0, pi / 2, 0.3}) {
     for (bool flip : {false, true}) {

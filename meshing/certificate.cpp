@@ -1,21 +1,20 @@
-// The certificate of a finished mesh (certificate.h): Del S of the mesh's vertices, the five
-// checks of §5.3 on every Voronoi face of a fresh RestrictedDelaunay, and Tri S|Σ against the
-// mesh's triangles.
+// The certificate of a finished mesh (certificate.h): Del S of the mesh's vertices, the topology
+// rows of the check registry (the five checks of §5.3, and any registered topology check) on
+// every Voronoi face of a fresh RestrictedDelaunay, and Tri S|Σ against the mesh's triangles.
 //
 // Steps:
 //  1. validate Σ (smooth, strictly inside B) and read the soup into S (referenced points only);
-//  2. VorEdge on every Delaunay triangle; its record also says whether the triangle is in
-//     Tri S|Σ, and its unresolved regions are unsettled findings (vor_edge.h leaves them to the
-//     caller);
-//  3. FacetContact on every Delaunay edge, then FacetCycle where FacetContact was clean; the
-//     facet's geometry is released after its two checks;
-//  4. TopoDisk on every vertex;
-//  5. Silhouette on every vertex, with the facet shortcut only where steps 2–4 were clean on
-//     every face of the cell;
-//  6. Tri S|Σ against the soup.
-// A witness counts as proved unless it comes from an undecided region, or is a VorEdge crossing
-// of a record with an unresolved region, or a TopoDisk witness of a vertex some triangle of
-// which has an unresolved record (the restricted star may then be wrong).
+//  2. on every Delaunay triangle the triangle rows (VorEdge); the triangle's record also says
+//     whether it is in Tri S|Σ, and its unresolved regions are unsettled findings (vor_edge.h
+//     leaves them to the caller);
+//  3. on every Delaunay edge the edge rows (FacetContact, then FacetCycle where FacetContact was
+//     clean); the facet's geometry is released after them;
+//  4. on every vertex the vertex rows (TopoDisk, then Silhouette with the facet shortcut only
+//     where everything so far was clean on every face of the cell);
+//  5. Tri S|Σ against the soup.
+// A witness counts as proved unless it comes from an undecided region, or its row reads the
+// restricted status (VorEdge, TopoDisk) and a triangle containing its face has an unresolved
+// record (the crossings or the restricted star may then be wrong).
 #include "meshing/certificate.h"
 
 #include <algorithm>
@@ -26,15 +25,11 @@
 #include <sstream>
 
 #include "common/errors.h"
+#include "meshing/check_registry.h"
 #include "meshing/delaunay.h"
-#include "meshing/facet_contact.h"
-#include "meshing/facet_cycle.h"
 #include "meshing/input_validation.h"
 #include "meshing/restricted_delaunay.h"
-#include "meshing/silhouette.h"
 #include "meshing/implicit_oracle.h"
-#include "meshing/topo_disk.h"
-#include "meshing/vor_edge.h"
 
 namespace delmesh {
 
@@ -146,67 +141,79 @@ Certificate certify_mesh(const std::vector<Point3>& points, const std::vector<st
     if (options.interrupt && options.interrupt->load(std::memory_order_relaxed)) c.interrupted = true;
     return c.interrupted;
   };
-  auto timed = [&](CheckKind kind, auto&& check) {
-    const auto t0 = Clock::now();
-    auto result = check();
-    c.seconds_per_check[static_cast<int>(kind)] += std::chrono::duration<double>(Clock::now() - t0).count();
-    return result;
+  // The topology rows of the check registry, by the kind of face they examine.
+  std::array<std::vector<const CheckInfo*>, 3> rows_of;
+  for (const CheckInfo& row : check_registry())
+    if (row.phase == CheckPhase::topology) rows_of[static_cast<int>(row.face)].push_back(&row);
+  c.seconds_per_check.assign(check_kind_count(), 0.0);
+  // Runs the rows of `kind` on one face, in the registry's order (a row marked
+  // after_clean_predecessors only where the earlier ones were clean), and records the findings;
+  // `unresolved` says whether a triangle containing the face has an unresolved record.  The
+  // results are recorded after all rows ran, so a triangle's record can be read in between.
+  auto check_face = [&](FaceKind kind, const DelaunayFace& face, auto&& unresolved) {
+    std::vector<VertexId> simplex;
+    for (VertexId v : face)
+      if (v >= 0) simplex.push_back(v);
+    std::vector<std::pair<const CheckInfo*, CheckResult>> results;
+    bool clean = true;
+    for (const CheckInfo* row : rows_of[static_cast<int>(kind)]) {
+      if (row->after_clean_predecessors && !clean) continue;
+      CheckContext context{restricted, row->kind, 0, std::nullopt, true};
+      // A cell's faces are clean if no check so far found anything on a face of V_p.
+      if (kind == FaceKind::vertex) context.cell_faces_clean = !findings.dirty(face[0]) && clean;
+      const auto t0 = Clock::now();
+      CheckResult result = row->check(context, face);
+      c.seconds_per_check[static_cast<int>(row->kind)] += std::chrono::duration<double>(Clock::now() - t0).count();
+      clean = clean && result.clean();
+      results.emplace_back(row, std::move(result));
+    }
+    const bool near_unresolved = unresolved();
+    for (const auto& [row, result] : results) findings.add(simplex, result, !(row->reads_restricted_status && near_unresolved));
   };
 
-  // 2. VorEdge on every Voronoi edge; Tri S|Σ from the same records.
+  // 2. The Voronoi edges; Tri S|Σ from the same records.
   std::set<TriangleKey> restricted_set;
   std::vector<bool> unresolved_at(del.size(), false);  // some triangle at v has an unresolved record
+  std::set<EdgeKey> unresolved_edges;                   // some triangle at e has an unresolved record
   const std::vector<TriangleKey> all_triangles = del.triangles();
   for (const auto& t : all_triangles) {
     if (stopped()) break;
-    const CheckResult result = timed(CheckKind::vor_edge, [&] { return vor_edge_witness(restricted, t); });
+    check_face(FaceKind::triangle, t, [&] { return !restricted.edge_record(t).unresolved.empty(); });
     const EdgeRecord& record = restricted.edge_record(t);
     CheckResult unresolved;
     for (const auto& x : record.unresolved)
       unresolved.unsettled.push_back({CheckKind::vor_edge, UnsettledReason::unresolved_crossing, x});
-    if (!record.unresolved.empty())
+    if (!record.unresolved.empty()) {
       for (VertexId v : t) unresolved_at[v] = true;
-    const std::vector<VertexId> simplex(t.begin(), t.end());
-    findings.add(simplex, result, record.unresolved.empty());
-    findings.add(simplex, unresolved);
+      for (const auto& e : {make_edge_key(t[0], t[1]), make_edge_key(t[0], t[2]), make_edge_key(t[1], t[2])})
+        unresolved_edges.insert(e);
+    }
+    findings.add({t[0], t[1], t[2]}, unresolved);
     if (record.restricted) restricted_set.insert(t);
     ++c.voronoi_edges;
   }
 
-  // 3. FacetContact, then FacetCycle (its precondition: FacetContact found nothing), per facet.
+  // 3. The facets, each built once for its rows and released after them.
   const std::vector<VertexId> vertices = del.vertices();
   for (VertexId p : vertices) {
     for (VertexId q : del.neighbours(p)) {
       if (q < p) continue;
       if (stopped()) break;
       const EdgeKey e{p, q};
-      const CheckResult contact = timed(CheckKind::facet_contact, [&] { return facet_contact_witness(restricted, e); });
-      findings.add({p, q}, contact);
-      if (contact.clean()) {
-        const CheckResult cycle = timed(CheckKind::facet_cycle, [&] { return facet_cycle_witness(restricted, e); });
-        findings.add({p, q}, cycle);
-      }
+      check_face(FaceKind::edge, {p, q, -1}, [&] { return unresolved_edges.count(e) != 0; });
       restricted.release_facet(e);
       ++c.voronoi_facets;
     }
   }
 
-  // 4. TopoDisk and 5. Silhouette on every cell.
+  // 4. The cells.
   for (VertexId p : vertices) {
     if (stopped()) break;
-    const CheckResult disk = timed(CheckKind::topo_disk, [&] { return topo_disk_witness(restricted, p); });
-    findings.add({p}, disk, !unresolved_at[p]);
-  }
-  for (VertexId p : vertices) {
-    if (stopped()) break;
-    const bool facets_clean = !findings.dirty(p);
-    const CheckResult silhouette =
-        timed(CheckKind::silhouette, [&] { return silhouette_witness(restricted, p, facets_clean); });
-    findings.add({p}, silhouette);
+    check_face(FaceKind::vertex, {p, -1, -1}, [&] { return static_cast<bool>(unresolved_at[p]); });
     ++c.voronoi_cells;
   }
 
-  // 6. Tri S|Σ against the soup's triangles.
+  // 5. Tri S|Σ against the soup's triangles.
   c.restricted_triangles = restricted_set.size();
   std::set<TriangleKey> mesh_set;
   for (const auto& t : triangles) {
@@ -286,9 +293,10 @@ nlohmann::json to_json(const Certificate& c) {
   j["seconds"] = c.seconds;
   j["seconds_validation"] = c.seconds_validation;
   nlohmann::json per_check = nlohmann::json::object();
-  for (CheckKind k : {CheckKind::vor_edge, CheckKind::facet_contact, CheckKind::topo_disk, CheckKind::facet_cycle,
-                      CheckKind::silhouette})
-    per_check[text_of(k)] = c.seconds_per_check[static_cast<int>(k)];
+  for (const CheckInfo& row : check_registry()) {
+    const auto k = static_cast<std::size_t>(row.kind);
+    if (row.phase == CheckPhase::topology) per_check[row.name] = k < c.seconds_per_check.size() ? c.seconds_per_check[k] : 0.0;
+  }
   j["seconds_per_check"] = per_check;
   j["solver"] = c.solver;
   return j;

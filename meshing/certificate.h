@@ -30,10 +30,13 @@
 //!
 //! **Procedure.**  The referenced vertices of the soup, in index order, become S (ids 0, 1, …;
 //! unreferenced points are left out; coincident points are one sample).  Del S is built, and on a
-//! fresh RestrictedDelaunay (nothing cached before) the checks run on every Voronoi face in the
-//! paper's order: VorEdge on every Voronoi edge (each Delaunay triangle's record also decides its
-//! membership in Tri S|Σ, with §5.1's rule), FacetContact on every facet and FacetCycle on every
-//! facet FacetContact left clean (its precondition), TopoDisk and Silhouette on every cell.
+//! fresh RestrictedDelaunay (nothing cached before) the topology rows of the check registry
+//! (meshing/check_registry.h) run on every Voronoi face, edges first, then facets, then cells,
+//! each face's rows in the registry's order: VorEdge on every Voronoi edge (each Delaunay
+//! triangle's record also decides its membership in Tri S|Σ, with §5.1's rule), FacetContact on
+//! every facet and FacetCycle on every facet FacetContact left clean (its precondition:
+//! CheckInfo::after_clean_predecessors), TopoDisk and Silhouette on every cell.  A registered
+//! topology row runs the same way.
 //! Silhouette(p) skips the facets of V_p no Voronoi edge of which meets Σ only when the other
 //! checks were clean on every face of V_p (silhouette.h).  Then Tri S|Σ is compared with the
 //! soup's triangles as vertex sets.
@@ -117,7 +120,7 @@ struct [[nodiscard]] Certificate {
 
   double seconds = 0;                  //!< wall-clock time, validation included
   double seconds_validation = 0;
-  std::array<double, check_kind_count> seconds_per_check{};
+  std::vector<double> seconds_per_check;  //!< indexed by CheckKind (check_kind_count() entries)
   nlohmann::json solver;               //!< the oracle's statistics_json() of the certificate's solves
   std::uint64_t seed = 1;
 };

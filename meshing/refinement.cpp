@@ -5,78 +5,19 @@
 
 #include "common/errors.h"
 #include "common/tolerances.h"
-#include "meshing/facet_contact.h"
-#include "meshing/facet_cycle.h"
-#include "meshing/quality.h"
-#include "meshing/silhouette.h"
-#include "meshing/smooth.h"
-#include "meshing/theorem_bounds.h"
-#include "meshing/topo_disk.h"
-#include "meshing/vor_edge.h"
 
 namespace delmesh {
 
 namespace {
 
-TriangleKey as_triangle(const std::array<VertexId, 3>& s) { return s; }
 EdgeKey as_edge(const std::array<VertexId, 3>& s) { return {s[0], s[1]}; }
 
 }  // namespace
 
 std::vector<Refinement::Step> Refinement::make_table() {
-  // Quality and Smooth start disabled (enable_geometry()).
-  std::vector<Step> table(step_count);
-  table[vor_edge_step] = {CheckKind::vor_edge, [](Refinement& r, const Simplex& s) -> CheckResult {
-                            const TriangleKey t = as_triangle(s);
-                            if (!r.current(t)) return {};
-                            return vor_edge_witness(r.restricted_, t);
-                          }, {}, true};
-  table[facet_contact_step] = {CheckKind::facet_contact,
-                               [](Refinement& r, const Simplex& s) -> CheckResult {
-                                 const EdgeKey e = as_edge(s);
-                                 if (!r.current(e)) return {};
-                                 return facet_contact_witness(r.restricted_, e);
-                               }, {}, true};
-  table[topo_disk_step] = {CheckKind::topo_disk, [](Refinement& r, const Simplex& s) -> CheckResult {
-                             if (!r.del_.contains(s[0])) return {};
-                             return topo_disk_witness(r.restricted_, s[0]);
-                           }, {}, true};
-  table[facet_cycle_step] = {CheckKind::facet_cycle,
-                             [](Refinement& r, const Simplex& s) -> CheckResult {
-                               const EdgeKey e = as_edge(s);
-                               if (!r.current(e)) return {};
-                               auto result = facet_cycle_witness(r.restricted_, e);
-                               // The last facet check of e: its geometry is not kept.
-                               if (result.clean()) r.restricted_.release_facet(e);
-                               return result;
-                             }, {}, true};
-  // Step (e) runs only once (a)–(d) have nothing queued: the facets of V_p are clean.
-  table[silhouette_step] = {CheckKind::silhouette,
-                            [](Refinement& r, const Simplex& s) -> CheckResult {
-                              if (!r.del_.contains(s[0])) return {};
-                              return silhouette_witness(r.restricted_, s[0], /*facets_clean=*/true);
-                            }, {}, true};
-  table[quality_step] = {CheckKind::quality, [](Refinement& r, const Simplex& s) -> CheckResult {
-                           const TriangleKey t = as_triangle(s);
-                           CheckResult result;
-                           if (!r.current(t)) return result;
-                           auto w = quality_witness(r.restricted_, t, r.lambda_);
-                           if (!w && r.size_bound_) w = size_witness(r.restricted_, t, *r.size_bound_);
-                           if (w) result.witnesses.push_back(*w);
-                           return result;
-                         }, {}, false};
-  table[smooth_step] = {CheckKind::smooth, [](Refinement& r, const Simplex& s) -> CheckResult {
-                          const TriangleKey t = as_triangle(s);
-                          CheckResult result;
-                          if (!r.current(t) || !r.restricted_.edge_record(t).restricted) return result;
-                          for (const auto& e : {make_edge_key(t[0], t[1]), make_edge_key(t[0], t[2]),
-                                                make_edge_key(t[1], t[2])})
-                            if (auto w = smooth_witness(r.restricted_, e, r.smooth_threshold_)) {
-                              result.witnesses.push_back(*w);
-                              break;
-                            }
-                          return result;
-                        }, {}, false};
+  // The geometry rows start disabled (enable_geometry()).
+  std::vector<Step> table;
+  for (const CheckInfo& row : check_registry()) table.push_back({&row, {}, row.phase == CheckPhase::topology});
   return table;
 }
 
@@ -89,15 +30,23 @@ bool Refinement::current(const EdgeKey& e) const { return restricted_.has_facet(
 bool Refinement::face_current(const Simplex& s) const {
   if (s[1] < 0) return del_.contains(s[0]);
   if (s[2] < 0) return current(as_edge(s));
-  return current(as_triangle(s));
+  return current(TriangleKey(s));
 }
 
 Refinement::Refinement(SurfaceOracle& oracle, std::uint64_t seed, RefinementLimits limits, RecheckPolicy policy,
                        int threads)
     : oracle_(oracle), seed_(seed), limits_(std::move(limits)), policy_(policy), restricted_(del_, oracle, seed),
-      steps_(make_table()), parallel_(threads), last_progress_(std::chrono::steady_clock::now()) {
+      steps_(make_table()), parallel_(threads), insertions_(check_kind_count()), checks_(check_kind_count()),
+      seconds_(check_kind_count()), last_progress_(std::chrono::steady_clock::now()) {
   // insert() and remove() compute the record of every new or changed triangle at once.
   restricted_.assume_every_triangle_recorded();
+  set_last_edge_step();
+}
+
+void Refinement::set_last_edge_step() {
+  last_edge_step_ = -1;
+  for (std::size_t k = 0; k < steps_.size(); ++k)
+    if (steps_[k].enabled && steps_[k].row->face == FaceKind::edge) last_edge_step_ = static_cast<int>(k);
 }
 
 void Refinement::enable_geometry(double lambda, std::optional<double> size_bound) {
@@ -105,34 +54,57 @@ void Refinement::enable_geometry(double lambda, std::optional<double> size_bound
   if (size_bound && !(*size_bound > 0)) throw PreconditionViolation("enable_geometry: size bound not positive");
   lambda_ = lambda;
   size_bound_ = size_bound;
-  smooth_enabled_ = lambda < 1.0 / 6.0;
-  smooth_threshold_ = smooth_enabled_ ? 2 * beta(lambda) : 0;
-  steps_[quality_step].enabled = true;
-  steps_[smooth_step].enabled = smooth_enabled_;
-  for (const auto& t : restricted_.triangles()) queue_triangle(t, false);
+  geometry_enabled_ = true;
+  for (auto& step : steps_)
+    if (step.row->phase == CheckPhase::geometry) step.enabled = !step.row->runs_at || step.row->runs_at(lambda);
+  set_last_edge_step();
+  // Every current face a geometry row examines: for restricted_triangles rows the restricted
+  // triangles, for the others every face of their kind.
+  std::optional<std::vector<TriangleKey>> restricted_triangles, all_triangles;
+  for (auto& step : steps_) {
+    const CheckInfo& row = *step.row;
+    if (row.phase != CheckPhase::geometry || !step.enabled) continue;
+    if (row.face == FaceKind::triangle) {
+      auto& list = row.dirtied == Dirtied::restricted_triangles ? restricted_triangles : all_triangles;
+      if (!list) list = row.dirtied == Dirtied::restricted_triangles ? restricted_.triangles() : del_.triangles();
+      for (const auto& t : *list) step.queue.push(t);
+    } else {
+      for (VertexId v : del_.vertices()) {
+        if (row.face == FaceKind::vertex) step.queue.push({v, -1, -1});
+        else
+          for (VertexId w : del_.neighbours(v))
+            if (v < w) step.queue.push({v, w, -1});
+      }
+    }
+  }
 }
 
-void Refinement::queue_triangle(const TriangleKey& t, bool topology_checks) {
-  queue_triangle(t, topology_checks, restricted_.edge_record(t));
+void Refinement::queue(const Simplex& f, FaceKind kind, Dirtied dirtied, const EdgeRecord* record) {
+  for (auto& step : steps_) {
+    const CheckInfo& row = *step.row;
+    if (!step.enabled || row.face != kind || row.dirtied != dirtied) continue;
+    if (record && row.may_fire && policy_ == RecheckPolicy::new_faces && !row.may_fire(*record)) continue;
+    step.queue.push(f);
+  }
 }
 
-void Refinement::queue_triangle(const TriangleKey& t, bool topology_checks, const EdgeRecord& r) {
-  // The record is computed eagerly (the checks would compute it anyway).  VorEdge is a function of
-  // it alone, so under the default policy a triangle waits for VorEdge only if its record has a
-  // witness (a tangency candidate or two crossings); Quality, size and Smooth only look at
-  // restricted triangles.
-  const bool vor_edge_fires = !r.candidates.empty() || r.crossings.size() >= 2;
-  if (topology_checks && (vor_edge_fires || policy_ == RecheckPolicy::changed_faces))
-    steps_[vor_edge_step].queue.push(t);
-  if (!r.restricted) return;
-  for (int k : {quality_step, smooth_step})
-    if (steps_[k].enabled) steps_[k].queue.push(t);
+void Refinement::queue_triangle(const TriangleKey& t, bool new_face) {
+  queue_triangle(t, new_face, restricted_.edge_record(t));
 }
 
-void Refinement::queue_edge(const EdgeKey& e) {
-  const Simplex s{e[0], e[1], -1};
-  steps_[facet_contact_step].queue.push(s);
-  steps_[facet_cycle_step].queue.push(s);
+void Refinement::queue_triangle(const TriangleKey& t, bool new_face, const EdgeRecord& r) {
+  // The record is computed eagerly (the checks would compute it anyway).  A row that is a
+  // function of the record alone (VorEdge) is skipped when its may_fire says it cannot fire;
+  // restricted_triangles rows (Quality, size, Smooth) only look at restricted triangles.
+  if (new_face) queue(t, FaceKind::triangle, Dirtied::new_faces, &r);
+  if (r.restricted) queue(t, FaceKind::triangle, Dirtied::restricted_triangles);
+}
+
+void Refinement::queue_edge(const EdgeKey& e) { queue({e[0], e[1], -1}, FaceKind::edge, Dirtied::new_faces); }
+
+void Refinement::queue_vertex(VertexId v, bool new_cell) {
+  queue({v, -1, -1}, FaceKind::vertex, Dirtied::restricted_star);
+  if (new_cell) queue({v, -1, -1}, FaceKind::vertex, Dirtied::new_faces);
 }
 
 void Refinement::queue_everything_within(const std::vector<VertexId>& vs) {
@@ -143,8 +115,7 @@ void Refinement::queue_everything_within(const std::vector<VertexId>& vs) {
       if (t[0] == v && in(t[1]) && in(t[2])) queue_triangle(t, true);
     for (VertexId w : del_.neighbours(v))
       if (v < w && in(w)) queue_edge({v, w});
-    steps_[topo_disk_step].queue.push({v, -1, -1});
-    steps_[silhouette_step].queue.push({v, -1, -1});
+    queue_vertex(v, true);
   }
 }
 
@@ -218,19 +189,15 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
     if (status_changed || before.old_dual_point != r.dual_point)
       queue_triangle(t, policy_ == RecheckPolicy::changed_faces, r);
     else if (policy_ == RecheckPolicy::changed_faces)
-      steps_[vor_edge_step].queue.push(t);
+      queue(t, FaceKind::triangle, Dirtied::new_faces);
   }
   const std::vector<VertexId> neighbours = prepare_new_edges(x, star);
-  steps_[silhouette_step].queue.push({x, -1, -1});
   std::sort(star_changed.begin(), star_changed.end());
   star_changed.erase(std::unique(star_changed.begin(), star_changed.end()), star_changed.end());
-  for (VertexId v : star_changed) steps_[topo_disk_step].queue.push({v, -1, -1});
+  for (VertexId v : star_changed) queue_vertex(v, v == x);
   if (policy_ == RecheckPolicy::changed_faces) {
     for (const auto& e : change.shrunk_edges) queue_edge(e);
-    for (VertexId v : neighbours) {
-      steps_[topo_disk_step].queue.push({v, -1, -1});
-      steps_[silhouette_step].queue.push({v, -1, -1});
-    }
+    for (VertexId v : neighbours) queue_vertex(v, true);
   }
   return id;
 }
@@ -278,9 +245,9 @@ std::optional<MeshStatus> Refinement::limit_reached(std::chrono::steady_clock::t
       std::chrono::duration<double>(now - last_progress_).count() >= tolerances::progress_interval_seconds) {
     last_progress_ = now;
     std::ostringstream s;
-    s << (steps_[quality_step].enabled ? "geometry" : "topology") << ": points " << del_.size() << ", queued";
+    s << (geometry_enabled_ ? "geometry" : "topology") << ": points " << del_.size() << ", queued";
     for (const auto& step : steps_)
-      if (step.enabled) s << ' ' << step.kind << '=' << step.queue.size();
+      if (step.enabled) s << ' ' << step.row->name << '=' << step.queue.size();
     limits_.progress(s.str());
   }
   if (limits_.interrupt && limits_.interrupt->load(std::memory_order_relaxed)) return MeshStatus::interrupted;
@@ -302,13 +269,22 @@ MeshStatus Refinement::run() {
       return MeshStatus::complete;
     }
     const Simplex item = step->queue.pop();
-    CheckResult result = step->check(*this, item);
-    const auto k = static_cast<int>(step->kind);
+    const int index = static_cast<int>(step - steps_.begin());
+    const CheckInfo& row = *step->row;
+    CheckResult result;
+    // A face no longer in Del S has nothing to check.
+    if (face_current(item)) {
+      const CheckContext context{restricted_, row.kind, lambda_, size_bound_, /*cell_faces_clean=*/true};
+      result = row.check(context, item);
+      // The last edge check of the edge: its facet's geometry is not kept.
+      if (index == last_edge_step_ && result.clean()) restricted_.release_facet(as_edge(item));
+    }
+    const auto k = static_cast<int>(row.kind);
     const auto checked = std::chrono::steady_clock::now();
     seconds_[k] += std::chrono::duration<double>(checked - now).count();
     ++checks_[k];
     now = checked;
-    if (settle(static_cast<int>(step - steps_.begin()), item, std::move(result))) {
+    if (settle(index, item, std::move(result))) {
       // A face that gave a witness is not clean: it is examined again once the witness is in S
       // (e.g. V_p keeps other points of J_{n_p} after the furthest one is inserted).
       step->queue.push(item);
@@ -377,10 +353,9 @@ Certification Refinement::certify(MeshStatus run_status, bool output_defective) 
 
 nlohmann::json Refinement::insertions_json() const {
   nlohmann::json j = nlohmann::json::object();
-  for (int k = 0; k < check_kind_count; ++k) {
-    std::ostringstream name;
-    name << static_cast<CheckKind>(k);
-    j[name.str() == "seed" ? "seeds" : name.str()] = insertions_[k];
+  for (int k = 0; k < check_kind_count(); ++k) {
+    const std::string name = check_kind_name(static_cast<CheckKind>(k));
+    j[name == "seed" ? "seeds" : name] = insertions_[k];
   }
   j["seeds_deleted"] = seeds_deleted_;
   j["rejected_witnesses"] = rejected_;
@@ -405,13 +380,9 @@ nlohmann::json Refinement::checks_json() const { return per_step(checks_); }
 nlohmann::json Refinement::seconds_json() const { return per_step(seconds_); }
 
 template <class T>
-nlohmann::json Refinement::per_step(const std::array<T, check_kind_count>& counts) const {
+nlohmann::json Refinement::per_step(const std::vector<T>& counts) const {
   nlohmann::json j = nlohmann::json::object();
-  for (const auto& step : steps_) {
-    std::ostringstream name;
-    name << step.kind;
-    j[name.str()] = counts[static_cast<int>(step.kind)];
-  }
+  for (const auto& step : steps_) j[step.row->name] = counts[static_cast<int>(step.row->kind)];
   return j;
 }
 

@@ -1,23 +1,29 @@
 #pragma once
 //! \file refinement.h
 //! The refinement driver of DelMesh: Topology(S) (§5.4, steps (a)–(e)), Quality and Smooth
-//! (§6.2, steps 2–3) and the optional size bound, as one loop over an ordered table of steps
+//! (§6.2, steps 2–3) and the optional size bound, as one loop over an ordered table of steps.
+//! The table is the check registry (meshing/check_registry.h), one step per row, with the paper's
+//! rows first:
 //!
-//!   | step            | work queue holds                               | check (§)              |
-//!   |-----------------|------------------------------------------------|------------------------|
-//!   | (a) VorEdge     | triangles whose dual Voronoi edge is new       | vor_edge_witness       |
-//!   | (b) FacetContact| edges whose dual Voronoi facet is new          | facet_contact_witness  |
-//!   | (c) TopoDisk    | samples whose restricted star may have changed | topo_disk_witness      |
-//!   | (d) FacetCycle  | edges whose dual Voronoi facet is new          | facet_cycle_witness    |
-//!   | (e) Silhouette  | samples whose Voronoi cell is new              | silhouette_witness     |
-//!   | Quality + size  | restricted triangles whose dual edge changed   | quality/size_witness   |
-//!   | Smooth          | restricted triangles whose dual edge changed   | smooth_witness         |
+//!   | row             | queue holds (FaceKind)                         | dirtied           |
+//!   |-----------------|------------------------------------------------|-------------------|
+//!   | (a) vor_edge    | triangles whose dual Voronoi edge is new       | new_faces         |
+//!   | (b) facet_contact| edges whose dual Voronoi facet is new         | new_faces         |
+//!   | (c) topo_disk   | samples whose restricted star may have changed | restricted_star   |
+//!   | (d) facet_cycle | edges whose dual Voronoi facet is new          | new_faces         |
+//!   | (e) silhouette  | samples whose Voronoi cell is new              | new_faces         |
+//!   | quality (+ size)| restricted triangles whose dual edge changed   | restricted_triangles |
+//!   | smooth          | restricted triangles whose dual edge changed   | restricted_triangles |
+//!
+//! followed by the registered rows.  The driver names no check: it queues a face for the rows
+//! whose FaceKind and Dirtied rule say so, and runs each row's function.
 //!
 //! Each iteration takes one item of the first non-empty queue; a witness is inserted, the item
 //! goes back on its queue (its face has not been shown clean) and the loop starts again at (a),
 //! so the paper's order holds (Quality before Smooth, a topology witness
-//! before any geometric one).  Quality and Smooth run only after enable_geometry() (DelMesh
-//! step 2 starts after SampleTopology).  run() returns complete when every queue is empty.
+//! before any geometric one).  The geometry rows (Quality, Smooth) run only after
+//! enable_geometry() (DelMesh step 2 starts after SampleTopology).  run() returns complete when
+//! every queue is empty.
 //!
 //! **Lemma (recheck only new faces).**  Let x be inserted into S (no deletion), Del S of
 //! dimension 3 before and after.  Then:
@@ -42,21 +48,25 @@
 //!     neighbours across its edges, which are then re-queued themselves): they are re-queued for
 //!     the new triangles and the shrunk triangles whose status or dual point changed.  Every
 //!     such record is computed at once; VorEdge is a function of the record alone, so a new
-//!     triangle waits for it only if its record has a witness, and Quality, size and Smooth wait
-//!     only for restricted triangles.
+//!     triangle waits for it only if its record has a witness (the row's may_fire), and Quality,
+//!     size and Smooth wait only for restricted triangles.
+//! In the registry's terms: parts 1–3 are Dirtied::new_faces, part 4 is Dirtied::restricted_star
+//! (TopoDisk) and Dirtied::restricted_triangles (Quality, Smooth).
 //! Conditions: the checks' generic choices depend only on the face's sites (so it is for the
 //! seeded frames of restricted_delaunay.h and silhouette.h, and for the in-plane direction of the
 //! facet certificate), and only a clean result is kept (an undecided region is a candidate
 //! witness, not a clean result; a face that gave a witness is queued again).  A deletion (seed deletion,
 //! Lemma 5.4) grows faces, so after deleting p every face dual to a simplex within N(p) is
 //! checked again; so is everything when the change is not local (dimension < 3).
-//! RecheckPolicy::changed_faces re-queues the shrunk faces too (for testing the lemma).
+//! RecheckPolicy::changed_faces re-queues the shrunk faces too, for the new_faces and
+//! restricted_star rows (for testing the lemma).
 //!
 //! Threads.  Each insertion's new and shrunk triangles get their records, and its new edges their
 //! facets and section certificates, on several threads (RestrictedDelaunay::prepare and
 //! prepare_facets): each item is computed on its own from the current Del S and installed in a
 //! fixed order, so the run does the same work and writes the same mesh for every thread count.
-//! The checks themselves run one at a time, in the table's order.
+//! The checks themselves run one at a time, in the table's order.  The facet of an edge is kept
+//! from the insertion that made the edge until the last enabled edge row finds the edge clean.
 //!
 //! Witnesses within tolerances::duplicate_sample_relative_distance of an existing sample are not
 //! inserted (counted as `rejected_witnesses`), so the loop cannot cycle on a degenerate answer.
@@ -82,6 +92,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/tolerances.h"
+#include "meshing/check_registry.h"
 #include "meshing/del_mesh.h"
 #include "meshing/delaunay.h"
 #include "meshing/restricted_delaunay.h"
@@ -143,11 +154,11 @@ class Refinement {
   //! Deletes p from S (a seed, Lemma 5.4) and queues every face within its former neighbours.
   void remove(VertexId p);
 
-  //! Turns on Quality (with the size bound H if given) and Smooth (skipped for λ ≥ 1/6, where
-  //! β(λ) is undefined), and queues every current restricted triangle for them.
+  //! Turns on the geometry rows (Quality with the size bound H if given; Smooth is skipped for
+  //! λ ≥ 1/6, where β(λ) is undefined: CheckInfo::runs_at), and queues every current face each
+  //! of them would examine (for Quality and Smooth: every restricted triangle).
   //! Precondition: 0 < lambda < 1/3, size_bound > 0 if given.
   void enable_geometry(double lambda, std::optional<double> size_bound);
-  bool smooth_enabled() const { return smooth_enabled_; }
   //! The threads in use (the constructor's request capped by the hardware).
   int threads() const { return parallel_.threads(); }
 
@@ -183,19 +194,19 @@ class Refinement {
   //! Seconds spent inserting: updating Del S and the records and facets of the changed faces.
   double seconds_insertion() const { return seconds_insertion_; }
 
-  //! {seeds, vor_edge, …, size, seeds_deleted, rejected_witnesses}
+  //! {seeds, vor_edge, …, size, (registered checks), seeds_deleted, rejected_witnesses}
   nlohmann::json insertions_json() const;
   //! The termination floor: {value, topology_value, reached, witnesses_below (count), locations
   //! (the first tolerances::floor_locations_listed distinct ones)}.
   nlohmann::json floor_json() const;
-  //! {vor_edge: n, …}: items examined per step, keyed by the step's CheckKind.
+  //! {vor_edge: n, …}: items examined per step, keyed by the row's name.
   nlohmann::json checks_json() const;
-  //! {vor_edge: s, …}: seconds spent in each step's check, keyed by the step's CheckKind.
+  //! {vor_edge: s, …}: seconds spent in each step's check, keyed by the row's name.
   nlohmann::json seconds_json() const;
 
  private:
   //! A queued simplex: a vertex {v, −1, −1}, an edge {p, q, −1} or a triangle {p, q, r}, sorted.
-  using Simplex = std::array<VertexId, 3>;
+  using Simplex = DelaunayFace;
   //! Simplices taken smallest key first, each distinct simplex once however often it was queued
   //! (a binary heap; equal entries come out together and are merged).  The order depends only on
   //! what is queued, not on when, so re-queuing an item that waits changes nothing (the lemma's
@@ -221,21 +232,17 @@ class Refinement {
    private:
     std::vector<Simplex> heap_;
   };
-  //! One row of the table: the check, who it is counted for (its CheckKind also names it in the
-  //! progress line and the statistics), what it examines.
+  //! One step of the table: a row of the registry and its queue.
   struct Step {
-    CheckKind kind;
-    std::function<CheckResult(Refinement&, const Simplex&)> check;
+    const CheckInfo* row = nullptr;
     WorkQueue queue;
-    bool enabled = true;
+    bool enabled = true;  //!< topology rows from the start, geometry rows after enable_geometry()
   };
-  enum StepIndex { vor_edge_step, facet_contact_step, topo_disk_step, facet_cycle_step, silhouette_step,
-                   quality_step, smooth_step, step_count };
 
   static std::vector<Step> make_table();
-  //! {name of the step's CheckKind: counts[kind]} for the steps of the table.
+  //! {row name: counts[row kind]} for the steps of the table.
   template <class T>
-  nlohmann::json per_step(const std::array<T, check_kind_count>& counts) const;
+  nlohmann::json per_step(const std::vector<T>& counts) const;
   std::optional<VertexId> insert_and_queue(const Witness& witness);
   //! Builds the facets of the edges xq of x's closed star and queues their checks; returns the
   //! neighbours q, ascending.
@@ -251,9 +258,19 @@ class Refinement {
   //! Queues again the unsettled faces still in Del S whose check predates the last change of S.
   //! Returns whether it queued any.
   bool requeue_unsettled();
-  void queue_triangle(const TriangleKey& t, bool topology_checks);
-  void queue_triangle(const TriangleKey& t, bool topology_checks, const EdgeRecord& record);
+  //! Queues f for the enabled rows of its FaceKind and rule `dirtied`; a triangle's `record`, if
+  //! given, lets a row's may_fire skip it (under RecheckPolicy::new_faces).
+  void queue(const Simplex& f, FaceKind kind, Dirtied dirtied, const EdgeRecord* record = nullptr);
+  //! Queues t for the rows of Dirtied::restricted_triangles if it is restricted, and for the
+  //! new_faces rows if `new_face`.
+  void queue_triangle(const TriangleKey& t, bool new_face);
+  void queue_triangle(const TriangleKey& t, bool new_face, const EdgeRecord& record);
   void queue_edge(const EdgeKey& e);
+  //! Queues the sample for the vertex rows: restricted_star ones, and also new_faces ones if
+  //! `new_cell`.
+  void queue_vertex(VertexId v, bool new_cell);
+  //! Sets last_edge_step_ from the enabled steps.
+  void set_last_edge_step();
   void queue_everything_within(const std::vector<VertexId>& sorted_vertices);
   std::optional<MeshStatus> limit_reached(std::chrono::steady_clock::time_point now);
 
@@ -265,12 +282,14 @@ class Refinement {
   RestrictedDelaunay restricted_;
   std::vector<Step> steps_;
   detail::ParallelFor parallel_;
-  double lambda_ = 0, smooth_threshold_ = 0;
+  double lambda_ = 0;
   std::optional<double> size_bound_;
-  bool smooth_enabled_ = false;
+  bool geometry_enabled_ = false;
+  int last_edge_step_ = -1;  //!< the last enabled edge row (it releases the facets), or −1
   std::vector<InsertionRecord> log_;
-  std::array<std::size_t, check_kind_count> insertions_{}, checks_{};
-  std::array<double, check_kind_count> seconds_{};
+  //! Indexed by CheckKind.
+  std::vector<std::size_t> insertions_, checks_;
+  std::vector<double> seconds_;
   double seconds_insertion_ = 0;
   std::size_t seeds_deleted_ = 0, rejected_ = 0;
   //! Insertions and deletions so far: a face checked at this count has seen the current S.

@@ -1,21 +1,10 @@
 #include "meshing/witness.h"
 
+#include "meshing/check_registry.h"
+
 namespace delmesh {
 
-std::ostream& operator<<(std::ostream& out, CheckKind kind) {
-  switch (kind) {
-    case CheckKind::seed: return out << "seed";
-    case CheckKind::vor_edge: return out << "vor_edge";
-    case CheckKind::facet_contact: return out << "facet_contact";
-    case CheckKind::topo_disk: return out << "topo_disk";
-    case CheckKind::facet_cycle: return out << "facet_cycle";
-    case CheckKind::silhouette: return out << "silhouette";
-    case CheckKind::quality: return out << "quality";
-    case CheckKind::smooth: return out << "smooth";
-    case CheckKind::size: return out << "size";
-  }
-  return out << "unknown";
-}
+std::ostream& operator<<(std::ostream& out, CheckKind kind) { return out << check_kind_name(kind); }
 
 std::ostream& operator<<(std::ostream& out, UnsettledReason reason) {
   switch (reason) {

@@ -12,10 +12,12 @@
 
 namespace delmesh {
 
-//! Which procedure produced a sample point.
-enum class CheckKind { seed, vor_edge, facet_contact, topo_disk, facet_cycle, silhouette, quality, smooth, size };
+//! Which procedure produced a sample point: a seed, a check of the paper, or (the values after
+//! size) a check registered by the program (meshing/check_registry.h: CheckRegistration, which
+//! also gives the number of kinds, check_kind_count()).
+enum class CheckKind : int { seed, vor_edge, facet_contact, topo_disk, facet_cycle, silhouette, quality, smooth, size };
+//! The kind's name in the statistics (check_kind_name, check_registry.h).
 std::ostream& operator<<(std::ostream& out, CheckKind kind);
-inline constexpr int check_kind_count = 9;
 
 struct Witness {
   std::array<double, 3> point{};

@@ -1,0 +1,108 @@
+#include "meshing/check_registry.h"
+
+#include "common/errors.h"
+
+namespace delmesh {
+
+namespace {
+
+//! The paper's kinds, seed … size; registered rows are numbered after them.
+constexpr int paper_kind_count = static_cast<int>(CheckKind::size) + 1;
+
+//! The rows registered by CheckRegistration, and whether the registry has been read.
+struct Registered {
+  std::vector<CheckInfo> rows;
+  bool read = false;
+};
+Registered& registered() {
+  static Registered r;
+  return r;
+}
+
+std::string known_names(const std::vector<CheckInfo>& rows) {
+  std::string names;
+  for (const CheckInfo& row : rows) names += (names.empty() ? "" : ", ") + row.name;
+  return names;
+}
+
+}  // namespace
+
+std::ostream& operator<<(std::ostream& out, FaceKind kind) {
+  switch (kind) {
+    case FaceKind::vertex: return out << "vertex";
+    case FaceKind::edge: return out << "edge";
+    case FaceKind::triangle: return out << "triangle";
+  }
+  return out << "unknown";
+}
+
+std::ostream& operator<<(std::ostream& out, Dirtied dirtied) {
+  switch (dirtied) {
+    case Dirtied::new_faces: return out << "new_faces";
+    case Dirtied::restricted_star: return out << "restricted_star";
+    case Dirtied::restricted_triangles: return out << "restricted_triangles";
+  }
+  return out << "unknown";
+}
+
+std::ostream& operator<<(std::ostream& out, CheckPhase phase) {
+  return out << (phase == CheckPhase::topology ? "topology" : "geometry");
+}
+
+CheckRegistration::CheckRegistration(CheckInfo row) {
+  Registered& r = registered();
+  if (r.read) throw PreconditionViolation("check " + row.name + " registered after the registry was read");
+  for (const std::vector<CheckInfo>* rows : {&builtin_checks(), static_cast<const std::vector<CheckInfo>*>(&r.rows)})
+    for (const CheckInfo& other : *rows)
+      if (other.name == row.name) throw PreconditionViolation("check " + row.name + " is registered twice");
+  if (!row.check) throw PreconditionViolation("check " + row.name + " has no check function");
+  if ((row.dirtied == Dirtied::restricted_star && row.face != FaceKind::vertex) ||
+      (row.dirtied == Dirtied::restricted_triangles && row.face != FaceKind::triangle))
+    throw PreconditionViolation("check " + row.name + ": restricted_star needs vertex faces, "
+                                "restricted_triangles triangle faces");
+  kind_ = static_cast<CheckKind>(paper_kind_count + static_cast<int>(r.rows.size()));
+  row.kind = kind_;
+  r.rows.push_back(std::move(row));
+}
+
+const std::vector<CheckInfo>& check_registry() {
+  static const std::vector<CheckInfo> registry = [] {
+    Registered& r = registered();
+    r.read = true;
+    std::vector<CheckInfo> rows = builtin_checks();
+    rows.insert(rows.end(), r.rows.begin(), r.rows.end());
+    return rows;
+  }();
+  return registry;
+}
+
+const CheckInfo& find_check(const std::string& name) {
+  for (const CheckInfo& row : check_registry())
+    if (row.name == name) return row;
+  throw InvalidInput("unknown check '" + name + "'; known checks: " + known_names(check_registry()));
+}
+
+int check_kind_count() { return paper_kind_count + static_cast<int>(check_registry().size() - builtin_checks().size()); }
+
+std::string check_kind_name(CheckKind kind) {
+  const int k = static_cast<int>(kind);
+  if (k >= paper_kind_count) {
+    const auto& rows = check_registry();
+    const std::size_t i = builtin_checks().size() + static_cast<std::size_t>(k - paper_kind_count);
+    return i < rows.size() ? rows[i].name : "unknown";
+  }
+  switch (kind) {
+    case CheckKind::seed: return "seed";
+    case CheckKind::vor_edge: return "vor_edge";
+    case CheckKind::facet_contact: return "facet_contact";
+    case CheckKind::topo_disk: return "topo_disk";
+    case CheckKind::facet_cycle: return "facet_cycle";
+    case CheckKind::silhouette: return "silhouette";
+    case CheckKind::quality: return "quality";
+    case CheckKind::smooth: return "smooth";
+    case CheckKind::size: return "size";
+  }
+  return "unknown";
+}
+
+}  // namespace delmesh

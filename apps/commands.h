@@ -18,6 +18,7 @@
 #include "apps/command_line.h"
 #include "common/tolerances.h"
 #include "meshing/del_mesh.h"
+#include "meshing/input_mesh.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/theorem_bounds.h"
 #include "solvers/solve_result.h"
@@ -40,6 +41,10 @@ struct MeshRequest {
   double time_limit = 0;                  //!< --time-limit (0: none)
   std::uint64_t seed = 1;                 //!< --seed
   int threads = 0;                        //!< --threads (0: every hardware thread)
+  //! --min-spacing: the termination floor (DelMeshOptions::min_spacing); default 0 (none) for an
+  //! implicit surface, tolerances::min_spacing_median_edge_fraction times the median edge length
+  //! for --input-mesh.
+  std::optional<double> min_spacing;
 };
 
 //! A validated request: the surface and the options of del_mesh (without progress and
@@ -52,10 +57,31 @@ struct MeshPlan {
 };
 
 //! Validates a request in the program's order (λ, --input-mesh, the surface's presence, phase,
-//! solver, size bound, limits, threads, then the surface itself).  Throws InvalidInput with the
-//! program's message on the first invalid option; --input-mesh, once its file is read, is refused
-//! as not implemented.
+//! solver, size bound, limits, threads, minimum spacing, then the surface itself).  Throws
+//! InvalidInput with the program's message on the first invalid option.  A request with
+//! --input-mesh is validated as plan_mesh_input() does and then refused: its plan is a
+//! MeshInputPlan.
 MeshPlan plan_mesh(const MeshRequest& request);
+
+//! A validated --input-mesh request: the mesh to remesh (meshing/input_mesh.h) and the options.
+struct MeshInputPlan {
+  std::string name;  //!< <stem>_remeshed for the file <stem>.<ext>: the default outputs <name>.off, <name>.json
+  std::string path;
+  InputMesh mesh;
+  DelMeshOptions options;
+  std::vector<std::string> warnings;
+};
+
+//! Validates an --input-mesh request in plan_mesh()'s order; reads and validates the mesh
+//! (read_input_mesh: one InvalidInput naming the defect).  --solver is not read.  The minimum
+//! spacing defaults to tolerances::min_spacing_median_edge_fraction times the mesh's median edge.
+MeshInputPlan plan_mesh_input(const MeshRequest& request);
+
+//! DelMesh on the plan's mesh through a MeshOracle (meshing/mesh_oracle.h), with `options`
+//! (the plan's, plus progress and interrupt).  The statistics are del_mesh's, with "input_mesh":
+//! {file, vertices, triangles, components, genus_per_component, box, bounding_box_diagonal,
+//! median_edge_length, components_reversed}.
+DelMeshResult remesh(const MeshInputPlan& plan, const DelMeshOptions& options);
 
 //! The statistics record of a run as `delmesh mesh` writes it: del_mesh's statistics with the
 //! status, the surface (name, equation, box) and the seed, and "mesh_file" if a file is named.

@@ -4,10 +4,13 @@
 //! run, 5 when it ended uncertified: the mesh and statistics are still written.  Outputs are replaced atomically, only
 //! once the new file is complete; a failing run leaves existing files untouched.
 
+#include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -21,6 +24,7 @@
 #include "meshing/del_mesh.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/mesh_io.h"
+#include "meshing/mesh_oracle.h"
 
 namespace delmesh::app {
 
@@ -37,6 +41,7 @@ struct MeshOptions {
   std::string phase = "all";
   std::string solver = "subdivision";
   double size_bound = 0;
+  double min_spacing = 0;
   std::string out, stats;
   std::size_t max_points = DelMeshOptions{}.max_points;
   double time_limit = 0;
@@ -46,6 +51,7 @@ struct MeshOptions {
   bool certify = false;
   CLI::Option* input_mesh_option = nullptr;
   CLI::Option* size_bound_option = nullptr;
+  CLI::Option* min_spacing_option = nullptr;
   CLI::Option* out_option = nullptr;
   CLI::Option* stats_option = nullptr;
 };
@@ -74,6 +80,7 @@ MeshRequest request_of(const MeshOptions& o) {
   r.phase = o.phase;
   r.solver = o.solver;
   if (o.size_bound_option->count() > 0) r.size_bound = o.size_bound;
+  if (o.min_spacing_option->count() > 0) r.min_spacing = o.min_spacing;
   r.max_points = o.max_points;
   r.time_limit = o.time_limit;
   r.seed = o.seed;
@@ -83,17 +90,11 @@ MeshRequest request_of(const MeshOptions& o) {
 
 }  // namespace
 
-MeshPlan plan_mesh(const MeshRequest& r) {
-  const bool covered = check_lambda(r.lambda);
-  if (r.input_mesh) {
-    if (r.surface.surface || r.surface.expr) throw InvalidInput("--input-mesh excludes --surface and --expr");
-    (void)read_mesh(*r.input_mesh);  // a missing or corrupt file is reported as such first
-    throw InvalidInput("--input-mesh: remeshing triangulated surfaces is not implemented yet");
-  }
-  if (!r.surface.surface && !r.surface.expr) {
-    throw InvalidInput("give one of --surface NAME, --expr E --box B, --input-mesh FILE");
-  }
+namespace {
 
+//! The options of a request that do not depend on the kind of input, checked in the program's
+//! order (phase, size bound, limits, threads, minimum spacing); the solver is the caller's.
+DelMeshOptions common_options(const MeshRequest& r) {
   DelMeshOptions options;
   options.lambda = r.lambda;
   if (r.phase == "all") {
@@ -103,13 +104,10 @@ MeshPlan plan_mesh(const MeshRequest& r) {
   } else {
     throw InvalidInput("--phase: expected topology or all, got '" + r.phase + "'");
   }
-  if (r.solver == "subdivision") {
-    options.solver = SolverBackend::subdivision;
-  } else if (r.solver == "homotopy") {
-    options.solver = SolverBackend::homotopy;
-  } else {
-    throw InvalidInput("--solver: expected subdivision or homotopy, got '" + r.solver + "'");
-  }
+  return options;
+}
+
+void limit_options(const MeshRequest& r, DelMeshOptions& options) {
   if (r.size_bound) {
     if (!std::isfinite(*r.size_bound) || *r.size_bound <= 0) {
       throw InvalidInput("--size-bound must be a positive length, got " + format_number(*r.size_bound));
@@ -125,13 +123,75 @@ MeshPlan plan_mesh(const MeshRequest& r) {
   options.seed = r.seed;
   if (r.threads < 0) throw InvalidInput("--threads must be >= 0 (0: every hardware thread), got " + std::to_string(r.threads));
   options.threads = r.threads;
+  if (r.min_spacing) {
+    if (!std::isfinite(*r.min_spacing) || *r.min_spacing < 0)
+      throw InvalidInput("--min-spacing must be a length >= 0 (0: no floor), got " + format_number(*r.min_spacing));
+    options.min_spacing = *r.min_spacing;
+  }
+}
+
+std::string lambda_warning(double lambda) {
+  return "lambda = " + format_number(lambda) + " > 0.06: Theorem 6.1 does not cover it (no guarantee of topology or quality)";
+}
+
+}  // namespace
+
+MeshPlan plan_mesh(const MeshRequest& r) {
+  const bool covered = check_lambda(r.lambda);
+  if (r.input_mesh) {
+    (void)plan_mesh_input(r);  // a missing, corrupt or invalid mesh, or a bad option, is reported as such first
+    throw InvalidInput("--input-mesh: a triangle mesh is remeshed through plan_mesh_input() and remesh()");
+  }
+  if (!r.surface.surface && !r.surface.expr) {
+    throw InvalidInput("give one of --surface NAME, --expr E --box B, --input-mesh FILE");
+  }
+
+  DelMeshOptions options = common_options(r);
+  if (r.solver == "subdivision") {
+    options.solver = SolverBackend::subdivision;
+  } else if (r.solver == "homotopy") {
+    options.solver = SolverBackend::homotopy;
+  } else {
+    throw InvalidInput("--solver: expected subdivision or homotopy, got '" + r.solver + "'");
+  }
+  limit_options(r, options);
 
   MeshPlan plan{r.surface.resolve(), options, {}};
-  if (!covered) {
-    plan.warnings.push_back("lambda = " + format_number(r.lambda) +
-                            " > 0.06: Theorem 6.1 does not cover it (no guarantee of topology or quality)");
-  }
+  if (!covered) plan.warnings.push_back(lambda_warning(r.lambda));
   return plan;
+}
+
+MeshInputPlan plan_mesh_input(const MeshRequest& r) {
+  const bool covered = check_lambda(r.lambda);
+  if (!r.input_mesh) throw PreconditionViolation("plan_mesh_input: the request has no --input-mesh");
+  if (r.surface.surface || r.surface.expr || r.surface.box)
+    throw InvalidInput("--input-mesh excludes --surface, --expr and --box");
+  // The default outputs <stem>_remeshed.off and .json never replace the input.
+  MeshInputPlan plan{std::filesystem::path(*r.input_mesh).stem().string() + "_remeshed", *r.input_mesh,
+                     read_input_mesh(*r.input_mesh), common_options(r), {}};
+  plan.options.min_spacing = tolerances::min_spacing_median_edge_fraction * plan.mesh.median_edge_length;
+  limit_options(r, plan.options);
+  if (!covered) plan.warnings.push_back(lambda_warning(r.lambda));
+  return plan;
+}
+
+DelMeshResult remesh(const MeshInputPlan& plan, const DelMeshOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  MeshOracle oracle(plan.mesh.mesh, plan.mesh.box);
+  const double seconds_oracle = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  DelMeshResult result = del_mesh(oracle, options);
+  const InputMesh& m = plan.mesh;
+  result.statistics["input_mesh"] = {{"file", plan.path},
+                                     {"vertices", m.report.vertices},
+                                     {"triangles", m.report.triangles},
+                                     {"components", m.report.components},
+                                     {"genus_per_component", m.report.genus_per_component},
+                                     {"box", {m.box.lo[0], m.box.hi[0], m.box.lo[1], m.box.hi[1], m.box.lo[2], m.box.hi[2]}},
+                                     {"bounding_box_diagonal", m.bounding_box_diagonal},
+                                     {"median_edge_length", m.median_edge_length},
+                                     {"components_reversed", m.components_reversed},
+                                     {"seconds_oracle_build", seconds_oracle}};
+  return result;
 }
 
 nlohmann::json mesh_statistics(const DelMeshResult& result, const SurfaceInput& input, std::uint64_t seed,
@@ -153,11 +213,22 @@ nlohmann::json mesh_statistics(const DelMeshResult& result, const SurfaceInput& 
 namespace {
 
 ExitCode run_mesh(const MeshOptions& o) {
-  MeshPlan plan = plan_mesh(request_of(o));
-  const SurfaceInput& input = plan.input;
-  DelMeshOptions& options = plan.options;
-  const std::string out = o.out_option->count() > 0 ? o.out : input.name + ".off";
-  const std::string stats = o.stats_option->count() > 0 ? o.stats : input.name + ".json";
+  const MeshRequest request = request_of(o);
+  // One of the two plans: an implicit surface, or a triangle mesh to remesh.
+  std::optional<MeshPlan> plan;
+  std::optional<MeshInputPlan> mesh_plan;
+  if (request.input_mesh) {
+    mesh_plan = plan_mesh_input(request);
+    if (o.certify)
+      throw InvalidInput("--certify needs --surface or --expr (the certificate is proved on an implicit surface)");
+  } else {
+    plan = plan_mesh(request);
+  }
+  const std::string name = plan ? plan->input.name : mesh_plan->name;
+  DelMeshOptions& options = plan ? plan->options : mesh_plan->options;
+  const std::vector<std::string>& warnings = plan ? plan->warnings : mesh_plan->warnings;
+  const std::string out = o.out_option->count() > 0 ? o.out : name + ".off";
+  const std::string stats = o.stats_option->count() > 0 ? o.stats : name + ".json";
   const std::string extension = extension_of(out);
   if (extension != ".off" && extension != ".ply" && extension != ".obj") {
     throw InvalidInput("--out: the extension must be .off, .ply or .obj, got '" + out + "'");
@@ -168,13 +239,16 @@ ExitCode run_mesh(const MeshOptions& o) {
   if (stats == out) throw InvalidInput("--stats and --out name the same file " + out);
 
   // All options are valid from here on: a warning now cannot precede an `error:` about them.
-  for (const std::string& warning : plan.warnings) print_warning(warning);
+  for (const std::string& warning : warnings) print_warning(warning);
   if (!o.quiet) {
     // The header goes out with the first progress report, i.e. once del_mesh has accepted the
     // surface: a surface rejected as invalid input gives the single `error:` line only.
-    auto header = std::make_shared<std::string>("delmesh: meshing " + input.name + " (" + input.surface.text() +
-                                                " = 0) in " + format_box(input.box) + ", lambda " +
-                                                format_number(o.lambda) + ", phase " + o.phase);
+    const std::string what =
+        plan ? plan->input.name + " (" + plan->input.surface.text() + " = 0) in " + format_box(plan->input.box)
+             : mesh_plan->path + " (" + std::to_string(mesh_plan->mesh.report.triangles) + " triangles) in " +
+                   format_box(mesh_plan->mesh.box) + ", min spacing " + format_number(options.min_spacing);
+    auto header = std::make_shared<std::string>("delmesh: meshing " + what + ", lambda " + format_number(o.lambda) +
+                                                ", phase " + o.phase);
     options.progress = [header](const std::string& message) {
       if (!header->empty()) {
         std::cerr << *header << std::endl;
@@ -186,9 +260,15 @@ ExitCode run_mesh(const MeshOptions& o) {
 
   install_interrupt_handlers();
   options.interrupt = &interrupt_flag();
-  DelMeshResult result = del_mesh(input.surface, input.box, options);
+  DelMeshResult result = plan ? del_mesh(plan->input.surface, plan->input.box, options) : remesh(*mesh_plan, options);
 
-  nlohmann::json statistics = mesh_statistics(result, input, o.seed, out);
+  nlohmann::json statistics = result.statistics;
+  if (plan) {
+    statistics = mesh_statistics(result, plan->input, o.seed, out);
+  } else {
+    statistics["seed"] = o.seed;
+    statistics["mesh_file"] = out;
+  }
   // The certificate of the finished mesh (meshing/certificate.h), from the mesh alone.  A run
   // stopped by a limit or a signal, or without triangles, has none (null).
   bool certificate_interrupted = false;
@@ -202,7 +282,8 @@ ExitCode run_mesh(const MeshOptions& o) {
       CertificateOptions certificate_options;
       certificate_options.seed = o.seed;
       certificate_options.interrupt = &interrupt_flag();
-      const Certificate certificate = certify_mesh(points, triangles, input.surface, input.box, certificate_options);
+      const Certificate certificate =
+          certify_mesh(points, triangles, plan->input.surface, plan->input.box, certificate_options);
       statistics["certificate"] = to_json(certificate);
       certificate_interrupted = certificate.interrupted;
       if (!certificate.interrupted &&
@@ -238,6 +319,10 @@ ExitCode run_mesh(const MeshOptions& o) {
   switch (result.status) {
     case MeshStatus::complete: return ExitCode::complete;
     case MeshStatus::uncertified:
+      if (statistics["min_spacing"]["reached"].get<bool>())
+        print_warning("the termination floor --min-spacing " + format_number(options.min_spacing) + " was reached " +
+                      std::to_string(statistics["min_spacing"]["witnesses_below"].get<std::size_t>()) +
+                      " times (statistics: \"min_spacing\")");
       print_warning("uncertified: the run ended, but " + std::to_string(statistics["unsettled"]["count"].get<std::size_t>()) +
                     " findings were not settled (statistics: \"unsettled\"); the mesh carries no guarantee");
       return ExitCode::uncertified;
@@ -270,8 +355,17 @@ Command add_mesh_command(CLI::App& parent) {
   o->surface.add_to(*sub);
   o->input_mesh_option = sub->add_option(
       "--input-mesh", o->input_mesh,
-      "A triangulated surface (OFF/PLY/OBJ) to remesh: the file is validated, but remeshing is not "
-      "implemented yet (exit code 2)")->type_name("FILE");
+      "A closed triangle mesh (OFF/PLY/OBJ; polygons are triangulated) to remesh with DelMesh (Sec. 7): it must be "
+      "manifold, consistently oriented and free of self-intersections (else exit code 2). The box is its "
+      "bounding box enlarged by 0.1 of its diagonal; output vertices lie on the input surface. Default outputs: "
+      "<stem>_remeshed.off and .json")->type_name("FILE");
+  o->min_spacing_option = sub->add_option(
+      "--min-spacing", o->min_spacing,
+      "Termination floor H >= 0: a witness closer than H to the sample is recorded, not inserted, and the run "
+      "ends uncertified (exit code 5). Default: none for --surface/--expr, 0.1 times the median edge length "
+      "for --input-mesh (a triangle mesh is not smooth, so refinement need not stop at creases without it)")
+      ->type_name("H")
+      ->check(finite_number());
   sub->add_option("--lambda", o->lambda,
                   "lambda in (0, 1/3); Theorem 6.1 covers (0, 0.06], larger values run with a warning")->type_name("L")
       ->check(finite_number())

@@ -469,8 +469,9 @@ PYBIND11_MODULE(delmesh, m) {
         R"doc(Mesh a surface with DelMesh, as `delmesh mesh` does; returns a MeshResult.
 
 Give exactly one of expr (E(x,y,z) as text, the surface is E = 0) with box, surface (a catalog
-name, see surfaces(); a box replaces the catalog's) or input_mesh (a file path; remeshing is not
-implemented yet, so it is refused after the file is read, as by the program).
+name, see surfaces(); a box replaces the catalog's) or input_mesh (a file path; it is read and
+validated as by the program, then refused: remeshing a triangle mesh is done by the program,
+`delmesh mesh --input-mesh FILE`, not yet by this module).
 
 box: "x0,x1,y0,y1,z0,z1" or six numbers; the surface must lie strictly inside.
 lam: lambda in (0, 1/3); Theorem 6.1 covers (0, 0.06] (guaranteed topology, radius-edge ratio

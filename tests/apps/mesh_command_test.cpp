@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include <boost/test/unit_test.hpp>
@@ -86,14 +87,31 @@ BOOST_AUTO_TEST_CASE(bad_options_are_invalid_input) {
   require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--threads", "-1"}), "--threads");
 }
 
-BOOST_AUTO_TEST_CASE(input_mesh_is_validated_then_reported_unimplemented) {
+BOOST_AUTO_TEST_CASE(input_mesh_is_validated_then_remeshed) {
   ScratchDirectory dir;
   write_text(dir / "octahedron.off", octahedron_off);
   write_text(dir / "corrupt.off", "OFF\n6 8 0\n1 0 0\nbroken\n");
   require_invalid_input(run_delmesh({"mesh", "--input-mesh", "missing.off"}, dir.path));
   require_invalid_input(run_delmesh({"mesh", "--input-mesh", "corrupt.off"}, dir.path));
-  require_invalid_input(run_delmesh({"mesh", "--input-mesh", "octahedron.off"}, dir.path), "not implemented");
   require_invalid_input(run_delmesh({"mesh", "--input-mesh", "octahedron.off", "--surface", "sphere"}, dir.path));
+  require_invalid_input(run_delmesh({"mesh", "--input-mesh", "octahedron.off", "--certify"}, dir.path), "--certify");
+  require_invalid_input(run_delmesh({"mesh", "--input-mesh", "octahedron.off", "--min-spacing", "-1"}, dir.path),
+                        "--min-spacing");
+  // The octahedron's cone vertices and creases cannot be made smooth: refinement reaches the
+  // default floor (0.1 of the median edge), the mesh is written and the run is uncertified.
+  const RunResult r = run_delmesh({"mesh", "--input-mesh", "octahedron.off", "--quiet"}, dir.path);
+  BOOST_TEST(r.exit_code == 5, r.err);
+  const nlohmann::json stats = nlohmann::json::parse(read_text(dir / "octahedron_remeshed.json"));
+  BOOST_TEST(stats["status"] == "uncertified");
+  BOOST_TEST(stats["min_spacing"]["reached"] == true);
+  BOOST_TEST(std::abs(stats["min_spacing"]["value"].get<double>() - 0.1 * std::sqrt(2.0)) < 1e-15);
+  BOOST_TEST(stats["min_spacing"]["witnesses_below"].get<std::size_t>() > 0u);
+  BOOST_TEST(stats["solver"]["backend"] == "mesh");
+  BOOST_TEST(stats["input_mesh"]["genus_per_component"] == nlohmann::json::array({0}));
+  BOOST_TEST(read_text(dir / "octahedron.off") == octahedron_off);  // the input is not replaced
+  delmesh::TriangleSoup soup;
+  const auto report = read_and_check(dir / "octahedron_remeshed.off", soup);
+  BOOST_TEST(report.vertices == stats["vertices"].get<std::size_t>());
 }
 
 BOOST_AUTO_TEST_CASE(a_failing_run_leaves_existing_outputs_untouched) {

@@ -3,11 +3,13 @@
 # (CSV files and meshes under $OUT), then runs the figure and table scripts (PNG and tables under
 # $OUT/figures and $OUT/tables).  The scripts read only those CSV and mesh files.  The λ sweep runs
 # as the Snakemake workflow experiments/Snakefile ($JOBS jobs at a time, one delmesh thread each),
-# which also draws its figures.
+# which also draws its figures.  Fig. 13 remeshes meshes of CGAL's data archive (package
+# libcgal-demo), extracted into $OUT/remesh/inputs.
 #
 #   paper/reproduce.sh [--quick] [--skip-build]
 #     OUT=out  BUILD=build-paper  JOBS=2  TIME_LIMIT=600 (seconds per delmesh run)
-#   --quick: λ ∈ {0.06, 0.05} on sphere, torus, metaball only, and only the CGAL benchmark.
+#   --quick: λ ∈ {0.06, 0.05} on sphere, torus, metaball only, only the CGAL benchmark, and only
+#            elephant, eight and knot1 remeshed.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -27,7 +29,7 @@ done
 
 if [ "$BUILD_IT" = 1 ]; then
   cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$BUILD" --target lambda_sweep compare_cgal -j "$JOBS"
+  cmake --build "$BUILD" --target lambda_sweep compare_cgal remesh -j "$JOBS"
 fi
 mkdir -p "$OUT"
 
@@ -44,8 +46,20 @@ else
   "$BUILD/experiments/compare_cgal" --time-limit "$TIME_LIMIT" --out-dir "$OUT"
 fi
 
+CGAL_DATA=/usr/share/doc/libcgal-dev/data.tar.gz
+REMESH="elephant eight knot1"
+[ "$QUICK" = 1 ] || REMESH="$REMESH knot2 femur bunny00"
+mkdir -p "$OUT/remesh/inputs"
+inputs=()
+for name in $REMESH; do
+  tar -xzf "$CGAL_DATA" -C "$OUT/remesh/inputs" "data/meshes/$name.off"
+  inputs+=("$OUT/remesh/inputs/data/meshes/$name.off")
+done
+"$BUILD/experiments/remesh" --time-limit "$TIME_LIMIT" --out-dir "$OUT" "${inputs[@]}"
+
 PY=/usr/bin/python3
 "$PY" "$ROOT/paper/fig12_meshes.py" --out "$OUT"
+"$PY" "$ROOT/paper/fig13_remesh.py" --out "$OUT"
 "$PY" "$ROOT/paper/cgal_table.py" --out "$OUT"
 "$PY" "$ROOT/paper/demo_figure.py" --out "$OUT" || echo "reproduce: no demo meshes (run compare_cgal with the demo experiment)"
 echo "reproduce: figures in $OUT/figures, tables in $OUT/tables"

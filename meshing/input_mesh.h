@@ -16,10 +16,12 @@
 //!     (or a surface that is not orientable at all);
 //!  6. degenerate triangle: three collinear vertices (exact predicate), after triangulation;
 //!  7. self-intersection: two triangles that meet other than in their shared vertices or edge
-//!     (PMP::does_self_intersect, exact predicates).
-//! Checks 2–5 are made on the faces of the file (polygons triangulated as fans, which changes no
-//! edge that two faces share), with the independent checker's counts (mesh_checker.h); checks 6
-//! and 7 on the final triangles.
+//!     (PMP::self_intersections, exact predicates; the first pair found is named).
+//! Checks 2–5 are made on the faces as given, each polygon split into a fan (which adds only
+//! diagonals inside the polygon, each in two of its triangles, so the edges between faces and the
+//! fans around vertices are the polygons'), with the independent checker's counts and first
+//! locations (mesh_checker.h); checks 6 and 7 on the final triangles.  The file readers
+//! (mesh_io.h) accept triangle faces only; polygons reach validate_input_mesh from other callers.
 //!
 //! Faces with more than three vertices are triangulated by PMP::triangulate_faces (a constrained
 //! Delaunay triangulation of each face in its best-fitting plane), which needs no convexity.

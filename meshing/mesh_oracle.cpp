@@ -67,26 +67,32 @@ int dot_difference_sign(const Vec3& x, const Vec3& y, const Vec3& d) {
   }
   using Q = CGAL::Exact_rational;
   Q s = 0;
-  for (int k = 0; k < 3; ++k) s += (Q(x[k]) - Q(y[k])) * Q(d[k]);
+  for (int k = 0; k < 3; ++k) {
+    const Q difference = Q(x[k]) - Q(y[k]);
+    s += difference * Q(d[k]);
+  }
   return static_cast<int>(CGAL::sign(s));
+}
+
+// ⟨(b − a) × (c − a), d⟩ in the number type NT (every intermediate stored as an NT, so that
+// expression templates never outlive their operands).
+template <class NT>
+NT facing_determinant(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const NT u0 = NT(b[0]) - NT(a[0]), u1 = NT(b[1]) - NT(a[1]), u2 = NT(b[2]) - NT(a[2]);
+  const NT v0 = NT(c[0]) - NT(a[0]), v1 = NT(c[1]) - NT(a[1]), v2 = NT(c[2]) - NT(a[2]);
+  const NT n0 = u1 * v2 - u2 * v1, n1 = u2 * v0 - u0 * v2, n2 = u0 * v1 - u1 * v0;
+  const NT s = n0 * NT(d[0]) + n1 * NT(d[1]) + n2 * NT(d[2]);
+  return s;
 }
 
 // The exact sign of ⟨(b − a) × (c − a), d⟩: how the triangle abc faces relative to d.
 int facing_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  auto det = [&](auto zero, auto convert) {
-    auto u0 = convert(b[0]) - convert(a[0]), u1 = convert(b[1]) - convert(a[1]), u2 = convert(b[2]) - convert(a[2]);
-    auto v0 = convert(c[0]) - convert(a[0]), v1 = convert(c[1]) - convert(a[1]), v2 = convert(c[2]) - convert(a[2]);
-    auto n0 = u1 * v2 - u2 * v1, n1 = u2 * v0 - u0 * v2, n2 = u0 * v1 - u1 * v0;
-    return zero + n0 * convert(d[0]) + n1 * convert(d[1]) + n2 * convert(d[2]);
-  };
   {
     CGAL::Protect_FPU_rounding<true> guard;
-    using I = CGAL::Interval_nt_advanced;
-    const I s = det(I(0), [](double x) { return I(x); });
-    if (const int sign = interval_sign(s); sign != 2) return sign;
+    const int sign = interval_sign(facing_determinant<CGAL::Interval_nt_advanced>(a, b, c, d));
+    if (sign != 2) return sign;
   }
-  using Q = CGAL::Exact_rational;
-  return static_cast<int>(CGAL::sign(det(Q(0), [](double x) { return Q(x); })));
+  return static_cast<int>(CGAL::sign(facing_determinant<CGAL::Exact_rational>(a, b, c, d)));
 }
 
 // Whether the point u (unknowns of the domain) lies in the domain's box and half-spaces, up to tol.
@@ -175,6 +181,28 @@ struct MeshOracle::Impl {
     }
     for (auto& n : vertex_normal)
       if (norm(n) > 0) n = normalized(n);
+    // A sample at a vertex must not lie on the silhouette of its own normal: if some incident
+    // face does not face the angle-weighted normal, the first incident face normal or the plain
+    // mean that every incident face faces (exactly) is taken instead, if there is one.
+    for (VertexIndex v : mesh.vertices()) {
+      std::vector<int> star;
+      for (Face f : CGAL::faces_around_target(mesh.halfedge(v), mesh)) star.push_back(static_cast<int>(f.idx()));
+      auto faced_by_all = [&](const Vec3& n) {
+        for (int f : star)
+          if (facing_sign(vertex(f, 0), vertex(f, 1), vertex(f, 2), n) <= 0) return false;
+        return true;
+      };
+      if (faced_by_all(vertex_normal[v.idx()])) continue;
+      Vec3 mean{0, 0, 0};
+      for (int f : star) mean = mean + face_normal[f];
+      std::vector<Vec3> candidates{mean};
+      for (int f : star) candidates.push_back(face_normal[f]);
+      for (const Vec3& n : candidates)
+        if (norm(n) > 0 && faced_by_all(n)) {
+          vertex_normal[v.idx()] = normalized(n);
+          break;
+        }
+    }
     link.resize(points.size());
     for (VertexIndex v : mesh.vertices())
       for (VertexIndex w : CGAL::vertices_around_target(mesh.halfedge(v), mesh)) link[v.idx()].push_back(static_cast<int>(w.idx()));

@@ -56,7 +56,11 @@
 //!    do_intersect), else 0.
 //!  - normal(x), gradient(x): n_x of the point of Σ closest to x: the face's unit outward normal
 //!    inside a face; on an edge the normalised sum of its two faces' unit normals; at a vertex
-//!    the angle-weighted mean of its faces' unit normals (normalised).  "On an edge / at a vertex"
+//!    the angle-weighted mean of its faces' unit normals (normalised), unless some incident face
+//!    does not face it (exact sign), in which case the plain mean of the face normals or the
+//!    first incident face normal that every incident face faces, if one does: so that a sample at
+//!    a vertex lies on the silhouette of its own normal only where no such direction was found.
+//!    "On an edge / at a vertex"
 //!    means within tolerances::mesh_feature_relative_distance of the box diagonal.
 //!  - project(x): the closest point of Σ (AABB tree), if it lies in the box.
 //!  - prove_gradient_cone(chart, P, w): a proof that ⟨n_f, w⟩ has one strict sign on every face

@@ -1,0 +1,252 @@
+// The surface oracle of a triangle mesh (meshing/mesh_oracle.h): each primitive on a constructed
+// mesh whose answer is known, and an end-to-end remesh of a small closed mesh.
+#include <boost/test/unit_test.hpp>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+
+#include <cmath>
+#include <map>
+
+#include "common/errors.h"
+#include "meshing/del_mesh.h"
+#include "meshing/detail/vec3.h"
+#include "meshing/mesh_checker.h"
+#include "meshing/mesh_oracle.h"
+#include "solvers/query_geometry.h"
+
+using namespace delmesh;
+using namespace delmesh::detail;
+
+namespace {
+
+SurfaceMesh mesh_of(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles) {
+  SurfaceMesh m;
+  std::vector<SurfaceMesh::Vertex_index> v;
+  for (const auto& p : points) v.push_back(m.add_vertex(Point3(p[0], p[1], p[2])));
+  for (const auto& t : triangles) BOOST_REQUIRE(m.add_face(v[t[0]], v[t[1]], v[t[2]]) != SurfaceMesh::null_face());
+  return m;
+}
+
+// The octahedron with vertices ±e_i, outward oriented.
+SurfaceMesh octahedron() {
+  return mesh_of({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
+                 {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}});
+}
+
+// The cube [−1, 1]³, two outward triangles per side.
+SurfaceMesh cube() {
+  std::vector<Vec3> p;
+  for (int i = 0; i < 8; ++i) p.push_back({i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0});
+  // Each side as a quad, counter-clockwise seen from outside.
+  const std::vector<std::array<int, 4>> quads{{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  std::vector<std::array<int, 3>> t;
+  for (const auto& q : quads) {
+    t.push_back({q[0], q[1], q[2]});
+    t.push_back({q[0], q[2], q[3]});
+  }
+  return mesh_of(p, t);
+}
+
+// A torus of radii R (centre circle, about the z-axis) and r (tube), n × m quads split in two.
+SurfaceMesh torus(double R, double r, int n, int m) {
+  std::vector<Vec3> p;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      const double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m;
+      p.push_back({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
+    }
+  auto id = [&](int i, int j) { return ((i + n) % n) * m + (j + m) % m; };
+  std::vector<std::array<int, 3>> t;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      t.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      t.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return mesh_of(p, t);
+}
+
+// The icosahedron subdivided `levels` times, vertices on the unit sphere.
+SurfaceMesh icosphere(int levels) {
+  const double g = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Vec3> p{{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                      {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  for (auto& x : p) x = normalized(x);
+  std::vector<std::array<int, 3>> t{{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                                    {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<int, int>, int> middle;
+    auto mid = [&](int a, int b) {
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      if (auto it = middle.find(key); it != middle.end()) return it->second;
+      p.push_back(normalized(0.5 * (p[a] + p[b])));
+      return middle[key] = static_cast<int>(p.size()) - 1;
+    };
+    std::vector<std::array<int, 3>> finer;
+    for (const auto& f : t) {
+      const int ab = mid(f[0], f[1]), bc = mid(f[1], f[2]), ca = mid(f[2], f[0]);
+      finer.push_back({f[0], ab, ca});
+      finer.push_back({f[1], bc, ab});
+      finer.push_back({f[2], ca, bc});
+      finer.push_back({ab, bc, ca});
+    }
+    t = finer;
+  }
+  return mesh_of(p, t);
+}
+
+Domain cube_domain(const Vec3& lo, const Vec3& hi) {
+  return Domain::from_box({{lo[0], hi[0]}, {lo[1], hi[1]}, {lo[2], hi[2]}});
+}
+
+// The distance from x to the mesh.
+double distance_to(const SurfaceMesh& mesh, const Vec3& x) {
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_face_graph_triangle_primitive<SurfaceMesh>>>;
+  Tree tree(faces(mesh).first, faces(mesh).second, mesh);
+  return std::sqrt(tree.squared_distance(Point3(x[0], x[1], x[2])));
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(octahedron_critical_vertices_are_its_top_and_bottom) {
+  MeshOracle oracle(octahedron(), Box3::cube(2));
+  const Vec3 d = normalized(Vec3{0.1, 0.2, 1});
+  const auto r = oracle.surface_critical(d, box_domain(oracle.box()), 1);
+  BOOST_TEST(r.is_complete());
+  BOOST_TEST_REQUIRE(r.roots.size() == 2u);
+  std::vector<Vec3> found{r.roots[0].world, r.roots[1].world};
+  std::sort(found.begin(), found.end());
+  BOOST_TEST((found[0] == Vec3{0, 0, -1}));
+  BOOST_TEST((found[1] == Vec3{0, 0, 1}));
+  // In the direction of an axis the heights of four vertices tie: the tie is broken by index,
+  // and there are still exactly one minimum and one maximum.
+  const auto tied = oracle.surface_critical({0, 0, 1}, box_domain(oracle.box()), 1);
+  BOOST_TEST(tied.roots.size() == 2u);
+}
+
+BOOST_AUTO_TEST_CASE(segments_through_a_cube_face_edge_and_vertex) {
+  MeshOracle oracle(cube(), Box3::cube(2));
+  // Through the interior of the face z = −1 and out of z = 1: two roots at the right t.
+  {
+    const auto r = oracle.surface_line({0.1, 0.2, -2}, {0, 0, 1}, 0, 4);
+    BOOST_TEST(r.is_complete());
+    BOOST_TEST_REQUIRE(r.roots.size() == 2u);
+    BOOST_TEST(r.roots[0].midpoint[0] == 1.0);
+    BOOST_TEST(r.roots[1].midpoint[0] == 3.0);
+  }
+  // Into the cube through the edge x = y = 1: one crossing at (1, 1, 0.3).
+  {
+    const auto r = oracle.surface_line({2, 2, 0.3}, {-1, -1, 0}, 0, 2);
+    BOOST_TEST(r.is_complete());
+    BOOST_TEST_REQUIRE(r.roots.size() == 1u);
+    BOOST_TEST(distance(r.roots[0].world, Vec3{1, 1, 0.3}) < 1e-15);
+  }
+  // Along x + y = 2: touches the edge x = y = 1 without crossing — a double root.
+  {
+    const auto r = oracle.surface_line({0.5, 1.5, 0.3}, {1, -1, 0}, 0, 1);
+    BOOST_TEST(r.roots.empty());
+    BOOST_TEST_REQUIRE(r.undecided.size() == 1u);
+    BOOST_TEST((r.undecided[0].reason == UndecidedReason::singular_root));
+    BOOST_TEST(distance(r.undecided[0].world, Vec3{1, 1, 0.3}) < 1e-15);
+  }
+  // Through the vertex (1, 1, 1): reported undecided at the vertex (a candidate witness).
+  {
+    const auto r = oracle.surface_line({2, 2, 2}, {-1, -1, -1}, 0, 1.5);
+    BOOST_TEST(r.roots.empty());
+    BOOST_TEST_REQUIRE(r.undecided.size() == 1u);
+    BOOST_TEST((r.undecided[0].world == Vec3{1, 1, 1}));
+  }
+  // A zero at the segment's end, and the inside/outside sign.
+  {
+    const auto r = oracle.surface_line({0, 0, -1}, {0, 0, 1}, 0, 0.5);
+    BOOST_TEST_REQUIRE(r.undecided.size() == 1u);
+    BOOST_TEST((r.undecided[0].reason == UndecidedReason::boundary_root));
+  }
+  BOOST_TEST(oracle.value_sign({0, 0, 0}) == -1);
+  BOOST_TEST(oracle.value_sign({0, 0, 1.5}) == 1);
+  BOOST_TEST(oracle.value_sign({0.3, 0.2, 1}) == 0);
+  BOOST_TEST(oracle.value_sign({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}) == -1);
+  BOOST_TEST(oracle.value_sign({-0.5, -0.5, 0.5}, {0.5, 0.5, 1.5}) == 0);
+  // Normals: a face's, an edge's (the mean), a vertex's; projection onto a face.
+  BOOST_TEST(distance(oracle.normal({0.2, 0.3, 1}), Vec3{0, 0, 1}) < 1e-15);
+  BOOST_TEST(distance(oracle.normal({1, 1, 0.3}), normalized(Vec3{1, 1, 0})) < 1e-15);
+  BOOST_TEST(distance(oracle.normal({1, 1, 1}), normalized(Vec3{1, 1, 1})) < 1e-12);
+  BOOST_TEST(distance(*oracle.project({0.2, 0.3, 1.4}), Vec3{0.2, 0.3, 1}) < 1e-15);
+}
+
+BOOST_AUTO_TEST_CASE(a_torus_sliced_through_its_hole_gives_two_closed_polylines) {
+  const double R = 2, r = 0.7;
+  MeshOracle oracle(torus(R, r, 32, 16), Box3::cube(3));
+  // The plane x = 0.0123 through the hole: two tube sections about (0, ±R, 0).
+  const auto lines = oracle.section({0.0123, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  BOOST_TEST_REQUIRE(lines.size() == 2u);
+  for (const auto& line : lines) {
+    BOOST_TEST(line.closed);
+    BOOST_TEST(line.points.size() >= 16u);
+    for (const auto& x : line.points) {
+      const double tube = std::hypot(std::hypot(x[0], x[1]) - R, x[2]);  // distance to the centre circle
+      BOOST_TEST(tube <= 1.01 * r);
+      BOOST_TEST(tube >= 0.95 * r);  // the mesh's chords stay close to the tube
+    }
+  }
+  // CurveCritical in that plane over a facet around the tube at y = R: the section is closed, so
+  // it has a minimum and a maximum in the direction a = y (at least two roots).
+  const Domain facet = Domain::from_box({{R - 1, R + 1}, {-1, 1}});
+  const auto critical = oracle.curve_critical({0.0123, 0, 0}, {0, 1, 0}, {0, 0, 1}, facet);
+  BOOST_TEST(critical.roots.size() >= 2u);
+  for (const auto& root : critical.roots) BOOST_TEST(std::abs(root.world[0] - 0.0123) < 1e-12);
+  // A horizontal plane through the hole: the outer and the inner circle.
+  const auto rings = oracle.section({0, 0, 0.0123}, {1, 0, 0}, {0, 1, 0});
+  BOOST_TEST(rings.size() == 2u);
+}
+
+BOOST_AUTO_TEST_CASE(a_silhouette_edge_inside_a_cell) {
+  MeshOracle oracle(octahedron(), Box3::cube(2));
+  // In a direction close to z the silhouette is the equator square.
+  const Vec3 d = normalized(Vec3{0.01, 0.02, 1}), d2 = normalized(Vec3{1, 0.3, 0.1});
+  // A cell holding the edge from (1, 0, 0) to (0, 1, 0) and no other equator vertex: (1, 0, 0) is
+  // the highest equator vertex in d2, a critical point of the silhouette.
+  const Domain cell = cube_domain({-0.2, -0.2, -0.5}, {1.5, 1.5, 0.5});
+  const auto critical = oracle.silhouette_critical(d, d2, cell);
+  BOOST_TEST_REQUIRE(critical.roots.size() == 1u);
+  BOOST_TEST((critical.roots[0].world == Vec3{1, 0, 0}));
+  // The plane x = 0.5 crosses that silhouette edge at (0.5, 0.5, 0).
+  const Domain facet = Domain::from_box({{-1, 1}, {-1, 1}});
+  const auto crossing = oracle.silhouette_plane({0.5, 0, 0}, {0, 1, 0}, {0, 0, 1}, d, facet);
+  BOOST_TEST_REQUIRE(crossing.roots.size() == 2u);  // and the edge to (0, −1, 0) at (0.5, −0.5, 0)
+  for (const auto& root : crossing.roots) BOOST_TEST(std::abs(std::abs(root.world[1]) - 0.5) < 1e-15);
+  // No silhouette about the top vertex: the gradient cone proves it.
+  BOOST_TEST(oracle.prove_gradient_cone(AffineChart::identity(), cube_domain({-0.2, -0.2, 0.8}, {0.2, 0.2, 1.2}), d));
+  BOOST_TEST(!oracle.prove_gradient_cone(AffineChart::identity(), cell, d));
+  // A plane touching the top vertex: a FacetContact there; a generic plane: none.
+  const auto contact = oracle.surface_plane_contact({0, 0, 1}, {1, 0, 0}, {0, 1, 0}, facet);
+  BOOST_TEST_REQUIRE(contact.roots.size() == 1u);
+  BOOST_TEST((contact.roots[0].world == Vec3{0, 0, 1}));
+  BOOST_TEST(oracle.surface_plane_contact({0, 0, 0.3}, {1, 0, 0}, {0, 1, 0}, facet).roots.empty());
+  // By name, as the registry orders the parameters.
+  const auto frame = orthonormal_frame(d);
+  const auto by_name = oracle.solve("surface_critical", {frame.a[0], frame.a[1], frame.a[2], frame.b[0], frame.b[1], frame.b[2]},
+                                    box_domain(oracle.box()), 1);
+  BOOST_TEST(by_name.roots.size() == 2u);
+  BOOST_CHECK_THROW((void)oracle.solve("no_such_primitive", {}, facet, 1), InvalidInput);
+}
+
+BOOST_AUTO_TEST_CASE(an_icosphere_remeshed_is_a_sphere_on_the_input) {
+  const SurfaceMesh input = icosphere(2);
+  MeshOracle oracle(input, Box3::cube(1.3));
+  DelMeshOptions options;
+  options.lambda = 0.06;
+  options.threads = 1;
+  options.min_spacing = 0.01;
+  const DelMeshResult result = del_mesh(oracle, options);
+  const MeshReport report = check_mesh(result.mesh);
+  BOOST_TEST(report.components == 1u);
+  BOOST_TEST_REQUIRE(report.genus_per_component.size() == 1u);
+  BOOST_TEST(report.genus_per_component[0] == 0);
+  double worst = 0;
+  for (const auto& p : result.mesh.points()) worst = std::max(worst, distance_to(input, {p.x(), p.y(), p.z()}));
+  BOOST_TEST(worst <= 1e-9 * oracle.diagonal());
+  BOOST_TEST(result.statistics["solver"]["backend"] == "mesh");
+}

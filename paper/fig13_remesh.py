@@ -22,7 +22,7 @@ def genus_text(genus):
     """The checker's genus list ("1;1"), with -1 (undefined) spelled out."""
     genera = str(genus).split(";")
     if "-1" in genera:
-        return "not a closed manifold"
+        return "not a closed orientable manifold"
     return "genus " + ", ".join(genera)
 
 

@@ -1,6 +1,7 @@
 // Every bad input gets exit code 2, one `error:` line naming the problem in the user's terms, and
 // leaves existing output files untouched; the program never dies by a signal.  One case per row
 // of the README's table of bad inputs.
+#include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
@@ -164,7 +165,7 @@ BOOST_AUTO_TEST_CASE(corrupt_mesh_files) {
   write_text(dir / "binary.off", std::string("\x01\x02\x03\xff\xfe", 5));
   std::filesystem::create_directory(dir / "folder.off");
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"truncated.ply", "'truncated.ply': cannot be parsed (truncated or corrupt)"},
+      {"truncated.ply", "'truncated.ply': truncated: the file ends in face 0 of the 1 declared"},
       {"negative.ply", "face 0 refers to vertex -1, but the file has 3 vertices (numbered 0 to 2)"},
       {"huge.ply", "declares 4000000000 elements but the file has only"},
       {"range.obj", "refers to vertex 4, but the file has 3 vertices (numbered 1 to 3)"},
@@ -189,6 +190,27 @@ BOOST_AUTO_TEST_CASE(corrupt_mesh_files) {
     BOOST_TEST_CONTEXT(file) { require_invalid_input(run_delmesh({"check", file, "--json"}, dir.path), mention); }
   for (const char* file : {"good.ply", "relative.obj"})
     BOOST_TEST_CONTEXT(file) { BOOST_TEST(run_delmesh({"check", file}, dir.path).exit_code == 0); }
+}
+
+// Every mesh file that crashed a reader under the fuzzer (fuzz/crashes/fuzz_read_*/: overflowing
+// colours, negative or huge counts cast to sizes, a property before its element, list sizes that
+// allocated gigabytes) gets exit code 2 and one error line from `delmesh check`.
+BOOST_AUTO_TEST_CASE(fuzzer_crash_inputs_get_one_error_line) {
+  ScratchDirectory dir;
+  std::size_t files = 0;
+  for (const char* target : {"fuzz_read_off", "fuzz_read_ply", "fuzz_read_obj"}) {
+    const std::filesystem::path crashes = std::filesystem::path(DELMESH_SOURCE_DIR) / "fuzz" / "crashes" / target;
+    if (!std::filesystem::is_directory(crashes)) continue;
+    for (const auto& entry : std::filesystem::directory_iterator(crashes)) {
+      const std::string name = entry.path().filename().string();
+      std::filesystem::copy_file(entry.path(), dir / name);
+      BOOST_TEST_CONTEXT(target << "/" << name) {
+        require_invalid_input(run_delmesh({"check", name, "--json"}, dir.path), "mesh file '" + name + "'");
+      }
+      ++files;
+    }
+  }
+  BOOST_TEST(files >= 11u);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -1,0 +1,51 @@
+#pragma once
+//! \file mesh_readers.h
+//! The OFF and PLY readers behind read_triangle_soup (meshing/mesh_io.h).  They parse the whole
+//! file themselves, so that no declared count, list size, colour or index reaches an allocation or
+//! a conversion before it has been checked against the file: memory stays proportional to the
+//! file's size and every corrupt file ends as one InvalidInput that says what is wrong and where.
+//!
+//! OFF: the optional keyword [ST][C][N][4][n]OFF, optionally followed by BINARY (Geomview's binary
+//! layout: big-endian int32 counts and indices, float32 coordinates); "NV NF [NE]"; NV vertices of
+//! 3 coordinates (4 with the prefix 4, divided by the last; other dimensions are refused), whose
+//! normal, colour and texture fields are skipped; NF faces, one per line, "n i_1 ... i_n [colour]".
+//! '#' starts a comment in the ASCII form.
+//!
+//! PLY: "ply", "format ascii|binary_little_endian|binary_big_endian 1.0", comment and obj_info
+//! lines, elements with scalar and list properties of the eleven PLY types (both naming schemes),
+//! "end_header".  The element "vertex" must have the scalar properties x, y, z; the element "face"
+//! a list property vertex_indices (or vertex_index).  Other elements and properties are read and
+//! skipped.
+
+#include <cstdint>
+#include <string>
+
+#include "meshing/mesh_io.h"
+
+namespace delmesh::detail {
+
+//! Throws InvalidInput "mesh file 'PATH': WHY".
+[[noreturn]] void mesh_file_error(const std::string& path, const std::string& why);
+
+//! Throws InvalidInput "mesh file 'PATH': face FACE has SIZE vertices; only triangle meshes are
+//! supported".
+[[noreturn]] void not_a_triangle(const std::string& path, std::size_t face, const std::string& size);
+
+//! A word of a file as it may appear in a message: at most 32 characters, bytes that are not
+//! printable ASCII shown as '?'.
+std::string printable(const std::string& word);
+
+//! "the file has N vertices (numbered FIRST to FIRST+N-1)", or "the file has no vertices".
+std::string vertex_range(std::uintmax_t n, std::uintmax_t first);
+
+//! Reads an OFF file (ASCII or binary) of the given contents.  Every face is a triangle (a face of
+//! another size is refused); the soup's indices are as in the file, a negative one stored as its
+//! two's complement (the caller reports it as negative).  Index range, repeated vertices,
+//! finiteness and the presence of faces are left to the caller.  Throws InvalidInput naming path.
+TriangleSoup read_off(const std::string& path, const std::string& contents);
+
+//! Reads a PLY file (ASCII or binary) of the given contents, with the same guarantees as read_off.
+//! Throws InvalidInput naming path.
+TriangleSoup read_ply(const std::string& path, const std::string& contents);
+
+}  // namespace delmesh::detail

@@ -70,6 +70,15 @@ const std::vector<CheckInfo>& check_registry() {
     Registered& r = registered();
     r.read = true;
     std::vector<CheckInfo> rows = builtin_checks();
+    // A row of the paper names its own enumerator, neither seed nor size.
+    std::vector<bool> taken(paper_kind_count, false);
+    taken[static_cast<int>(CheckKind::seed)] = taken[static_cast<int>(CheckKind::size)] = true;
+    for (const CheckInfo& row : rows) {
+      const int k = static_cast<int>(row.kind);
+      if (k < 0 || k >= paper_kind_count || taken[k])
+        throw PreconditionViolation("built-in check " + row.name + " needs a CheckKind enumerator of its own");
+      taken[k] = true;
+    }
     rows.insert(rows.end(), r.rows.begin(), r.rows.end());
     return rows;
   }();

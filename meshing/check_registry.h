@@ -135,6 +135,8 @@ class CheckRegistration {
 
 //! Every check: builtin_checks() followed by the registered rows, each with its kind set.  Fixed
 //! after the first call (which must come after static initialisation, i.e. from main() on).
+//! Throws PreconditionViolation if a built-in row does not name a CheckKind enumerator of its own
+//! (seed and size are not a row's).
 const std::vector<CheckInfo>& check_registry();
 //! The row called name; throws InvalidInput listing the known names otherwise.
 const CheckInfo& find_check(const std::string& name);

@@ -1,5 +1,7 @@
 #include "meshing/check_registry.h"
 
+#include <algorithm>
+
 #include "common/errors.h"
 
 namespace delmesh {
@@ -80,6 +82,9 @@ const std::vector<CheckInfo>& check_registry() {
       taken[k] = true;
     }
     rows.insert(rows.end(), r.rows.begin(), r.rows.end());
+    // Topology rows before geometry rows (a topology witness goes in before any geometric one),
+    // each group in the order above.
+    std::stable_partition(rows.begin(), rows.end(), [](const CheckInfo& row) { return row.phase == CheckPhase::topology; });
     return rows;
   }();
   return registry;
@@ -96,9 +101,9 @@ int check_kind_count() { return paper_kind_count + static_cast<int>(check_regist
 std::string check_kind_name(CheckKind kind) {
   const int k = static_cast<int>(kind);
   if (k >= paper_kind_count) {
-    const auto& rows = check_registry();
-    const std::size_t i = builtin_checks().size() + static_cast<std::size_t>(k - paper_kind_count);
-    return i < rows.size() ? rows[i].name : "unknown";
+    for (const CheckInfo& row : check_registry())
+      if (row.kind == kind) return row.name;
+    return "unknown";
   }
   switch (kind) {
     case CheckKind::seed: return "seed";

@@ -117,8 +117,8 @@ struct CheckInfo {
 //! (geometry).
 const std::vector<CheckInfo>& builtin_checks();
 
-//! Registers one more row, appended after the built-in rows in the order of registration (so it
-//! runs after them: the table's order is the driver's priority).  Meant for a namespace-scope
+//! Registers one more row, after the built-in rows of its phase in the order of registration
+//! (the table's order is the driver's priority: see check_registry()).  Meant for a namespace-scope
 //! object in a file compiled into the program's executable (a file in a static library is linked
 //! only if something else in it is used).  Throws PreconditionViolation if the registry has already
 //! been read, the name is taken, the row has no check, or `dirtied` does not fit `face`
@@ -133,7 +133,9 @@ class CheckRegistration {
   CheckKind kind_;
 };
 
-//! Every check: builtin_checks() followed by the registered rows, each with its kind set.  Fixed
+//! Every check, each with its kind set: the topology rows (the built-in ones, then the registered
+//! ones), then the geometry rows (likewise), so that a topology witness goes in before any
+//! geometric one.  Fixed
 //! after the first call (which must come after static initialisation, i.e. from main() on).
 //! Throws PreconditionViolation if a built-in row does not name a CheckKind enumerator of its own
 //! (seed and size are not a row's).

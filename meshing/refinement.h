@@ -15,8 +15,9 @@
 //!   | quality (+ size)| restricted triangles whose dual edge changed   | restricted_triangles |
 //!   | smooth          | restricted triangles whose dual edge changed   | restricted_triangles |
 //!
-//! followed by the registered rows.  The driver names no check: it queues a face for the rows
-//! whose FaceKind and Dirtied rule say so, and runs each row's function.
+//! with the registered rows after the paper's rows of their phase.  The driver names no check:
+//! it queues a face for the rows whose FaceKind and Dirtied rule say so, and runs each row's
+//! function.
 //!
 //! Each iteration takes one item of the first non-empty queue; a witness is inserted, the item
 //! goes back on its queue (its face has not been shown clean) and the loop starts again at (a),

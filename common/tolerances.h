@@ -4,6 +4,7 @@
 //! Certified answers never depend on these values for their correctness, only for how much work
 //! is done before a region is reported as undecided.
 
+#include <array>
 #include <cstddef>
 #include <limits>
 
@@ -217,8 +218,8 @@ inline constexpr int box_face_max_depth = 14;
 //! singular point.  A singular point's undecided zone shrinks with the box (the gradient grows
 //! linearly away from it), so only O(1) boxes per level reach this width.
 inline constexpr double validation_min_box_relative_width = 1e-6;
-//! Input validation: the surface is called singular near an undecided box only if a point is
-//! found there where |E| and ‖∇E‖∞ are at most this fraction of their largest values over the
+//! Input validation: a proof of a singular point near an undecided box is sought only if a point
+//! is found there where |E| and ‖∇E‖∞ are at most this fraction of their largest values over the
 //! domain's 3 × 3 × 3 grid (or a Krawczyk-certified critical point of E whose tight box has an
 //! enclosure of E containing 0 and narrower than this fraction); the point is sought by at most
 //! singular_evidence_iterations damped Gauss–Newton steps on (E, ∇E) = 0 (degenerate singular
@@ -229,6 +230,27 @@ inline constexpr int singular_evidence_iterations = 100;
 //! w/16², … (w the undecided box's width), at most this many times: near a nearly degenerate
 //! critical point the interval Hessian is contractive only on boxes much smaller than w.
 inline constexpr int singular_evidence_krawczyk_attempts = 8;
+//! Input validation: boxes of the regularity check narrower than validation_min_box_relative_width
+//! in which no singular point was proved are bisected on, down to this relative width, at most
+//! validation_deep_box_budget of them in all: smooth surfaces whose sheets come closer than the
+//! first limit (two unit spheres 1e-6 apart) are then certified.
+inline constexpr double validation_deep_min_box_relative_width = 1e-10;
+inline constexpr std::size_t validation_deep_box_budget = 100000;
+//! Input validation: the surface is called singular only with a proof, sought near a point where
+//! E and ∇E could not be separated: a rational point at which E, ∂xE, ∂yE, ∂zE evaluate to exactly
+//! 0, tried at the point's coordinates rounded to 0 … singular_proof_decimal_places decimal places
+//! and to 1 … singular_proof_binary_places binary places (and at the point itself).
+inline constexpr int singular_proof_decimal_places = 17;
+inline constexpr int singular_proof_binary_places = 52;
+//! Input validation: that proof is also sought, from the box's centre and the Gauss–Newton point,
+//! near the first this many undecided boxes, whatever E and ∇E are there (Gauss–Newton approaches
+//! a degenerate singular point slowly).
+inline constexpr std::size_t singular_proof_boxes_without_evidence = 16;
+//! Input validation: a box that stays undecided in double-precision intervals is examined again
+//! with MPFI at these precisions (bits, in turn), bisected while its double midpoint splits it, at
+//! most validation_mpfi_box_budget boxes over all undecided boxes.
+inline constexpr std::array<int, 2> validation_mpfi_precisions_bits = {128, 256};
+inline constexpr std::size_t validation_mpfi_box_budget = 4000;
 //! Remeshing a triangle mesh (meshing/input_mesh.h): the default domain box is the bounding box of
 //! the input's vertices with every side pushed out by this fraction of its diagonal, so that the
 //! surface lies well inside it and the clipped Voronoi cells of the samples reach beyond it.

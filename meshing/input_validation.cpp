@@ -13,6 +13,7 @@
 
 #include "common/errors.h"
 #include "common/tolerances.h"
+#include "solvers/detail/interval_box.h"
 #include "solvers/krawczyk.h"
 #include "symbolic/compiled_system.h"
 #include "symbolic/scalar_traits.h"
@@ -37,13 +38,6 @@ CompiledSystem gradient_system(const Surface& surface) {
 
 bool finite(const Interval& a) { return std::isfinite(a.inf()) && std::isfinite(a.sup()); }
 
-// a and b both enclose the same real number v.  True iff a ∩ b excludes 0 (then v ≠ 0).
-bool excludes_zero(const Interval& a, const Interval& b) {
-  if (certainly_nonzero(a) || certainly_nonzero(b)) return true;
-  if (!finite(a) || !finite(b)) return false;
-  return std::max(a.inf(), b.inf()) > 0 || std::min(a.sup(), b.sup()) < 0;
-}
-
 // A double in [a.inf(), a.sup()] near its centre.
 double centre(const Interval& a) { return std::min(std::max(0.5 * a.inf() + 0.5 * a.sup(), a.inf()), a.sup()); }
 
@@ -59,65 +53,85 @@ std::string face_name(int axis, bool upper, const Box3& box) {
   return s.str();
 }
 
+// A box of doubles as an enclosure over T: Interval (under a RoundingGuard) or MpfiInterval (at
+// the precision of the current MpfiPrecisionScope, constants of E enclosed at that precision).
+template <class T>
+T enclose(double lo, double hi);
+template <>
+Interval enclose<Interval>(double lo, double hi) { return Interval(lo, hi); }
+template <>
+MpfiInterval enclose<MpfiInterval>(double lo, double hi) { return detail::to_mpfi(lo, hi); }
+
+bool finite(const MpfiInterval& a) { return detail::is_finite(detail::to_interval(a)); }
+// A double near the centre of a (finite or not).
+double centre_of(const Interval& a) { return centre(a); }
+double centre_of(const MpfiInterval& a) { return centre(detail::to_interval(a)); }
+
 // The gradient system over a box (or face rectangle) B: values v and Jacobian j over B, values vc
 // at the centre c, and the enclosures d of B − c.
+template <class T>
 struct BoxEnclosures {
-  Interval v[4], j[12], vc[4];
-  Box d;
+  T v[4], j[12], vc[4];
+  std::array<T, 3> d;
   Point c{};
 };
 
 // Step 1 of the header's proof with the natural enclosure alone (the cheapest test).
-bool natural_excludes_e(const CompiledSystem& system, const Box& b) {
-  Interval v[4];
-  system.values<Interval>(b.data(), nullptr, v);
+template <class T>
+bool natural_excludes_e(const CompiledSystem& system, const std::array<T, 3>& b) {
+  T v[4];
+  system.values<T>(b.data(), nullptr, v);
   return certainly_nonzero(v[0]);
 }
 
 // Step 1 of the header's proof: true iff the natural and mean-value enclosures of E over B
-// together exclude 0.  Fills `out` for gradient_nonzero.
-bool mean_value_excludes_e(const CompiledSystem& system, const Box& b, BoxEnclosures& out) {
-  Box c;
+// together exclude 0 (two enclosures of one number: their intersection excludes 0 iff one of
+// them does).  Fills `out` for gradient_nonzero.  `bounds` are B's bounds (lo, hi per axis).
+template <class T>
+bool mean_value_excludes_e(const CompiledSystem& system, const std::array<T, 3>& b, const double* bounds,
+                           BoxEnclosures<T>& out) {
+  std::array<T, 3> c;
   for (int i = 0; i < 3; ++i) {
-    out.c[i] = centre(b[i]);
-    c[i] = Interval(out.c[i]);
+    out.c[i] = std::min(std::max(0.5 * bounds[2 * i] + 0.5 * bounds[2 * i + 1], bounds[2 * i]), bounds[2 * i + 1]);
+    c[i] = enclose<T>(out.c[i], out.c[i]);
     out.d[i] = b[i] - c[i];
   }
-  system.values_and_jacobian<Interval>(b.data(), nullptr, out.v, out.j);
-  system.values<Interval>(c.data(), nullptr, out.vc);
+  system.values_and_jacobian<T>(b.data(), nullptr, out.v, out.j);
+  system.values<T>(c.data(), nullptr, out.vc);
   if (!(finite(out.vc[0]) && finite(out.v[1]) && finite(out.v[2]) && finite(out.v[3])))
     return certainly_nonzero(out.v[0]);  // the mean-value form needs E C¹ on B
-  Interval mean_value = out.vc[0];
+  T mean_value = out.vc[0];
   for (int i = 0; i < 3; ++i) mean_value += out.v[1 + i] * out.d[i];
-  return excludes_zero(out.v[0], mean_value);
+  return certainly_nonzero(out.v[0]) || certainly_nonzero(mean_value);
 }
 
 // Step 2 of the header's proof: true iff ⟨∇E, g⟩ ≠ 0 on B is proved for g one of the axis vectors
 // or g ≈ ∇E(c).  Uses the enclosures of mean_value_excludes_e.
-bool gradient_nonzero(const BoxEnclosures& e) {
-  const Interval* grad = e.v + 1;      // ∇E(B)
-  const Interval* hess = e.j + 3;      // H(B), row-major, rows 1–3 of the Jacobian
-  const Interval* grad_c = e.vc + 1;   // ∇E(c)
+template <class T>
+bool gradient_nonzero(const BoxEnclosures<T>& e) {
+  const T* grad = e.v + 1;      // ∇E(B)
+  const T* hess = e.j + 3;      // H(B), row-major, rows 1–3 of the Jacobian
+  const T* grad_c = e.vc + 1;   // ∇E(c)
   // The mean-value form needs E C² on B: finite enclosures of ∇E(c) and of the Hessian.
   bool c2 = true;
   for (int i = 0; i < 3; ++i) c2 = c2 && finite(grad_c[i]);
   for (int i = 0; i < 9; ++i) c2 = c2 && finite(hess[i]);
   const auto directional = [&](const std::array<double, 3>& g) {
-    Interval natural(0), mean_value(0);
+    T natural(0), mean_value(0);
     for (int i = 0; i < 3; ++i) natural += grad[i] * g[i];
     if (!c2) return certainly_nonzero(natural);
     for (int i = 0; i < 3; ++i) mean_value += grad_c[i] * g[i];
     for (int k = 0; k < 3; ++k) {
-      Interval hg(0);
+      T hg(0);
       for (int i = 0; i < 3; ++i) hg += hess[3 * i + k] * g[i];
       mean_value += hg * e.d[k];
     }
-    return excludes_zero(natural, mean_value);
+    return certainly_nonzero(natural) || certainly_nonzero(mean_value);
   };
   std::array<double, 3> g{};
   bool usable = false;  // g finite and non-zero
   for (int i = 0; i < 3; ++i) {
-    g[i] = centre(grad_c[i]);
+    g[i] = centre_of(grad_c[i]);
     usable = usable || g[i] != 0;
   }
   for (int i = 0; i < 3; ++i) usable = usable && std::isfinite(g[i]);
@@ -126,6 +140,47 @@ bool gradient_nonzero(const BoxEnclosures& e) {
     std::array<double, 3> axis{};
     axis[k] = 1;
     if (directional(axis)) return true;
+  }
+  return false;
+}
+
+// Steps 1 and 2 on the box of `bounds` (lo, hi per axis) over T: true iff the box holds no
+// singular point of Σ.
+template <class T>
+bool box_is_regular(const CompiledSystem& system, const std::array<double, 6>& bounds) {
+  std::array<T, 3> b;
+  for (int k = 0; k < 3; ++k) b[k] = enclose<T>(bounds[2 * k], bounds[2 * k + 1]);
+  BoxEnclosures<T> e;
+  return natural_excludes_e(system, b) || mean_value_excludes_e(system, b, bounds.data(), e) || gradient_nonzero(e);
+}
+
+// ---- escalation: an undecided box again in MPFI (header: "Escalation") ----
+
+// True iff the box of `bounds` is proved free of singular points of Σ by the tests of
+// box_is_regular over MPFI at one of tolerances::validation_mpfi_precisions_bits, bisecting (its
+// widest side, while the double midpoint splits it) within `budget` boxes, which it decreases.
+bool regular_in_mpfi(const CompiledSystem& system, const std::array<double, 6>& bounds, std::size_t& budget) {
+  for (const int bits : tolerances::validation_mpfi_precisions_bits) {
+    detail::MpfiPrecisionScope precision(bits);
+    std::vector<std::array<double, 6>> stack{bounds};
+    while (!stack.empty()) {
+      if (budget == 0) return false;
+      --budget;
+      const auto box = stack.back();
+      stack.pop_back();
+      if (box_is_regular<MpfiInterval>(system, box)) continue;
+      int side = 0;
+      for (int k = 1; k < 3; ++k)
+        if (box[2 * k + 1] - box[2 * k] > box[2 * side + 1] - box[2 * side]) side = k;
+      const double split = 0.5 * (box[2 * side] + box[2 * side + 1]);
+      if (!(split > box[2 * side] && split < box[2 * side + 1])) break;  // try a higher precision
+      auto lower = box, upper = box;
+      lower[2 * side + 1] = split;
+      upper[2 * side] = split;
+      stack.push_back(upper);
+      stack.push_back(lower);
+    }
+    if (stack.empty()) return true;
   }
   return false;
 }
@@ -225,15 +280,136 @@ Point gauss_newton(const CompiledSystem& system, const Scales& scale, Point p) {
   return p;
 }
 
+// ---- proof of a singular point (header: "Singular only with a proof") ----
+
+// The exact rational value of a finite double.
+GiNaC::numeric exact_rational(double v) {
+  int exponent = 0;
+  const double mantissa = std::frexp(v, &exponent);  // v = mantissa · 2^exponent, 1/2 ≤ |mantissa| < 1
+  return GiNaC::numeric(static_cast<long>(std::ldexp(mantissa, 53))) * GiNaC::numeric(2).power(exponent - 53);
+}
+
+// The exact value of f at the rational point q, if it is a rational number (no floating-point
+// number, no undefined operation, no unevaluated function).
+std::optional<GiNaC::numeric> exact_value(const GiNaC::ex& f, const std::array<GiNaC::numeric, 3>& q) {
+  try {
+    GiNaC::exmap at;
+    for (int k = 0; k < 3; ++k) at[unknowns()[k]] = q[k];
+    const GiNaC::ex value = f.subs(at, GiNaC::subs_options::no_pattern);
+    if (!GiNaC::is_a<GiNaC::numeric>(value) || !GiNaC::ex_to<GiNaC::numeric>(value).is_rational()) return std::nullopt;
+    return GiNaC::ex_to<GiNaC::numeric>(value);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+// At most 80 characters of an expression, for a message.
+std::string printable_factor(const GiNaC::ex& f) {
+  std::ostringstream s;
+  s << f;
+  std::string text = s.str();
+  if (text.size() > 80) text = text.substr(0, 77) + "...";
+  return text;
+}
+
+bool in_box(const std::array<GiNaC::numeric, 3>& q, const Box3& box) {
+  for (int k = 0; k < 3; ++k)
+    if (q[k] < exact_rational(box.lo[k]) || q[k] > exact_rational(box.hi[k])) return false;
+  return true;
+}
+
+std::string rational_point_text(const std::array<GiNaC::numeric, 3>& q) {
+  std::ostringstream s;
+  s << "(" << q[0] << ", " << q[1] << ", " << q[2] << ")";
+  return s.str();
+}
+
+// A proof that Σ has a singular point in the box, or "": either a rational point of the box near
+// one of `near` at which E and ∇E evaluate to exactly 0 (the points themselves and their
+// coordinates rounded to 0 … tolerances::singular_proof_decimal_places decimal places and to
+// 0 … tolerances::singular_proof_binary_places binary places are tried), or, for a polynomial E,
+// a non-constant common factor g of E, ∂xE, ∂yE, ∂zE that takes both signs at rational points of
+// the box (the 27 points of its 3 × 3 × 3 grid and `near`): on the segment between them g has a
+// zero, at which E and its three derivatives, all multiples of g, vanish.
+std::string singular_proof(const Surface& surface, const Box3& box, const std::vector<Point>& near) {
+  const GiNaC::ex& E = surface.E();
+  const auto& g = surface.gradient();
+  const auto vanishes_at = [&](const std::array<GiNaC::numeric, 3>& q) {
+    if (!in_box(q, box)) return false;
+    for (const GiNaC::ex* f : {&E, &g[0], &g[1], &g[2]}) {
+      const auto v = exact_value(*f, q);
+      if (!v || !v->is_zero()) return false;
+    }
+    return true;
+  };
+  for (const Point& p : near) {
+    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) continue;
+    std::vector<std::array<GiNaC::numeric, 3>> candidates;
+    candidates.push_back({exact_rational(p[0]), exact_rational(p[1]), exact_rational(p[2])});
+    const auto add_rounded = [&](int base, int places) {
+      std::array<GiNaC::numeric, 3> q;
+      const GiNaC::numeric unit = GiNaC::numeric(base).power(places);
+      for (int k = 0; k < 3; ++k) {
+        // std::round: independent of the rounding mode (a RoundingGuard may be alive).
+        const double scaled = std::round(p[k] * std::pow(static_cast<double>(base), places));
+        if (!(std::abs(scaled) < 0x1p53)) return;
+        q[k] = GiNaC::numeric(static_cast<long>(scaled)) / unit;
+      }
+      candidates.push_back(q);
+    };
+    for (int places = 0; places <= tolerances::singular_proof_decimal_places; ++places) add_rounded(10, places);
+    for (int places = 1; places <= tolerances::singular_proof_binary_places; ++places) add_rounded(2, places);
+    for (const auto& q : candidates)
+      if (vanishes_at(q))
+        return " at " + rational_point_text(q) + ": E and its gradient evaluate to exactly 0 there (rational arithmetic)";
+  }
+  if (!surface.is_polynomial()) return "";
+  try {
+    GiNaC::ex common = E.expand();
+    for (const GiNaC::ex& d : g) common = GiNaC::gcd(common, d.expand());
+    if (GiNaC::is_a<GiNaC::numeric>(common)) return "";
+    std::vector<std::array<GiNaC::numeric, 3>> points;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        for (int c = 0; c < 3; ++c) {
+          const int idx[3] = {a, b, c};
+          std::array<GiNaC::numeric, 3> q;
+          for (int k = 0; k < 3; ++k)
+            q[k] = exact_rational(box.lo[k]) + GiNaC::numeric(idx[k], 2) * (exact_rational(box.hi[k]) - exact_rational(box.lo[k]));
+          points.push_back(q);
+        }
+    for (const Point& p : near)
+      if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
+        points.push_back({exact_rational(p[0]), exact_rational(p[1]), exact_rational(p[2])});
+    const std::array<GiNaC::numeric, 3>* negative = nullptr;
+    const std::array<GiNaC::numeric, 3>* positive = nullptr;
+    for (const auto& q : points) {
+      if (!in_box(q, box)) continue;
+      const auto v = exact_value(common, q);
+      if (!v) continue;
+      if (v->is_zero()) return " at " + rational_point_text(q) + ": the common factor " + printable_factor(common) +
+                               " of E and its gradient vanishes there (rational arithmetic)";
+      (v->is_positive() ? positive : negative) = &q;
+    }
+    if (positive && negative)
+      return ": E and its gradient have the common factor " + printable_factor(common) + ", which changes sign between " +
+             rational_point_text(*negative) + " and " + rational_point_text(*positive) +
+             " (rational arithmetic): E and its gradient vanish where it does";
+  } catch (const std::exception&) {
+  }
+  return "";
+}
+
 struct Evidence {
-  bool singular = false;
+  bool singular = false;  // proved: detail is the proof
   Point where{};
-  std::string detail;  // why singular, or what was found instead
+  std::string detail;     // the proof, or what was found instead
 };
 
 // Looks for a singular point of Σ near the undecided box b (header: "Undecided boxes ...").
 Evidence singular_evidence(const CompiledSystem& system, std::optional<CompiledSystem>& gradient_only,
-                           const Surface& surface, const Scales& scale, const Box& b) {
+                           const Surface& surface, const Box3& domain, const Scales& scale, const Box& b,
+                           bool prove_anyway) {
   const double rho = tolerances::singular_evidence_relative_residual;
   Evidence e;
   double w = 0;
@@ -242,6 +418,16 @@ Evidence singular_evidence(const CompiledSystem& system, std::optional<CompiledS
     w = std::max(w, b[k].sup() - b[k].inf());
   }
   const Point p = gauss_newton(system, scale, e.where);
+  if (prove_anyway) {
+    // Whatever the residuals (Gauss–Newton approaches a degenerate singular point slowly), a proof
+    // from the box's centre or p costs little on the first few boxes and is a proof wherever found.
+    const std::string proof = singular_proof(surface, domain, {e.where, p});
+    if (!proof.empty()) {
+      e.singular = true;
+      e.detail = proof;
+      return e;
+    }
+  }
   for (int k = 0; k < 3; ++k)
     if (!(p[k] >= b[k].inf() - w && p[k] <= b[k].sup() + w)) return e;
 
@@ -291,9 +477,15 @@ Evidence singular_evidence(const CompiledSystem& system, std::optional<CompiledS
         return e;
       }
       if (finite(v[0]) && v[0].sup() - v[0].inf() <= rho * scale.E) {
-        s << "; Krawczyk certifies a critical point of E there, at which |E| <= "
-          << std::max(std::abs(v[0].inf()), std::abs(v[0].sup()));
-        e.singular = true;
+        const std::string proof = singular_proof(surface, domain, {e.where, p});
+        if (!proof.empty()) {
+          e.singular = true;
+          e.detail = proof;
+          return e;
+        }
+        s << " (Krawczyk certifies a critical point of E within " << r << " of " << point_text(e.where)
+          << ", at which |E| <= " << std::max(std::abs(v[0].inf()), std::abs(v[0].sup()))
+          << "; that it lies on the surface is not proved)";
         e.detail = s.str();
         return e;
       }
@@ -306,11 +498,17 @@ Evidence singular_evidence(const CompiledSystem& system, std::optional<CompiledS
   system.values<double>(p.data(), nullptr, v);
   const double gradient = std::max({std::abs(v[1]), std::abs(v[2]), std::abs(v[3])});
   if (std::abs(v[0]) <= rho * scale.E && gradient <= rho * scale.gradient) {
-    e.singular = true;
     e.where = p;
+    const std::string proof = singular_proof(surface, domain, {p});
+    if (!proof.empty()) {
+      e.singular = true;
+      e.detail = proof;
+      return e;
+    }
     std::ostringstream s;
-    s << "; there |E| = " << std::abs(v[0]) << " and |grad E| = " << gradient
-      << ", relative to their scales " << scale.E << " and " << scale.gradient << " over the box";
+    s << " (near " << point_text(p) << " |E| = " << std::abs(v[0]) << " and |grad E| = " << gradient
+      << ", relative to their scales " << scale.E << " and " << scale.gradient
+      << " over the box; that both vanish there is not proved)";
     e.detail = s.str();
   }
   return e;
@@ -346,12 +544,14 @@ std::size_t check_box_faces(const CompiledSystem& system, const Box3& box) {
         bool excluded = false;
         {
           RoundingGuard guard;
+          std::array<double, 6> bounds{};
+          bounds[2 * axis] = bounds[2 * axis + 1] = fixed;
+          bounds[2 * i] = r.u0, bounds[2 * i + 1] = r.u1;
+          bounds[2 * j] = r.v0, bounds[2 * j + 1] = r.v1;
           Box x;
-          x[axis] = Interval(fixed);
-          x[i] = Interval(r.u0, r.u1);
-          x[j] = Interval(r.v0, r.v1);
-          BoxEnclosures e;
-          excluded = natural_excludes_e(system, x) || mean_value_excludes_e(system, x, e);
+          for (int k = 0; k < 3; ++k) x[k] = Interval(bounds[2 * k], bounds[2 * k + 1]);
+          BoxEnclosures<Interval> e;
+          excluded = natural_excludes_e(system, x) || mean_value_excludes_e(system, x, bounds.data(), e);
         }
         if (excluded) continue;
         if (r.depth >= tolerances::box_face_max_depth || budget == 0) {
@@ -376,14 +576,16 @@ std::size_t check_regular(const CompiledSystem& system, const Surface& surface, 
   double domain_width = 0;
   for (int k = 0; k < 3; ++k) domain_width = std::max(domain_width, box.hi[k] - box.lo[k]);
   const double min_width = tolerances::validation_min_box_relative_width * domain_width;
-  const double deep_min_width = validation_deep_min_box_relative_width * domain_width;
+  const double deep_min_width = tolerances::validation_deep_min_box_relative_width * domain_width;
   std::size_t deep_boxes = 0;
   const Scales scale = domain_scales(system, box);
   std::optional<CompiledSystem> gradient_only;
 
   std::vector<std::array<double, 6>> stack{{box.lo[0], box.hi[0], box.lo[1], box.hi[1], box.lo[2], box.hi[2]}};
   std::vector<Box> undecided;
+  std::vector<std::array<double, 6>> undecided_bounds;
   std::string first_note;  // what singular_evidence found near the first undecided box
+  std::size_t looked_at = 0;  // boxes singular_evidence looked at
   std::size_t examined = 0;
   bool budget_exhausted = false;
   while (!stack.empty()) {
@@ -399,8 +601,7 @@ std::size_t check_regular(const CompiledSystem& system, const Surface& surface, 
     {
       RoundingGuard guard;
       for (int k = 0; k < 3; ++k) b[k] = Interval(bounds[2 * k], bounds[2 * k + 1]);
-      BoxEnclosures e;
-      dropped = natural_excludes_e(system, b) || mean_value_excludes_e(system, b, e) || gradient_nonzero(e);
+      dropped = box_is_regular<Interval>(system, bounds);
     }
     if (dropped) continue;
     int side = 0;
@@ -412,14 +613,14 @@ std::size_t check_regular(const CompiledSystem& system, const Surface& surface, 
       // Evidence is looked for once, on the boxes that have just crossed min_width; below it a
       // box without evidence is bisected on, down to deep_min_width, within the deep budget.
       if (hi - lo >= 0.5 * min_width || !splittable) {
-        const Evidence evidence = singular_evidence(system, gradient_only, surface, scale, b);
-        if (evidence.singular)
-          throw InvalidInput("the surface is singular: the gradient of E vanishes on it near " +
-                             point_text(evidence.where) + evidence.detail);
+        const Evidence evidence = singular_evidence(system, gradient_only, surface, box, scale, b,
+                                                    looked_at++ < tolerances::singular_proof_boxes_without_evidence);
+        if (evidence.singular) throw InvalidInput("the surface is singular: the gradient of E vanishes on it" + evidence.detail);
         if (undecided.empty() && !evidence.detail.empty()) first_note = evidence.detail;
       }
-      if (!splittable || hi - lo < deep_min_width || deep_boxes >= validation_deep_box_budget) {
+      if (!splittable || hi - lo < deep_min_width || deep_boxes >= tolerances::validation_deep_box_budget) {
         undecided.push_back(b);
+        undecided_bounds.push_back(bounds);
         continue;
       }
       ++deep_boxes;
@@ -429,6 +630,24 @@ std::size_t check_regular(const CompiledSystem& system, const Surface& surface, 
     upper[2 * side] = split;
     stack.push_back(upper);
     stack.push_back(lower);
+  }
+  // Escalation (header): the undecided boxes again in MPFI, within validation_mpfi_box_budget.
+  std::size_t mpfi_budget = tolerances::validation_mpfi_box_budget;
+  if (!budget_exhausted) {
+    std::vector<Box> still;
+    for (std::size_t i = 0; i < undecided.size(); ++i) {
+      // A box on which the double enclosures overflow stays undecided: the mesher computes in
+      // double precision, so the domain is too large for it whatever MPFI proves.
+      Interval v[4];
+      {
+        RoundingGuard guard;
+        system.values<Interval>(undecided[i].data(), nullptr, v);
+      }
+      const bool overflows = surface.is_polynomial() && !(finite(v[0]) && finite(v[1]) && finite(v[2]) && finite(v[3]));
+      if (overflows || mpfi_budget == 0 || !regular_in_mpfi(system, undecided_bounds[i], mpfi_budget))
+        still.push_back(undecided[i]);
+    }
+    undecided.swap(still);
   }
   if (undecided.empty() && !budget_exhausted) return examined;
 
@@ -441,9 +660,26 @@ std::size_t check_regular(const CompiledSystem& system, const Surface& surface, 
     s << "the budget of " << tolerances::mesher_box_budget_global << " boxes ran out with " << stack.size()
       << " boxes unexplored and " << undecided.size() << " undecided";
   else
-    s << undecided.size() << " boxes stay undecided (bisected down to width " << deep_min_width << " or the budget of " << validation_deep_box_budget << " narrow boxes)";
+    s << undecided.size() << " boxes stay undecided (bisected down to width " << deep_min_width << " or the budget of "
+      << tolerances::validation_deep_box_budget << " narrow boxes, then in MPFI at up to "
+      << tolerances::validation_mpfi_precisions_bits.back() << " bits within " << tolerances::validation_mpfi_box_budget
+      << " boxes)";
   if (!undecided.empty()) {
-    s << ", the first near " << point_text(where) << ", with no singular point found near them";
+    s << ", the first near " << point_text(where) << ", with no singular point proved near them";
+    // How small |∇E| may be there: its value at the point of smallest (E, ∇E) residual found from
+    // the box's centre (an upper bound on its minimum; no positive lower bound is proved).
+    double width = 0;
+    for (int k = 0; k < 3; ++k) width = std::max(width, undecided.front()[k].sup() - undecided.front()[k].inf());
+    const Point p = gauss_newton(system, scale, where);
+    bool near = true;
+    for (int k = 0; k < 3; ++k) near = near && std::abs(p[k] - where[k]) <= width;
+    const Point at = near ? p : where;
+    double values[4];
+    system.values<double>(at.data(), nullptr, values);
+    const double gradient = std::sqrt(values[1] * values[1] + values[2] * values[2] + values[3] * values[3]);
+    if (std::isfinite(gradient) && std::isfinite(values[0]))
+      s << "; |grad E| may be as small as " << gradient << " there (its value at " << point_text(at)
+        << ", where |E| = " << std::abs(values[0]) << ")";
     Interval v[4];
     {
       RoundingGuard guard;

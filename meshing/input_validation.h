@@ -32,43 +32,45 @@
 //! A box that is not dropped is bisected; the union of the dropped boxes is the whole domain when
 //! the check passes, which proves the claim on every point of it.
 //!
-//! ## Undecided boxes are not called singular without evidence
+//! ## Undecided boxes: "singular" only with a proof
 //! A box narrower than tolerances::validation_min_box_relative_width (relative to the widest side
-//! of the domain) that is not dropped is looked at for evidence of a singular point.  validate_regular calls the surface singular
-//! only with evidence found near such a box (evidence, not a proof).  From the box's centre,
+//! of the domain) that is not dropped is looked at for a singular point.  From the box's centre,
 //! damped Gauss–Newton on (E, ∇E) = 0 reaches a point p; p must lie within one box width of the
 //! box.  Then Krawczyk on ∇E = 0 is tried on boxes p ± r (tolerances::
 //! singular_evidence_krawczyk_attempts radii, from the box width down by factors of 16):
-//!  - it proves no zero of ∇E in p ± r: no evidence (∇E(p) ≠ 0, however small);
+//!  - it proves no zero of ∇E in p ± r: no singular point there (∇E(p) ≠ 0, however small);
 //!  - it certifies a unique critical point x* of E in p ± r, refined to a tight box X: if E(X)
-//!    excludes 0, x* is off Σ and there is no evidence; if E(X) contains 0 and is narrower than
-//!    tolerances::singular_evidence_relative_residual times the scale of E, this is evidence;
-//!  - otherwise (a degenerate critical point, e.g. two spheres touching, where Krawczyk cannot
-//!    apply) the evidence is |E(p)| and ‖∇E(p)‖∞ below tolerances::
-//!    singular_evidence_relative_residual times their scales.
-//! The scales are the largest |E| and ‖∇E‖∞ at the 27 points of the domain's 3 × 3 × 3 grid
-//! (corners, edge and face centres, centre).  Without evidence the message is "cannot certify",
-//! never "singular".  So a smooth surface is called singular only where (E, ∇E) vanish to within
-//! that relative threshold and Krawczyk can neither certify nor exclude a critical point.  A box
-//! without evidence is not undecided yet: it is bisected on down to
-//! validation_deep_min_box_relative_width (below, within validation_deep_box_budget boxes), and
-//! only a box narrower than that, or beyond the budget, is undecided.  So two unit spheres 1e-6
-//! apart validate, and two spheres of radius 0.5 2e-10 apart in a box of size 2.6 get "cannot
-//! certify" (Krawczyk puts the critical point between them off Σ).
+//!    excludes 0, x* is off Σ and there is no singular point in p ± r;
+//!  - if E(X) contains 0 and is narrower than tolerances::singular_evidence_relative_residual times
+//!    the scale of E, or (a degenerate critical point, e.g. two spheres touching, where Krawczyk
+//!    cannot apply) |E(p)| and ‖∇E(p)‖∞ are below that fraction of their scales, E and ∇E could not
+//!    be separated there, which is no proof.  A proof is then sought (tolerances::
+//!    singular_proof_*): a rational point of the box near p or X at which E, ∂xE, ∂yE, ∂zE evaluate
+//!    to exactly 0 in rational arithmetic (GiNaC, with the expression's exact rational constants),
+//!    or, for a polynomial E, a non-constant common factor g of E and its three derivatives that
+//!    takes both signs at rational points of the box (g has a zero on the segment between them, by
+//!    the intermediate value theorem, and E and ∇E, multiples of g, vanish there).
+//! Only a proof makes the surface "singular".  The scales are the largest |E| and ‖∇E‖∞ at the 27
+//! points of the domain's 3 × 3 × 3 grid.  A box without a proof is not undecided yet: it is
+//! bisected on down to tolerances::validation_deep_min_box_relative_width (below, within
+//! tolerances::validation_deep_box_budget boxes).
+//!
+//! ## Escalation
+//! The boxes still undecided are examined again by the same two exclusion tests over MPFI
+//! intervals at tolerances::validation_mpfi_precisions_bits (the constants of E enclosed at that
+//! precision, e.g. 1 + 10⁻¹⁷, which double precision rounds to 1), bisected while their double
+//! midpoints split them, within tolerances::validation_mpfi_box_budget boxes.  What stays
+//! undecided gets "cannot certify", with a point near the first undecided box and how small |∇E|
+//! is there (its value at the point of smallest residual found, an upper bound on its minimum):
+//! never "singular".  So two unit spheres 1e-6 apart validate, two spheres of radius 0.5 2e-10
+//! apart in a box of size 2.6 get "cannot certify" (Krawczyk puts the critical point between them
+//! off Σ), and so do two unit spheres 2·10⁻¹⁷ apart (which double precision makes touch).
 
 #include <cstddef>
 
 #include "symbolic/surface.h"
 
 namespace delmesh {
-
-//! Boxes of validate_regular narrower than tolerances::validation_min_box_relative_width (relative
-//! to the widest side of the domain) in which no evidence of a singular point was found are
-//! bisected on, down to this relative width, at most validation_deep_box_budget of them in all:
-//! smooth surfaces whose sheets come closer than the first limit (two unit spheres 1e-6 apart)
-//! are then certified.  (Budgets of this check, kept here next to it.)
-inline constexpr double validation_deep_min_box_relative_width = 1e-10;
-inline constexpr std::size_t validation_deep_box_budget = 100000;
 
 //! Work done by validate_input.
 struct [[nodiscard]] ValidationReport {
@@ -88,10 +90,11 @@ std::size_t validate_box_faces(const Surface& surface, const Box3& box);
 //! Certifies that ∇E does not vanish on Σ ∩ box: no zero of {E, ∂xE, ∂yE, ∂zE} in the box, by
 //! the subdivision of the file comment (at most tolerances::mesher_box_budget_global boxes).
 //! Throws InvalidInput:
-//!  - "the surface is singular: the gradient of E vanishes on it near (x, y, z)" when an
-//!    undecided box comes with evidence of a singular point (file comment);
+//!  - "the surface is singular: the gradient of E vanishes on it ..." with the proof (a rational
+//!    point where E and ∇E are exactly 0, or a sign-changing common factor; file comment);
 //!  - "cannot certify that the gradient of E is non-zero on the surface ..." when boxes stay
-//!    undecided without such evidence or the budget runs out.
+//!    undecided without a proof (also after the MPFI escalation) or the budget runs out; it names
+//!    a point near the first undecided box and how small |∇E| is there.
 //! Returns the number of boxes examined.
 std::size_t validate_regular(const Surface& surface, const Box3& box);
 

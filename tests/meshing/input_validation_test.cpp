@@ -67,7 +67,7 @@ BOOST_AUTO_TEST_CASE(singular_point_inside_the_box_is_rejected) {
     validate_regular(s, box);
     BOOST_ERROR("no error for a singular surface");
   } catch (const InvalidInput& e) {
-    BOOST_TEST(std::string(e.what()).find("singular") != std::string::npos, e.what());
+    BOOST_TEST(std::string(e.what()).find("the surface is singular") != std::string::npos, e.what());
   }
   BOOST_CHECK_NO_THROW(validate_regular(Surface::parse("x^2+y^2+z^2-1"), Box3::cube(1.5)));
 }
@@ -91,20 +91,48 @@ BOOST_AUTO_TEST_CASE(catalog_surfaces_validate) {
   }
 }
 
-// The cone's apex is a non-degenerate critical point of E on Σ: certified by Krawczyk.
+// The cone's apex is a singular point, and "singular" comes with its proof: E and ∇E are exactly
+// 0 at the apex, in rational arithmetic.
 BOOST_AUTO_TEST_CASE(cone_apex_is_singular) {
-  expect_regular_rejected("x^2+y^2-z^2", Box3::cube(1), "the surface is singular");
-  expect_regular_rejected("x^2+y^2-z^2", Box3::cube(1), "Krawczyk");
-  // Off-centre apex (not a dyadic point of the subdivision).
+  expect_regular_rejected("x^2+y^2-z^2", Box3::cube(1),
+                          "the surface is singular: the gradient of E vanishes on it at (0, 0, 0): E and its gradient "
+                          "evaluate to exactly 0 there");
+  // Off-centre apex (not a dyadic point: found by rounding to decimal places).
   Box3 box;
   box.lo = {-1.3, -0.9, -1.1};
   box.hi = {0.7, 1.2, 0.8};
-  expect_regular_rejected("(x-0.1)^2+(y+0.2)^2-(z-0.3)^2", box, "singular");
+  expect_regular_rejected("(x-0.1)^2+(y+0.2)^2-(z-0.3)^2", box, "at (1/10, -1/5, 3/10): E and its gradient evaluate to exactly 0");
 }
 
-// E = f² vanishes to second order on the whole sphere f = 0: every point of Σ is singular.
+// E = f² vanishes to second order on the whole sphere f = 0: every point of Σ is singular.  The
+// sphere x² + y² + z² = 7 has no rational point at all (7 is not a sum of three rational squares),
+// so the proof is the common factor f of E and ∇E, which changes sign in the box.
 BOOST_AUTO_TEST_CASE(squared_sphere_is_singular) {
-  expect_regular_rejected("(x^2+y^2+z^2-1)^2", Box3::cube(1.5), "singular");
+  expect_regular_rejected("(x^2+y^2+z^2-1)^2", Box3::cube(1.5), "singular: the gradient of E vanishes on it");
+  expect_regular_rejected("(x^2+y^2+z^2-7)^2", Box3::cube(3.5), "singular: the gradient of E vanishes on it");
+  expect_regular_rejected("(x^2+y^2+z^2-7)^2", Box3::cube(3.5), "the common factor");
+}
+
+// Two unit spheres 2·10⁻¹⁷ apart: smooth (E > 0 between them), but double precision rounds
+// 1.00000000000000001 to 1 and cannot separate E from ∇E at the origin, nor can MPFI within its
+// budget (the sheets' gap is below the boxes' double resolution).  Not called singular: no
+// rational point makes E and ∇E exactly 0, and the message says how small |∇E| is there.
+BOOST_AUTO_TEST_CASE(spheres_closer_than_double_precision_are_not_called_singular) {
+  Box3 box;
+  box.lo = {-2.5, -1.5, -1.5};
+  box.hi = {2.5, 1.5, 1.5};
+  try {
+    (void)validate_regular(
+        Surface::parse("((x-1.00000000000000001)^2+y^2+z^2-1)*((x+1.00000000000000001)^2+y^2+z^2-1)"), box);
+    BOOST_ERROR("no error although double precision cannot separate the sheets");
+  } catch (const InvalidInput& e) {
+    const std::string what = e.what();
+    BOOST_TEST(what.find("cannot certify") != std::string::npos, what);
+    BOOST_TEST(what.find("singular:") == std::string::npos, what);
+    BOOST_TEST(what.find("|grad E| may be as small as") != std::string::npos, what);
+  }
+  // The same two spheres touching (a gap of 0) are singular, with the proof at the origin.
+  expect_regular_rejected("((x-1)^2+y^2+z^2-1)*((x+1)^2+y^2+z^2-1)", box, "at (0, 0, 0): E and its gradient evaluate");
 }
 
 // Two unit spheres 1e-6 apart (the case) and two spheres of radius 0.5 2e-7 apart are

@@ -96,6 +96,10 @@ struct CheckInfo {
   //! Triangle rows, optional: a check that is a function of the triangle's EdgeRecord alone may
   //! say from the record that it cannot fire; the driver then does not queue the triangle.
   std::function<bool(const EdgeRecord& record)> may_fire;
+  //! Edge rows, optional: the check has no witness on a facet F with F ∩ Σ = ∅ (FacetContact,
+  //! FacetCycle); the driver then does not queue a new edge whose facet is proved to miss Σ
+  //! (RestrictedDelaunay::facet_misses_surface), nor build that facet for it.
+  bool silent_off_surface = false;
   //! Geometry rows, optional: whether the row runs at this λ (Smooth: only for λ < 1/6, where
   //! β(λ) is defined).  Default: always.
   std::function<bool(double lambda)> runs_at;

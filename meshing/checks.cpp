@@ -49,6 +49,7 @@ const std::vector<CheckInfo>& builtin_checks() {
                             [](const CheckContext& c, const DelaunayFace& f) {
                               return facet_contact_witness(c.restricted, as_edge(f));
                             }};
+    facet_contact.silent_off_surface = true;
     facet_contact.kind = CheckKind::facet_contact;
     r.push_back(facet_contact);
 

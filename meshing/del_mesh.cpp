@@ -194,6 +194,8 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
   j["seconds_insertion"] = refinement.seconds_insertion();
   j["edge_records"] = {{"solved", refinement.restricted().records_solved()},
                        {"restricted", refinement.restricted().records_restricted()}};
+  j["voronoi_facets"] = {{"built", refinement.restricted().facets_built()},
+                         {"missing_surface", refinement.restricted().facets_missing_surface()}};
   j["height_direction"] = seeds.height_direction;
   j["height_direction_attempts"] = seeds.attempts;
   j["seed_undecided"] = seeds.undecided;

@@ -106,9 +106,11 @@ std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, b
                                      : dt.locate(point, lt, li, lj);
     if (lt == detail::Dt::VERTEX) return std::nullopt;
     if (change) {
-      // The cavity: its internal facets are destroyed, its boundary facets shrink.
+      // The cavity (the cells in conflict with p): its internal facets are destroyed, its boundary
+      // facets shrink, and p is starred from its boundary (Bowyer–Watson) without a second search.
       std::vector<detail::Dt::Facet> boundary, internal;
-      dt.find_conflicts(point, cell, std::back_inserter(boundary), CGAL::Emptyset_iterator(),
+      std::vector<detail::Dt::Cell_handle> cavity;
+      dt.find_conflicts(point, cell, std::back_inserter(boundary), std::back_inserter(cavity),
                         std::back_inserter(internal));
       std::vector<EdgeKey> internal_edges;
       for (const auto& [facets, triangles, edges] :
@@ -127,8 +129,10 @@ std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, b
       std::set_difference(internal_edges.begin(), internal_edges.end(), change->shrunk_edges.begin(),
                           change->shrunk_edges.end(), std::back_inserter(change->destroyed_edges));
       change->local = true;
+      v = dt.insert_in_hole(point, cavity.begin(), cavity.end(), boundary.front().first, boundary.front().second);
+    } else {
+      v = dt.insert(point, lt, cell, li, lj);
     }
-    v = dt.insert(point, lt, cell, li, lj);
   } else {
     const std::size_t before = dt.number_of_vertices();
     v = dt.insert(point);
@@ -248,6 +252,22 @@ std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x) const {
     }
   }
   std::sort(out.begin(), out.end(), [](const StarTriangle& a, const StarTriangle& b) { return a.key < b.key; });
+  return out;
+}
+
+std::vector<std::array<VertexId, 4>> Delaunay::incident_cells(VertexId x) const {
+  std::vector<std::array<VertexId, 4>> out;
+  const auto& dt = impl_->dt;
+  if (dt.dimension() != 3) return out;
+  const auto v = impl_->handle(x);
+  std::vector<detail::Dt::Cell_handle> cells;
+  dt.incident_cells(v, std::back_inserter(cells));
+  out.reserve(cells.size());
+  for (const auto& c : cells) {
+    const int ix = c->index(v);
+    out.push_back({x, vertex_id(dt, c->vertex((ix + 1) & 3)), vertex_id(dt, c->vertex((ix + 2) & 3)),
+                   vertex_id(dt, c->vertex((ix + 3) & 3))});
+  }
   return out;
 }
 

@@ -27,29 +27,6 @@ using EdgeKey = std::array<VertexId, 2>;      //!< sorted ascending
 TriangleKey make_triangle_key(VertexId a, VertexId b, VertexId c);
 EdgeKey make_edge_key(VertexId a, VertexId b);
 
-//! Hashes of the simplex keys, for the mesher's per-simplex tables.
-struct SimplexKeyHash {
-  std::size_t operator()(const TriangleKey& t) const noexcept {
-    std::size_t h = static_cast<std::size_t>(static_cast<unsigned>(t[0])) * 0x9E3779B97F4A7C15ULL;
-    h ^= static_cast<std::size_t>(static_cast<unsigned>(t[1])) + 0x7F4A7C159E3779B9ULL + (h << 6) + (h >> 2);
-    h ^= static_cast<std::size_t>(static_cast<unsigned>(t[2])) + 0x94D049BB133111EBULL + (h << 6) + (h >> 2);
-    return h;
-  }
-  std::size_t operator()(const EdgeKey& e) const noexcept {
-    std::size_t h = static_cast<std::size_t>(static_cast<unsigned>(e[0])) * 0x9E3779B97F4A7C15ULL;
-    h ^= static_cast<std::size_t>(static_cast<unsigned>(e[1])) + 0x7F4A7C159E3779B9ULL + (h << 6) + (h >> 2);
-    return h;
-  }
-};
-
-//! Equality of simplex keys, element by element (std::array's operator== goes through memcmp).
-struct SimplexKeyEqual {
-  bool operator()(const TriangleKey& s, const TriangleKey& t) const noexcept {
-    return s[0] == t[0] && s[1] == t[1] && s[2] == t[2];
-  }
-  bool operator()(const EdgeKey& e, const EdgeKey& f) const noexcept { return e[0] == f[0] && e[1] == f[1]; }
-};
-
 //! What one insertion changed in Del S (Bowyer–Watson: the cells in conflict with x form a
 //! star-shaped cavity, replaced by the cone from x over its boundary).
 //! - destroyed: the triangles and edges strictly inside the cavity; they are no longer in Del S.
@@ -110,6 +87,9 @@ class Delaunay {
   //! In dimension 3: every finite triangle of the cells incident to x, once each, ascending by
   //! key.  Below dimension 3: empty.
   std::vector<StarTriangle> closed_star(VertexId x) const;
+  //! In dimension 3: the vertices of the cells incident to x, x first (−1 for the infinite
+  //! vertex), in CGAL's order of the cells.  Below dimension 3: empty.
+  std::vector<std::array<VertexId, 4>> incident_cells(VertexId x) const;
   //! Delaunay triangles that contain the edge e (sorted keys, ascending; empty if e is not an edge).
   std::vector<TriangleKey> edge_triangles(const EdgeKey& e) const;
   //! Delaunay edges incident to id (sorted keys, ascending).

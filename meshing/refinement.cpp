@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <tuple>
 
 #include "common/errors.h"
 #include "common/tolerances.h"
@@ -79,11 +80,13 @@ void Refinement::enable_geometry(double lambda, std::optional<double> size_bound
   }
 }
 
-void Refinement::queue(const Simplex& f, FaceKind kind, Dirtied dirtied, const EdgeRecord* record) {
+void Refinement::queue(const Simplex& f, FaceKind kind, Dirtied dirtied, const EdgeRecord* record,
+                       bool facet_misses_surface) {
   for (auto& step : steps_) {
     const CheckInfo& row = *step.row;
     if (!step.enabled || row.face != kind || row.dirtied != dirtied) continue;
     if (record && row.may_fire && policy_ == RecheckPolicy::new_faces && !row.may_fire(*record)) continue;
+    if (facet_misses_surface && row.silent_off_surface) continue;
     step.queue.push(f);
   }
 }
@@ -100,7 +103,9 @@ void Refinement::queue_triangle(const TriangleKey& t, bool new_face, const EdgeR
   if (r.restricted) queue(t, FaceKind::triangle, Dirtied::restricted_triangles);
 }
 
-void Refinement::queue_edge(const EdgeKey& e) { queue({e[0], e[1], -1}, FaceKind::edge, Dirtied::new_faces); }
+void Refinement::queue_edge(const EdgeKey& e, bool facet_misses_surface) {
+  queue({e[0], e[1], -1}, FaceKind::edge, Dirtied::new_faces, nullptr, facet_misses_surface);
+}
 
 void Refinement::queue_vertex(VertexId v, bool new_cell) {
   queue({v, -1, -1}, FaceKind::vertex, Dirtied::restricted_star);
@@ -191,7 +196,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
     else if (policy_ == RecheckPolicy::changed_faces)
       queue(t, FaceKind::triangle, Dirtied::new_faces);
   }
-  const std::vector<VertexId> neighbours = prepare_new_edges(x, star);
+  const std::vector<VertexId> neighbours = prepare_new_edges(x, star, records);
   std::sort(star_changed.begin(), star_changed.end());
   star_changed.erase(std::unique(star_changed.begin(), star_changed.end()), star_changed.end());
   for (VertexId v : star_changed) queue_vertex(v, v == x);
@@ -202,26 +207,45 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
   return id;
 }
 
-std::vector<VertexId> Refinement::prepare_new_edges(VertexId x, const std::vector<Delaunay::StarTriangle>& star) {
-  // The facet of a new edge xq is cut by the third vertices of the triangles xqr, all of which are
-  // in the star; building the facets now also marks the edges as current.
-  std::vector<std::pair<VertexId, VertexId>> ring_pairs;  // (q, r) for each triangle xqr, both ways
-  for (const auto& s : star) {
+std::vector<VertexId> Refinement::prepare_new_edges(VertexId x, const std::vector<Delaunay::StarTriangle>& star,
+                                                    const std::vector<RestrictedDelaunay::StarRecord>& records) {
+  // The facet of a new edge xq is cut by the third vertices r of the triangles xqr, all of which
+  // are in the star, and bounded by their Voronoi edges, whose records are up to date.
+  struct RingEntry {
+    VertexId q, r;
+    std::size_t index;  // of xqr in the star
+    bool operator<(const RingEntry& o) const { return std::tie(q, r) < std::tie(o.q, o.r); }
+  };
+  std::vector<RingEntry> ring;  // (q, r) for each triangle xqr, both ways
+  for (std::size_t i = 0; i < star.size(); ++i) {
+    const auto& s = star[i];
     if (!s.contains_vertex) continue;
     VertexId q = -1, r = -1;
     for (VertexId v : s.key)
       if (v != x) (q < 0 ? q : r) = v;
-    ring_pairs.push_back({q, r});
-    ring_pairs.push_back({r, q});
+    ring.push_back({q, r, i});
+    ring.push_back({r, q, i});
   }
-  std::sort(ring_pairs.begin(), ring_pairs.end());
+  std::sort(ring.begin(), ring.end());
   std::vector<VertexId> neighbours;
   std::vector<std::pair<EdgeKey, std::vector<VertexId>>> new_edges;
-  for (std::size_t i = 0; i < ring_pairs.size();) {
-    const VertexId q = ring_pairs[i].first;
+  std::vector<const EdgeRecord*> boundary;
+  for (std::size_t i = 0; i < ring.size();) {
+    const VertexId q = ring[i].q;
     neighbours.push_back(q);
-    new_edges.push_back({make_edge_key(x, q), {}});
-    for (; i < ring_pairs.size() && ring_pairs[i].first == q; ++i) new_edges.back().second.push_back(ring_pairs[i].second);
+    std::vector<VertexId> thirds;
+    boundary.clear();
+    for (; i < ring.size() && ring[i].q == q; ++i) {
+      thirds.push_back(ring[i].r);
+      boundary.push_back(records[ring[i].index].record);
+    }
+    // A facet proved to miss Σ is not built, and the rows silent off Σ (FacetContact,
+    // FacetCycle) do not examine it; its geometry is built on demand if another check asks.
+    if (policy_ == RecheckPolicy::new_faces && restricted_.facet_misses_surface(boundary)) {
+      queue_edge(make_edge_key(x, q), true);
+      continue;
+    }
+    new_edges.push_back({make_edge_key(x, q), std::move(thirds)});
   }
   restricted_.prepare_facets(new_edges, parallel_);
   for (const auto& e : new_edges) queue_edge(e.first);

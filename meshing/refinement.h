@@ -41,7 +41,10 @@
 //!     and the facets of V′_p are subsets of V_p.
 //!  3. Hence a face whose check found no witness still has none, and only the faces dual to
 //!     simplices containing x need their topology checks: VorEdge on the triangles xqr,
-//!     FacetContact and FacetCycle on the edges xq, Silhouette on V_x.
+//!     FacetContact and FacetCycle on the edges xq, Silhouette on V_x.  Of these, an edge xq
+//!     whose facet F is proved to miss Σ (RestrictedDelaunay::facet_misses_surface, from the
+//!     records of the triangles xqr) needs no FacetContact or FacetCycle: both look for points
+//!     of Σ ∩ F (rows marked silent_off_surface).
 //!  4. TopoDisk(p) is a function of the restricted star of p (and, for its witness, of the
 //!     crossings of p's triangles): it is re-queued for x and for the vertices of every triangle
 //!     that entered or left Tri S|Σ (new, destroyed, or shrunk with a lost crossing).  Quality,
@@ -245,9 +248,11 @@ class Refinement {
   template <class T>
   nlohmann::json per_step(const std::vector<T>& counts) const;
   std::optional<VertexId> insert_and_queue(const Witness& witness);
-  //! Builds the facets of the edges xq of x's closed star and queues their checks; returns the
-  //! neighbours q, ascending.
-  std::vector<VertexId> prepare_new_edges(VertexId x, const std::vector<Delaunay::StarTriangle>& star);
+  //! Builds the facets of the edges xq of x's closed star and queues their checks, except for
+  //! facets proved to miss Σ from the records of the triangles xqr (`records`, prepare_star()'s
+  //! answer for `star`); returns the neighbours q, ascending.
+  std::vector<VertexId> prepare_new_edges(VertexId x, const std::vector<Delaunay::StarTriangle>& star,
+                                          const std::vector<RestrictedDelaunay::StarRecord>& records);
   //! Whether t / e is in Del S now (a cached record or facet proves it: see restricted_delaunay.h).
   bool current(const TriangleKey& t) const;
   bool current(const EdgeKey& e) const;
@@ -260,13 +265,15 @@ class Refinement {
   //! Returns whether it queued any.
   bool requeue_unsettled();
   //! Queues f for the enabled rows of its FaceKind and rule `dirtied`; a triangle's `record`, if
-  //! given, lets a row's may_fire skip it (under RecheckPolicy::new_faces).
-  void queue(const Simplex& f, FaceKind kind, Dirtied dirtied, const EdgeRecord* record = nullptr);
+  //! given, lets a row's may_fire skip it (under RecheckPolicy::new_faces), and an edge whose
+  //! facet is proved to miss Σ skips the rows silent off the surface.
+  void queue(const Simplex& f, FaceKind kind, Dirtied dirtied, const EdgeRecord* record = nullptr,
+             bool facet_misses_surface = false);
   //! Queues t for the rows of Dirtied::restricted_triangles if it is restricted, and for the
   //! new_faces rows if `new_face`.
   void queue_triangle(const TriangleKey& t, bool new_face);
   void queue_triangle(const TriangleKey& t, bool new_face, const EdgeRecord& record);
-  void queue_edge(const EdgeKey& e);
+  void queue_edge(const EdgeKey& e, bool facet_misses_surface = false);
   //! Queues the sample for the vertex rows: restricted_star ones, and also new_faces ones if
   //! `new_cell`.
   void queue_vertex(VertexId v, bool new_cell);

@@ -24,6 +24,15 @@ double seeded_uniform(std::uint64_t seed, std::int64_t a, std::int64_t b, std::i
   return static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0);
 }
 
+namespace {
+
+//! The record's (valid) edge meets Σ nowhere, and nothing on it is unsettled.
+bool misses_surface(const EdgeRecord& r) {
+  return r.edge.valid && r.crossings.empty() && r.candidates.empty() && r.unresolved.empty();
+}
+
+}  // namespace
+
 RestrictedDelaunay::RestrictedDelaunay(const Delaunay& del, SurfaceOracle& oracle, std::uint64_t seed)
     : del_(del), oracle_(oracle), seed_(seed) {}
 
@@ -69,10 +78,13 @@ const EdgeRecord& RestrictedDelaunay::install(const TriangleKey& t, EdgeRecord&&
 std::optional<EdgeRecord> RestrictedDelaunay::update_without_solving(const TriangleKey& t,
                                                                     const std::array<VertexId, 2>* apexes,
                                                                     const EdgeRecord*& current) {
-  const EdgeRecord* cached = edges_.find(t);
+  EdgeRecord* cached = edges_.find(t);
   current = nullptr;
   if (!cached) return std::nullopt;
-  if (!cached->shrunk) {
+  if (!cached->shrunk || misses_surface(*cached)) {
+    // Up to date, or an edge that misses Σ and so still does after shrinking (prepare_star).
+    if (cached->shrunk) ++records_restricted_;
+    cached->shrunk = false;
     current = cached;
     return std::nullopt;
   }
@@ -117,6 +129,14 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
       out[i].was_restricted = cached->restricted;
       out[i].old_dual_point = cached->dual_point;
     }
+    if (misses_surface(*cached)) {
+      // e ∩ Σ = ∅ on a valid edge e, so e′ ∩ Σ = ∅ for e′ ⊆ e: the record stays as it is
+      // (its edge is not needed once it holds no point of Σ).
+      ++records_restricted_;
+      cached->shrunk = false;
+      out[i].record = cached;
+      continue;
+    }
     auto restricted = restrict_record(*cached, voronoi_edge(del_, s.key, oracle_.box(), &s.apexes));
     if (!restricted) {
       to_solve.push_back(i);
@@ -142,7 +162,32 @@ void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std
     built[i].facet = voronoi_facet(del_, e, oracle_.box(), facet_rotation(e), &ring);
     built[i].section_certified = certify_section(e, built[i].facet) ? 1 : 0;
   });
-  for (std::size_t i = 0; i < edges.size(); ++i) facets_[edges[i].first] = std::move(built[i]);
+  for (std::size_t i = 0; i < edges.size(); ++i) *facets_.try_emplace(edges[i].first).first = std::move(built[i]);
+  facets_built_ += edges.size();
+}
+
+bool RestrictedDelaunay::facet_misses_surface(const std::vector<const EdgeRecord*>& boundary) {
+  if (boundary.empty()) return false;
+  Vec3 lo, hi;
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  for (const EdgeRecord* r : boundary) {
+    const VoronoiEdge& e = r->edge;
+    if (!e.valid || !e.at_vertex0 || !e.at_vertex1) return false;
+    for (const Vec3& v : {e.at(e.t0), e.at(e.t1)})
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], v[k]);
+        hi[k] = std::max(hi[k], v[k]);
+      }
+  }
+  const double margin = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
+  for (int k = 0; k < 3; ++k) {
+    lo[k] -= margin;
+    hi[k] += margin;
+  }
+  if (oracle_.value_sign(lo, hi) == 0) return false;
+  ++facets_missing_surface_;
+  return true;
 }
 
 const EdgeRecord* RestrictedDelaunay::cached_record(const TriangleKey& t) const {
@@ -189,15 +234,16 @@ std::optional<EdgeRecord> RestrictedDelaunay::restrict_record(const EdgeRecord& 
 }
 
 const VoronoiFacet& RestrictedDelaunay::facet(const EdgeKey& e, const std::vector<VertexId>* ring) {
-  auto it = facets_.find(e);
-  if (it != facets_.end()) return it->second.facet;
-  return facets_.emplace(e, FacetEntry{voronoi_facet(del_, e, oracle_.box(), facet_rotation(e), ring)})
-      .first->second.facet;
+  if (const FacetEntry* entry = facets_.find(e)) return entry->facet;
+  ++facets_built_;
+  FacetEntry& entry = *facets_.try_emplace(e).first;
+  entry = FacetEntry{voronoi_facet(del_, e, oracle_.box(), facet_rotation(e), ring)};
+  return entry.facet;
 }
 
 bool RestrictedDelaunay::facet_section_certified(const EdgeKey& e) {
   const VoronoiFacet& f = facet(e);
-  auto& entry = facets_.find(e)->second;
+  auto& entry = *facets_.find(e);
   if (entry.section_certified < 0) entry.section_certified = certify_section(e, f) ? 1 : 0;
   return entry.section_certified == 1;
 }

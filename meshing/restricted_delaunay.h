@@ -18,7 +18,8 @@
 //! inside e′ at distance more than the Voronoi-vertex tolerance from its ends (and the old record
 //! has no unresolved region), the new record is the old one restricted to e′, with no solve.  Any
 //! enclosure near an end of e′ (a zero at a new Voronoi vertex, the §5.1 case) makes the record be
-//! solved again.
+//! solved again.  A record whose valid edge meets Σ nowhere (no crossing, candidate or unresolved
+//! region) is kept as it is: e′ ⊆ e misses Σ too, and such a record never reads its edge again.
 //!
 //! Zeros at Voronoi vertices.  A zero of E that the isolator reports next to a Voronoi vertex v
 //! of the edge (a certified root within tolerances::duplicate_sample_relative_distance of v, or
@@ -41,7 +42,6 @@
 #include <array>
 #include <memory>
 #include <optional>
-#include <unordered_map>
 #include <vector>
 
 #include "meshing/delaunay.h"
@@ -107,8 +107,16 @@ class RestrictedDelaunay {
   //! section certificates, on `parallel`'s threads.
   void prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<VertexId>>>& edges,
                       const detail::ParallelFor& parallel);
+  //! Whether Σ misses the facet F of a Delaunay edge pq, proved from `boundary`, the current records
+  //! of all the triangles pqr: when each of their Voronoi edges is valid with both ends at Voronoi
+  //! vertices, those ends are the vertices of the convex polygon F, which therefore lies in their
+  //! bounding box; E keeping one sign (interval arithmetic) on that box, enlarged by
+  //! tolerances::face_membership_relative_tolerance·diag for the rounding of the constructed
+  //! vertices, proves F ∩ Σ = ∅.  False proves nothing (e.g. F reaches ∂B, or a Voronoi edge of F
+  //! is degenerate).  Counted (facets_missing_surface()).
+  bool facet_misses_surface(const std::vector<const EdgeRecord*>& boundary);
   //! Whether the facet of e is cached (then e is a current Delaunay edge).
-  bool has_facet(const EdgeKey& e) const { return facets_.count(e) != 0; }
+  bool has_facet(const EdgeKey& e) const { return facets_.find(e) != nullptr; }
   //! The facet of a current Delaunay edge (computed on first use, then cached).  `ring`, if
   //! given, holds the third vertices of the triangles containing e (saves looking them up).
   const VoronoiFacet& facet(const EdgeKey& e, const std::vector<VertexId>* ring = nullptr);
@@ -130,6 +138,9 @@ class RestrictedDelaunay {
   //! Number of edge records solved, and of those obtained by restriction (statistics).
   std::size_t records_solved() const { return records_solved_; }
   std::size_t records_restricted() const { return records_restricted_; }
+  //! Facets built, and facets proved to miss Σ without being built (statistics).
+  std::size_t facets_built() const { return facets_built_; }
+  std::size_t facets_missing_surface() const { return facets_missing_surface_; }
 
   //! Restricted triangles incident to p (current Delaunay triangles only), ascending.
   std::vector<TriangleKey> star(VertexId p);
@@ -181,8 +192,9 @@ class RestrictedDelaunay {
     VoronoiFacet facet;
     int section_certified = -1;  //!< −1 not tried, 0 failed, 1 proved
   };
-  std::unordered_map<EdgeKey, FacetEntry, SimplexKeyHash, SimplexKeyEqual> facets_;
+  detail::FlatTable<2, FacetEntry> facets_;
   std::size_t records_solved_ = 0, records_restricted_ = 0;
+  std::size_t facets_built_ = 0, facets_missing_surface_ = 0;
   //! stars_[v]: the recorded restricted triangles containing v (in no particular order).
   std::vector<std::vector<TriangleKey>> stars_;
   bool every_triangle_recorded_ = false;

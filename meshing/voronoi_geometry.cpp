@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/tolerances.h"
 #include "meshing/detail/convex_polytope.h"
 #include "meshing/detail/vec3.h"
 #include "solvers/query_geometry.h"
@@ -244,7 +245,52 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
   return f;
 }
 
+namespace {
+
+// V_p from its vertices, when it is bounded: in dimension 3 the vertices of V_p are the
+// circumcentres of the cells incident to p, so V_p ∩ B lies in their bounding box ∩ B; the
+// bisectors of p and all its neighbours cut it out (a neighbour whose facet has no area adds a
+// redundant half-space).  Nothing if a cell of p is infinite (V_p is unbounded) or the box ∩ B
+// is empty.
+std::optional<VoronoiCell> cell_from_vertices(const Delaunay& del, VertexId site, const Box3& box) {
+  if (del.dimension() != 3) return std::nullopt;
+  Vec3 lo, hi;
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  for (const auto& c : del.incident_cells(site)) {
+    if (c[1] < 0 || c[2] < 0 || c[3] < 0) return std::nullopt;
+    const Vec3 v = circumcentre(del.point(c[0]), del.point(c[1]), del.point(c[2]), del.point(c[3]));
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], v[k]);
+      hi[k] = std::max(hi[k], v[k]);
+    }
+  }
+  // The computed circumcentres carry rounding errors: the box is enlarged by a margin, then
+  // intersected with B.
+  const double margin = tolerances::face_membership_relative_tolerance * box.diagonal();
+  std::vector<std::array<double, 2>> bounds;
+  for (int k = 0; k < 3; ++k) {
+    bounds.push_back({std::max(lo[k] - margin, box.lo[k]), std::min(hi[k] + margin, box.hi[k])});
+    if (!(bounds[k][0] < bounds[k][1])) return std::nullopt;
+  }
+  VoronoiCell cell;
+  cell.site = site;
+  cell.domain = Domain::from_box(std::move(bounds));
+  cell.facet_neighbours = del.neighbours(site);
+  const Vec3& p = del.point(site);
+  for (VertexId s : cell.facet_neighbours) {
+    const Vec3& x = del.point(s);
+    const Vec3 w = x - p;
+    cell.domain.half_spaces.push_back(HalfSpace{{w[0], w[1], w[2]}, dot(w, 0.5 * (x + p))});
+  }
+  cell.valid = true;
+  return cell;
+}
+
+}  // namespace
+
 VoronoiCell voronoi_cell(const Delaunay& del, VertexId site, const Box3& box) {
+  if (auto cell = cell_from_vertices(del, site, box)) return std::move(*cell);
   VoronoiCell cell;
   cell.site = site;
   const Vec3& p = del.point(site);

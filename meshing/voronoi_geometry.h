@@ -67,11 +67,17 @@ struct VoronoiFacet {
   bool contains(double u, double v, double tolerance) const;
 };
 
-//! The clipped Voronoi cell V_p ∩ B.
+//! The clipped Voronoi cell V_p ∩ B.  When V_p is bounded (dimension 3, every cell of p finite),
+//! its box is the bounding box of its vertices, the circumcentres of p's cells, enlarged by
+//! tolerances::face_membership_relative_tolerance·diag(B) for their rounding and intersected
+//! with B, and its half-spaces are the bisectors of p and all its neighbours; otherwise it is
+//! computed by clipping B by the bisectors, nearest neighbours first.
 struct VoronoiCell {
   VertexId site = -1;
-  std::vector<VertexId> facet_neighbours;  //!< q with a facet pq of positive area on ∂V_p
-  Domain domain;                           //!< bounding box of V_p ∩ B ∩ bisector half-spaces
+  //! q with a facet pq on ∂V_p: of positive area when clipped; every Delaunay neighbour when built
+  //! from the vertices (a facet of no area is then possible, and invalid as a VoronoiFacet).
+  std::vector<VertexId> facet_neighbours;
+  Domain domain;                           //!< a box holding V_p ∩ B, and the bisector half-spaces
   bool valid = false;
   bool contains(const Vec3& x, double tolerance) const;
 };

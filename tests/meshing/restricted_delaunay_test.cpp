@@ -125,4 +125,49 @@ BOOST_AUTO_TEST_CASE(crossing_next_to_a_vertex_is_not_collapsed_onto_it) {
   BOOST_TEST(rec.crossings[0][0] > 1 - delta / 2);
 }
 
+// facet_misses_surface() against the facets themselves: on a sample of the unit sphere, every
+// facet it clears has E of one sign at its polygon's vertices and on a grid inside it (a facet
+// with a sign change is never cleared), and it clears some facets (those deep inside the ball).
+BOOST_AUTO_TEST_CASE(facet_missing_surface_is_claimed_only_off_the_surface) {
+  std::vector<Vec3> points;
+  const int n = 80;
+  for (int i = 0; i < n; ++i) {  // a Fibonacci sphere
+    const double z = 1 - (2 * i + 1.0) / n, r = std::sqrt(1 - z * z), phi = i * 2.399963229728653;
+    points.push_back({r * std::cos(phi), r * std::sin(phi), z});
+  }
+  CheckFixture f(test::unit_sphere, 1.5, points);
+  int cleared = 0, kept = 0;
+  for (VertexId p = 0; p < n; ++p)
+    for (VertexId q : f.del.neighbours(p)) {
+      if (q < p) continue;
+      std::vector<const EdgeRecord*> boundary;
+      for (const auto& t : f.del.edge_triangles({p, q})) boundary.push_back(&f.restricted.edge_record(t));
+      const bool misses = f.restricted.facet_misses_surface(boundary);
+      const VoronoiFacet facet = voronoi_facet(f.del, {p, q}, f.box, 0.0);
+      BOOST_TEST_REQUIRE(facet.valid);
+      int positive = 0, negative = 0;
+      auto sample = [&](double u, double v) { (f.oracle.E(facet.world(u, v)) > 0 ? positive : negative)++; };
+      const auto& poly = facet.polygon;
+      for (const auto& w : poly) sample(w[0], w[1]);
+      for (std::size_t i = 0; i < poly.size(); ++i)  // fans of the polygon from its first vertex
+        for (int a = 1; a < 8; ++a)
+          for (int b = 1; a + b < 8; ++b) {
+            const auto& w0 = poly[0];
+            const auto& w1 = poly[i];
+            const auto& w2 = poly[(i + 1) % poly.size()];
+            const double s = a / 8.0, t = b / 8.0;
+            sample(w0[0] + s * (w1[0] - w0[0]) + t * (w2[0] - w0[0]), w0[1] + s * (w1[1] - w0[1]) + t * (w2[1] - w0[1]));
+          }
+      if (misses) {
+        ++cleared;
+        BOOST_TEST((positive == 0 || negative == 0));
+      } else {
+        ++kept;
+      }
+    }
+  BOOST_TEST(cleared > 0);
+  BOOST_TEST(kept > 0);
+  BOOST_TEST(f.restricted.facets_missing_surface() == static_cast<std::size_t>(cleared));
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include "common/tolerances.h"
+#include "meshing/detail/vec3.h"
+#include "meshing/restricted_delaunay.h"
 #include "meshing/voronoi_geometry.h"
 
 using namespace delmesh;
@@ -61,15 +64,55 @@ BOOST_AUTO_TEST_CASE(cell_is_clipped_by_bisectors) {
   const auto c = voronoi_cell(del, 0, Box3::cube(2));
   BOOST_TEST_REQUIRE(c.valid);
   BOOST_TEST(c.facet_neighbours.size() == 6u);
+  // The cell is the cube [−1/2, 1/2]³; its box is that of its vertices, enlarged by the margin
+  // for their rounding.
+  const double margin = tolerances::face_membership_relative_tolerance * Box3::cube(2).diagonal();
   for (int k = 0; k < 3; ++k) {
-    BOOST_TEST(std::abs(c.domain.box.bounds[k][0] + 0.5) < 1e-12);
-    BOOST_TEST(std::abs(c.domain.box.bounds[k][1] - 0.5) < 1e-12);
+    BOOST_TEST(c.domain.box.bounds[k][0] <= -0.5);
+    BOOST_TEST(c.domain.box.bounds[k][0] >= -0.5 - 2 * margin);
+    BOOST_TEST(c.domain.box.bounds[k][1] >= 0.5);
+    BOOST_TEST(c.domain.box.bounds[k][1] <= 0.5 + 2 * margin);
   }
   BOOST_TEST(c.contains({0.4, -0.4, 0.4}, 1e-12));
   BOOST_TEST(!c.contains({0.6, 0, 0}, 1e-12));
   // An unbounded cell is clipped by the box.
   const auto outer = voronoi_cell(del, 1, Box3::cube(2));
   BOOST_TEST(std::abs(outer.domain.box.bounds[0][1] - 2) < 1e-12);
+}
+
+// A cell's domain is V_p: on a seeded cloud, points whose nearest site is p (by brute force) lie
+// in p's domain box and half-spaces, and points nearer to another site violate a half-space;
+// bounded cells (built from their vertices) and cells reaching the box (clipped) alike.
+BOOST_AUTO_TEST_CASE(cell_domain_is_the_voronoi_cell) {
+  Delaunay del;
+  std::vector<Vec3> sites;
+  for (int i = 0; i < 60; ++i) {
+    const Vec3 x{2 * seeded_uniform(5, i, 0) - 1, 2 * seeded_uniform(5, i, 1) - 1, 2 * seeded_uniform(5, i, 2) - 1};
+    sites.push_back(x);
+    del.insert(x, false);
+  }
+  const Box3 box = Box3::cube(1.5);
+  auto nearest = [&](const Vec3& y) {
+    VertexId best = 0;
+    for (VertexId s = 1; s < static_cast<VertexId>(sites.size()); ++s)
+      if (detail::distance(y, sites[s]) < detail::distance(y, sites[best])) best = s;
+    return best;
+  };
+  int inside = 0, outside = 0;
+  for (VertexId p = 0; p < static_cast<VertexId>(sites.size()); ++p) {
+    const auto cell = voronoi_cell(del, p, box);
+    BOOST_TEST_REQUIRE(cell.valid);
+    for (int k = 0; k < 200; ++k) {
+      Vec3 y;
+      for (int c = 0; c < 3; ++c) y[c] = sites[p][c] + 0.6 * (2 * seeded_uniform(9, p, k, c) - 1);
+      if (!box.contains(y)) continue;
+      const bool in_cell = nearest(y) == p;
+      BOOST_TEST(cell.contains(y, 1e-12) == in_cell);
+      (in_cell ? inside : outside)++;
+    }
+  }
+  BOOST_TEST(inside > 1000);
+  BOOST_TEST(outside > 1000);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

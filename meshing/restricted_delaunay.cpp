@@ -53,13 +53,8 @@ void RestrictedDelaunay::track(const TriangleKey& t, bool was_restricted, bool i
   }
 }
 
-void RestrictedDelaunay::erase_at(const TriangleKey& t, const EdgeRecord& record) {
-  track(t, record.restricted, false);
-  edges_.erase(t);
-}
-
 void RestrictedDelaunay::erase_record(const TriangleKey& t) {
-  if (const EdgeRecord* r = edges_.find(t)) erase_at(t, *r);
+  if (const EdgeRecord* r = edges_.take(t)) track(t, r->restricted, false);
 }
 
 const EdgeRecord& RestrictedDelaunay::assign(const TriangleKey& t, EdgeRecord& slot, bool was_restricted,
@@ -101,9 +96,9 @@ const EdgeRecord& RestrictedDelaunay::edge_record(const TriangleKey& t, const st
 std::vector<TriangleKey> RestrictedDelaunay::forget_destroyed(const InsertionChange& change) {
   std::vector<TriangleKey> left;
   for (const auto& t : change.destroyed_triangles) {
-    const EdgeRecord* r = edges_.find(t);
+    const EdgeRecord* r = edges_.take(t);
     if (!r || r->restricted || r->shrunk) left.push_back(t);
-    if (r) erase_at(t, *r);
+    if (r) track(t, r->restricted, false);
   }
   forget({}, change.destroyed_edges);
   forget({}, change.shrunk_edges);
@@ -119,8 +114,9 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
   std::vector<std::size_t> to_solve;
   for (std::size_t i = 0; i < star.size(); ++i) {
     const auto& s = star[i];
-    EdgeRecord* cached = edges_.find(s.key);
-    if (!cached || s.contains_vertex) {
+    // A triangle containing the new vertex is new: it has no record.
+    EdgeRecord* cached = s.contains_vertex ? nullptr : edges_.find(s.key);
+    if (!cached) {
       to_solve.push_back(i);
       continue;
     }

@@ -180,7 +180,6 @@ class RestrictedDelaunay {
   //! Keeps stars_ in step with a record of t whose restricted status went from `was` to `is`.
   void track(const TriangleKey& t, bool was_restricted, bool is_restricted);
   void erase_record(const TriangleKey& t);
-  void erase_at(const TriangleKey& t, const EdgeRecord& record);
   //! The record of the shrunk edge `edge` restricted from `old`, or nothing if it must be solved.
   std::optional<EdgeRecord> restrict_record(const EdgeRecord& old, const VoronoiEdge& edge) const;
 

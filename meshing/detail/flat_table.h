@@ -63,13 +63,18 @@ class FlatTable {
   }
 
   //! Removes key if present; returns whether it was.
-  bool erase(const Key& key) {
-    if (size_ == 0) return false;
+  bool erase(const Key& key) { return take(key) != nullptr; }
+
+  //! Removes key if present and returns its former value (its contents stay until the next
+  //! try_emplace()), or nullptr.
+  Value* take(const Key& key) {
+    if (size_ == 0) return nullptr;
     std::size_t i = home(key);
     for (;; i = (i + 1) & mask_) {
-      if (entries_[i].key[0] < 0) return false;
+      if (entries_[i].key[0] < 0) return nullptr;
       if (entries_[i].key == key) break;
     }
+    Value* value = &pool_[entries_[i].index];
     free_.push_back(entries_[i].index);
     --size_;
     // Backward shift: move later entries of the probe run into the hole when their home allows.
@@ -84,7 +89,7 @@ class FlatTable {
       i = j;
     }
     entries_[i].key[0] = -1;
-    return true;
+    return value;
   }
 
   void clear() {

@@ -19,9 +19,21 @@ BOOST_AUTO_TEST_CASE(agrees_with_a_map_under_random_additions_and_removals) {
   std::uniform_int_distribution<int> id(0, 40);
   for (int step = 0; step < 200000; ++step) {
     std::array<int, 3> key{id(rng), id(rng), id(rng)};
-    if (rng() % 3 == 0) {
+    const auto op = rng() % 6;
+    if (op == 0) {
       const bool erased = table.erase(key);
       BOOST_TEST_REQUIRE(erased == (reference.erase(key) == 1));
+      address.erase(key);
+    } else if (op == 1) {
+      // take() hands back the removed value itself.
+      const int* taken = table.take(key);
+      const auto it = reference.find(key);
+      BOOST_TEST_REQUIRE((taken != nullptr) == (it != reference.end()));
+      if (taken) {
+        BOOST_TEST_REQUIRE(*taken == it->second);
+        BOOST_TEST_REQUIRE(taken == address[key]);
+        reference.erase(it);
+      }
       address.erase(key);
     } else {
       const auto [value, added] = table.try_emplace(key);

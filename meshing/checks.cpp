@@ -69,6 +69,7 @@ const std::vector<CheckInfo>& builtin_checks() {
                             return facet_cycle_witness(c.restricted, as_edge(f));
                           }};
     facet_cycle.after_clean_predecessors = true;
+    facet_cycle.silent_off_surface = true;
     facet_cycle.kind = CheckKind::facet_cycle;
     r.push_back(facet_cycle);
 

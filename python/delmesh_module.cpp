@@ -18,6 +18,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -39,6 +40,7 @@
 #include "common/errors.h"
 #include "meshing/del_mesh.h"
 #include "meshing/mesh_checker.h"
+#include "solvers/primitive_registry.h"
 
 namespace py = pybind11;
 
@@ -499,19 +501,30 @@ and of non-manifold edges and vertices, min angle, max radius-edge ratio, max ro
 lam: lambda in (0, 1/6): also "lambda", the bounds of Theorem 6.1 ("bounds") and which hold ("pass").
 Raises ValueError on an index out of range, a repeated index in a triangle, a non-finite point.)doc");
 
+  // The primitives and their options come from the registry, so a registered primitive is
+  // documented here as in `delmesh solve --help`.
+  static const std::string solve_doc = [] {
+    std::string doc = "Solve one numerical primitive with a certified solver, as `delmesh solve` does.\n\nprimitive: ";
+    const auto& rows = delmesh::primitive_registry();
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      doc += (i ? ", " : "") + rows[i].name + " (";
+      for (std::size_t k = 0; k < rows[i].options.size(); ++k) {
+        std::string name = delmesh::option_flag(rows[i].options[k].option).substr(2);
+        std::replace(name.begin(), name.end(), '-', '_');
+        doc += (k ? ", " : "") + (rows[i].options[k].required ? name : "[" + name + "]");
+      }
+      doc += ")";
+    }
+    return doc + R"doc(; options in brackets are optional.  Vectors are three numbers or "a,b,c".  The surface as for mesh().
+Returns a SolveResult: status, roots (K x 3), undecided (U x 3 x 2 world boxes) and their reasons.
+The GIL is released while solving; time_limit (seconds) and max_boxes bound the work.)doc";
+  }();
   m.def("solve", &solve, py::arg("primitive"), py::kw_only(), py::arg("expr") = py::none(),
         py::arg("box") = py::none(), py::arg("surface") = py::none(), py::arg("direction") = py::none(),
         py::arg("direction2") = py::none(), py::arg("point") = py::none(), py::arg("plane_origin") = py::none(),
         py::arg("plane_normal") = py::none(), py::arg("solver") = "subdivision",
         py::arg("taylor_forms") = "automatic", py::arg("max_boxes") = py::none(), py::arg("time_limit") = py::none(),
-        R"doc(Solve one numerical primitive of Sec. 5.2 with a certified solver, as `delmesh solve` does.
-
-primitive: surface_critical [direction, default (0,0,1)], surface_line (point, direction),
-surface_plane_contact (plane_origin, plane_normal), curve_critical (plane_origin, plane_normal,
-direction), silhouette_plane (plane_origin, plane_normal, direction), silhouette_critical
-(direction, direction2).  Vectors are three numbers or "a,b,c".  The surface as for mesh().
-Returns a SolveResult: status, roots (K x 3), undecided (U x 3 x 2 world boxes) and their reasons.
-The GIL is released while solving; time_limit (seconds) and max_boxes bound the work.)doc");
+        solve_doc.c_str());
 
   m.def("surfaces", &surfaces,
         "The catalog of named surfaces as `delmesh surfaces --json` lists it: a list of dicts {name, equation, "

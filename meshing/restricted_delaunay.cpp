@@ -164,24 +164,15 @@ void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std
 
 bool RestrictedDelaunay::facet_misses_surface(const std::vector<const EdgeRecord*>& boundary) {
   if (boundary.empty()) return false;
-  Vec3 lo, hi;
-  lo.fill(std::numeric_limits<double>::infinity());
-  hi.fill(-std::numeric_limits<double>::infinity());
+  BoundingBox ends;
   for (const EdgeRecord* r : boundary) {
     const VoronoiEdge& e = r->edge;
     if (!e.valid || !e.at_vertex0 || !e.at_vertex1) return false;
-    for (const Vec3& v : {e.at(e.t0), e.at(e.t1)})
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], v[k]);
-        hi[k] = std::max(hi[k], v[k]);
-      }
+    ends.add(e.at(e.t0));
+    ends.add(e.at(e.t1));
   }
-  const double margin = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
-  for (int k = 0; k < 3; ++k) {
-    lo[k] -= margin;
-    hi[k] += margin;
-  }
-  if (oracle_.value_sign(lo, hi) == 0) return false;
+  ends.enlarge(tolerances::face_membership_relative_tolerance * oracle_.diagonal());
+  if (oracle_.value_sign(ends.lo, ends.hi) == 0) return false;
   ++facets_missing_surface_;
   return true;
 }

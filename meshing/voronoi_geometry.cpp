@@ -254,23 +254,17 @@ namespace {
 // is empty.
 std::optional<VoronoiCell> cell_from_vertices(const Delaunay& del, VertexId site, const Box3& box) {
   if (del.dimension() != 3) return std::nullopt;
-  Vec3 lo, hi;
-  lo.fill(std::numeric_limits<double>::infinity());
-  hi.fill(-std::numeric_limits<double>::infinity());
+  BoundingBox vertices;
   for (const auto& c : del.incident_cells(site)) {
     if (c[1] < 0 || c[2] < 0 || c[3] < 0) return std::nullopt;
-    const Vec3 v = circumcentre(del.point(c[0]), del.point(c[1]), del.point(c[2]), del.point(c[3]));
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], v[k]);
-      hi[k] = std::max(hi[k], v[k]);
-    }
+    vertices.add(circumcentre(del.point(c[0]), del.point(c[1]), del.point(c[2]), del.point(c[3])));
   }
   // The computed circumcentres carry rounding errors: the box is enlarged by a margin, then
   // intersected with B.
-  const double margin = tolerances::face_membership_relative_tolerance * box.diagonal();
+  vertices.enlarge(tolerances::face_membership_relative_tolerance * box.diagonal());
   std::vector<std::array<double, 2>> bounds;
   for (int k = 0; k < 3; ++k) {
-    bounds.push_back({std::max(lo[k] - margin, box.lo[k]), std::min(hi[k] + margin, box.hi[k])});
+    bounds.push_back({std::max(vertices.lo[k], box.lo[k]), std::min(vertices.hi[k], box.hi[k])});
     if (!(bounds[k][0] < bounds[k][1])) return std::nullopt;
   }
   VoronoiCell cell;

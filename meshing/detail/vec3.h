@@ -1,8 +1,10 @@
 #pragma once
 // Small inline vector helpers on std::array<double, 3> used throughout meshing/.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace delmesh::detail {
 
@@ -21,5 +23,26 @@ inline V3 normalized(const V3& a) {
   const double n = norm(a);
   return n > 0 ? (1.0 / n) * a : a;
 }
+
+//! The bounding box [lo, hi] of the points added so far (lo = +∞, hi = −∞ while empty).
+struct BoundingBox {
+  V3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+        std::numeric_limits<double>::infinity()};
+  V3 hi{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+        -std::numeric_limits<double>::infinity()};
+  void add(const V3& x) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], x[k]);
+      hi[k] = std::max(hi[k], x[k]);
+    }
+  }
+  //! Moves every side outward by `margin`.
+  void enlarge(double margin) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] -= margin;
+      hi[k] += margin;
+    }
+  }
+};
 
 }  // namespace delmesh::detail

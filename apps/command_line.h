@@ -3,12 +3,13 @@
 //! What the subcommands of `delmesh` share: the exit-code policy, the surface options
 //! (--surface | --expr with --box), parsing of vectors, and atomic output files.
 //!
-//! Exit codes (the contract of design.md, plus two of this program):
+//! Exit codes (the program's contract, also listed in the README):
 //!   0  complete;
 //!   1  `delmesh check --lambda L` ran and some bound of Theorem 6.1 failed;
 //!   2  invalid input or usage: exactly one line on stderr, beginning `error:`;
 //!   3  stopped by a limit (--max-points, --time-limit): the partial mesh and statistics are written;
-//!   4  internal error (an unexpected exception): one line `error: internal: …` on stderr.
+//!   4  internal error (an unexpected exception): one line `error: internal: …` on stderr;
+//!   5  uncertified: the run ended but something was not settled; mesh and statistics are written.
 
 #include <array>
 #include <functional>

@@ -37,7 +37,7 @@ inline constexpr double homotopy_real_candidate = 1e-6;
 inline constexpr double generic_direction_perturbation = 1e-3;
 
 
-// ---- homotopy continuation (solvers/homotopy_solver.cpp; owner s2) ----
+// ---- homotopy continuation (solvers/homotopy_solver.cpp, solvers/detail/homotopy_tracker.cpp) ----
 
 //! Homotopy: first step in the path parameter s ∈ [0, 1], and the largest step allowed.
 inline constexpr double homotopy_initial_step = 1e-2;
@@ -141,7 +141,7 @@ inline constexpr double trig_extremum_margin = 1e-10;
 
 
 // ---- certified subdivision and univariate isolation (solvers/{krawczyk,univariate_isolator,
-// ---- subdivision_solver}.cpp; owner s1) ----
+// ---- subdivision_solver}.cpp) ----
 
 //! Below this width (relative to the domain's widest side, or to t1 − t0 for the univariate
 //! isolator) a region that can be neither excluded nor certified and on which the derivative
@@ -182,7 +182,7 @@ inline constexpr double univariate_root_relative_radius = 4e-15;
 //! are treated as singular rather than as a path jump.
 inline constexpr double homotopy_cluster_condition = 1e6;
 
-// ---- meshing (m1): the mesher's budgets and geometric tolerances ----
+// ---- meshing: the mesher's budgets and geometric tolerances ----
 
 //! Box budget of one 2-D solve of the mesher (a Voronoi facet: FacetContact, FacetCycle,
 //! SilhouettePlane).  A solve that runs out returns its unexplored boxes as undecided, which the
@@ -283,8 +283,8 @@ inline constexpr double progress_interval_seconds = 0.5;
 //! re-examined in MPFI before being bisected further.
 inline constexpr double precision_limited_ratio = 0.25;
 
-// ---- certified subdivision and univariate isolation, continued (review r1: constants that were
-// ---- literals in solvers/{subdivision_solver,univariate_isolator}.{h,cpp}) ----
+// ---- certified subdivision and univariate isolation, continued (solvers/{subdivision_solver,
+// ---- univariate_isolator}.cpp) ----
 
 //! Default maximum number of subintervals one univariate isolation may visit before it stops
 //! with status box_limit (the remaining intervals are returned as undecided).
@@ -339,12 +339,13 @@ inline constexpr double degenerate_section_relative_area = std::numeric_limits<d
 //! on every solve would cost more than the tighter Taylor ranges save.
 inline constexpr std::size_t polynomial_form_max_terms = 4000;
 //! TaylorForms::automatic: Taylor forms are used when the compiled values+Jacobian program has at
-//! least this many instructions per Taylor coefficient.  Measured (bench_homotopy, one core):
-//! Kostlan critical systems (506 instructions / 75 coefficients at d = 4, 2982 / 405 at d = 8)
-//! run 4–15× faster on Taylor forms; the catalog's factored surfaces (torus 122 / 75, genus2
-//! 82 / 405, tanglecube 77 / 75) run as fast or faster on their compiled expressions.  (A second
-//! condition, the coefficient program no longer than the compiled program, keeps the plane
-//! primitives — E(o + u a + v b) expanded in nine parameters — on the compiled path.)
+//! least this many instructions per Taylor coefficient.  The ratio separates dense expanded
+//! polynomials (the critical systems of Kostlan polynomials: about 7 instructions per coefficient),
+//! which Taylor forms solve faster, from the catalog's factored surfaces (about 0.2 to 1.6), which
+//! their compiled expressions solve as fast or faster (experiments/benchmarks/bench_homotopy.cpp
+//! compares the two).  (A second condition, the coefficient program no longer than the compiled
+//! program, keeps the plane primitives — E(o + u a + v b) expanded in nine parameters — on the
+//! compiled path.)
 inline constexpr double taylor_form_instruction_ratio = 2;
 
 }  // namespace delmesh::tolerances

@@ -32,9 +32,6 @@ using namespace detail;
 std::ostream& operator<<(std::ostream& out, MeshPhase phase) {
   return out << (phase == MeshPhase::topology ? "topology" : "all");
 }
-std::ostream& operator<<(std::ostream& out, SolverBackend backend) {
-  return out << (backend == SolverBackend::subdivision ? "subdivision" : "homotopy");
-}
 std::ostream& operator<<(std::ostream& out, MeshStatus status) {
   switch (status) {
     case MeshStatus::complete: return out << "complete";

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "meshing/solver_backend.h"
 #include "meshing/surface_mesh.h"
 #include "symbolic/surface.h"
 
@@ -20,9 +21,6 @@ namespace delmesh {
 
 enum class MeshPhase { topology, all };
 std::ostream& operator<<(std::ostream& out, MeshPhase phase);
-
-enum class SolverBackend { subdivision, homotopy };
-std::ostream& operator<<(std::ostream& out, SolverBackend backend);
 
 //! complete: every check of §5.3 (and, with phase all, Quality, size and Smooth) ran clean on
 //! every face of the final Vor S, every solver region was decided or became a witness, and

@@ -20,18 +20,6 @@
 
 namespace delmesh::app {
 
-std::ostream& operator<<(std::ostream& out, ExitCode code) {
-  switch (code) {
-    case ExitCode::complete: return out << "complete";
-    case ExitCode::check_failed: return out << "check_failed";
-    case ExitCode::invalid_input: return out << "invalid_input";
-    case ExitCode::limit_reached: return out << "limit_reached";
-    case ExitCode::internal_error: return out << "internal_error";
-    case ExitCode::uncertified: return out << "uncertified";
-  }
-  return out << "ExitCode(" << static_cast<int>(code) << ")";
-}
-
 namespace {
 
 std::string trim(const std::string& s) {

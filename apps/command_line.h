@@ -21,6 +21,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "common/enum_names.h"
 #include "symbolic/surface.h"
 
 namespace delmesh::app {
@@ -33,7 +34,15 @@ enum class ExitCode : int {
   internal_error = 4,
   uncertified = 5
 };
-std::ostream& operator<<(std::ostream& out, ExitCode code);
+constexpr auto enum_names(ExitCode) {
+  return name_table<ExitCode>("ExitCode", {{ExitCode::complete, "complete"},
+                                           {ExitCode::check_failed, "check_failed"},
+                                           {ExitCode::invalid_input, "invalid_input"},
+                                           {ExitCode::limit_reached, "limit_reached"},
+                                           {ExitCode::internal_error, "internal_error"},
+                                           {ExitCode::uncertified, "uncertified"}});
+}
+inline std::ostream& operator<<(std::ostream& out, ExitCode code) { return write_enum(out, code); }
 
 //! The action of a subcommand, run after parsing when the subcommand was selected.
 using Action = std::function<ExitCode()>;

@@ -19,6 +19,7 @@
 #include "apps/command_line.h"
 #include "apps/commands.h"
 #include "apps/interrupt.h"
+#include "common/enum_names.h"
 #include "common/errors.h"
 #include "meshing/certificate.h"
 #include "meshing/del_mesh.h"
@@ -97,13 +98,7 @@ namespace {
 DelMeshOptions common_options(const MeshRequest& r) {
   DelMeshOptions options;
   options.lambda = r.lambda;
-  if (r.phase == "all") {
-    options.phase = MeshPhase::all;
-  } else if (r.phase == "topology") {
-    options.phase = MeshPhase::topology;
-  } else {
-    throw InvalidInput("--phase: expected topology or all, got '" + r.phase + "'");
-  }
+  options.phase = parse_enum<MeshPhase>(r.phase, "--phase");
   return options;
 }
 

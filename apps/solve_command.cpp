@@ -16,6 +16,7 @@
 
 #include "apps/command_line.h"
 #include "apps/commands.h"
+#include "common/enum_names.h"
 #include "common/errors.h"
 #include "common/tolerances.h"
 #include "solvers/primitive_query.h"
@@ -96,14 +97,9 @@ const std::vector<std::string>& solve_parameter_options() {
 }
 
 SolveOutcome solve_primitive(const SolveRequest& o) {
-  if (o.solver != "subdivision" && o.solver != "homotopy") {
-    throw InvalidInput("--solver: expected subdivision or homotopy, got '" + o.solver + "'");
-  }
+  const QuerySolver solver = parse_enum<QuerySolver>(o.solver, "--solver");
   if (o.max_boxes < 1) throw InvalidInput("--max-boxes must be at least 1");
-  const std::map<std::string, TaylorForms> taylor_choices{
-      {"automatic", TaylorForms::automatic}, {"always", TaylorForms::always}, {"never", TaylorForms::never}};
-  if (!taylor_choices.count(o.taylor_forms))
-    throw InvalidInput("--taylor-forms: expected automatic, always or never, got '" + o.taylor_forms + "'");
+  const TaylorForms taylor_forms = parse_enum<TaylorForms>(o.taylor_forms, "--taylor-forms");
   if (!std::isfinite(o.time_limit) || o.time_limit < 0 || o.time_limit > max_time_limit_seconds) {
     throw InvalidInput("--time-limit must be >= 0 and <= 1e9 seconds (0: none), got " + format_number(o.time_limit));
   }
@@ -111,7 +107,7 @@ SolveOutcome solve_primitive(const SolveRequest& o) {
   const SurfaceInput input = o.surface.resolve();
   const PrimitiveQuery query = row->make_query(given, input.box);
   const CompiledPrimitive primitive(row->build(input.surface));
-  if (o.solver == "homotopy" && !primitive.system.is_square()) {
+  if (solver == QuerySolver::homotopy && !primitive.system.is_square()) {
     throw InvalidInput("--solver homotopy needs a square system; " + o.primitive +
                        " is over-determined (use --solver subdivision)");
   }
@@ -120,10 +116,10 @@ SolveOutcome solve_primitive(const SolveRequest& o) {
     polynomial = std::make_unique<LinePolynomial>(input.surface);
   }
   QuerySolveOptions options;
-  options.solver = o.solver == "homotopy" ? QuerySolver::homotopy : QuerySolver::subdivision;
+  options.solver = solver;
   options.box_budget = o.max_boxes;
   options.time_limit_seconds = o.time_limit;
-  options.taylor_forms = taylor_choices.at(o.taylor_forms);
+  options.taylor_forms = taylor_forms;
 
   const auto start = std::chrono::steady_clock::now();
   SolveResult result = solve_query(primitive, query, options, polynomial.get());
@@ -133,8 +129,8 @@ SolveOutcome solve_primitive(const SolveRequest& o) {
   for (const UndecidedBox& u : result.undecided) {
     undecided.push_back(world_box(primitive.compiled, query.parameters, u.box));
   }
-  const std::string solver = query.line && o.solver == "subdivision" ? "univariate isolator" : o.solver;
-  return SolveOutcome{input, query.description, solver, std::move(result), std::move(undecided), seconds};
+  const std::string solver_name = query.line && solver == QuerySolver::subdivision ? "univariate isolator" : o.solver;
+  return SolveOutcome{input, query.description, solver_name, std::move(result), std::move(undecided), seconds};
 }
 
 nlohmann::ordered_json SolveOutcome::to_json() const {

@@ -33,15 +33,6 @@
 
 namespace delmesh {
 
-std::ostream& operator<<(std::ostream& out, CertificateStatus status) {
-  switch (status) {
-    case CertificateStatus::certified: return out << "certified";
-    case CertificateStatus::violated: return out << "violated";
-    case CertificateStatus::undecided: return out << "undecided";
-  }
-  return out << "unknown";
-}
-
 namespace {
 
 using Clock = std::chrono::steady_clock;

@@ -64,6 +64,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/enum_names.h"
 #include "meshing/surface_mesh.h"
 #include "meshing/witness.h"
 #include "symbolic/surface.h"
@@ -71,7 +72,12 @@
 namespace delmesh {
 
 enum class CertificateStatus { certified, violated, undecided };
-std::ostream& operator<<(std::ostream& out, CertificateStatus status);
+constexpr auto enum_names(CertificateStatus) {
+  return name_table<CertificateStatus>("CertificateStatus", {{CertificateStatus::certified, "certified"},
+                                                             {CertificateStatus::violated, "violated"},
+                                                             {CertificateStatus::undecided, "undecided"}});
+}
+inline std::ostream& operator<<(std::ostream& out, CertificateStatus status) { return write_enum(out, status); }
 
 struct CertificateOptions {
   std::uint64_t seed = 1;  //!< seeds the generic directions of FacetCycle and Silhouette

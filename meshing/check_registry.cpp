@@ -29,28 +29,6 @@ std::string known_names(const std::vector<CheckInfo>& rows) {
 
 }  // namespace
 
-std::ostream& operator<<(std::ostream& out, FaceKind kind) {
-  switch (kind) {
-    case FaceKind::vertex: return out << "vertex";
-    case FaceKind::edge: return out << "edge";
-    case FaceKind::triangle: return out << "triangle";
-  }
-  return out << "unknown";
-}
-
-std::ostream& operator<<(std::ostream& out, Dirtied dirtied) {
-  switch (dirtied) {
-    case Dirtied::new_faces: return out << "new_faces";
-    case Dirtied::restricted_star: return out << "restricted_star";
-    case Dirtied::restricted_triangles: return out << "restricted_triangles";
-  }
-  return out << "unknown";
-}
-
-std::ostream& operator<<(std::ostream& out, CheckPhase phase) {
-  return out << (phase == CheckPhase::topology ? "topology" : "geometry");
-}
-
 CheckRegistration::CheckRegistration(CheckInfo row) {
   Registered& r = registered();
   if (r.read) throw PreconditionViolation("check " + row.name + " registered after the registry was read");
@@ -105,18 +83,8 @@ std::string check_kind_name(CheckKind kind) {
       if (row.kind == kind) return row.name;
     return "unknown";
   }
-  switch (kind) {
-    case CheckKind::seed: return "seed";
-    case CheckKind::vor_edge: return "vor_edge";
-    case CheckKind::facet_contact: return "facet_contact";
-    case CheckKind::topo_disk: return "topo_disk";
-    case CheckKind::facet_cycle: return "facet_cycle";
-    case CheckKind::silhouette: return "silhouette";
-    case CheckKind::quality: return "quality";
-    case CheckKind::smooth: return "smooth";
-    case CheckKind::size: return "size";
-  }
-  return "unknown";
+  const char* name = enum_name(kind);
+  return name ? name : "unknown";
 }
 
 }  // namespace delmesh

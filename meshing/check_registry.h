@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "meshing/delaunay.h"
 #include "meshing/restricted_delaunay.h"
 #include "meshing/witness.h"
@@ -36,7 +37,11 @@ using DelaunayFace = std::array<VertexId, 3>;
 
 //! The kind of Delaunay simplex a check examines (its dual: a cell, a facet, a Voronoi edge).
 enum class FaceKind { vertex, edge, triangle };
-std::ostream& operator<<(std::ostream& out, FaceKind kind);
+constexpr auto enum_names(FaceKind) {
+  return name_table<FaceKind>("FaceKind", {{FaceKind::vertex, "vertex"}, {FaceKind::edge, "edge"},
+                                           {FaceKind::triangle, "triangle"}});
+}
+inline std::ostream& operator<<(std::ostream& out, FaceKind kind) { return write_enum(out, kind); }
 
 //! When a face must be checked again after an insertion of x (the lemma in refinement.h; a
 //! deletion re-queues every face within the deleted sample's neighbours for every row).
@@ -52,12 +57,21 @@ enum class Dirtied {
   //! point changed (a function of the triangle's EdgeRecord, lemma part 4).
   restricted_triangles
 };
-std::ostream& operator<<(std::ostream& out, Dirtied dirtied);
+constexpr auto enum_names(Dirtied) {
+  return name_table<Dirtied>("Dirtied", {{Dirtied::new_faces, "new_faces"},
+                                         {Dirtied::restricted_star, "restricted_star"},
+                                         {Dirtied::restricted_triangles, "restricted_triangles"}});
+}
+inline std::ostream& operator<<(std::ostream& out, Dirtied dirtied) { return write_enum(out, dirtied); }
 
 //! Topology rows run from the start (SampleTopology, §5.4) and are what the certificate runs;
 //! geometry rows run after Refinement::enable_geometry (DelMesh step 2, §6.2).
 enum class CheckPhase { topology, geometry };
-std::ostream& operator<<(std::ostream& out, CheckPhase phase);
+constexpr auto enum_names(CheckPhase) {
+  return name_table<CheckPhase>("CheckPhase", {{CheckPhase::topology, "topology"},
+                                               {CheckPhase::geometry, "geometry"}});
+}
+inline std::ostream& operator<<(std::ostream& out, CheckPhase phase) { return write_enum(out, phase); }
 
 //! What a check sees besides its face.
 struct CheckContext {

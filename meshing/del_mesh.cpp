@@ -29,20 +29,6 @@ namespace delmesh {
 
 using namespace detail;
 
-std::ostream& operator<<(std::ostream& out, MeshPhase phase) {
-  return out << (phase == MeshPhase::topology ? "topology" : "all");
-}
-std::ostream& operator<<(std::ostream& out, MeshStatus status) {
-  switch (status) {
-    case MeshStatus::complete: return out << "complete";
-    case MeshStatus::point_limit: return out << "point_limit";
-    case MeshStatus::time_limit: return out << "time_limit";
-    case MeshStatus::uncertified: return out << "uncertified";
-    case MeshStatus::interrupted: return out << "interrupted";
-  }
-  return out << "unknown";
-}
-
 namespace {
 
 // Tri S|Σ as an outward-oriented Surface_mesh with vertices sorted by id.

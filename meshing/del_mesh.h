@@ -14,13 +14,17 @@
 #include <nlohmann/json.hpp>
 
 #include "meshing/solver_backend.h"
+#include "common/enum_names.h"
 #include "meshing/surface_mesh.h"
 #include "symbolic/surface.h"
 
 namespace delmesh {
 
 enum class MeshPhase { topology, all };
-std::ostream& operator<<(std::ostream& out, MeshPhase phase);
+constexpr auto enum_names(MeshPhase) {
+  return name_table<MeshPhase>("MeshPhase", {{MeshPhase::topology, "topology"}, {MeshPhase::all, "all"}});
+}
+inline std::ostream& operator<<(std::ostream& out, MeshPhase phase) { return write_enum(out, phase); }
 
 //! complete: every check of §5.3 (and, with phase all, Quality, size and Smooth) ran clean on
 //! every face of the final Vor S, every solver region was decided or became a witness, and
@@ -29,7 +33,14 @@ std::ostream& operator<<(std::ostream& out, MeshPhase phase);
 //! is written, without the guarantee.  point_limit / time_limit: stopped by a limit;
 //! interrupted: stopped by DelMeshOptions::interrupt (e.g. Ctrl-C).
 enum class MeshStatus { complete, point_limit, time_limit, uncertified, interrupted };
-std::ostream& operator<<(std::ostream& out, MeshStatus status);
+constexpr auto enum_names(MeshStatus) {
+  return name_table<MeshStatus>("MeshStatus", {{MeshStatus::complete, "complete"},
+                                               {MeshStatus::point_limit, "point_limit"},
+                                               {MeshStatus::time_limit, "time_limit"},
+                                               {MeshStatus::uncertified, "uncertified"},
+                                               {MeshStatus::interrupted, "interrupted"}});
+}
+inline std::ostream& operator<<(std::ostream& out, MeshStatus status) { return write_enum(out, status); }
 
 struct DelMeshOptions {
   double lambda = 0.06;                  //!< 0 < λ < 1/3; Theorem 6.1 covers λ ≤ 0.06

@@ -11,14 +11,6 @@
 
 namespace delmesh {
 
-std::ostream& operator<<(std::ostream& out, DenseSampleStatus status) {
-  switch (status) {
-    case DenseSampleStatus::complete: return out << "complete";
-    case DenseSampleStatus::point_limit: return out << "point_limit";
-  }
-  return out << "unknown";
-}
-
 namespace {
 
 using Vec = std::array<double, 3>;

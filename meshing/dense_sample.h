@@ -24,6 +24,7 @@
 #include <ostream>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "symbolic/surface.h"
 
 namespace delmesh {
@@ -37,7 +38,11 @@ struct DenseSampleOptions {
 };
 
 enum class DenseSampleStatus { complete, point_limit };
-std::ostream& operator<<(std::ostream& out, DenseSampleStatus status);
+constexpr auto enum_names(DenseSampleStatus) {
+  return name_table<DenseSampleStatus>("DenseSampleStatus", {{DenseSampleStatus::complete, "complete"},
+                                                             {DenseSampleStatus::point_limit, "point_limit"}});
+}
+inline std::ostream& operator<<(std::ostream& out, DenseSampleStatus status) { return write_enum(out, status); }
 
 struct [[nodiscard]] DenseSample {
   DenseSampleStatus status = DenseSampleStatus::complete;

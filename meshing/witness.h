@@ -8,6 +8,8 @@
 #include <ostream>
 #include <vector>
 
+#include "common/enum_names.h"
+#include "common/enum_names.h"
 #include "meshing/delaunay.h"
 
 namespace delmesh {
@@ -16,6 +18,15 @@ namespace delmesh {
 //! size) a check registered by the program (meshing/check_registry.h: CheckRegistration, which
 //! also gives the number of kinds, check_kind_count()).
 enum class CheckKind : int { seed, vor_edge, facet_contact, topo_disk, facet_cycle, silhouette, quality, smooth, size };
+//! The names of the paper's kinds; a registered kind is named by its registry row (check_kind_name).
+constexpr auto enum_names(CheckKind) {
+  return name_table<CheckKind>("CheckKind", {{CheckKind::seed, "seed"}, {CheckKind::vor_edge, "vor_edge"},
+                                             {CheckKind::facet_contact, "facet_contact"},
+                                             {CheckKind::topo_disk, "topo_disk"},
+                                             {CheckKind::facet_cycle, "facet_cycle"},
+                                             {CheckKind::silhouette, "silhouette"}, {CheckKind::quality, "quality"},
+                                             {CheckKind::smooth, "smooth"}, {CheckKind::size, "size"}});
+}
 //! The kind's name in the statistics (check_kind_name, check_registry.h).
 std::ostream& operator<<(std::ostream& out, CheckKind kind);
 
@@ -36,7 +47,15 @@ enum class UnsettledReason {
   no_witness,            //!< the check's condition fails but it found no point of Σ to insert
   unresolved_crossing    //!< an undecided region on a Voronoi edge that is neither a crossing nor a candidate
 };
-std::ostream& operator<<(std::ostream& out, UnsettledReason reason);
+constexpr auto enum_names(UnsettledReason) {
+  return name_table<UnsettledReason>("UnsettledReason", {{UnsettledReason::unprojectable_region, "unprojectable_region"},
+                                                         {UnsettledReason::region_outside_face, "region_outside_face"},
+                                                         {UnsettledReason::degenerate_face, "degenerate_face"},
+                                                         {UnsettledReason::rejected_witness, "rejected_witness"},
+                                                         {UnsettledReason::no_witness, "no_witness"},
+                                                         {UnsettledReason::unresolved_crossing, "unresolved_crossing"}});
+}
+inline std::ostream& operator<<(std::ostream& out, UnsettledReason reason) { return write_enum(out, reason); }
 
 //! One thing a check left unsettled, where it was.
 struct Unsettled {

@@ -45,15 +45,6 @@ double Domain::scale() const {
   return s;
 }
 
-std::ostream& operator<<(std::ostream& out, DomainSide side) {
-  switch (side) {
-    case DomainSide::inside: return out << "inside";
-    case DomainSide::outside: return out << "outside";
-    case DomainSide::boundary: return out << "boundary";
-  }
-  return out << "DomainSide(" << static_cast<int>(side) << ")";
-}
-
 DomainSide classify(const Domain& domain, const Interval* box) {
   const std::size_t n = domain.dimension();
   bool inside = true;

@@ -6,6 +6,7 @@
 #include <ostream>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "solvers/solve_result.h"
 #include "symbolic/scalar_types.h"
 
@@ -39,7 +40,11 @@ enum class DomainSide {
   outside,  //!< every point of the box is strictly outside one face of P (box ∩ P = ∅)
   boundary  //!< neither could be proved (the box meets or nearly meets a face)
 };
-std::ostream& operator<<(std::ostream& out, DomainSide side);
+constexpr auto enum_names(DomainSide) {
+  return name_table<DomainSide>("DomainSide", {{DomainSide::inside, "inside"}, {DomainSide::outside, "outside"},
+                                               {DomainSide::boundary, "boundary"}});
+}
+inline std::ostream& operator<<(std::ostream& out, DomainSide side) { return write_enum(out, side); }
 
 //! Classifies the interval box `box` (domain.dimension() entries) against the faces of the domain:
 //! the 2n box faces u_i = lo_i, u_i = hi_i and the hyperplanes ⟨normal, u⟩ = offset, each side

@@ -8,14 +8,6 @@
 
 namespace delmesh {
 
-std::ostream& operator<<(std::ostream& out, KostlanCoefficients coefficients) {
-  switch (coefficients) {
-    case KostlanCoefficients::exact_rational: return out << "exact_rational";
-    case KostlanCoefficients::double_rounded: return out << "double_rounded";
-  }
-  return out << "KostlanCoefficients(" << static_cast<int>(coefficients) << ")";
-}
-
 double KostlanRng::uniform() {
   // 53 random bits → a double in [0, 1); shifted by half an ulp so 0 never occurs.
   const std::uint64_t bits = engine_() >> 11;

@@ -18,6 +18,7 @@
 
 #include <ginac/ginac.h>
 
+#include "common/enum_names.h"
 #include "solvers/solve_result.h"
 #include "symbolic/primitive_system.h"
 
@@ -28,7 +29,11 @@ enum class KostlanCoefficients {
   exact_rational,  //!< the sample rounded to a multiple of 2^-24, as an exact GiNaC rational
   double_rounded   //!< the sample as a double (a GiNaC floating-point numeric)
 };
-std::ostream& operator<<(std::ostream& out, KostlanCoefficients coefficients);
+constexpr auto enum_names(KostlanCoefficients) {
+  return name_table<KostlanCoefficients>("KostlanCoefficients", {{KostlanCoefficients::exact_rational, "exact_rational"},
+                                                                 {KostlanCoefficients::double_rounded, "double_rounded"}});
+}
+inline std::ostream& operator<<(std::ostream& out, KostlanCoefficients coefficients) { return write_enum(out, coefficients); }
 
 //! A reproducible source of standard normal samples (mt19937_64 + Box–Muller).
 class KostlanRng {

@@ -9,15 +9,6 @@
 
 namespace delmesh {
 
-std::ostream& operator<<(std::ostream& out, KrawczykOutcome outcome) {
-  switch (outcome) {
-    case KrawczykOutcome::unique_root: return out << "unique_root";
-    case KrawczykOutcome::no_root: return out << "no_root";
-    case KrawczykOutcome::inconclusive: return out << "inconclusive";
-  }
-  return out << "KrawczykOutcome(" << static_cast<int>(outcome) << ")";
-}
-
 namespace {
 
 void check_arguments(const CompiledSystem& system, const std::vector<double>& parameters,

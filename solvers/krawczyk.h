@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "common/enum_names.h"
 #include "symbolic/compiled_system.h"
 
 namespace delmesh {
@@ -16,7 +17,12 @@ enum class KrawczykOutcome {
   no_root,      //!< f(X) ∌ 0 or K(X) ∩ X = ∅: X contains no zero of f
   inconclusive  //!< neither (or J(m) singular, or NaN bounds)
 };
-std::ostream& operator<<(std::ostream& out, KrawczykOutcome outcome);
+constexpr auto enum_names(KrawczykOutcome) {
+  return name_table<KrawczykOutcome>("KrawczykOutcome", {{KrawczykOutcome::unique_root, "unique_root"},
+                                                         {KrawczykOutcome::no_root, "no_root"},
+                                                         {KrawczykOutcome::inconclusive, "inconclusive"}});
+}
+inline std::ostream& operator<<(std::ostream& out, KrawczykOutcome outcome) { return write_enum(out, outcome); }
 
 struct [[nodiscard]] KrawczykResult {
   KrawczykOutcome outcome = KrawczykOutcome::inconclusive;

@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <sstream>
 
 #include "common/errors.h"
 #include "solvers/homotopy_solver.h"
@@ -11,21 +10,9 @@
 
 namespace delmesh {
 
-std::ostream& operator<<(std::ostream& out, QueryOption option) {
-  switch (option) {
-    case QueryOption::point: return out << "--point";
-    case QueryOption::direction: return out << "--direction";
-    case QueryOption::direction2: return out << "--direction2";
-    case QueryOption::plane_origin: return out << "--plane-origin";
-    case QueryOption::plane_normal: return out << "--plane-normal";
-  }
-  return out << "--unknown-option";
-}
-
 std::string option_flag(QueryOption option) {
-  std::ostringstream s;
-  s << option;
-  return s.str();
+  const char* flag = enum_name(option);
+  return flag ? flag : "--unknown-option";
 }
 
 bool is_position(QueryOption option) { return option == QueryOption::point || option == QueryOption::plane_origin; }
@@ -108,14 +95,6 @@ std::size_t drop_spurious_roots(const CompiledPrimitive& primitive, const std::v
   const std::size_t dropped = result.roots.size() - kept.size();
   result.roots = std::move(kept);
   return dropped;
-}
-
-std::ostream& operator<<(std::ostream& out, QuerySolver solver) {
-  switch (solver) {
-    case QuerySolver::subdivision: return out << "subdivision";
-    case QuerySolver::homotopy: return out << "homotopy";
-  }
-  return out << "unknown";
 }
 
 SolveResult solve_query(const CompiledPrimitive& primitive, const PrimitiveQuery& query,

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "common/tolerances.h"
 #include "solvers/domain.h"
 #include "solvers/query_geometry.h"
@@ -41,7 +42,14 @@ inline constexpr std::array<QueryOption, 5> all_query_options{QueryOption::point
                                                               QueryOption::direction2, QueryOption::plane_origin,
                                                               QueryOption::plane_normal};
 //! Prints the command-line flag, e.g. "--plane-origin".
-std::ostream& operator<<(std::ostream& out, QueryOption option);
+constexpr auto enum_names(QueryOption) {
+  return name_table<QueryOption>("QueryOption", {{QueryOption::point, "--point"},
+                                                 {QueryOption::direction, "--direction"},
+                                                 {QueryOption::direction2, "--direction2"},
+                                                 {QueryOption::plane_origin, "--plane-origin"},
+                                                 {QueryOption::plane_normal, "--plane-normal"}});
+}
+inline std::ostream& operator<<(std::ostream& out, QueryOption option) { return write_enum(out, option); }
 //! The command-line flag as text, e.g. "--plane-origin".
 std::string option_flag(QueryOption option);
 //! True for the options that are positions (point, plane_origin), false for directions.
@@ -114,7 +122,11 @@ enum class QuerySolver {
                 //!< univariate isolator for a LineQuery
   homotopy      //!< solve_homotopy: square systems polynomial in their unknowns only
 };
-std::ostream& operator<<(std::ostream& out, QuerySolver solver);
+constexpr auto enum_names(QuerySolver) {
+  return name_table<QuerySolver>("QuerySolver", {{QuerySolver::subdivision, "subdivision"},
+                                                 {QuerySolver::homotopy, "homotopy"}});
+}
+inline std::ostream& operator<<(std::ostream& out, QuerySolver solver) { return write_enum(out, solver); }
 
 struct QuerySolveOptions {
   QuerySolver solver = QuerySolver::subdivision;

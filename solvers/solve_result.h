@@ -25,6 +25,8 @@
 #include <ostream>
 #include <vector>
 
+#include "common/enum_names.h"
+
 namespace delmesh {
 
 //! Overall outcome of a solve.
@@ -35,7 +37,14 @@ enum class SolveStatus {
   box_limit,     //!< the box budget ran out; unexplored boxes are returned as undecided
   time_limit     //!< the time budget ran out; unexplored boxes are returned as undecided
 };
-std::ostream& operator<<(std::ostream& out, SolveStatus status);
+constexpr auto enum_names(SolveStatus) {
+  return name_table<SolveStatus>("SolveStatus", {{SolveStatus::complete, "complete"},
+                                                 {SolveStatus::undecided, "undecided"},
+                                                 {SolveStatus::non_isolated, "non_isolated"},
+                                                 {SolveStatus::box_limit, "box_limit"},
+                                                 {SolveStatus::time_limit, "time_limit"}});
+}
+inline std::ostream& operator<<(std::ostream& out, SolveStatus status) { return write_enum(out, status); }
 
 //! Why a region is undecided.
 enum class UndecidedReason {
@@ -50,7 +59,15 @@ enum class UndecidedReason {
   precision,         //!< even the highest MPFI precision could not decide
   budget             //!< not examined: a box or time budget ran out
 };
-std::ostream& operator<<(std::ostream& out, UndecidedReason reason);
+constexpr auto enum_names(UndecidedReason) {
+  return name_table<UndecidedReason>("UndecidedReason", {{UndecidedReason::singular_root, "singular_root"},
+                                                         {UndecidedReason::boundary_root, "boundary_root"},
+                                                         {UndecidedReason::cluster, "cluster"},
+                                                         {UndecidedReason::non_isolated, "non_isolated"},
+                                                         {UndecidedReason::precision, "precision"},
+                                                         {UndecidedReason::budget, "budget"}});
+}
+inline std::ostream& operator<<(std::ostream& out, UndecidedReason reason) { return write_enum(out, reason); }
 
 //! An axis-aligned box in the solver's unknowns (n ≤ 3 entries used).
 struct SolverBox {

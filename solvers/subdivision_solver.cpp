@@ -620,15 +620,6 @@ class Subdivision {
 
 }  // namespace
 
-std::ostream& operator<<(std::ostream& out, TaylorForms choice) {
-  switch (choice) {
-    case TaylorForms::automatic: return out << "automatic";
-    case TaylorForms::always: return out << "always";
-    case TaylorForms::never: return out << "never";
-  }
-  return out << "unknown";
-}
-
 SolveResult solve_subdivision(const CompiledSystem& system, const std::vector<double>& parameters,
                               const Domain& domain, const SubdivisionOptions& options) {
   domain.validate();

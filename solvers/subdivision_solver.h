@@ -9,6 +9,7 @@
 #include <ostream>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "common/tolerances.h"
 #include "solvers/domain.h"
 #include "solvers/solve_result.h"
@@ -26,7 +27,11 @@ enum class TaylorForms {
   never       //!< only the compiled expressions
 };
 
-std::ostream& operator<<(std::ostream& out, TaylorForms choice);
+constexpr auto enum_names(TaylorForms) {
+  return name_table<TaylorForms>("TaylorForms", {{TaylorForms::automatic, "automatic"},
+                                                 {TaylorForms::always, "always"}, {TaylorForms::never, "never"}});
+}
+inline std::ostream& operator<<(std::ostream& out, TaylorForms choice) { return write_enum(out, choice); }
 
 struct SubdivisionOptions {
   std::size_t box_budget = tolerances::default_box_budget;  //!< boxes visited before status box_limit

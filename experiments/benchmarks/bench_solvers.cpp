@@ -96,9 +96,7 @@ int main(int argc, char** argv) {
   std::string csv;
   TaylorForms taylor_forms = TaylorForms::automatic;
   app.add_option("--taylor-forms", taylor_forms, "subdivision on Taylor forms of polynomial systems")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, TaylorForms>{{"automatic", TaylorForms::automatic},
-                                                                             {"always", TaylorForms::always},
-                                                                             {"never", TaylorForms::never}}));
+      ->transform(CLI::CheckedTransformer(enum_name_map<TaylorForms>()));
   app.add_option("--queries", queries, "queries per primitive and surface (and lines per degree / 10)");
   app.add_option("--side", side, "side of the Voronoi-cell-sized domain");
   app.add_option("--seed", seed, "random seed");

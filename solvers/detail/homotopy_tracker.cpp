@@ -11,16 +11,6 @@
 
 namespace delmesh::detail {
 
-std::ostream& operator<<(std::ostream& out, PathOutcome outcome) {
-  switch (outcome) {
-    case PathOutcome::finite: return out << "finite";
-    case PathOutcome::singular: return out << "singular";
-    case PathOutcome::diverging: return out << "diverging";
-    case PathOutcome::failed: return out << "failed";
-  }
-  return out << "PathOutcome(" << static_cast<int>(outcome) << ")";
-}
-
 TrackerSettings TrackerSettings::defaults() {
   namespace tol = tolerances;
   return {tol::homotopy_initial_step,        tol::homotopy_max_step,

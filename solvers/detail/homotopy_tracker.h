@@ -62,6 +62,7 @@
 #include <ostream>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "symbolic/compiled_system.h"
 #include "symbolic/scalar_types.h"
 
@@ -74,7 +75,13 @@ enum class PathOutcome {
   diverging,  //!< the path goes to a solution at infinity (X_0 → 0)
   failed      //!< tracking or the endgame broke down (step underflow, step budget, no convergence)
 };
-std::ostream& operator<<(std::ostream& out, PathOutcome outcome);
+constexpr auto enum_names(PathOutcome) {
+  return name_table<PathOutcome>("PathOutcome", {{PathOutcome::finite, "finite"},
+                                                 {PathOutcome::singular, "singular"},
+                                                 {PathOutcome::diverging, "diverging"},
+                                                 {PathOutcome::failed, "failed"}});
+}
+inline std::ostream& operator<<(std::ostream& out, PathOutcome outcome) { return write_enum(out, outcome); }
 
 //! Step-size control and endgame thresholds (defaults from common/tolerances.h).
 struct TrackerSettings {

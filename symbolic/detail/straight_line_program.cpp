@@ -15,25 +15,6 @@
 
 namespace delmesh::detail {
 
-std::ostream& operator<<(std::ostream& os, OpCode op) {
-  switch (op) {
-    case OpCode::add: return os << "add";
-    case OpCode::sub: return os << "sub";
-    case OpCode::mul: return os << "mul";
-    case OpCode::div: return os << "div";
-    case OpCode::neg: return os << "neg";
-    case OpCode::inv: return os << "inv";
-    case OpCode::square: return os << "square";
-    case OpCode::pow: return os << "pow";
-    case OpCode::exp: return os << "exp";
-    case OpCode::log: return os << "log";
-    case OpCode::sqrt: return os << "sqrt";
-    case OpCode::sin: return os << "sin";
-    case OpCode::cos: return os << "cos";
-  }
-  return os << "OpCode(" << static_cast<int>(op) << ")";
-}
-
 namespace {
 
 std::string to_text(const GiNaC::ex& e) {

@@ -21,13 +21,21 @@
 
 #include <ginac/ginac.h>
 
+#include "common/enum_names.h"
 #include "symbolic/scalar_traits.h"
 #include "symbolic/scalar_types.h"
 
 namespace delmesh::detail {
 
 enum class OpCode : std::uint8_t { add, sub, mul, div, neg, inv, square, pow, exp, log, sqrt, sin, cos };
-std::ostream& operator<<(std::ostream& os, OpCode op);
+constexpr auto enum_names(OpCode) {
+  return name_table<OpCode>("OpCode", {{OpCode::add, "add"}, {OpCode::sub, "sub"}, {OpCode::mul, "mul"},
+                                       {OpCode::div, "div"}, {OpCode::neg, "neg"}, {OpCode::inv, "inv"},
+                                       {OpCode::square, "square"}, {OpCode::pow, "pow"}, {OpCode::exp, "exp"},
+                                       {OpCode::log, "log"}, {OpCode::sqrt, "sqrt"}, {OpCode::sin, "sin"},
+                                       {OpCode::cos, "cos"}});
+}
+inline std::ostream& operator<<(std::ostream& out, OpCode op) { return write_enum(out, op); }
 
 //! register[result] = op(register[a], register[b]); for pow, b is the integer exponent.
 struct Instruction {

@@ -34,14 +34,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/vec3.h"
 #include "solvers/domain.h"
 #include "solvers/gradient_cone.h"
 #include "solvers/solve_result.h"
 #include "symbolic/surface.h"
 
 namespace delmesh {
-
-using Vec3 = std::array<double, 3>;
 
 class SurfaceOracle {
  public:

@@ -24,14 +24,13 @@
 #include <optional>
 #include <vector>
 
+#include "common/vec3.h"
 #include "meshing/delaunay.h"
 #include "solvers/domain.h"
 #include "solvers/gradient_cone.h"
 #include "symbolic/surface.h"
 
 namespace delmesh {
-
-using Vec3 = std::array<double, 3>;
 
 //! The Voronoi edge dual to a Delaunay triangle: {point + t·direction : t ∈ [t0, t1]}.
 struct VoronoiEdge {

@@ -10,12 +10,11 @@
 #include <optional>
 #include <vector>
 
+#include "common/vec3.h"
 #include "solvers/domain.h"
 #include "symbolic/surface.h"
 
 namespace delmesh {
-
-using Vec3 = std::array<double, 3>;
 
 //! A right-handed orthonormal frame (a, b, d): d is the unit direction it was built from and
 //! (a, b) an orthonormal basis of d⟂ with a × b = d.

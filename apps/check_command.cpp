@@ -90,7 +90,7 @@ void print_certificate(std::ostream& out, const Certificate& c) {
 }  // namespace
 
 void require_bounds_lambda(double lambda) {
-  if (!(lambda > 0 && lambda < 1.0 / 6.0)) {
+  if (!(lambda > 0 && lambda < beta_lambda_bound)) {
     throw InvalidInput("--lambda must lie in (0, 1/6) for the bounds of Theorem 6.1, got " + format_number(lambda));
   }
 }
@@ -101,7 +101,7 @@ CheckVerdict check_verdict(const MeshReport& report, std::optional<double> lambd
   v.lambda = lambda;
   if (lambda) {
     require_bounds_lambda(*lambda);
-    if (*lambda > 0.06) v.warnings.push_back("Theorem 6.1 covers 0 < lambda <= 0.06 only; the bounds are computed anyway");
+    if (*lambda > lambda0) v.warnings.push_back("Theorem 6.1 covers 0 < lambda <= 0.06 only; the bounds are computed anyway");
     v.bounds = theorem_bounds(*lambda);
     v.angle_ok = report.triangles > 0 && report.min_angle_deg >= v.bounds.min_angle_deg;
     v.ratio_ok = report.triangles > 0 && report.max_radius_edge_ratio <= v.bounds.max_radius_edge_ratio;

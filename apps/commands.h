@@ -33,7 +33,7 @@ namespace delmesh::app {
 struct MeshRequest {
   SurfaceArguments surface;               //!< --surface | --expr with --box
   std::optional<std::string> input_mesh;  //!< --input-mesh
-  double lambda = 0.06;                   //!< --lambda
+  double lambda = lambda0;                //!< --lambda
   std::string phase = "all";              //!< --phase: topology or all
   std::string solver = "subdivision";     //!< --solver: subdivision or homotopy
   std::optional<double> size_bound;       //!< --size-bound

@@ -31,14 +31,10 @@ namespace delmesh::app {
 
 namespace {
 
-//! Largest λ that Theorem 6.1 covers; λ ≥ 1/3 makes α(λ) = λ/(1−3λ) meaningless.
-constexpr double theorem_lambda = 0.06;
-constexpr double lambda_limit = 1.0 / 3.0;
-
 struct MeshOptions {
   SurfaceOptions surface;
   std::string input_mesh;
-  double lambda = 0.06;
+  double lambda = lambda0;
   std::string phase = "all";
   std::string solver = "subdivision";
   double size_bound = 0;
@@ -66,10 +62,10 @@ std::string to_text(const T& value) {
 
 //! Throws InvalidInput unless 0 < λ < 1/3; returns whether Theorem 6.1 covers λ (λ ≤ 0.06).
 bool check_lambda(double lambda) {
-  if (!std::isfinite(lambda) || lambda <= 0 || lambda >= lambda_limit) {
+  if (!std::isfinite(lambda) || lambda <= 0 || lambda >= alpha_lambda_bound) {
     throw InvalidInput("--lambda must satisfy 0 < lambda < 1/3, got " + format_number(lambda));
   }
-  return lambda <= theorem_lambda;
+  return lambda <= lambda0;
 }
 
 //! The run's options as values.

@@ -250,7 +250,7 @@ int main(int argc, char** argv) {
                "comparison and the topology demo); writes <out-dir>/compare_cgal.csv"};
   std::string surfaces = "torus,genus2", demo_surfaces = "thin_handle,two_blobs,near_sheets";
   std::string experiments_to_run = "benchmark,coarsest,demo";
-  double lambda = 0.06;
+  double lambda = lambda0;
   std::string cases = "torus:0.05,genus2:0.05,torus:0.02";
   double cgal_angle = 30;
   std::vector<double> coarse_radii{0.5, 1.0};

@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
   std::string out_dir = "out";
   double min_spacing_fraction = tolerances::min_spacing_median_edge_fraction;
   DelMeshOptions base;
-  base.lambda = 0.06;
+  base.lambda = lambda0;
   base.threads = 1;
   app.add_option("meshes", paths, "closed triangle meshes (.off, .ply, .obj); default: --names from --archive");
   app.add_option("--names", names, "meshes of the archive's data/meshes/ (comma separated)")->capture_default_str();

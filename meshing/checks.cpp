@@ -108,7 +108,7 @@ const std::vector<CheckInfo>& builtin_checks() {
                          if (auto w = smooth_witness(c.restricted, e, threshold)) return from_optional(w);
                        return CheckResult{};
                      }};
-    smooth.runs_at = [](double lambda) { return lambda < 1.0 / 6.0; };
+    smooth.runs_at = [](double lambda) { return lambda < beta_lambda_bound; };
     smooth.kind = CheckKind::smooth;
     r.push_back(smooth);
     return r;

@@ -85,7 +85,7 @@ nlohmann::json unsettled_json(const std::vector<Unsettled>& unsettled, const std
 }
 
 void check_options(const Box3& box, const DelMeshOptions& options) {
-  if (!(options.lambda > 0) || !(options.lambda < 1.0 / 3.0))
+  if (!(options.lambda > 0) || !(options.lambda < alpha_lambda_bound))
     throw InvalidInput("lambda must satisfy 0 < lambda < 1/3 (Theorem 6.1 covers lambda <= 0.06)");
   if (options.size_bound && !(*options.size_bound > 0)) throw InvalidInput("the size bound must be positive");
   if (options.max_points < 1) throw InvalidInput("max_points must be at least 1");
@@ -117,7 +117,7 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
   const double topology_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const nlohmann::json topology_insertions = refinement.insertions_json();
   const nlohmann::json topology_floor = refinement.floor_json();
-  const bool smooth_enabled = options.lambda < 1.0 / 6.0;
+  const bool smooth_enabled = options.lambda < beta_lambda_bound;
   if (status == MeshStatus::complete && options.phase == MeshPhase::all) {
     refinement.enable_geometry(options.lambda, options.size_bound);
     status = refinement.run();
@@ -141,7 +141,7 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
     j["status"] = s.str();
   }
   j["lambda"] = options.lambda;
-  j["theorem_applies"] = options.lambda <= 0.06;
+  j["theorem_applies"] = options.lambda <= lambda0;
   {
     std::ostringstream s;
     s << options.phase;
@@ -159,7 +159,7 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
   j["min_angle_deg"] = report.min_angle_deg;
   j["max_radius_edge_ratio"] = report.max_radius_edge_ratio;
   j["max_roughness_rad"] = report.max_roughness_rad;
-  if (options.lambda < 1.0 / 6.0) {
+  if (options.lambda < beta_lambda_bound) {
     const auto b = theorem_bounds(options.lambda);
     j["bounds"] = {{"min_angle_deg", b.min_angle_deg},
                    {"max_radius_edge_ratio", b.max_radius_edge_ratio},

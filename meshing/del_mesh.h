@@ -16,6 +16,7 @@
 #include "meshing/solver_backend.h"
 #include "common/enum_names.h"
 #include "meshing/surface_mesh.h"
+#include "meshing/theorem_bounds.h"
 #include "symbolic/surface.h"
 
 namespace delmesh {
@@ -43,7 +44,7 @@ constexpr auto enum_names(MeshStatus) {
 inline std::ostream& operator<<(std::ostream& out, MeshStatus status) { return write_enum(out, status); }
 
 struct DelMeshOptions {
-  double lambda = 0.06;                  //!< 0 < λ < 1/3; Theorem 6.1 covers λ ≤ 0.06
+  double lambda = lambda0;               //!< 0 < λ < 1/3; Theorem 6.1 covers λ ≤ λ₀ = 0.06
   MeshPhase phase = MeshPhase::all;
   SolverBackend solver = SolverBackend::subdivision;
   std::optional<double> size_bound;      //!< H: also refine triangles with Delaunay-ball radius > H

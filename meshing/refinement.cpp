@@ -6,6 +6,7 @@
 
 #include "common/errors.h"
 #include "common/tolerances.h"
+#include "meshing/theorem_bounds.h"
 
 namespace delmesh {
 
@@ -51,7 +52,7 @@ void Refinement::set_last_edge_step() {
 }
 
 void Refinement::enable_geometry(double lambda, std::optional<double> size_bound) {
-  if (!(lambda > 0 && lambda < 1.0 / 3.0)) throw PreconditionViolation("enable_geometry: lambda out of (0, 1/3)");
+  if (!(lambda > 0 && lambda < alpha_lambda_bound)) throw PreconditionViolation("enable_geometry: lambda out of (0, 1/3)");
   if (size_bound && !(*size_bound > 0)) throw PreconditionViolation("enable_geometry: size bound not positive");
   lambda_ = lambda;
   size_bound_ = size_bound;

@@ -22,12 +22,12 @@ void require_open_interval(double lambda, double upper, const char* what, const 
 }  // namespace
 
 double alpha(double lambda) {
-  require_open_interval(lambda, 1.0 / 3.0, "alpha", "1/3");
+  require_open_interval(lambda, alpha_lambda_bound, "alpha", "1/3");
   return lambda / (1.0 - 3.0 * lambda);
 }
 
 double beta(double lambda) {
-  require_open_interval(lambda, 1.0 / 6.0, "beta", "1/6");
+  require_open_interval(lambda, beta_lambda_bound, "beta", "1/6");
   const double two_over_root3 = 2.0 / std::sqrt(3.0);
   return alpha(2.0 * lambda) + std::asin(lambda) +
          std::asin(two_over_root3 * std::sin(2.0 * std::asin(lambda)));
@@ -40,7 +40,7 @@ std::ostream& operator<<(std::ostream& out, const TheoremBounds& bounds) {
 }
 
 TheoremBounds theorem_bounds(double lambda) {
-  require_open_interval(lambda, 1.0 / 6.0, "theorem_bounds", "1/6");
+  require_open_interval(lambda, beta_lambda_bound, "theorem_bounds", "1/6");
   TheoremBounds bounds{};
   bounds.min_angle_deg = std::asin(1.0 / (2.0 + 2.0 * lambda)) * 180.0 / pi;
   bounds.max_radius_edge_ratio = 1.0 + lambda;
@@ -49,7 +49,7 @@ TheoremBounds theorem_bounds(double lambda) {
 }
 
 TheoremConditions theorem_conditions(double lambda) {
-  require_open_interval(lambda, 1.0 / 6.0, "theorem_conditions", "1/6");
+  require_open_interval(lambda, beta_lambda_bound, "theorem_conditions", "1/6");
   const double a = alpha(lambda);
   const double b = beta(lambda);
   TheoremConditions conditions;

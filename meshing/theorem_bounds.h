@@ -7,6 +7,13 @@
 
 namespace delmesh {
 
+//! λ₀ = 0.06: the guarantees of Theorem 6.1 hold for 0 < λ ≤ λ₀ (the inequalities of §4 hold there).
+inline constexpr double lambda0 = 0.06;
+//! α(λ) is defined for 0 < λ < 1/3; the mesher accepts these λ (without a guarantee above λ₀).
+inline constexpr double alpha_lambda_bound = 1.0 / 3.0;
+//! β(λ) is defined for 0 < λ < 1/6; Smooth and the bounds of Theorem 6.1 need it.
+inline constexpr double beta_lambda_bound = 1.0 / 6.0;
+
 //! α(λ) = λ / (1 − 3λ) (§2.3, Lemma 2.1).  Precondition: 0 < λ < 1/3, else PreconditionViolation.
 double alpha(double lambda);
 //! β(λ) = α(2λ) + arcsin λ + arcsin(2 sin(2 arcsin λ) / √3) (§2.3, Lemma 2.2).

@@ -464,7 +464,7 @@ PYBIND11_MODULE(delmesh, m) {
       });
 
   m.def("mesh", &mesh, py::kw_only(), py::arg("expr") = py::none(), py::arg("box") = py::none(),
-        py::arg("surface") = py::none(), py::arg("input_mesh") = py::none(), py::arg("lam") = 0.06,
+        py::arg("surface") = py::none(), py::arg("input_mesh") = py::none(), py::arg("lam") = delmesh::lambda0,
         py::arg("size_bound") = py::none(), py::arg("phase") = "all", py::arg("seed") = 1,
         py::arg("max_points") = py::none(), py::arg("time_limit") = py::none(), py::arg("threads") = py::none(),
         py::arg("progress") = py::none(), py::arg("solver") = "subdivision",

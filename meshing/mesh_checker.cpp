@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <queue>
 #include <string>
@@ -100,250 +101,316 @@ bool MeshReport::has_topology(const std::vector<int>& expected_genera) const {
   return closed && manifold && orientable && genus_per_component == sorted;
 }
 
-MeshReport check_mesh(const std::vector<Point3>& input_points,
-                      const std::vector<Triangle>& triangles) {
-  const std::size_t n_points = input_points.size();
-  const std::size_t n_triangles = triangles.size();
-  // Validation: indices in range, three distinct indices, finite referenced coordinates.
-  std::vector<char> referenced(n_points, 0);
-  for (std::size_t t = 0; t < n_triangles; ++t) {
-    const Triangle& tri = triangles[t];
-    for (std::size_t v : tri) {
-      if (v >= n_points) {
-        throw InvalidInput("check_mesh: triangle " + std::to_string(t) + " has vertex index " +
-                           std::to_string(v) + " but there are " + std::to_string(n_points) +
-                           " points");
-      }
-      referenced[v] = 1;
-    }
-    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
-      throw InvalidInput("check_mesh: triangle " + std::to_string(t) + " repeats a vertex index");
-    }
-  }
-  std::vector<Vec> p(n_points);
-  for (std::size_t i = 0; i < n_points; ++i) {
-    p[i] = {input_points[i].x(), input_points[i].y(), input_points[i].z()};
-    if (referenced[i] && !(std::isfinite(p[i].x) && std::isfinite(p[i].y) && std::isfinite(p[i].z))) {
-      throw InvalidInput("check_mesh: point " + std::to_string(i) + " has a non-finite coordinate");
-    }
-  }
+namespace {
 
-  MeshReport report;
-  report.triangles = n_triangles;
-  report.vertices = static_cast<std::size_t>(std::count(referenced.begin(), referenced.end(), 1));
-  report.unreferenced_vertices = n_points - report.vertices;
-  if (n_triangles == 0) return report;
+//! One run of check_mesh on a soup.  The algorithm, one method per step:
+//!  1. validate the soup (indices, distinct corners, finite coordinates) and count its vertices;
+//!  2. index the triangles incident to each vertex;
+//!  3. components: triangles sharing a vertex;
+//!  4. edges, grouped by their undirected key: lengths, boundary and non-manifold edges,
+//!     misoriented pairs and the roughness of consistently oriented pairs; boundary loops;
+//!  5. orientability: a breadth-first search per component over the manifold edges;
+//!  6. vertex links: one cycle at every vertex of a closed manifold;
+//!  7. triangle quality: smallest angle, radius-edge ratio, signed volume;
+//!  8. per-component results, sorted by genus, then size.
+class SoupCheck {
+ public:
+  SoupCheck(const std::vector<Point3>& points, const std::vector<Triangle>& triangles)
+      : points_(points), triangles_(triangles), n_points_(points.size()), n_triangles_(triangles.size()) {}
 
-  // Vertex → incident triangles (CSR).
-  std::vector<std::size_t> first(n_points + 1, 0);
-  for (const Triangle& tri : triangles)
-    for (std::size_t v : tri) ++first[v + 1];
-  std::partial_sum(first.begin(), first.end(), first.begin());
-  std::vector<std::size_t> incident(3 * n_triangles);
-  {
-    std::vector<std::size_t> fill(first.begin(), first.end() - 1);
-    for (std::size_t t = 0; t < n_triangles; ++t)
-      for (std::size_t v : triangles[t]) incident[fill[v]++] = t;
+  MeshReport run() {
+    validate();
+    if (n_triangles_ == 0) return std::move(report_);
+    index_incidences();
+    find_components();
+    scan_edges();
+    count_boundary_loops();
+    check_orientability();
+    check_vertex_links();
+    measure_triangles();
+    summarize_components();
+    return std::move(report_);
   }
 
-  // Components: triangles sharing a vertex.
-  UnionFind faces(n_triangles);
-  for (std::size_t v = 0; v < n_points; ++v)
-    for (std::size_t k = first[v] + 1; k < first[v + 1]; ++k) faces.unite(incident[first[v]], incident[k]);
-  std::vector<int> component_of(n_triangles, -1);
-  std::vector<ComponentReport> components;
-  for (std::size_t t = 0; t < n_triangles; ++t) {
-    const std::size_t root = faces.find(t);
-    if (component_of[root] < 0) {
-      component_of[root] = static_cast<int>(components.size());
-      components.emplace_back();
-    }
-    component_of[t] = component_of[root];
-    ++components[component_of[t]].triangles;
-  }
-  for (std::size_t v = 0; v < n_points; ++v)
-    if (first[v + 1] > first[v]) ++components[component_of[incident[first[v]]]].vertices;
-
-  // Edges, grouped by their undirected key.
-  std::vector<EdgeUse> uses;
-  uses.reserve(3 * n_triangles);
-  for (std::size_t t = 0; t < n_triangles; ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const std::size_t a = triangles[t][k], b = triangles[t][(k + 1) % 3];
-      uses.push_back({std::min(a, b), std::max(a, b), t, a < b});
-    }
-  }
-  std::sort(uses.begin(), uses.end(), [](const EdgeUse& u, const EdgeUse& w) {
-    return std::tie(u.lo, u.hi, u.triangle) < std::tie(w.lo, w.hi, w.triangle);
-  });
-
-  // Per-component flags start true and are cleared by counter-examples.
-  std::vector<char> comp_closed(components.size(), 1), comp_manifold(components.size(), 1),
-      comp_orientable(components.size(), 1);
-  // Edge adjacency for the orientation BFS: neighbour across each of the 3 edges, with whether
-  // the two triangles traverse the edge in the same direction.
+ private:
+  //! Neighbour across an edge, and whether the two triangles traverse it in the same direction.
   struct Neighbour {
     std::size_t triangle;
     bool same_direction;
   };
-  std::vector<std::vector<Neighbour>> across(n_triangles);
-  std::vector<Vec> normal(n_triangles);
-  for (std::size_t t = 0; t < n_triangles; ++t) {
-    const Vec& a = p[triangles[t][0]];
-    normal[t] = cross(p[triangles[t][1]] - a, p[triangles[t][2]] - a);
-  }
 
-  // Boundary loops: the connected pieces of the graph of boundary edges.
-  UnionFind boundary_graph(n_points);
-  std::vector<char> on_boundary(n_points, 0);
-  bool oriented = true;
-  report.min_edge_length = std::numeric_limits<double>::infinity();
-  report.max_edge_length = 0;
-  for (std::size_t begin = 0; begin < uses.size();) {
-    std::size_t end = begin;
-    while (end < uses.size() && uses[end].lo == uses[begin].lo && uses[end].hi == uses[begin].hi) ++end;
-    const std::size_t count = end - begin;
-    const int c = component_of[uses[begin].triangle];
-    ++report.edges;
-    ++components[c].edges;
-    const double length = norm(p[uses[begin].hi] - p[uses[begin].lo]);
-    report.min_edge_length = std::min(report.min_edge_length, length);
-    report.max_edge_length = std::max(report.max_edge_length, length);
-    if (count != 2) {
-      comp_closed[c] = 0;
-      if (count == 1) {
-        if (!report.first_boundary_edge) report.first_boundary_edge = {{uses[begin].lo, uses[begin].hi}};
-        ++report.boundary_edges;
-        ++components[c].boundary_edges;
-        boundary_graph.unite(uses[begin].lo, uses[begin].hi);
-        on_boundary[uses[begin].lo] = 1;
+  void validate() {
+    std::vector<char> referenced(n_points_, 0);
+    for (std::size_t t = 0; t < n_triangles_; ++t) {
+      const Triangle& tri = triangles_[t];
+      for (std::size_t v : tri) {
+        if (v >= n_points_) {
+          throw InvalidInput("check_mesh: triangle " + std::to_string(t) + " has vertex index " +
+                             std::to_string(v) + " but there are " + std::to_string(n_points_) +
+                             " points");
+        }
+        referenced[v] = 1;
       }
-      if (count >= 3) {
-        if (!report.first_nonmanifold_edge) report.first_nonmanifold_edge = {{uses[begin].lo, uses[begin].hi}};
-        ++report.nonmanifold_edges;
-        ++components[c].nonmanifold_edges;
-        comp_orientable[c] = 0;
-        oriented = false;
+      if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+        throw InvalidInput("check_mesh: triangle " + std::to_string(t) + " repeats a vertex index");
       }
-    } else {
-      const EdgeUse& u = uses[begin];
-      const EdgeUse& w = uses[begin + 1];
-      const bool same = u.forward == w.forward;
-      if (same) {
-        oriented = false;
-        ++report.misoriented_edges;
-        if (!report.first_misoriented_edge) report.first_misoriented_edge = {{u.lo, u.hi}};
-      }
-      across[u.triangle].push_back({w.triangle, same});
-      across[w.triangle].push_back({u.triangle, same});
-      // Roughness: the angle between the normals of the consistently oriented pair.
-      const Vec& nu = normal[u.triangle];
-      Vec nw = normal[w.triangle];
-      if (same) nw = {-nw.x, -nw.y, -nw.z};
-      const bool degenerate = dot(nu, nu) == 0.0 || dot(nw, nw) == 0.0;
-      const double roughness = degenerate ? pi : angle_between(nu, nw);
-      report.max_roughness_rad = std::max(report.max_roughness_rad, roughness);
     }
-    begin = end;
-  }
-  report.oriented = oriented;
-  for (std::size_t v = 0; v < n_points; ++v) {
-    // One count per piece, at its smallest vertex (UnionFind keeps the smallest index as the
-    // root); that vertex lies on a boundary edge, so it has an incident triangle.
-    if (!on_boundary[v] || boundary_graph.find(v) != v) continue;
-    ++report.boundary_loops;
-    ++components[component_of[incident[first[v]]]].boundary_loops;
+    p_.resize(n_points_);
+    for (std::size_t i = 0; i < n_points_; ++i) {
+      p_[i] = {points_[i].x(), points_[i].y(), points_[i].z()};
+      if (referenced[i] && !(std::isfinite(p_[i].x) && std::isfinite(p_[i].y) && std::isfinite(p_[i].z))) {
+        throw InvalidInput("check_mesh: point " + std::to_string(i) + " has a non-finite coordinate");
+      }
+    }
+    report_.triangles = n_triangles_;
+    report_.vertices = static_cast<std::size_t>(std::count(referenced.begin(), referenced.end(), 1));
+    report_.unreferenced_vertices = n_points_ - report_.vertices;
   }
 
-  // Orientation BFS per component.
-  std::vector<signed char> flip(n_triangles, -1);
-  for (std::size_t seed = 0; seed < n_triangles; ++seed) {
-    if (flip[seed] >= 0) continue;
-    flip[seed] = 0;
-    std::queue<std::size_t> queue;
-    queue.push(seed);
-    while (!queue.empty()) {
-      const std::size_t t = queue.front();
-      queue.pop();
-      for (const Neighbour& nb : across[t]) {
-        // Consistent iff the effective directions differ: flip_nb = flip_t XOR same_direction.
-        const signed char wanted = static_cast<signed char>(flip[t] ^ (nb.same_direction ? 1 : 0));
-        if (flip[nb.triangle] < 0) {
-          flip[nb.triangle] = wanted;
-          queue.push(nb.triangle);
-        } else if (flip[nb.triangle] != wanted) {
-          comp_orientable[component_of[t]] = 0;
+  //! Vertex → incident triangles (CSR: incident_[first_[v] .. first_[v + 1])).
+  void index_incidences() {
+    first_.assign(n_points_ + 1, 0);
+    for (const Triangle& tri : triangles_)
+      for (std::size_t v : tri) ++first_[v + 1];
+    std::partial_sum(first_.begin(), first_.end(), first_.begin());
+    incident_.resize(3 * n_triangles_);
+    std::vector<std::size_t> fill(first_.begin(), first_.end() - 1);
+    for (std::size_t t = 0; t < n_triangles_; ++t)
+      for (std::size_t v : triangles_[t]) incident_[fill[v]++] = t;
+  }
+
+  //! The component of the triangles at vertex v (v must have one).
+  ComponentReport& component_at(std::size_t v) { return components_[component_of_[incident_[first_[v]]]]; }
+
+  void find_components() {
+    UnionFind faces(n_triangles_);
+    for (std::size_t v = 0; v < n_points_; ++v)
+      for (std::size_t k = first_[v] + 1; k < first_[v + 1]; ++k) faces.unite(incident_[first_[v]], incident_[k]);
+    component_of_.assign(n_triangles_, -1);
+    for (std::size_t t = 0; t < n_triangles_; ++t) {
+      const std::size_t root = faces.find(t);
+      if (component_of_[root] < 0) {
+        component_of_[root] = static_cast<int>(components_.size());
+        components_.emplace_back();
+      }
+      component_of_[t] = component_of_[root];
+      ++components_[component_of_[t]].triangles;
+    }
+    for (std::size_t v = 0; v < n_points_; ++v)
+      if (first_[v + 1] > first_[v]) ++component_at(v).vertices;
+    // Per-component flags start true and are cleared by counter-examples.
+    closed_.assign(components_.size(), 1);
+    manifold_.assign(components_.size(), 1);
+    orientable_.assign(components_.size(), 1);
+  }
+
+  void scan_edges() {
+    std::vector<EdgeUse> uses;
+    uses.reserve(3 * n_triangles_);
+    for (std::size_t t = 0; t < n_triangles_; ++t) {
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t a = triangles_[t][k], b = triangles_[t][(k + 1) % 3];
+        uses.push_back({std::min(a, b), std::max(a, b), t, a < b});
+      }
+    }
+    std::sort(uses.begin(), uses.end(), [](const EdgeUse& u, const EdgeUse& w) {
+      return std::tie(u.lo, u.hi, u.triangle) < std::tie(w.lo, w.hi, w.triangle);
+    });
+    across_.assign(n_triangles_, {});
+    normal_.resize(n_triangles_);
+    for (std::size_t t = 0; t < n_triangles_; ++t) {
+      const Vec& a = p_[triangles_[t][0]];
+      normal_[t] = cross(p_[triangles_[t][1]] - a, p_[triangles_[t][2]] - a);
+    }
+    boundary_graph_ = std::make_unique<UnionFind>(n_points_);
+    on_boundary_.assign(n_points_, 0);
+    bool oriented = true;
+    report_.min_edge_length = std::numeric_limits<double>::infinity();
+    report_.max_edge_length = 0;
+    for (std::size_t begin = 0; begin < uses.size();) {
+      std::size_t end = begin;
+      while (end < uses.size() && uses[end].lo == uses[begin].lo && uses[end].hi == uses[begin].hi) ++end;
+      const std::size_t count = end - begin;
+      const EdgeUse& u = uses[begin];
+      const int c = component_of_[u.triangle];
+      ++report_.edges;
+      ++components_[c].edges;
+      const double length = norm(p_[u.hi] - p_[u.lo]);
+      report_.min_edge_length = std::min(report_.min_edge_length, length);
+      report_.max_edge_length = std::max(report_.max_edge_length, length);
+      if (count == 2) {
+        oriented = pair_edge(u, uses[begin + 1]) && oriented;
+      } else {
+        closed_[c] = 0;
+        if (count == 1) boundary_edge(u, c);
+        if (count >= 3) {
+          nonmanifold_edge(u, c);
+          oriented = false;
+        }
+      }
+      begin = end;
+    }
+    report_.oriented = oriented;
+  }
+
+  //! An edge of two triangles u and w: adjacency for the orientation search and roughness.
+  //! \return whether the two traverse it in opposite directions (consistently oriented).
+  bool pair_edge(const EdgeUse& u, const EdgeUse& w) {
+    const bool same = u.forward == w.forward;
+    if (same) {
+      ++report_.misoriented_edges;
+      if (!report_.first_misoriented_edge) report_.first_misoriented_edge = {{u.lo, u.hi}};
+    }
+    across_[u.triangle].push_back({w.triangle, same});
+    across_[w.triangle].push_back({u.triangle, same});
+    // Roughness: the angle between the normals of the consistently oriented pair.
+    const Vec& nu = normal_[u.triangle];
+    Vec nw = normal_[w.triangle];
+    if (same) nw = {-nw.x, -nw.y, -nw.z};
+    const bool degenerate = dot(nu, nu) == 0.0 || dot(nw, nw) == 0.0;
+    const double roughness = degenerate ? pi : angle_between(nu, nw);
+    report_.max_roughness_rad = std::max(report_.max_roughness_rad, roughness);
+    return !same;
+  }
+
+  void boundary_edge(const EdgeUse& u, int c) {
+    if (!report_.first_boundary_edge) report_.first_boundary_edge = {{u.lo, u.hi}};
+    ++report_.boundary_edges;
+    ++components_[c].boundary_edges;
+    boundary_graph_->unite(u.lo, u.hi);
+    on_boundary_[u.lo] = 1;
+  }
+
+  void nonmanifold_edge(const EdgeUse& u, int c) {
+    if (!report_.first_nonmanifold_edge) report_.first_nonmanifold_edge = {{u.lo, u.hi}};
+    ++report_.nonmanifold_edges;
+    ++components_[c].nonmanifold_edges;
+    orientable_[c] = 0;
+  }
+
+  //! Boundary loops: the connected pieces of the graph of boundary edges.
+  void count_boundary_loops() {
+    for (std::size_t v = 0; v < n_points_; ++v) {
+      // One count per piece, at its smallest vertex (UnionFind keeps the smallest index as the
+      // root); that vertex lies on a boundary edge, so it has an incident triangle.
+      if (!on_boundary_[v] || boundary_graph_->find(v) != v) continue;
+      ++report_.boundary_loops;
+      ++component_at(v).boundary_loops;
+    }
+  }
+
+  void check_orientability() {
+    std::vector<signed char> flip(n_triangles_, -1);
+    for (std::size_t seed = 0; seed < n_triangles_; ++seed) {
+      if (flip[seed] >= 0) continue;
+      flip[seed] = 0;
+      std::queue<std::size_t> queue;
+      queue.push(seed);
+      while (!queue.empty()) {
+        const std::size_t t = queue.front();
+        queue.pop();
+        for (const Neighbour& nb : across_[t]) {
+          // Consistent iff the effective directions differ: flip_nb = flip_t XOR same_direction.
+          const signed char wanted = static_cast<signed char>(flip[t] ^ (nb.same_direction ? 1 : 0));
+          if (flip[nb.triangle] < 0) {
+            flip[nb.triangle] = wanted;
+            queue.push(nb.triangle);
+          } else if (flip[nb.triangle] != wanted) {
+            orientable_[component_of_[t]] = 0;
+          }
         }
       }
     }
   }
 
-  // Vertex links.
-  std::vector<std::pair<std::size_t, std::size_t>> link;
-  for (std::size_t v = 0; v < n_points; ++v) {
-    if (first[v + 1] == first[v]) continue;
-    link.clear();
-    for (std::size_t k = first[v]; k < first[v + 1]; ++k) {
-      const Triangle& tri = triangles[incident[k]];
-      const int at = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
-      link.emplace_back(tri[(at + 1) % 3], tri[(at + 2) % 3]);
+  void check_vertex_links() {
+    std::vector<std::pair<std::size_t, std::size_t>> link;
+    for (std::size_t v = 0; v < n_points_; ++v) {
+      if (first_[v + 1] == first_[v]) continue;
+      link.clear();
+      for (std::size_t k = first_[v]; k < first_[v + 1]; ++k) {
+        const Triangle& tri = triangles_[incident_[k]];
+        const int at = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
+        link.emplace_back(tri[(at + 1) % 3], tri[(at + 2) % 3]);
+      }
+      const LinkKind kind = link_kind(link);
+      if (kind == LinkKind::other) {
+        if (!report_.first_nonmanifold_vertex) report_.first_nonmanifold_vertex = v;
+        ++report_.nonmanifold_vertices;
+        ++component_at(v).nonmanifold_vertices;
+      }
+      if (kind != LinkKind::cycle) manifold_[component_of_[incident_[first_[v]]]] = 0;
     }
-    const LinkKind kind = link_kind(link);
-    if (kind == LinkKind::other) {
-      if (!report.first_nonmanifold_vertex) report.first_nonmanifold_vertex = v;
-      ++report.nonmanifold_vertices;
-      ++components[component_of[incident[first[v]]]].nonmanifold_vertices;
-    }
-    if (kind != LinkKind::cycle) comp_manifold[component_of[incident[first[v]]]] = 0;
   }
 
-  // Triangle quality.
-  report.min_angle_deg = 180.0;
-  for (std::size_t t = 0; t < n_triangles; ++t) {
-    const Vec& a = p[triangles[t][0]];
-    const Vec& b = p[triangles[t][1]];
-    const Vec& c = p[triangles[t][2]];
-    const double twice_area = norm(normal[t]);
-    report.signed_volume += dot(a, cross(b, c)) / 6.0;
-    const double ab = norm(b - a), bc = norm(c - b), ca = norm(a - c);
-    double smallest_angle = 0, ratio = std::numeric_limits<double>::infinity();
-    if (twice_area > 0) {
-      smallest_angle = std::min({angle_between(b - a, c - a), angle_between(c - b, a - b),
-                                 angle_between(a - c, b - c)});
-      const double circumradius = ab * bc * ca / (2.0 * twice_area);
-      ratio = circumradius / std::min({ab, bc, ca});
+  void measure_triangles() {
+    report_.min_angle_deg = 180.0;
+    for (std::size_t t = 0; t < n_triangles_; ++t) {
+      const Vec& a = p_[triangles_[t][0]];
+      const Vec& b = p_[triangles_[t][1]];
+      const Vec& c = p_[triangles_[t][2]];
+      const double twice_area = norm(normal_[t]);
+      report_.signed_volume += dot(a, cross(b, c)) / 6.0;
+      const double ab = norm(b - a), bc = norm(c - b), ca = norm(a - c);
+      double smallest_angle = 0, ratio = std::numeric_limits<double>::infinity();
+      if (twice_area > 0) {
+        smallest_angle = std::min({angle_between(b - a, c - a), angle_between(c - b, a - b),
+                                   angle_between(a - c, b - c)});
+        const double circumradius = ab * bc * ca / (2.0 * twice_area);
+        ratio = circumradius / std::min({ab, bc, ca});
+      }
+      report_.min_angle_deg = std::min(report_.min_angle_deg, smallest_angle * 180.0 / pi);
+      report_.max_radius_edge_ratio = std::max(report_.max_radius_edge_ratio, ratio);
     }
-    report.min_angle_deg = std::min(report.min_angle_deg, smallest_angle * 180.0 / pi);
-    report.max_radius_edge_ratio = std::max(report.max_radius_edge_ratio, ratio);
   }
 
-  // Per-component results.
-  bool all_closed = true, all_manifold = true, all_orientable = true;
-  for (std::size_t c = 0; c < components.size(); ++c) {
-    ComponentReport& comp = components[c];
-    comp.euler_characteristic = static_cast<int>(comp.vertices) - static_cast<int>(comp.edges) +
-                                static_cast<int>(comp.triangles);
-    comp.closed = comp_closed[c];
-    comp.manifold = comp.closed && comp_manifold[c];
-    comp.orientable = comp_orientable[c];
-    comp.genus = (comp.manifold && comp.orientable) ? (2 - comp.euler_characteristic) / 2 : -1;
-    all_closed = all_closed && comp.closed;
-    all_manifold = all_manifold && comp.manifold;
-    all_orientable = all_orientable && comp.orientable;
+  void summarize_components() {
+    bool all_closed = true, all_manifold = true, all_orientable = true;
+    for (std::size_t c = 0; c < components_.size(); ++c) {
+      ComponentReport& comp = components_[c];
+      comp.euler_characteristic = static_cast<int>(comp.vertices) - static_cast<int>(comp.edges) +
+                                  static_cast<int>(comp.triangles);
+      comp.closed = closed_[c];
+      comp.manifold = comp.closed && manifold_[c];
+      comp.orientable = orientable_[c];
+      comp.genus = (comp.manifold && comp.orientable) ? (2 - comp.euler_characteristic) / 2 : -1;
+      all_closed = all_closed && comp.closed;
+      all_manifold = all_manifold && comp.manifold;
+      all_orientable = all_orientable && comp.orientable;
+    }
+    std::sort(components_.begin(), components_.end(), [](const ComponentReport& a, const ComponentReport& b) {
+      return std::make_tuple(a.genus, -static_cast<long long>(a.triangles), -static_cast<long long>(a.vertices)) <
+             std::make_tuple(b.genus, -static_cast<long long>(b.triangles), -static_cast<long long>(b.vertices));
+    });
+    report_.components = static_cast<int>(components_.size());
+    report_.euler_characteristic = static_cast<int>(report_.vertices) - static_cast<int>(report_.edges) +
+                                   static_cast<int>(report_.triangles);
+    for (const ComponentReport& comp : components_) report_.genus_per_component.push_back(comp.genus);
+    report_.component_reports = std::move(components_);
+    report_.closed = all_closed;
+    report_.manifold = all_manifold;
+    report_.orientable = all_orientable;
   }
-  std::sort(components.begin(), components.end(), [](const ComponentReport& a, const ComponentReport& b) {
-    return std::make_tuple(a.genus, -static_cast<long long>(a.triangles), -static_cast<long long>(a.vertices)) <
-           std::make_tuple(b.genus, -static_cast<long long>(b.triangles), -static_cast<long long>(b.vertices));
-  });
-  report.components = static_cast<int>(components.size());
-  report.euler_characteristic = static_cast<int>(report.vertices) - static_cast<int>(report.edges) +
-                                static_cast<int>(report.triangles);
-  for (const ComponentReport& comp : components) report.genus_per_component.push_back(comp.genus);
-  report.component_reports = std::move(components);
-  report.closed = all_closed;
-  report.manifold = all_manifold;
-  report.orientable = all_orientable;
-  return report;
+
+  const std::vector<Point3>& points_;
+  const std::vector<Triangle>& triangles_;
+  const std::size_t n_points_, n_triangles_;
+  MeshReport report_;
+  std::vector<Vec> p_;                       //!< the points' coordinates
+  std::vector<std::size_t> first_, incident_;
+  std::vector<int> component_of_;            //!< triangle → index into components_
+  std::vector<ComponentReport> components_;
+  std::vector<char> closed_, manifold_, orientable_;  //!< per component
+  std::vector<std::vector<Neighbour>> across_;        //!< per triangle, across its manifold edges
+  std::vector<Vec> normal_;                  //!< per triangle, twice its area in length
+  std::unique_ptr<UnionFind> boundary_graph_;         //!< over the vertices, by boundary edges
+  std::vector<char> on_boundary_;
+};
+
+}  // namespace
+
+MeshReport check_mesh(const std::vector<Point3>& points, const std::vector<Triangle>& triangles) {
+  return SoupCheck(points, triangles).run();
 }
 
 void mesh_to_soup(const SurfaceMesh& mesh, std::vector<Point3>& points, std::vector<Triangle>& triangles) {

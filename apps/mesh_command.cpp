@@ -203,21 +203,31 @@ nlohmann::json mesh_statistics(const DelMeshResult& result, const SurfaceInput& 
 
 namespace {
 
-ExitCode run_mesh(const MeshOptions& o) {
-  const MeshRequest request = request_of(o);
-  // One of the two plans: an implicit surface, or a triangle mesh to remesh.
+//! The run's input: one of the two plans, an implicit surface or a triangle mesh to remesh.
+struct MeshRun {
   std::optional<MeshPlan> plan;
   std::optional<MeshInputPlan> mesh_plan;
+
+  const std::string& name() const { return plan ? plan->input.name : mesh_plan->name; }
+  DelMeshOptions& options() { return plan ? plan->options : mesh_plan->options; }
+  const std::vector<std::string>& warnings() const { return plan ? plan->warnings : mesh_plan->warnings; }
+};
+
+MeshRun plan_run(const MeshOptions& o) {
+  const MeshRequest request = request_of(o);
+  MeshRun run;
   if (request.input_mesh) {
-    mesh_plan = plan_mesh_input(request);
+    run.mesh_plan = plan_mesh_input(request);
     if (o.certify)
       throw InvalidInput("--certify needs --surface or --expr (the certificate is proved on an implicit surface)");
   } else {
-    plan = plan_mesh(request);
+    run.plan = plan_mesh(request);
   }
-  const std::string name = plan ? plan->input.name : mesh_plan->name;
-  DelMeshOptions& options = plan ? plan->options : mesh_plan->options;
-  const std::vector<std::string>& warnings = plan ? plan->warnings : mesh_plan->warnings;
+  return run;
+}
+
+//! The mesh and statistics files (defaults from the input's name), checked writable and distinct.
+std::pair<std::string, std::string> output_files(const MeshOptions& o, const std::string& name) {
   const std::string out = o.out_option->count() > 0 ? o.out : name + ".off";
   const std::string stats = o.stats_option->count() > 0 ? o.stats : name + ".json";
   const std::string extension = extension_of(out);
@@ -228,66 +238,105 @@ ExitCode run_mesh(const MeshOptions& o) {
   require_writable_location(stats, "--stats");
   if (out == "-") throw InvalidInput("--out: a mesh file name is required (\"-\" is only for --stats)");
   if (stats == out) throw InvalidInput("--stats and --out name the same file " + out);
+  return {out, stats};
+}
 
-  // All options are valid from here on: a warning now cannot precede an `error:` about them.
-  for (const std::string& warning : warnings) print_warning(warning);
-  if (!o.quiet) {
-    // The header goes out with the first progress report, i.e. once del_mesh has accepted the
-    // surface: a surface rejected as invalid input gives the single `error:` line only.
-    const std::string what =
-        plan ? plan->input.name + " (" + plan->input.surface.text() + " = 0) in " + format_box(plan->input.box)
-             : mesh_plan->path + " (" + std::to_string(mesh_plan->mesh.report.triangles) + " triangles) in " +
-                   format_box(mesh_plan->mesh.box) + ", min spacing " + format_number(options.min_spacing);
-    auto header = std::make_shared<std::string>("delmesh: meshing " + what + ", lambda " + format_number(o.lambda) +
-                                                ", phase " + o.phase);
-    options.progress = [header](const std::string& message) {
-      if (!header->empty()) {
-        std::cerr << *header << std::endl;
-        header->clear();
-      }
-      std::cerr << "delmesh: " << message << std::endl;
-    };
+//! Progress on stderr, after a header that goes out with the first report, i.e. once del_mesh
+//! has accepted the surface: a surface rejected as invalid input gives the single `error:` line only.
+void report_progress(const MeshOptions& o, MeshRun& run) {
+  DelMeshOptions& options = run.options();
+  const std::string what =
+      run.plan ? run.plan->input.name + " (" + run.plan->input.surface.text() + " = 0) in " +
+                     format_box(run.plan->input.box)
+               : run.mesh_plan->path + " (" + std::to_string(run.mesh_plan->mesh.report.triangles) + " triangles) in " +
+                     format_box(run.mesh_plan->mesh.box) + ", min spacing " + format_number(options.min_spacing);
+  auto header = std::make_shared<std::string>("delmesh: meshing " + what + ", lambda " + format_number(o.lambda) +
+                                              ", phase " + o.phase);
+  options.progress = [header](const std::string& message) {
+    if (!header->empty()) {
+      std::cerr << *header << std::endl;
+      header->clear();
+    }
+    std::cerr << "delmesh: " << message << std::endl;
+  };
+}
+
+//! The certificate of the finished mesh (meshing/certificate.h), from the mesh alone, into the
+//! statistics; a run stopped by a limit or a signal, or without triangles, has none (null).
+//! \return whether a signal interrupted the certificate.
+bool certify_result(const MeshOptions& o, const MeshPlan& plan, const DelMeshResult& result,
+                    nlohmann::json& statistics) {
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  mesh_to_soup(result.mesh, points, triangles);
+  const bool ended = result.status == MeshStatus::complete || result.status == MeshStatus::uncertified;
+  if (!ended || triangles.empty()) {
+    statistics["certificate"] = nullptr;
+    print_warning(std::string("--certify: no certificate for a run that ") +
+                  (ended ? "has no triangles" : "stopped before its end"));
+    return false;
   }
+  if (!o.quiet) std::cerr << "delmesh: certifying the mesh from scratch" << std::endl;
+  CertificateOptions certificate_options;
+  certificate_options.seed = o.seed;
+  certificate_options.interrupt = &interrupt_flag();
+  const Certificate certificate = certify_mesh(points, triangles, plan.input.surface, plan.input.box, certificate_options);
+  statistics["certificate"] = to_json(certificate);
+  if (!certificate.interrupted &&
+      (certificate.status != CertificateStatus::certified || !certificate.restricted_matches_mesh))
+    print_warning("--certify: the certificate of the mesh is " + to_text(certificate.status) +
+                  (certificate.restricted_matches_mesh ? "" : ", and Tri S|Sigma differs from the mesh") +
+                  " (statistics: \"certificate\")");
+  return certificate.interrupted;
+}
+
+//! The exit code of a finished run, with its warning.
+ExitCode exit_code(MeshStatus status, const nlohmann::json& statistics, double min_spacing) {
+  switch (status) {
+    case MeshStatus::complete: return ExitCode::complete;
+    case MeshStatus::uncertified:
+      if (statistics["min_spacing"]["reached"].get<bool>())
+        print_warning("the termination floor --min-spacing " + format_number(min_spacing) + " was reached " +
+                      std::to_string(statistics["min_spacing"]["witnesses_below"].get<std::size_t>()) +
+                      " times (statistics: \"min_spacing\")");
+      print_warning("uncertified: the run ended, but " + std::to_string(statistics["unsettled"]["count"].get<std::size_t>()) +
+                    " findings were not settled (statistics: \"unsettled\"); the mesh carries no guarantee");
+      return ExitCode::uncertified;
+    case MeshStatus::interrupted:
+      print_warning("interrupted by a signal: the mesh is partial");
+      return ExitCode::limit_reached;
+    case MeshStatus::point_limit:
+    case MeshStatus::time_limit: break;
+  }
+  print_warning("stopped by " + std::string(status == MeshStatus::time_limit ? "--time-limit" : "--max-points") +
+                " (status " + to_text(status) + "): the mesh is partial");
+  return ExitCode::limit_reached;
+}
+
+//! The steps: plan the run and check its outputs (every option valid from then on, so a warning
+//! cannot precede an `error:` about them), mesh, certify if asked, write, and map the status.
+ExitCode run_mesh(const MeshOptions& o) {
+  MeshRun run = plan_run(o);
+  const std::pair<std::string, std::string> files = output_files(o, run.name());
+  const std::string& out = files.first;
+  const std::string& stats = files.second;
+  for (const std::string& warning : run.warnings()) print_warning(warning);
+  if (!o.quiet) report_progress(o, run);
 
   install_interrupt_handlers();
+  DelMeshOptions& options = run.options();
   options.interrupt = &interrupt_flag();
-  DelMeshResult result = plan ? del_mesh(plan->input.surface, plan->input.box, options) : remesh(*mesh_plan, options);
+  DelMeshResult result =
+      run.plan ? del_mesh(run.plan->input.surface, run.plan->input.box, options) : remesh(*run.mesh_plan, options);
 
   nlohmann::json statistics = result.statistics;
-  if (plan) {
-    statistics = mesh_statistics(result, plan->input, o.seed, out);
+  if (run.plan) {
+    statistics = mesh_statistics(result, run.plan->input, o.seed, out);
   } else {
     statistics["seed"] = o.seed;
     statistics["mesh_file"] = out;
   }
-  // The certificate of the finished mesh (meshing/certificate.h), from the mesh alone.  A run
-  // stopped by a limit or a signal, or without triangles, has none (null).
-  bool certificate_interrupted = false;
-  if (o.certify) {
-    std::vector<Point3> points;
-    std::vector<std::array<std::size_t, 3>> triangles;
-    mesh_to_soup(result.mesh, points, triangles);
-    const bool ended = result.status == MeshStatus::complete || result.status == MeshStatus::uncertified;
-    if (ended && !triangles.empty()) {
-      if (!o.quiet) std::cerr << "delmesh: certifying the mesh from scratch" << std::endl;
-      CertificateOptions certificate_options;
-      certificate_options.seed = o.seed;
-      certificate_options.interrupt = &interrupt_flag();
-      const Certificate certificate =
-          certify_mesh(points, triangles, plan->input.surface, plan->input.box, certificate_options);
-      statistics["certificate"] = to_json(certificate);
-      certificate_interrupted = certificate.interrupted;
-      if (!certificate.interrupted &&
-          (certificate.status != CertificateStatus::certified || !certificate.restricted_matches_mesh))
-        print_warning("--certify: the certificate of the mesh is " + to_text(certificate.status) +
-                      (certificate.restricted_matches_mesh ? "" : ", and Tri S|Sigma differs from the mesh") +
-                      " (statistics: \"certificate\")");
-    } else {
-      statistics["certificate"] = nullptr;
-      print_warning(std::string("--certify: no certificate for a run that ") +
-                    (ended ? "has no triangles" : "stopped before its end"));
-    }
-  }
+  const bool certificate_interrupted = o.certify && certify_result(o, *run.plan, result, statistics);
 
   try {
     write_mesh(result.mesh, out);
@@ -307,29 +356,12 @@ ExitCode run_mesh(const MeshOptions& o) {
     print_warning("interrupted by a signal during the certificate: the mesh is written, its certificate is incomplete");
     return ExitCode::limit_reached;
   }
-  switch (result.status) {
-    case MeshStatus::complete: return ExitCode::complete;
-    case MeshStatus::uncertified:
-      if (statistics["min_spacing"]["reached"].get<bool>())
-        print_warning("the termination floor --min-spacing " + format_number(options.min_spacing) + " was reached " +
-                      std::to_string(statistics["min_spacing"]["witnesses_below"].get<std::size_t>()) +
-                      " times (statistics: \"min_spacing\")");
-      print_warning("uncertified: the run ended, but " + std::to_string(statistics["unsettled"]["count"].get<std::size_t>()) +
-                    " findings were not settled (statistics: \"unsettled\"); the mesh carries no guarantee");
-      return ExitCode::uncertified;
-    case MeshStatus::interrupted:
-      print_warning("interrupted by a signal: the mesh is partial");
-      return ExitCode::limit_reached;
-    case MeshStatus::point_limit:
-    case MeshStatus::time_limit: break;
-  }
-  print_warning("stopped by " + std::string(result.status == MeshStatus::time_limit ? "--time-limit" : "--max-points") +
-                " (status " + to_text(result.status) + "): the mesh is partial");
-  return ExitCode::limit_reached;
+  return exit_code(result.status, statistics, options.min_spacing);
 }
 
 }  // namespace
 
+//! The options of `delmesh mesh`, one add_option each with its help text (hence the length).
 Command add_mesh_command(CLI::App& parent) {
   auto o = std::make_shared<MeshOptions>();
   CLI::App* sub = parent.add_subcommand("mesh", "Mesh a surface with DelMesh; write the mesh and its statistics");

@@ -6,8 +6,18 @@
 # Pass --sanitize to build the libraries, the program and the test suites with AddressSanitizer and
 # UndefinedBehaviorSanitizer (-O1, in build-sanitize/, experiments left out) and run the fast tier
 # there; any sanitizer report fails the test that triggered it.
+# Pass --debug to build everything as Debug with assertions on (assert, CGAL's and Eigen's
+# preconditions, libstdc++'s checked containers via _GLIBCXX_ASSERTIONS; -O1 rather than -O0 for
+# the tests' run time; in build-debug/) and run the fast tier there; a failed assertion fails its test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ "${1:-}" = "--debug" ]; then
+  build=${DELMESH_DEBUG_BUILD_DIR:-build-debug}
+  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -G Ninja -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g -D_GLIBCXX_ASSERTIONS"
+  cmake --build "$build" -j "$(nproc)"
+  ctest --test-dir "$build" --output-on-failure -LE slow
+  exit
+fi
 if [ "${1:-}" = "--sanitize" ]; then
   build=${DELMESH_SANITIZE_BUILD_DIR:-build-sanitize}
   cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -G Ninja -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \

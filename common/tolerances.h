@@ -61,6 +61,12 @@ inline constexpr double homotopy_endgame_start = 0.9;
 //! Homotopy endpoint: a finite endpoint whose Jacobian condition number (2-norm) exceeds this is
 //! singular; it comes back undecided (singular_root) when it lies in the domain.
 inline constexpr double homotopy_singular_condition = 1e10;
+//! Homotopy endpoint: a well-conditioned endpoint is a zero of f only if the Newton correction
+//! J_f(u)⁻¹ f(u) there, after Newton's refinement, is at most this (relative to 1 + ‖u‖∞); else
+//! the path has failed.  Far below homotopy_near_real, so that an endpoint dropped as not real is
+//! not real; at a regular zero the correction is round-off, of the order of the condition number
+//! times the machine epsilon (about 1e-11 at condition 4e8).
+inline constexpr double homotopy_endpoint_newton_step = 1e-6;
 //! Half-width (relative to 1 + ‖u‖∞) of the undecided box reported around a singular endpoint.
 inline constexpr double homotopy_singular_box_radius = 1e-5;
 

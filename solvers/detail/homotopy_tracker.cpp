@@ -477,17 +477,38 @@ class PathTracker {
     return smallest > 0 ? sigma[0] / smallest : std::numeric_limits<double>::infinity();
   }
 
-  //! Newton on f from u (newton()); if the Jacobian there is well conditioned the endpoint is
-  //! regular: fills end (finite) and returns true.
-  bool regular_endpoint(AffineVec u, PathEndpoint& end) {
+  //! ‖J_f(u)⁻¹ f(u)‖∞, the Newton correction at u (∞ if it is not finite): where J_f is well
+  //! conditioned, about the distance from u to the nearest zero of f.
+  double newton_step(const AffineVec& u) {
+    AffineVec fv;
+    AffineMat fj;
+    evaluate_f(u, fv, fj);
+    const AffineVec delta = Eigen::PartialPivLU<AffineMat>(fj).solve(fv);
+    return finite(delta) ? norm(delta) : std::numeric_limits<double>::infinity();
+  }
+
+  //! What Newton on f finds from an endpoint estimate.
+  enum class EndpointTest {
+    regular,          //!< a zero of f with a well-conditioned Jacobian
+    ill_conditioned,  //!< J_f is ill conditioned there (condition > singular_condition)
+    not_a_zero        //!< J_f is well conditioned but the Newton correction is not small: not a zero
+  };
+
+  //! Newton on f from u (newton()).  Regular if the Jacobian there is well conditioned and the
+  //! Newton correction at the refined point is at most homotopy_endpoint_newton_step (relative to
+  //! 1 + ‖u‖∞); then fills end (finite).  The correction is the residual f(u) measured in u, so a
+  //! point where Newton stalled, or was stopped from travelling, is not taken for a zero.
+  EndpointTest regular_endpoint(AffineVec u, PathEndpoint& end) {
     const double last = newton(u);
     const double kappa = condition(u);
-    if (!(kappa <= settings_.singular_condition)) return false;
+    if (!(kappa <= settings_.singular_condition)) return EndpointTest::ill_conditioned;
+    if (!(newton_step(u) <= tolerances::homotopy_endpoint_newton_step * (1 + norm(u))))
+      return EndpointTest::not_a_zero;
     end.outcome = PathOutcome::finite;
     end.point.assign(u.data(), u.data() + n_);
     end.condition = kappa;
     end.last_correction = last;
-    return true;
+    return EndpointTest::regular;
   }
 
   //! Tracks the segment from t_k straight to t = 0 (at most endgame_direct_steps steps) and accepts
@@ -500,7 +521,7 @@ class PathTracker {
     if (!run(TPath{t, -t, false}, 1.0, 1.0, Y, h, end, nullptr, settings_.endgame_direct_steps)) return false;
     if (!finite(Y) || at_infinity(Y)) return false;
     const std::vector<Complex> u = affine(Y);
-    if (!regular_endpoint(Eigen::Map<const AffineVec>(u.data(), n_), end)) return false;
+    if (regular_endpoint(Eigen::Map<const AffineVec>(u.data(), n_), end) != EndpointTest::regular) return false;
     end.s = 1;
     return true;
   }
@@ -527,7 +548,16 @@ class PathTracker {
     for (int j = 0; j < n_; ++j) u[j] = end.point[j];
     // u = X'/X_0: an error δ in X̂ is an error of about δ (1 + ‖u‖) / |X_0| in u
     const double accuracy = change * (1 + norm(u)) / std::abs(estimate[0]);
-    if (end.winding == 1 && regular_endpoint(u, end)) return;
+    if (end.winding == 1) {
+      switch (regular_endpoint(u, end)) {
+        case EndpointTest::regular: return;
+        case EndpointTest::not_a_zero:  // the estimates agreed, but not on a zero of f
+          end.outcome = PathOutcome::failed;
+          end.last_correction = accuracy;
+          return;
+        case EndpointTest::ill_conditioned: break;
+      }
+    }
     // c > 1 (a branch point: the endpoint is singular) or an ill-conditioned Jacobian: the Cauchy
     // estimate, more accurate than Newton (only linear at a singular zero)
     end.outcome = PathOutcome::singular;

@@ -48,7 +48,9 @@
 //! The loops stay at |t| = t_k, away from the singular endpoint, so the estimate is accurate even
 //! where the Jacobian at t = 0 is singular.  The estimate is then classified: at infinity →
 //! diverging; c > 1 → singular; c = 1 → Newton on f in the affine chart, regular if the Jacobian
-//! there is well conditioned, singular otherwise.  An endgame that does not conclude before t_k
+//! there is well conditioned and the Newton correction there is below
+//! tolerances::homotopy_endpoint_newton_step (the point is a zero of f), singular if the Jacobian is
+//! ill conditioned, and failed otherwise (a well-conditioned point that is not a zero).  An endgame that does not conclude before t_k
 //! falls below endgame_min_t, or runs out of the step budget, or whose steps underflow, makes the
 //! path failed: it is reported, never dropped.
 //!
@@ -73,7 +75,8 @@ enum class PathOutcome {
   finite,     //!< the endgame converged to a regular (well-conditioned) zero of f
   singular,   //!< the endgame converged to a zero of f with an ill-conditioned Jacobian (or c > 1)
   diverging,  //!< the path goes to a solution at infinity (X_0 → 0)
-  failed      //!< tracking or the endgame broke down (step underflow, step budget, no convergence)
+  failed      //!< tracking or the endgame broke down (step underflow, step budget, no convergence,
+              //!< or an endpoint estimate that is not a zero of f)
 };
 constexpr auto enum_names(PathOutcome) {
   return name_table<PathOutcome>("PathOutcome", {{PathOutcome::finite, "finite"},

@@ -372,6 +372,34 @@ BOOST_AUTO_TEST_CASE(an_endgame_whose_loops_do_not_close_fails_the_path) {
   BOOST_TEST(count(early, detail::PathOutcome::finite) == 1u);
 }
 
+BOOST_AUTO_TEST_CASE(an_endpoint_estimate_that_is_not_a_zero_fails_the_path) {
+  // x² − 2 with an endgame that accepts a poor estimate: no direct finish, valuations taken as
+  // settled at once, so the loops start at t = 0.35, 2 samples per loop (the trapezoid rule's error
+  // is then O(t_k²): the estimate at t = 0.175 is about 4e-3 from ±√2, the branch point of the
+  // paths being at |t| ≈ 0.74), and any two successive estimates taken to agree.  Newton may move
+  // an estimate only 1e-3 (relative), so it cannot reach ±√2 from there: a path may end finite
+  // only at a zero of f, else it has failed.
+  const auto s = make_system({X() * X() - 2}, {X()});
+  for (const auto& end : track_all(s)) {  // default settings: both zeros, regular
+    BOOST_TEST(end.outcome == detail::PathOutcome::finite);
+    BOOST_TEST(std::abs(end.point[0] * end.point[0] - 2.0) <= 1e-12);
+  }
+  auto settings = detail::TrackerSettings::defaults();
+  settings.endgame_direct_steps = 0;
+  settings.endgame_samples = 2;
+  settings.endgame_start = 0.3;
+  settings.endgame_valuation_stable = 1e300;
+  settings.endgame_tolerance = 1e300;
+  const auto ends = track_all(s, settings);
+  BOOST_REQUIRE(ends.size() == 2u);
+  for (const auto& end : ends) {
+    BOOST_TEST_MESSAGE(end.outcome << " c = " << end.winding << " u = " << end.point[0]);
+    if (end.outcome == detail::PathOutcome::finite)
+      BOOST_TEST(std::abs(end.point[0] * end.point[0] - 2.0) <= 1e-12, "finite endpoint " << end.point[0]);
+  }
+  BOOST_TEST(count(ends, detail::PathOutcome::failed) == 2u);
+}
+
 BOOST_AUTO_TEST_CASE(cauchy_endgame_at_tangent_circles_and_the_circular_points) {
   // x² + y² = 1 and (x − 2)² + y² = 1 touch at (1, 0) (multiplicity 2, one cycle of c = 2);
   // the other two paths go to the circular points at infinity (1 : ±i : 0).

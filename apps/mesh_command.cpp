@@ -138,13 +138,7 @@ MeshPlan plan_mesh(const MeshRequest& r) {
   }
 
   DelMeshOptions options = common_options(r);
-  if (r.solver == "subdivision") {
-    options.solver = SolverBackend::subdivision;
-  } else if (r.solver == "homotopy") {
-    options.solver = SolverBackend::homotopy;
-  } else {
-    throw InvalidInput("--solver: expected subdivision or homotopy, got '" + r.solver + "'");
-  }
+  options.solver = parse_enum<SolverBackend>(r.solver, "--solver");
   limit_options(r, options);
 
   MeshPlan plan{r.surface.resolve(), options, {}};

@@ -41,6 +41,13 @@ class WitnessCollector {
   void add_region(const SurfaceOracle& oracle, const VoronoiCell& cell, const UndecidedBox& region);
   //! An undecided region of SurfaceLine: its projection onto Σ, or unsettled if that fails.
   void add_line_region(const SurfaceOracle& oracle, const UndecidedBox& region);
+  //! A primitive's answer over `face` (a VoronoiFacet or a VoronoiCell): its certified roots,
+  //! then its undecided regions as add_region() takes them.
+  template <class Face>
+  void add_result(const SurfaceOracle& oracle, const Face& face, const SolveResult& result) {
+    for (const auto& root : result.roots) add(root.world);
+    for (const auto& region : result.undecided) add_region(oracle, face, region);
+  }
   void add_unsettled(UnsettledReason reason, const Vec3& where) { unsettled_.push_back({kind_, reason, where}); }
   //! A degenerate facet (VoronoiFacet::degenerate): unsettled unless E has a proved sign on the
   //! bounding box of its points, widened by face_membership_relative_tolerance · diag.

@@ -14,10 +14,9 @@ CheckResult facet_contact_witness(RestrictedDelaunay& restricted, const EdgeKey&
     return collector.take();
   }
   if (restricted.facet_section_certified(pq)) return {};
-  const auto result = oracle.surface_plane_contact(f.origin, f.a, f.b, f.domain);
-  for (const auto& u : result.undecided) collector.add_region(oracle, f, u);
-  // A solver that certifies contacts (not in exclusion mode) would report them as roots.
-  for (const auto& root : result.roots) collector.add(root.world);
+  // A solver in exclusion mode (the implicit oracle) answers with undecided regions only; one
+  // that certifies contacts (the mesh oracle) with roots only.
+  collector.add_result(oracle, f, oracle.surface_plane_contact(f.origin, f.a, f.b, f.domain));
   return collector.take();
 }
 

@@ -37,12 +37,8 @@ CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool 
   // J_{n_p} ∩ V_p = ∅ proved by the gradient cone (solvers/gradient_cone.h): nothing to solve.
   if (oracle.prove_gradient_cone(AffineChart::identity(), cell.domain, n_p)) return {};
   const Vec3 d2 = silhouette_direction(restricted, p, n_p);
-  {
-    const auto result = oracle.silhouette_critical(n_p, d2, cell.domain);
-    for (const auto& root : result.roots) collector.add(root.world);
-    for (const auto& u : result.undecided) collector.add_region(oracle, cell, u);
-    if (collector.points() > 0) return collector.take();
-  }
+  collector.add_result(oracle, cell, oracle.silhouette_critical(n_p, d2, cell.domain));
+  if (collector.points() > 0) return collector.take();
   // Neighbours q such that a Voronoi edge of the facet pq meets Σ (see facets_clean).
   std::vector<VertexId> crossing;
   if (facets_clean) {
@@ -60,9 +56,7 @@ CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool 
     if (!f.valid) continue;
     // J_{n_p} ∩ F = ∅ proved by the gradient cone over F: nothing to solve on this facet.
     if (oracle.prove_gradient_cone(f.chart(), f.domain, n_p)) continue;
-    const auto result = oracle.silhouette_plane(f.origin, f.a, f.b, n_p, f.domain);
-    for (const auto& root : result.roots) collector.add(root.world);
-    for (const auto& u : result.undecided) collector.add_region(oracle, f, u);
+    collector.add_result(oracle, f, oracle.silhouette_plane(f.origin, f.a, f.b, n_p, f.domain));
     if (collector.points() > 0) return collector.take();
   }
   return collector.take();

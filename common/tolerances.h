@@ -209,6 +209,12 @@ inline constexpr double projection_relative_tolerance = 1e-13;
 //! A candidate point is accepted as lying in a Voronoi face's polytope if it violates no
 //! half-space by more than this fraction of the box diagonal.
 inline constexpr double face_membership_relative_tolerance = 1e-7;
+//! Clipping a Voronoi cell's polytope by a half-space (meshing/detail/convex_polytope.h): a vertex
+//! within this fraction of the largest vertex distance to the plane counts as on the plane, and
+//! cut points that close together are one vertex.  The distance is floored at
+//! polytope_clip_min_extent so that the tolerance is positive.
+inline constexpr double polytope_clip_relative_tolerance = 1e-13;
+inline constexpr double polytope_clip_min_extent = 1e-300;
 //! A witness closer than this fraction of the box diagonal to an existing sample is a duplicate
 //! and is not inserted (it is counted as rejected).
 inline constexpr double duplicate_sample_relative_distance = 1e-9;

@@ -22,7 +22,9 @@ class ConvexPolytope {
   explicit ConvexPolytope(const Box3& box);
   //! Back to the box (reusing the buffers of earlier clips).
   void reset(const Box3& box);
-  //! Intersects with {x : <n, x> <= c}; the new face (if any) gets `label`.
+  //! Intersects with {x : <n, x> <= c}; the new face (if any) gets `label`.  A vertex within
+  //! polytope_clip_relative_tolerance (common/tolerances.h) of the largest distance of a vertex
+  //! to the plane counts as on the plane.  n = 0: nothing happens.
   void clip(const V3& n, double c, int label);
   bool empty() const { return faces_.empty(); }
   const std::vector<PolytopeFace>& faces() const { return faces_; }
@@ -30,6 +32,15 @@ class ConvexPolytope {
   std::array<V3, 2> bounding_box() const;
 
  private:
+  // The steps of clip().  signed_distances: side_ for every loop vertex, and the returned eps.
+  double signed_distances(const V3& n, double c, double scale);
+  // The next scratch face spare_[count], emptied.
+  PolytopeFace& next_slot(std::size_t count);
+  // Each face's part inside into spare_[0, count) (count returned); crossings into cut_.
+  std::size_t clip_faces(double eps);
+  // The face on the clipping plane from cut_, as spare_[count] (count incremented if kept).
+  void add_cut_face(const V3& n, double eps, int label, std::size_t& count);
+
   std::vector<PolytopeFace> faces_;
   // Scratch reused by clip() (no allocation per clip once warmed up).
   std::vector<PolytopeFace> spare_;

@@ -159,6 +159,9 @@ struct MeshOracle::Impl {
   std::vector<Vec3> vertex_normal;        // angle-weighted, by vertex index
   std::vector<std::vector<int>> link;     // neighbours in cyclic order, by vertex index
   double feature_tolerance = 0;
+  //! How far from a primitive's domain a mesh face still counts as near it (faces_near): the
+  //! face-membership tolerance of the checks, face_membership_relative_tolerance · diagonal.
+  double face_margin = 0;
 
   explicit Impl(const SurfaceMesh& m) : mesh(m) {
     points.resize(mesh.number_of_vertices());
@@ -227,24 +230,17 @@ struct MeshOracle::Impl {
     return out;
   }
 
-  //! The faces meeting the bounding box of a facet polygon (plane frame) or of a 3-D domain.
-  std::vector<int> faces_near(const Plane& plane, const Domain& domain, double margin) const {
-    Vec3 lo{}, hi{};
-    bool first = true;
+  //! The faces meeting the bounding box of a facet polygon (plane frame) or of a 3-D domain,
+  //! enlarged by face_margin.
+  std::vector<int> faces_near(const Plane& plane, const Domain& domain) const {
+    BoundingBox box;
     for (double u : {domain.box.bounds[0][0], domain.box.bounds[0][1]})
-      for (double v : {domain.box.bounds[1][0], domain.box.bounds[1][1]}) {
-        const Vec3 x = plane.o + u * plane.a + v * plane.b;
-        for (int k = 0; k < 3; ++k) {
-          lo[k] = first ? x[k] : std::min(lo[k], x[k]);
-          hi[k] = first ? x[k] : std::max(hi[k], x[k]);
-        }
-        first = false;
-      }
-    return faces_in_box(lo, hi, margin);
+      for (double v : {domain.box.bounds[1][0], domain.box.bounds[1][1]}) box.add(plane.o + u * plane.a + v * plane.b);
+    return faces_in_box(box.lo, box.hi, face_margin);
   }
-  std::vector<int> faces_near(const Domain& domain, double margin) const {
+  std::vector<int> faces_near(const Domain& domain) const {
     const auto& b = domain.box.bounds;
-    return faces_in_box({b[0][0], b[1][0], b[2][0]}, {b[0][1], b[1][1], b[2][1]}, margin);
+    return faces_in_box({b[0][0], b[1][0], b[2][0]}, {b[0][1], b[1][1], b[2][1]}, face_margin);
   }
 
   //! The faces on the two sides of the edge from vertex u to vertex w (left: u→w in its order).
@@ -297,6 +293,7 @@ MeshOracle::MeshOracle(const SurfaceMesh& mesh, const Box3& box) : box_(box), st
         throw PreconditionViolation("MeshOracle: a vertex of the mesh is not strictly inside the box");
   impl_ = std::make_unique<Impl>(mesh);
   impl_->feature_tolerance = tolerances::mesh_feature_relative_distance * box_.diagonal();
+  impl_->face_margin = tolerances::face_membership_relative_tolerance * box_.diagonal();
 }
 
 MeshOracle::~MeshOracle() = default;
@@ -424,7 +421,7 @@ SolveResult MeshOracle::surface_plane_contact(const Vec3& o, const Vec3& a, cons
   const Plane plane(o, a, b);
   SolveResult result;
   std::set<int> seen;
-  const auto near = m.faces_near(plane, domain, tolerances::face_membership_relative_tolerance * diagonal());
+  const auto near = m.faces_near(plane, domain);
   result.counters.boxes = near.size();
   for (int f : near)
     for (int k = 0; k < 3; ++k) {
@@ -448,7 +445,7 @@ SolveResult MeshOracle::curve_critical(const Vec3& o, const Vec3& a, const Vec3&
   const Impl& m = *impl_;
   const Plane plane(o, a, b);
   SolveResult result;
-  const auto near = m.faces_near(plane, domain, tolerances::face_membership_relative_tolerance * diagonal());
+  const auto near = m.faces_near(plane, domain);
   result.counters.boxes = near.size();
   const SectionGraph section = m.section(plane, near);
   const auto& next = section.next;
@@ -471,7 +468,7 @@ SolveResult MeshOracle::silhouette_plane(const Vec3& o, const Vec3& a, const Vec
   const Plane plane(o, a, b);
   SolveResult result;
   std::set<std::pair<int, int>> seen;
-  const auto near = m.faces_near(plane, domain, tolerances::face_membership_relative_tolerance * diagonal());
+  const auto near = m.faces_near(plane, domain);
   result.counters.boxes = near.size();
   for (int f : near)
     for (int k = 0; k < 3; ++k) {
@@ -492,7 +489,7 @@ SolveResult MeshOracle::silhouette_critical(const Vec3& d, const Vec3& d2, const
   const Impl& m = *impl_;
   SolveResult result;
   std::set<int> seen;
-  const auto near = m.faces_near(domain, tolerances::face_membership_relative_tolerance * diagonal());
+  const auto near = m.faces_near(domain);
   result.counters.boxes = near.size();
   for (int f : near)
     for (int k = 0; k < 3; ++k) {
@@ -579,12 +576,9 @@ std::vector<MeshOracle::Polyline> MeshOracle::section(const Vec3& o, const Vec3&
 
 bool MeshOracle::prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) {
   const Impl& m = *impl_;
-  std::vector<int> near;
-  const double margin = tolerances::face_membership_relative_tolerance * diagonal();
-  if (chart.columns.size() == 2)
-    near = m.faces_near(Plane(chart.origin, chart.columns[0], chart.columns[1]), domain, margin);
-  else
-    near = m.faces_near(domain, margin);
+  const std::vector<int> near = chart.columns.size() == 2
+                                    ? m.faces_near(Plane(chart.origin, chart.columns[0], chart.columns[1]), domain)
+                                    : m.faces_near(domain);
   // One strict sign of ⟨n_f, w⟩ on every face near P (none near: Σ misses P).
   int sign = 0;
   bool proved = true;

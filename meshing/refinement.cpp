@@ -388,7 +388,11 @@ nlohmann::json Refinement::insertions_json() const {
 }
 
 double Refinement::floor_for(CheckKind kind) const {
-  const bool geometry = kind == CheckKind::quality || kind == CheckKind::smooth || kind == CheckKind::size;
+  // The phase of the row whose witness it is: size-bound witnesses are the Quality row's, and a
+  // seed (no row) belongs to the topology phase.
+  const CheckKind row_kind = kind == CheckKind::size ? CheckKind::quality : kind;
+  const auto step = std::find_if(steps_.begin(), steps_.end(), [&](const Step& s) { return s.row->kind == row_kind; });
+  const bool geometry = step != steps_.end() && step->row->phase == CheckPhase::geometry;
   return geometry ? limits_.min_spacing : tolerances::topology_floor_fraction * limits_.min_spacing;
 }
 

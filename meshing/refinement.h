@@ -124,11 +124,12 @@ struct RefinementLimits {
   const std::atomic<bool>* interrupt = nullptr;
   //! A witness this close to a sample (relative to the box diagonal) is rejected as a duplicate.
   double duplicate_relative_distance = tolerances::duplicate_sample_relative_distance;
-  //! The termination floor (world units, 0: none): a witness of Quality, Smooth or the size
-  //! bound closer than this to its nearest sample, or a witness of a topology check (or a seed)
-  //! closer than tolerances::topology_floor_fraction times this, is not inserted but recorded
-  //! (floor_json()); its face is then left unsettled (rejected_witness), so the run cannot end
-  //! complete.  Either floor bounds the number of insertions (a packing argument in the box).
+  //! The termination floor (world units, 0: none): a witness of a geometry row (Quality, Smooth,
+  //! the size bound, a registered geometry check) closer than this to its nearest sample, or a
+  //! witness of a topology row (or a seed) closer than tolerances::topology_floor_fraction times
+  //! this, is not inserted but recorded (floor_json()); its face is then left unsettled
+  //! (rejected_witness), so the run cannot end complete.  Either floor bounds the number of
+  //! insertions (a packing argument in the box).
   double min_spacing = 0;
 };
 
@@ -308,7 +309,7 @@ class Refinement {
   };
   std::map<std::pair<int, Simplex>, UnsettledFace> unsettled_;
   std::vector<Unsettled> standing_unsettled_;
-  //! The floor of min_spacing for a witness of this kind.
+  //! The floor of min_spacing for a witness of this kind, by the phase of its row in the table.
   double floor_for(CheckKind kind) const;
   std::size_t floor_hits_ = 0;           //!< witnesses not inserted because of min_spacing
   std::vector<Vec3> floor_locations_;    //!< the first of them

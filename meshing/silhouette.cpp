@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "meshing/detail/candidates.h"
 #include "meshing/detail/vec3.h"
@@ -11,9 +12,18 @@ namespace delmesh {
 
 using namespace detail;
 
+namespace {
+
+// The last argument of seeded_uniform for this choice: each generic choice of the mesher has its
+// own constant (the facet frames' rotation 17, this direction 29, the height direction 101), so
+// that choices made with the same seed and the same ids are independent of each other.
+constexpr std::int64_t silhouette_direction_stream = 29;
+
+}  // namespace
+
 Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, const Vec3& n_p) {
   const auto frame = orthonormal_frame(n_p);
-  const double angle = 2 * M_PI * seeded_uniform(restricted.seed(), p, 0, 29);
+  const double angle = 2 * M_PI * seeded_uniform(restricted.seed(), p, 0, silhouette_direction_stream);
   return std::cos(angle) * frame.a + std::sin(angle) * frame.b;
 }
 

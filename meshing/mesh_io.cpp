@@ -132,7 +132,7 @@ void write_triangle_soup(const TriangleSoup& soup, const std::string& path) {
   const Format format = format_of(path);
   for (const auto& t : soup.triangles)
     for (std::size_t v : t)
-      if (v >= soup.points.size()) throw InvalidInput("write_mesh: vertex index out of range");
+      if (v >= soup.points.size()) throw PreconditionViolation("write_triangle_soup: vertex index out of range");
 
   const fs::path target(path);
   const fs::path temporary =

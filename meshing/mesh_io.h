@@ -24,7 +24,8 @@ struct TriangleSoup {
 //! file cannot be written.  Writes to a temporary file in the same directory and renames it, so an
 //! existing file is never left half-written.
 void write_mesh(const SurfaceMesh& mesh, const std::string& path);
-//! The same for a soup (the writer used by write_mesh).  Throws InvalidInput on an index out of range.
+//! The same for a soup (the writer used by write_mesh).  \pre every index is below
+//! soup.points.size() (else PreconditionViolation).
 void write_triangle_soup(const TriangleSoup& soup, const std::string& path);
 
 //! Reads a triangle soup from path (OFF, ASCII or binary PLY, OBJ).  Throws InvalidInput, with

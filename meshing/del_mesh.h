@@ -68,7 +68,7 @@ struct DelMeshOptions {
 struct [[nodiscard]] DelMeshResult {
   MeshStatus status = MeshStatus::complete;
   SurfaceMesh mesh;              //!< Tri S|Σ, consistently outward oriented
-  nlohmann::json statistics;     //!< the statistics record of the design contract
+  nlohmann::json statistics;     //!< the run's statistics (the JSON of `delmesh mesh --stats`, built in del_mesh.cpp)
 };
 
 //! Meshes Σ = {E = 0} ⊂ interior(box).  Throws InvalidInput if Σ is empty in the box, meets the

@@ -97,9 +97,8 @@ void check_options(const Box3& box, const DelMeshOptions& options) {
     if (!(box.lo[k] < box.hi[k])) throw InvalidInput("the box is empty");
 }
 
-// The run on a validated input whose clock (time limit, seconds) started at `start`.
-DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double seconds_validation,
-                  std::chrono::steady_clock::time_point start) {
+// The refinement driver's limits from the options; the time limit counts from `start`.
+RefinementLimits refinement_limits(const DelMeshOptions& options, std::chrono::steady_clock::time_point start) {
   RefinementLimits limits;
   limits.min_spacing = options.min_spacing;
   limits.max_points = options.max_points;
@@ -108,45 +107,37 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
                                   std::chrono::duration<double>(options.time_limit_seconds));
   limits.progress = options.progress;
   limits.interrupt = options.interrupt;
-  oracle.set_run_controls(options.seed, limits.deadline);
-  Refinement refinement(oracle, options.seed, limits, RecheckPolicy::new_faces, options.threads);
+  return limits;
+}
 
-  SeedReport seeds;
-  MeshStatus status = sample_topology(refinement, seeds);
-  const std::size_t topology_vertices = refinement.delaunay().size();
-  const double topology_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const nlohmann::json topology_insertions = refinement.insertions_json();
-  const nlohmann::json topology_floor = refinement.floor_json();
-  const bool smooth_enabled = options.lambda < beta_lambda_bound;
-  if (status == MeshStatus::complete && options.phase == MeshPhase::all) {
-    refinement.enable_geometry(options.lambda, options.size_bound);
-    status = refinement.run();
-  }
+// What the statistics keep of the topology phase, read when SampleTopology has ended.
+struct TopologyPhase {
+  std::size_t vertices = 0;
+  double seconds = 0;
+  nlohmann::json insertions, floor;
+};
 
-  DelMeshResult result;
-  std::size_t inconsistent = 0, not_added = 0;
-  result.mesh = output_mesh(refinement, inconsistent, not_added);
-  const MeshReport report = check_mesh(result.mesh);
-
+// The output's defects (statistics names): not a closed 2-manifold, faces Surface_mesh refused,
+// edges oriented the same way by both their triangles.
+std::vector<std::string> output_defects(const MeshReport& report, std::size_t inconsistent, std::size_t not_added) {
   std::vector<std::string> defects;
   if (!(report.closed && report.manifold)) defects.push_back("not_closed_manifold");
   if (not_added > 0) defects.push_back("faces_not_added");
   if (inconsistent > 0) defects.push_back("orientation_inconsistent_edges");
-  const Certification certification = refinement.certify(status, !defects.empty());
-  result.status = certification.status;
-  auto& j = result.statistics;
-  {
-    std::ostringstream s;
-    s << result.status;
-    j["status"] = s.str();
-  }
-  j["lambda"] = options.lambda;
-  j["theorem_applies"] = options.lambda <= lambda0;
-  {
-    std::ostringstream s;
-    s << options.phase;
-    j["phase"] = s.str();
-  }
+  return defects;
+}
+
+template <class T>
+std::string text_of(const T& value) {
+  std::ostringstream s;
+  s << value;
+  return s.str();
+}
+
+// The statistics of the output mesh (its topology and quality, as check_mesh measures them) and
+// the bounds Theorem 6.1 gives at λ.
+void add_output_statistics(nlohmann::json& j, const MeshReport& report, std::size_t inconsistent,
+                           std::size_t not_added, double lambda) {
   j["vertices"] = report.vertices;
   j["triangles"] = report.triangles;
   j["components"] = report.components;
@@ -159,15 +150,21 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
   j["min_angle_deg"] = report.min_angle_deg;
   j["max_radius_edge_ratio"] = report.max_radius_edge_ratio;
   j["max_roughness_rad"] = report.max_roughness_rad;
-  if (options.lambda < beta_lambda_bound) {
-    const auto b = theorem_bounds(options.lambda);
+  if (lambda < beta_lambda_bound) {
+    const auto b = theorem_bounds(lambda);
     j["bounds"] = {{"min_angle_deg", b.min_angle_deg},
                    {"max_radius_edge_ratio", b.max_radius_edge_ratio},
                    {"max_roughness_rad", b.max_roughness_rad}};
   } else {
     j["bounds"] = nlohmann::json::object();
   }
-  j["smooth_enabled"] = smooth_enabled;
+}
+
+// The statistics of the run itself: the refinement's counts and seconds, the oracle's, what was
+// left unsettled, the seeds, the topology phase and the termination floor.
+void add_run_statistics(nlohmann::json& j, Refinement& refinement, const SurfaceOracle& oracle,
+                        const Certification& certification, const std::vector<std::string>& defects,
+                        const SeedReport& seeds, const TopologyPhase& topology) {
   j["insertions"] = refinement.insertions_json();
   j["solver"] = oracle.statistics_json();
   j["solver"]["unresolved_edge_regions"] = certification.unresolved_edge_regions;
@@ -182,15 +179,52 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
   j["height_direction"] = seeds.height_direction;
   j["height_direction_attempts"] = seeds.attempts;
   j["seed_undecided"] = seeds.undecided;
-  j["seed"] = options.seed;
   j["threads"] = refinement.threads();
-  j["topology_phase"] = {{"vertices", topology_vertices},
-                         {"seconds", topology_seconds},
-                         {"insertions", topology_insertions},
-                         {"min_spacing", topology_floor}};
-  j["seconds_validation"] = seconds_validation;
+  j["topology_phase"] = {{"vertices", topology.vertices},
+                         {"seconds", topology.seconds},
+                         {"insertions", topology.insertions},
+                         {"min_spacing", topology.floor}};
   j["min_spacing"] = refinement.floor_json();
   j["points"] = refinement.delaunay().size();
+}
+
+// The run on a validated input whose clock (time limit, seconds) started at `start`: SampleTopology,
+// then (phase all) Quality and Smooth; the output mesh, its defects and the certification; the
+// statistics.
+DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double seconds_validation,
+                  std::chrono::steady_clock::time_point start) {
+  const RefinementLimits limits = refinement_limits(options, start);
+  oracle.set_run_controls(options.seed, limits.deadline);
+  Refinement refinement(oracle, options.seed, limits, RecheckPolicy::new_faces, options.threads);
+
+  SeedReport seeds;
+  MeshStatus status = sample_topology(refinement, seeds);
+  const TopologyPhase topology{refinement.delaunay().size(),
+                               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                               refinement.insertions_json(), refinement.floor_json()};
+  if (status == MeshStatus::complete && options.phase == MeshPhase::all) {
+    refinement.enable_geometry(options.lambda, options.size_bound);
+    status = refinement.run();
+  }
+
+  DelMeshResult result;
+  std::size_t inconsistent = 0, not_added = 0;
+  result.mesh = output_mesh(refinement, inconsistent, not_added);
+  const MeshReport report = check_mesh(result.mesh);
+  const std::vector<std::string> defects = output_defects(report, inconsistent, not_added);
+  const Certification certification = refinement.certify(status, !defects.empty());
+  result.status = certification.status;
+
+  auto& j = result.statistics;
+  j["status"] = text_of(result.status);
+  j["lambda"] = options.lambda;
+  j["theorem_applies"] = options.lambda <= lambda0;
+  j["phase"] = text_of(options.phase);
+  j["smooth_enabled"] = options.lambda < beta_lambda_bound;
+  j["seed"] = options.seed;
+  j["seconds_validation"] = seconds_validation;
+  add_output_statistics(j, report, inconsistent, not_added, options.lambda);
+  add_run_statistics(j, refinement, oracle, certification, defects, seeds, topology);
   j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

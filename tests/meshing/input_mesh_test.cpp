@@ -7,40 +7,27 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
 #include "common/tolerances.h"
 #include "meshing/mesh_io.h"
 #include "tests/meshing/known_meshes.h"
+#include "tests/meshing/temp_dir.h"
 
 using namespace delmesh;
 namespace fs = std::filesystem;
 
 namespace {
 
-//! A fresh temporary directory, removed with its content at the end of the test.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    static int counter = 0;
-    path = fs::temp_directory_path() /
-           ("delmesh_input_mesh_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-  //! Writes the soup as name (format by extension) and returns its path.
-  std::string write(const std::string& name, const test::Soup& soup) const {
-    const std::string file = (path / name).string();
-    write_triangle_soup({soup.points, soup.triangles}, file);
-    return file;
-  }
-};
+using test::TempDir;
+
+//! Writes the soup into dir as name (format by extension) and returns its path.
+std::string write_soup(const TempDir& dir, const std::string& name, const test::Soup& soup) {
+  const std::string file = dir.file(name);
+  write_triangle_soup({soup.points, soup.triangles}, file);
+  return file;
+}
 
 std::vector<std::vector<std::size_t>> polygons_of(const test::Soup& soup) {
   std::vector<std::vector<std::size_t>> polygons;
@@ -74,7 +61,7 @@ BOOST_AUTO_TEST_SUITE(input_mesh_suite)
 
 BOOST_AUTO_TEST_CASE(octahedron_file_gives_box_median_and_counts) {
   TempDir dir;
-  const InputMesh input = read_input_mesh(dir.write("octahedron.off", test::octahedron()));
+  const InputMesh input = read_input_mesh(write_soup(dir, "octahedron.off", test::octahedron()));
   BOOST_TEST(input.report.vertices == 6u);
   BOOST_TEST(input.report.triangles == 8u);
   BOOST_TEST(input.report.components == 1);
@@ -96,7 +83,7 @@ BOOST_AUTO_TEST_CASE(octahedron_file_gives_box_median_and_counts) {
 
 BOOST_AUTO_TEST_CASE(inward_mesh_is_reoriented_outward) {
   TempDir dir;
-  const InputMesh input = read_input_mesh(dir.write("inward.obj", reversed(test::octahedron())));
+  const InputMesh input = read_input_mesh(write_soup(dir, "inward.obj", reversed(test::octahedron())));
   BOOST_TEST(input.components_reversed == 1u);
   BOOST_TEST(input.reoriented());
   BOOST_TEST(input.report.signed_volume == 4.0 / 3.0, boost::test_tools::tolerance(1e-12));

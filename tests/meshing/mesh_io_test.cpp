@@ -9,38 +9,19 @@
 #include <sstream>
 #include <string>
 
-#include <unistd.h>
-
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
 #include "meshing/mesh_checker.h"
 #include "tests/meshing/known_meshes.h"
+#include "tests/meshing/temp_dir.h"
 
 using namespace delmesh;
 namespace fs = std::filesystem;
 
 namespace {
 
-//! A fresh temporary directory, removed with its content at the end of the test.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    static int counter = 0;
-    path = fs::temp_directory_path() /
-           ("delmesh_mesh_io_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-  std::string write(const std::string& name, const std::string& content) const {
-    std::ofstream(file(name), std::ios::binary) << content;
-    return file(name);
-  }
-};
+using test::TempDir;
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -66,8 +66,8 @@ class Subdivision {
   Subdivision(const CompiledSystem& system, const std::vector<double>& parameters, const Domain& domain,
               const SubdivisionOptions& options)
       : system_(system),
-        params_d_(parameters),
-        params_(parameters.begin(), parameters.end()),
+        parameters_(parameters),
+        parameter_intervals_(parameters.begin(), parameters.end()),
         domain_(domain),
         options_(options),
         n_(system.n_unknowns()),
@@ -132,7 +132,7 @@ class Subdivision {
   Item taylor_root(const Box& box) const {
     Item item;
     item.taylor.resize(form_->n_coefficients());
-    form_->coefficients(params_.data(), item.taylor.data());
+    form_->coefficients(parameter_intervals_.data(), item.taylor.data());
     for (std::size_t k = 0; k < n_; ++k) {
       const double c = midpoint(box.x[k]);
       const double r = std::max(box.x[k].sup() - c, c - box.x[k].inf());  // rounded up under the guard
@@ -171,7 +171,7 @@ class Subdivision {
     const Interval cube(-powers[1].sup(), powers[1].sup());
     Interval world[max_unknowns], values[max_equations], jacobian[max_equations * max_unknowns];
     for (std::size_t k = 0; k < n_; ++k) world[k] = item.centre[k] + item.radius[k] * cube;
-    system_.values_and_jacobian(world, params_.data(), values, jacobian);
+    system_.values_and_jacobian(world, parameter_intervals_.data(), values, jacobian);
     for (std::size_t i = 0; i < m_; ++i)
       for (std::size_t k = 0; k < n_; ++k) {
         const Interval scaled = jacobian[i * n_ + k] * item.radius[k];
@@ -316,7 +316,7 @@ class Subdivision {
       return;
     }
     Interval f[max_equations];
-    system_.values(X.x, params_.data(), f);
+    system_.values(X.x, parameter_intervals_.data(), f);
     for (std::size_t i = 0; i < m_; ++i)
       if (certainly_nonzero(f[i])) {
         ++counters_.exclusions;
@@ -326,8 +326,8 @@ class Subdivision {
     Interval mid[max_unknowns], fm[max_equations], jm[max_equations * max_unknowns], fx[max_equations],
         jx[max_equations * max_unknowns];
     for (std::size_t i = 0; i < n_; ++i) mid[i] = Interval(midpoint(X.x[i]));
-    system_.values_and_jacobian(mid, params_.data(), fm, jm);
-    system_.values_and_jacobian(Xp.x, params_.data(), fx, jx);
+    system_.values_and_jacobian(mid, parameter_intervals_.data(), fm, jm);
+    system_.values_and_jacobian(Xp.x, parameter_intervals_.data(), fx, jx);
     // Mean-value form over X with the Jacobian enclosure over Xp ⊇ X.  When the enclosure of
     // f at the single point m is not much tighter than the mean-value enclosure over the whole
     // box, rounding (cancellation) rather than the box size limits what doubles can decide:
@@ -428,8 +428,8 @@ class Subdivision {
     for (int bits : tolerances::escalation_precisions) {
       {
         detail::MpfiPrecisionScope scope(bits);
-        std::vector<MpfiInterval> x(n_), p(params_d_.size()), mid(n_), f(m_), fm(m_), jx(m_ * n_), jm(m_ * n_);
-        for (std::size_t i = 0; i < params_d_.size(); ++i) p[i] = detail::to_mpfi(params_d_[i], params_d_[i]);
+        std::vector<MpfiInterval> x(n_), p(parameters_.size()), mid(n_), f(m_), fm(m_), jx(m_ * n_), jm(m_ * n_);
+        for (std::size_t i = 0; i < parameters_.size(); ++i) p[i] = detail::to_mpfi(parameters_[i], parameters_[i]);
         for (std::size_t i = 0; i < n_; ++i) {
           x[i] = detail::to_mpfi(X.x[i]);
           const double c = midpoint(X.x[i]);
@@ -454,7 +454,7 @@ class Subdivision {
       }
       if (exclusion_) continue;
       const std::vector<Interval> box(Xp.x, Xp.x + n_);
-      const KrawczykResult k = krawczyk_test_mpfi(system_, params_d_, box, bits);
+      const KrawczykResult k = krawczyk_test_mpfi(system_, parameters_, box, bits);
       if (k.outcome == KrawczykOutcome::no_root) {
         ++counters_.exclusions;
         return true;
@@ -492,8 +492,8 @@ class Subdivision {
       Interval mid[max_unknowns], fm[max_equations], jm[max_equations * max_unknowns], fx[max_equations],
           jx[max_equations * max_unknowns];
       for (std::size_t i = 0; i < n_; ++i) mid[i] = Interval(midpoint(X.x[i]));
-      system_.values_and_jacobian(mid, params_.data(), fm, jm);
-      system_.values_and_jacobian(X.x, params_.data(), fx, jx);
+      system_.values_and_jacobian(mid, parameter_intervals_.data(), fm, jm);
+      system_.values_and_jacobian(X.x, parameter_intervals_.data(), fx, jx);
       KrawczykOutcome outcome;
       return krawczyk(X.x, mid, fm, jm, jx, K.x, outcome) && outcome != KrawczykOutcome::no_root;
     });
@@ -502,7 +502,7 @@ class Subdivision {
   //! shrink() with Krawczyk steps in MPFI at `bits` (for roots only MPFI could certify).
   void refine_mpfi(Box& R, int bits) const {
     shrink(R, [this, bits](const Box& X, Box& K) {
-      const KrawczykResult k = krawczyk_test_mpfi(system_, params_d_, std::vector<Interval>(X.x, X.x + n_), bits);
+      const KrawczykResult k = krawczyk_test_mpfi(system_, parameters_, std::vector<Interval>(X.x, X.x + n_), bits);
       std::copy(k.contracted.begin(), k.contracted.end(), K.x);
       return k.outcome != KrawczykOutcome::no_root;
     });
@@ -527,7 +527,7 @@ class Subdivision {
       for (int bits : tolerances::escalation_precisions) {
         ++counters_.precision_escalations;
         for (int it = 0; it < tolerances::boundary_separation_iterations && side == DomainSide::boundary; ++it) {
-          const KrawczykResult k = krawczyk_test_mpfi(system_, params_d_, std::vector<Interval>(R.x, R.x + n_), bits);
+          const KrawczykResult k = krawczyk_test_mpfi(system_, parameters_, std::vector<Interval>(R.x, R.x + n_), bits);
           if (k.outcome == KrawczykOutcome::no_root) break;
           std::copy(k.contracted.begin(), k.contracted.end(), R.x);
           side = classify(domain_, R.x);
@@ -558,7 +558,7 @@ class Subdivision {
   //! The world point of the unknowns, or (0, 0, 0) for a system without one (CompiledSystem
   //! built from bare expressions in fewer than three unknowns).
   void world(const double* u, std::array<double, 3>& out) const {
-    if (system_.has_world_point()) system_.world_point(u, params_d_.data(), out.data());
+    if (system_.has_world_point()) system_.world_point(u, parameters_.data(), out.data());
   }
 
   void add_undecided(const Box& X, UndecidedReason reason) {
@@ -597,8 +597,8 @@ class Subdivision {
   }
 
   const CompiledSystem& system_;
-  const std::vector<double>& params_d_;
-  std::vector<Interval> params_;
+  const std::vector<double>& parameters_;      // as given
+  std::vector<Interval> parameter_intervals_;  // the same as point intervals
   const Domain& domain_;
   SubdivisionOptions options_;
   std::size_t n_, m_;

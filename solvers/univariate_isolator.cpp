@@ -234,8 +234,8 @@ class Isolation {
         deadline_(start, options.time_limit_seconds),
         found_(found_buffer()) {
     found_.clear();
-    for (int i = 0; i < 3; ++i) params_d_[i] = p[i], params_d_[i + 3] = v[i];
-    for (int i = 0; i < 6; ++i) params_[i] = Interval(params_d_[i]);
+    for (int i = 0; i < 3; ++i) parameters_[i] = p[i], parameters_[i + 3] = v[i];
+    for (int i = 0; i < 6; ++i) parameter_intervals_[i] = Interval(parameters_[i]);
     scale_ = t1 - t0;
   }
 
@@ -260,7 +260,7 @@ class Isolation {
     static thread_local std::vector<Interval> c, pool, scratch, left, right;
     static thread_local std::vector<double> c_mid;
     c.resize(block), c_mid.resize(block), scratch.resize(block), left.resize(block), right.resize(block);
-    polynomial.coefficients(params_d_, c.data());
+    polynomial.coefficients(parameters_, c.data());
     for (int k = 0; k <= d; ++k) c_mid[k] = midpoint(c[k]);
     const PolynomialEvaluator eval{d, c.data(), c_mid.data()};
     const Interval h = Interval(t1_) - Interval(t0_);
@@ -403,7 +403,7 @@ class Isolation {
   // ---- any E: interval Newton and bisection on the compiled line system ----
   //! Isolates the zeros in [lo, hi] ⊆ [t0, t1] (the whole segment, or a Bernstein node's range).
   void run_newton(double lo, double hi) {
-    const LineSystemEvaluator eval{line_, params_, params_d_};
+    const LineSystemEvaluator eval{line_, parameter_intervals_, parameters_};
     // The certain sign of E at an end point is evaluated once and handed to the subintervals
     // that share the point (unknown_sign until it is needed).
     const auto sign_at = [&](double t) { return certain_sign(eval.value(Interval(t))); };
@@ -550,7 +550,7 @@ class Isolation {
   //! than the singular width; or after the escalation budget.  Then nothing of it is kept.
   Escalation mpfi_pass(double lo, double hi, int bits, std::vector<Found>& fresh) {
     detail::MpfiPrecisionScope scope(bits);
-    MpfiLineEvaluator e(line_, params_d_);  // destroyed before the scope
+    MpfiLineEvaluator e(line_, parameters_);  // destroyed before the scope
     struct Piece {
       double a, b;
       int sa, sb;
@@ -701,7 +701,7 @@ class Isolation {
       box.box.bounds = {{leaf.lo, leaf.hi}};
       box.reason = leaf.reason;
       const double t = 0.5 * leaf.lo + 0.5 * leaf.hi;
-      line_.world_point(&t, params_d_, box.world.data());
+      line_.world_point(&t, parameters_, box.world.data());
       result.undecided.push_back(std::move(box));
     }
     result.roots.reserve(found_.size());
@@ -710,7 +710,7 @@ class Isolation {
       root.box.bounds = {{f.lo, f.hi}};
       const double t = 0.5 * f.lo + 0.5 * f.hi;
       root.midpoint = {t};
-      line_.world_point(&t, params_d_, root.world.data());
+      line_.world_point(&t, parameters_, root.world.data());
       result.roots.push_back(std::move(root));
     }
     result.counters = counters_;
@@ -722,10 +722,10 @@ class Isolation {
   double t0_, t1_, scale_;
   UnivariateOptions options_;
   detail::Deadline deadline_;
-  double params_d_[6];
-  Interval params_[6];
-  std::vector<Found>& found_;
-  std::vector<std::pair<double, double>> failed_;  // escalations that failed (see inside_failed)  // a per-thread buffer (no allocation per call; calls do not nest)
+  double parameters_[6];             // (p, v) as given
+  Interval parameter_intervals_[6];  // the same as point intervals
+  std::vector<Found>& found_;        // a per-thread buffer (no allocation per call; calls do not nest)
+  std::vector<std::pair<double, double>> failed_;  // escalations that failed (see inside_failed)
   std::vector<Leaf> leaves_;
   SolverCounters counters_;
   std::size_t unresolved_ = 0;

@@ -106,7 +106,7 @@ SolverBox to_solver_box(const std::vector<Interval>& box) {
   return b;
 }
 
-//! Where the (unique) root in `box` lies relative to the domain (s1's rigorous classifier).
+//! Where the (unique) root in `box` lies relative to the domain (the rigorous classify() of domain.h).
 DomainSide place(const std::vector<Interval>& box, const Domain& domain) {
   RoundingGuard guard;
   return classify(domain, box.data());

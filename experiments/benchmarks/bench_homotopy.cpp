@@ -1,7 +1,7 @@
 // bench_homotopy: subdivision vs homotopy on the same systems (Release, one core).
 //  1. SurfaceCritical-shaped Kostlan systems: E a random Kostlan polynomial of degree d in (x, y, z),
 //     the system E = ⟨∇E, a⟩ = ⟨∇E, b⟩ = 0 (degrees d, d−1, d−1; d(d−1)² paths) for a random
-//     direction, over [−1, 1]³.  Targets (issue 3): subdivision ≤ 5 ms at d = 4, ≤ 200 ms at d = 8.
+//     direction, over [−1, 1]³.  Targets: subdivision ≤ 5 ms at d = 4, ≤ 200 ms at d = 8.
 //  2. surface_critical of the catalog surfaces torus, genus2, tanglecube over their catalog box,
 //     in a generic (seeded) direction.
 // Reports medians of the thread CPU time per system (one core), box counts, paths, mean predictor–corrector

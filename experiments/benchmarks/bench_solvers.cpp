@@ -3,7 +3,7 @@
 //!  1. Univariate isolation (isolate_line_roots, Bernstein path, coefficient enclosure included)
 //!     at degree 4–10: E = Π_i (x − r_i) + y² + z² − 1/100 with d random r_i ∈ [−0.9, 0.9], on
 //!     random lines near the x axis, t ∈ [0, 1] covering x ∈ [−1.2, 1.2] (up to d real roots).
-//!     Target (issue 3): ≤ 3 µs per polynomial at degree 10.
+//!     Target: ≤ 3 µs per polynomial at degree 10.
 //!  2. Each primitive of the registry (solvers/primitive_registry.h) on torus, genus2, tanglecube
 //!     with random options over a domain the size of a typical Voronoi cell: around a random
 //!     surface point x (found by isolating a random line through the catalog box), the box is the

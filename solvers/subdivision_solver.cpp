@@ -10,6 +10,7 @@
 #include "solvers/detail/deadline.h"
 #include "solvers/detail/interval_box.h"
 #include "solvers/detail/krawczyk_core.h"
+#include "solvers/detail/solve_progress.h"
 #include "solvers/detail/taylor_form.h"
 #include "solvers/krawczyk.h"
 #include "symbolic/polynomial_form.h"
@@ -94,17 +95,17 @@ class Subdivision {
       work_.push_back(taylor_root(root));
     else
       push(root);
-    while (!work_.empty() && !stopped_) {
+    while (!work_.empty() && !progress_.stopped()) {
       Item item = std::move(work_.back());
       work_.pop_back();
       if (counters_.boxes >= options_.box_budget) {
         work_.push_back(std::move(item));
-        stop(SolveStatus::box_limit);
+        progress_.stop(SolveStatus::box_limit);
         break;
       }
       if (deadline_.expired()) {
         work_.push_back(std::move(item));
-        stop(SolveStatus::time_limit);
+        progress_.stop(SolveStatus::time_limit);
         break;
       }
       ++counters_.boxes;
@@ -563,19 +564,13 @@ class Subdivision {
 
   void add_undecided(const Box& X, UndecidedReason reason) {
     undecided_.push_back({X, reason});
-    if (++unresolved_ > tolerances::non_isolated_box_count) stop(SolveStatus::non_isolated);
-  }
-
-  void stop(SolveStatus status) {
-    stopped_ = true;
-    status_ = status;
+    progress_.count_unresolved();
   }
 
   SolveResult finish() {
     SolveResult result;
-    const bool non_isolated = stopped_ && status_ == SolveStatus::non_isolated;
-    for (const Item& item : work_)
-      undecided_.push_back({item.x, non_isolated ? UndecidedReason::non_isolated : UndecidedReason::budget});
+    const bool non_isolated = progress_.non_isolated();
+    for (const Item& item : work_) undecided_.push_back({item.x, progress_.unexplored_reason()});
     work_.clear();
     for (const auto& [box, reason] : undecided_) {
       UndecidedBox u;
@@ -592,7 +587,7 @@ class Subdivision {
     result.roots = std::move(roots_);
     result.counters = counters_;
     result.counters.seconds = elapsed();
-    result.status = stopped_ ? status_ : (result.undecided.empty() ? SolveStatus::complete : SolveStatus::undecided);
+    result.status = progress_.status(!result.undecided.empty());
     return result;
   }
 
@@ -613,9 +608,7 @@ class Subdivision {
   std::vector<CertifiedRoot> roots_;
   std::vector<std::pair<Box, UndecidedReason>> undecided_;
   SolverCounters counters_;
-  std::size_t unresolved_ = 0;
-  bool stopped_ = false;
-  SolveStatus status_ = SolveStatus::complete;
+  detail::SolveProgress progress_;
 };
 
 }  // namespace

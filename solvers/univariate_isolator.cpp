@@ -12,6 +12,7 @@
 #include "solvers/detail/bernstein.h"
 #include "solvers/detail/deadline.h"
 #include "solvers/detail/interval_box.h"
+#include "solvers/detail/solve_progress.h"
 #include "symbolic/scalar_traits.h"
 
 namespace delmesh {
@@ -284,11 +285,11 @@ class Isolation {
       if (sb == 1) hi = t1_;
     };
     while (!nodes.empty()) {
-      if (stopped_) break;
+      if (progress_.stopped()) break;
       const Node node = nodes.back();
       const std::size_t top = nodes.size() - 1;
       if (deadline_.expired()) {
-        stop(SolveStatus::time_limit);
+        progress_.stop(SolveStatus::time_limit);
         break;
       }
       nodes.pop_back();
@@ -296,7 +297,7 @@ class Isolation {
       ++counters_.boxes;
       if (counters_.boxes > options_.box_budget) {
         nodes.push_back(node);
-        stop(SolveStatus::box_limit);
+        progress_.stop(SolveStatus::box_limit);
         break;
       }
       // Exclusion: all Bernstein coefficients of one certain sign.
@@ -373,7 +374,7 @@ class Isolation {
     for (const Node& node : nodes) {
       double lo, hi;
       t_outer(node.sa, node.sb, lo, hi);
-      leaves_.push_back({lo, hi, stop_reason(), false});
+      leaves_.push_back({lo, hi, progress_.unexplored_reason(), false});
     }
     nodes.clear();
   }
@@ -415,9 +416,9 @@ class Isolation {
     nodes.clear();
     nodes.push_back({lo, hi, unknown_sign, unknown_sign});
     while (!nodes.empty()) {
-      if (stopped_) break;
+      if (progress_.stopped()) break;
       if (deadline_.expired()) {
-        stop(SolveStatus::time_limit);
+        progress_.stop(SolveStatus::time_limit);
         break;
       }
       Node node = nodes.back();
@@ -425,7 +426,7 @@ class Isolation {
       ++counters_.boxes;
       if (counters_.boxes > options_.box_budget) {
         nodes.push_back(node);
-        stop(SolveStatus::box_limit);
+        progress_.stop(SolveStatus::box_limit);
         break;
       }
       const Interval T(node.a, node.b);
@@ -499,7 +500,7 @@ class Isolation {
         if (outcome == Escalation::decided) continue;
         if (outcome == Escalation::timed_out) {
           nodes.push_back(node);
-          stop(SolveStatus::time_limit);
+          progress_.stop(SolveStatus::time_limit);
           break;
         }
         failed_.push_back({node.a, node.b});
@@ -511,7 +512,7 @@ class Isolation {
       nodes.push_back({split, node.b, s_split, sb});
       nodes.push_back({node.a, split, sa, s_split});
     }
-    for (const Node& node : nodes) leaves_.push_back({node.a, node.b, stop_reason(), false});
+    for (const Node& node : nodes) leaves_.push_back({node.a, node.b, progress_.unexplored_reason(), false});
     nodes.clear();
   }
 
@@ -624,7 +625,7 @@ class Isolation {
         if (outcome == Escalation::decided) continue;
         if (outcome == Escalation::timed_out) {
           leaf.reason = UndecidedReason::budget;
-          if (!stopped_) stop(SolveStatus::time_limit);
+          if (!progress_.stopped()) progress_.stop(SolveStatus::time_limit);
         }
       }
       kept.push_back(leaf);
@@ -668,15 +669,7 @@ class Isolation {
     leaves_.push_back({lo, hi, reason, escalated});
     if (reason == UndecidedReason::singular_root || reason == UndecidedReason::boundary_root ||
         reason == UndecidedReason::precision)
-      if (++unresolved_ > tolerances::non_isolated_box_count) stop(SolveStatus::non_isolated);
-  }
-
-  void stop(SolveStatus status) {
-    stopped_ = true;
-    status_ = status;
-  }
-  UndecidedReason stop_reason() const {
-    return status_ == SolveStatus::non_isolated ? UndecidedReason::non_isolated : UndecidedReason::budget;
+      progress_.count_unresolved();
   }
 
   SolveResult finish() {
@@ -686,14 +679,14 @@ class Isolation {
     std::vector<Leaf> merged;
     for (const Leaf& leaf : leaves_) {
       Leaf l = leaf;
-      if (status_ == SolveStatus::non_isolated) l.reason = UndecidedReason::non_isolated;
+      if (progress_.non_isolated()) l.reason = UndecidedReason::non_isolated;
       if (!merged.empty() && merged.back().reason == l.reason && merged.back().hi >= l.lo) {
         merged.back().hi = std::max(merged.back().hi, l.hi);
         merged.back().escalated = merged.back().escalated && l.escalated;
       } else
         merged.push_back(l);
     }
-    if (status_ != SolveStatus::non_isolated) escalate_leaves(merged);
+    if (!progress_.non_isolated()) escalate_leaves(merged);
     deduplicate(merged);
     std::sort(merged.begin(), merged.end(), [](const Leaf& a, const Leaf& b) { return a.lo < b.lo; });
     for (const Leaf& leaf : merged) {
@@ -714,7 +707,7 @@ class Isolation {
       result.roots.push_back(std::move(root));
     }
     result.counters = counters_;
-    result.status = stopped_ ? status_ : (result.undecided.empty() ? SolveStatus::complete : SolveStatus::undecided);
+    result.status = progress_.status(!result.undecided.empty());
     return result;
   }
 
@@ -728,9 +721,7 @@ class Isolation {
   std::vector<std::pair<double, double>> failed_;  // escalations that failed (see inside_failed)
   std::vector<Leaf> leaves_;
   SolverCounters counters_;
-  std::size_t unresolved_ = 0;
-  bool stopped_ = false;
-  SolveStatus status_ = SolveStatus::complete;
+  detail::SolveProgress progress_;
 };
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "solvers/detail/deadline.h"
 #include "solvers/detail/interval_box.h"
 #include "solvers/detail/krawczyk_core.h"
+#include "solvers/detail/mean_value.h"
 #include "solvers/detail/solve_progress.h"
 #include "solvers/detail/taylor_form.h"
 #include "solvers/krawczyk.h"
@@ -226,15 +227,14 @@ class Subdivision {
       const MonomialBasis& basis = form_->basis(i);
       const Interval* a = coefficients(item, i);
       fm[i] = a[0];
-      Interval acc = fm[i];
-      for (std::size_t k = 0; k < n_; ++k) {
-        jm[i * n_ + k] = basis.degree() >= 1 ? a[basis.linear(k)] : Interval(0);
-        acc += jx[i * n_ + k] * Interval(-1, 1);
-      }
-      if (certainly_nonzero(acc)) {
-        ++counters_.exclusions;
-        return;
-      }
+      for (std::size_t k = 0; k < n_; ++k) jm[i * n_ + k] = basis.degree() >= 1 ? a[basis.linear(k)] : Interval(0);
+    }
+    // the mean-value form on the cube: s ∈ [−1, 1]^n around its centre 0
+    Interval offset[max_unknowns], enclosure[max_equations];
+    std::fill(offset, offset + n_, Interval(-1, 1));
+    if (detail::mean_value_excludes(m_, n_, fm, jx, offset, enclosure)) {
+      ++counters_.exclusions;
+      return;
     }
     if (!exclusion_ && krawczyk_on_cube(item, fm, jm, jx, w)) return;
     // Bisect the widest side (in world coordinates).
@@ -333,16 +333,15 @@ class Subdivision {
     // f at the single point m is not much tighter than the mean-value enclosure over the whole
     // box, rounding (cancellation) rather than the box size limits what doubles can decide:
     // bisecting further would not help, so the box is escalated to MPFI.
-    bool precision_limited = false;
-    for (std::size_t i = 0; i < m_; ++i) {
-      Interval acc = fm[i];
-      for (std::size_t j = 0; j < n_; ++j) acc += jx[i * n_ + j] * (X.x[j] - mid[j]);
-      if (certainly_nonzero(acc)) {
-        ++counters_.exclusions;
-        return;
-      }
-      precision_limited = precision_limited || width(fm[i]) > tolerances::precision_limited_ratio * width(acc);
+    Interval offset[max_unknowns], enclosure[max_equations];
+    for (std::size_t j = 0; j < n_; ++j) offset[j] = X.x[j] - mid[j];
+    if (detail::mean_value_excludes(m_, n_, fm, jx, offset, enclosure)) {
+      ++counters_.exclusions;
+      return;
     }
+    bool precision_limited = false;
+    for (std::size_t i = 0; i < m_; ++i)
+      precision_limited = precision_limited || width(fm[i]) > tolerances::precision_limited_ratio * width(enclosure[i]);
     bool escalated = false;
     if (precision_limited) {
       if (escalate(X)) return;
@@ -444,13 +443,11 @@ class Subdivision {
           }
         system_.values_and_jacobian(mid.data(), p.data(), fm.data(), jm.data());
         system_.values_and_jacobian(x.data(), p.data(), f.data(), jx.data());
-        for (std::size_t i = 0; i < m_; ++i) {
-          MpfiInterval acc = fm[i];
-          for (std::size_t j = 0; j < n_; ++j) acc += jx[i * n_ + j] * (x[j] - mid[j]);
-          if (certainly_nonzero(acc)) {
-            ++counters_.exclusions;
-            return true;
-          }
+        std::vector<MpfiInterval> offset(n_), enclosure(m_);
+        for (std::size_t j = 0; j < n_; ++j) offset[j] = x[j] - mid[j];
+        if (detail::mean_value_excludes(m_, n_, fm.data(), jx.data(), offset.data(), enclosure.data())) {
+          ++counters_.exclusions;
+          return true;
         }
       }
       if (exclusion_) continue;

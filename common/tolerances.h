@@ -67,6 +67,12 @@ inline constexpr double homotopy_singular_condition = 1e10;
 //! not real; at a regular zero the correction is round-off, of the order of the condition number
 //! times the machine epsilon (about 1e-11 at condition 4e8).
 inline constexpr double homotopy_endpoint_newton_step = 1e-6;
+//! Homotopy endpoint: Newton on f from an endpoint estimate takes at most this many steps (a
+//! regular zero converges quadratically, a singular one only linearly), and stops before a step
+//! that would carry the point farther than homotopy_endpoint_newton_travel (relative to 1 + ‖u‖∞)
+//! from the estimate: farther is not this path's end.
+inline constexpr int homotopy_endpoint_newton_iterations = 60;
+inline constexpr double homotopy_endpoint_newton_travel = 1e-3;
 //! Half-width (relative to 1 + ‖u‖∞) of the undecided box reported around a singular endpoint.
 inline constexpr double homotopy_singular_box_radius = 1e-5;
 
@@ -128,6 +134,14 @@ inline constexpr double homotopy_endgame_valuation_infinity = 0.05;
 //! Homotopy endgame: the valuation test for infinity is applied only at t_k ≤ this (paths can
 //! look like going to infinity for a while and turn back to a finite endpoint).
 inline constexpr double homotopy_endgame_valuation_max_t = 1e-4;
+//! Homotopy endgame: a homogeneous coordinate below this fraction of ‖X‖∞ gets no valuation
+//! estimate (too small to estimate).  The Aitken extrapolation of the valuation of X_0 takes a
+//! sequence whose last difference is at most homotopy_aitken_settled as settled at its last value,
+//! and one whose ratio of differences is not in (0, homotopy_aitken_max_ratio] as not geometric
+//! (no limit).
+inline constexpr double homotopy_valuation_floor = 1e-10;
+inline constexpr double homotopy_aitken_settled = 1e-3;
+inline constexpr double homotopy_aitken_max_ratio = 0.9;
 //! Homotopy endgame: at t_0, and after a loop closes with winding number 1, the path may finish by
 //! tracking straight to t = 0 in at most this many steps (accepted only at a regular,
 //! well-conditioned zero).

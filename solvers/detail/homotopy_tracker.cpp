@@ -321,7 +321,8 @@ class PathTracker {
 
   //! The valuations ν_j = Re(t X_j'(t) / X_j(t)) of the homogeneous coordinates at real t (along a
   //! Puiseux series X_j ~ a_j t^{ν_j}, this tends to ν_j), shifted so that the smallest is 0; a
-  //! coordinate below 1e-10 ‖X‖∞ gets NaN (too small to estimate).  False if the velocity is not finite.
+  //! coordinate below homotopy_valuation_floor ‖X‖∞ gets NaN (too small to estimate).  False if the
+  //! velocity is not finite.
   bool valuations(const Vec& X, double t, RealVec& nu) {
     Vec v;
     if (!velocity(X, TPath{t, -1.0, true}, 0, v)) return false;  // v = dX/dτ = −t X'(t)
@@ -329,7 +330,8 @@ class PathTracker {
     nu.resize(n_ + 1);
     double smallest = std::numeric_limits<double>::infinity();
     for (int j = 0; j <= n_; ++j) {
-      nu[j] = std::abs(X[j]) > 1e-10 * scale ? -(v[j] / X[j]).real() : std::numeric_limits<double>::quiet_NaN();
+      nu[j] = std::abs(X[j]) > tolerances::homotopy_valuation_floor * scale ? -(v[j] / X[j]).real()
+                                                                              : std::numeric_limits<double>::quiet_NaN();
       if (nu[j] < smallest) smallest = nu[j];
     }
     nu.array() -= smallest;
@@ -337,12 +339,13 @@ class PathTracker {
   }
 
   //! The limit of a sequence ν_0, ν_1, ν_2 converging geometrically (Aitken's Δ²), or NaN when
-  //! the last two differences do not look geometric with ratio in (0, 0.9].
+  //! the last two differences do not look geometric with ratio in (0, homotopy_aitken_max_ratio]
+  //! (a last difference of at most homotopy_aitken_settled: the last value).
   static double aitken(const double (&h)[3]) {
     const double d1 = h[1] - h[0], d2 = h[2] - h[1];
-    if (std::abs(d2) <= 1e-3) return h[2];
+    if (std::abs(d2) <= tolerances::homotopy_aitken_settled) return h[2];
     const double r = d2 / d1;
-    if (!(r > 0 && r <= 0.9)) return std::numeric_limits<double>::quiet_NaN();
+    if (!(r > 0 && r <= tolerances::homotopy_aitken_max_ratio)) return std::numeric_limits<double>::quiet_NaN();
     return h[2] + d2 * r / (1 - r);
   }
 
@@ -441,8 +444,8 @@ class PathTracker {
   //! a jump to another root).  Returns the last correction (∞ if none was taken).
   double newton(AffineVec& u) {
     // A regular zero converges quadratically; a singular one only linearly, hence the budget.
-    constexpr int newton_budget = 60;
-    constexpr double max_travel = 1e-3;  // relative to 1 + ‖u‖: farther is not this path's end
+    constexpr int newton_budget = tolerances::homotopy_endpoint_newton_iterations;
+    constexpr double max_travel = tolerances::homotopy_endpoint_newton_travel;
     const AffineVec u0 = u;
     AffineVec fv;
     AffineMat fj;

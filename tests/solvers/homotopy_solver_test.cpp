@@ -377,7 +377,7 @@ BOOST_AUTO_TEST_CASE(an_endpoint_estimate_that_is_not_a_zero_fails_the_path) {
   // settled at once, so the loops start at t = 0.35, 2 samples per loop (the trapezoid rule's error
   // is then O(t_k²): the estimate at t = 0.175 is about 4e-3 from ±√2, the branch point of the
   // paths being at |t| ≈ 0.74), and any two successive estimates taken to agree.  Newton may move
-  // an estimate only 1e-3 (relative), so it cannot reach ±√2 from there: a path may end finite
+  // an estimate only homotopy_endpoint_newton_travel = 1e-3 (relative), so it cannot reach ±√2 from there: a path may end finite
   // only at a zero of f, else it has failed.
   const auto s = make_system({X() * X() - 2}, {X()});
   for (const auto& end : track_all(s)) {  // default settings: both zeros, regular

@@ -13,8 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "meshing/solver_backend.h"
 #include "common/enum_names.h"
+#include "meshing/solver_backend.h"
 #include "meshing/surface_mesh.h"
 #include "meshing/theorem_bounds.h"
 #include "symbolic/surface.h"

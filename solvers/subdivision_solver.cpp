@@ -311,6 +311,10 @@ class Subdivision {
     return out;
   }
 
+  //! One box in world coordinates: exclusion by the polytope, by the interval values of f and by
+  //! the mean-value form; escalation to MPFI where rounding rather than the box size limits what
+  //! doubles decide; then (square systems) a Krawczyk step on the inflated box (krawczyk_in_box());
+  //! a box still open is bisected, or reported undecided when too small (settle_or_bisect()).
   void process(Box X) {
     if (outside_polytope(X)) {
       ++counters_.exclusions;
@@ -347,38 +351,54 @@ class Subdivision {
       if (escalate(X)) return;
       escalated = true;
     }
-    if (!exclusion_) {
-      Interval contracted[max_unknowns];
-      KrawczykOutcome outcome;
-      if (krawczyk(Xp.x, mid, fm, jm, jx, contracted, outcome)) {
-        if (outcome == KrawczykOutcome::no_root) {
-          ++counters_.exclusions;
-          return;
-        }
-        if (outcome == KrawczykOutcome::unique_root) {
-          ++counters_.krawczyk_successes;
-          Box R;
-          std::copy(contracted, contracted + n_, R.x);
-          handle_root(Xp, R);
-          return;
-        }
-        // Every zero in X lies in K ∩ X.
-        double before = 0, after = 0;
-        detail::widest_side(X.x, n_, &before);
-        for (std::size_t i = 0; i < n_; ++i) {
-          if (detail::disjoint(contracted[i], X.x[i])) {
-            ++counters_.exclusions;
-            return;
-          }
-          X.x[i] = detail::intersection(contracted[i], X.x[i]);
-        }
-        detail::widest_side(X.x, n_, &after);
-        if (after < tolerances::krawczyk_contraction_ratio * before && after >= min_width_) {
-          push(X);
-          return;
-        }
-      }
+    if (!exclusion_ && krawczyk_in_box(X, Xp, mid, fm, jm, jx)) return;
+    settle_or_bisect(X, fx, jx, escalated);
+  }
+
+  //! The Krawczyk step of process() on Xp ⊇ X (mid, fm ∋ f(mid), jm ∋ J(mid), jx ⊇ J(Xp)).  True
+  //! when it disposed of the box: no zero, a unique zero (certified), or every zero in K ∩ X and
+  //! that box enough smaller to be queued again.  Otherwise X is narrowed to K ∩ X when the step
+  //! proved anything, and is left to settle_or_bisect().
+  bool krawczyk_in_box(Box& X, const Box& Xp, const Interval* mid, const Interval* fm, const Interval* jm,
+                       const Interval* jx) {
+    Interval contracted[max_unknowns];
+    KrawczykOutcome outcome;
+    if (!krawczyk(Xp.x, mid, fm, jm, jx, contracted, outcome)) return false;
+    if (outcome == KrawczykOutcome::no_root) {
+      ++counters_.exclusions;
+      return true;
     }
+    if (outcome == KrawczykOutcome::unique_root) {
+      ++counters_.krawczyk_successes;
+      Box R;
+      std::copy(contracted, contracted + n_, R.x);
+      handle_root(Xp, R);
+      return true;
+    }
+    // Every zero in X lies in K ∩ X.
+    double before = 0, after = 0;
+    detail::widest_side(X.x, n_, &before);
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (detail::disjoint(contracted[i], X.x[i])) {
+        ++counters_.exclusions;
+        return true;
+      }
+      X.x[i] = detail::intersection(contracted[i], X.x[i]);
+    }
+    detail::widest_side(X.x, n_, &after);
+    if (after < tolerances::krawczyk_contraction_ratio * before && after >= min_width_) {
+      push(X);
+      return true;
+    }
+    return false;
+  }
+
+  //! A box of process() that is still open (fx ⊇ f(Xp), jx ⊇ J(Xp); escalated: MPFI has already
+  //! examined it).  Narrower than the singular width and, for a square system, with a Jacobian
+  //! determinant not proved non-zero (or narrower than the minimum width): escalated to MPFI, else
+  //! undecided (singular_root where a zero may be singular, else precision).  Otherwise its widest
+  //! side is bisected (undecided with precision if the midpoint does not split it).
+  void settle_or_bisect(const Box& X, const Interval* fx, const Interval* jx, bool escalated) {
     double w = 0;
     const std::size_t side = detail::widest_side(X.x, n_, &w);
     // The interval Jacobian determinant over Xp is needed only on the smallest boxes.

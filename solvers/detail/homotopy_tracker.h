@@ -29,8 +29,8 @@
 //!    t_{k−1} → t_k, at t_k ≤ endgame_valuation_max_t, and whose
 //!    Aitken-extrapolated limit is also ≥ endgame_valuation_infinity, goes to infinity (diverging:
 //!    X_0 → 0 like t^{ν_0}).  Aitken's Δ² maps a ν_0 that decays like t^{1/c} (a finite endpoint)
-//!    to about 0, or declines (ratio of differences above homotopy_aitken_max_ratio), so a slowly settling finite
-//!    endpoint is not taken for one at infinity;
+//!    to about 0, or declines (ratio of differences above homotopy_aitken_max_ratio), so a slowly
+//!    settling finite endpoint is not taken for one at infinity;
 //!  - otherwise, if ν_0 < endgame_valuation_infinity, at t_0 or once the valuations have settled
 //!    (a change ≤ endgame_valuation_stable),
 //!    the loops around t_k are tracked until the path closes up (that count is c; at most

@@ -349,19 +349,88 @@ class PathTracker {
     return h[2] + d2 * r / (1 - r);
   }
 
-  //! The Cauchy endgame from X at t_0 = 1 − endgame_start (see homotopy_tracker.h).
+  //! The valuation estimates of the endgame's levels so far.
+  struct ValuationHistory {
+    RealVec nu, previous;
+    double nu0[3] = {0, 0, 0};  // ν_0 at the last three levels (∞ where X_0 ≈ 0)
+    int stable_levels = 0;      // successive levels whose estimates changed by ≤ endgame_valuation_stable
+  };
+
+  //! The Cauchy estimates of the endgame's levels so far.
+  struct EstimateHistory {
+    Vec estimate, previous;
+    bool have_previous = false;
+    int previous_c = 0;
+    double previous_spread = 0;
+    bool tried_direct = false;  // the direct finish was tried (it is tried once)
+  };
+
+  //! The valuations at X, t_k (level k) added to `history`; false if the velocity is not finite.
+  bool update_valuations(const Vec& X, double t, int level, ValuationHistory& history) {
+    if (!valuations(X, t, history.nu)) return false;
+    double change = std::numeric_limits<double>::infinity();
+    if (level > 0) {
+      change = 0;
+      for (int j = 0; j <= n_; ++j)
+        if (!std::isnan(history.nu[j]) && !std::isnan(history.previous[j]))
+          change = std::max(change, std::abs(history.nu[j] - history.previous[j]));
+    }
+    history.previous = history.nu;
+    history.stable_levels = change <= settings_.endgame_valuation_stable ? history.stable_levels + 1 : 0;
+    history.nu0[0] = history.nu0[1];
+    history.nu0[1] = history.nu0[2];
+    history.nu0[2] = std::isnan(history.nu[0]) ? std::numeric_limits<double>::infinity() : history.nu[0];
+    return true;
+  }
+
+  //! The valuation test for infinity: at t_k ≤ endgame_valuation_max_t, estimates stable at three
+  //! levels, and ν_0 and its Aitken limit ≥ endgame_valuation_infinity.
+  bool diverges_by_valuation(double t, const ValuationHistory& history) const {
+    const double v = settings_.endgame_valuation_infinity;
+    return t <= settings_.endgame_valuation_max_t && history.stable_levels >= 3 && history.nu0[2] >= v &&
+           aitken(history.nu0) >= v;
+  }
+
+  //! After the loops around t_k closed with winding number c (estimate and spread in `history`):
+  //! with c = 1 the direct finish is tried once; then the estimate is accepted (and classified)
+  //! when it agrees with the previous one to endgame_tolerance and, for c > 1, the sheets close in
+  //! (spread shrinking, branches_meet()).  True when the endgame has concluded (end filled).
+  bool conclude(const Vec& X, double t, int c, double spread, EstimateHistory& history, PathEndpoint& end) {
+    if (c == 1 && !history.tried_direct) {  // no branching around |t| ≤ t_k: try to finish directly
+      history.tried_direct = true;
+      if (direct_finish(X, t, end)) return true;
+    }
+    if (history.have_previous) {
+      const double delta = norm(Vec(history.estimate - history.previous));
+      // c > 1: the c sheets must also be closing in on one point, their spread shrinking like
+      // t^{1/c}; a spread that does not shrink means the loops still enclose a branch point away
+      // from t = 0 (the "estimate" is then a mean of distinct endpoints)
+      const bool shrinking =
+          c == 1 || (c == history.previous_c &&
+                     spread <= 0.5 * (1 + std::pow(settings_.endgame_ratio, 1.0 / c)) * history.previous_spread);
+      if (shrinking && delta <= settings_.endgame_tolerance * norm(history.estimate) &&
+          (c == 1 || branches_meet(history.estimate))) {
+        classify(history.estimate, delta, end);
+        return true;
+      }
+    }
+    history.previous = history.estimate;
+    history.previous_c = c;
+    history.previous_spread = spread;
+    history.have_previous = true;
+    return false;
+  }
+
+  //! The Cauchy endgame from X at t_0 = 1 − endgame_start (see homotopy_tracker.h).  At each level
+  //! t_k: refine X, update the valuations (update_valuations()) and test for infinity; where X_0
+  //! does not visibly go to 0, try the direct finish once at t_0, and once the valuations have
+  //! settled run the loops (loops()) and weigh their estimate (conclude()); then go on to t_{k+1}.
   void cauchy_endgame(Vec X, PathEndpoint& end) {
     const double radial = -std::log(settings_.endgame_ratio);  // τ length from t_k to t_{k+1}
     double t = 1 - settings_.endgame_start;
     double loop_h = 2 * M_PI / settings_.endgame_samples, radial_h = radial;
-    Vec previous, estimate;
-    bool have_previous = false;
-    RealVec nu, nu_previous;
-    double nu0[3] = {0, 0, 0};  // ν_0 at the last three levels
-    int stable_levels = 0;
-    bool tried_direct = false;
-    int previous_c = 0;
-    double previous_spread = 0;
+    ValuationHistory valuation;
+    EstimateHistory estimates;
     const auto fail = [&](const Vec& at) {
       end.outcome = PathOutcome::failed;
       end.point = affine(at);
@@ -375,66 +444,32 @@ class PathTracker {
       refine(X, t);
       if (!finite(X)) return fail(X);
       if (at_infinity(X)) return diverging(X);
-      // valuations: how far into the Puiseux regime the path is, and whether X_0 → 0
-      if (!valuations(X, t, nu)) return fail(X);
-      double change = std::numeric_limits<double>::infinity();
-      if (level > 0) {
-        change = 0;
-        for (int j = 0; j <= n_; ++j)
-          if (!std::isnan(nu[j]) && !std::isnan(nu_previous[j]))
-            change = std::max(change, std::abs(nu[j] - nu_previous[j]));
-      }
-      nu_previous = nu;
-      stable_levels = change <= settings_.endgame_valuation_stable ? stable_levels + 1 : 0;
-      nu0[0] = nu0[1];
-      nu0[1] = nu0[2];
-      nu0[2] = std::isnan(nu[0]) ? std::numeric_limits<double>::infinity() : nu[0];  // X_0 ≈ 0
-      const double v = settings_.endgame_valuation_infinity;
-      if (t <= settings_.endgame_valuation_max_t && stable_levels >= 3 && nu0[2] >= v && aitken(nu0) >= v)
-        return diverging(X);
-      // where X_0 does not visibly go to 0: first try to finish directly (a regular endpoint), then
-      // the loops once the valuations have settled
-      if (nu0[2] < v && level == 0 && !tried_direct) {
-        tried_direct = true;
+      if (!update_valuations(X, t, level, valuation)) return fail(X);
+      if (diverges_by_valuation(t, valuation)) return diverging(X);
+      const bool finite_end = valuation.nu0[2] < settings_.endgame_valuation_infinity;  // X_0 not visibly → 0
+      if (finite_end && level == 0 && !estimates.tried_direct) {
+        estimates.tried_direct = true;
         if (direct_finish(X, t, end)) return;
       }
-      if (nu0[2] < v && stable_levels >= 1) {
+      if (finite_end && valuation.stable_levels >= 1) {
         int c = 0;
         double spread = 0;
-        switch (loops(X, t, loop_h, end, c, estimate, spread)) {
+        switch (loops(X, t, loop_h, end, c, estimates.estimate, spread)) {
           case LoopOutcome::failed:
             if (end.steps + end.rejections >= settings_.max_steps) return fail(X);
-            have_previous = false;  // not closed: not in the endgame's operating zone yet
+            estimates.have_previous = false;  // not closed: not in the endgame's operating zone yet
             break;
           case LoopOutcome::diverging: return diverging(X);
           case LoopOutcome::closed:
             end.winding = c;
-            if (!finite(estimate)) return fail(X);
-            if (c == 1 && !tried_direct) {  // no branching around |t| ≤ t_k: try to finish directly
-              tried_direct = true;
-              if (direct_finish(X, t, end)) return;
-            }
-            if (have_previous) {
-              const double delta = norm(Vec(estimate - previous));
-              // c > 1: the c sheets must also be closing in on one point, their spread shrinking
-              // like t^{1/c}; a spread that does not shrink means the loops still enclose a branch
-              // point away from t = 0 (the "estimate" is then a mean of distinct endpoints)
-              const bool shrinking =
-                  c == 1 || (c == previous_c &&
-                             spread <= 0.5 * (1 + std::pow(settings_.endgame_ratio, 1.0 / c)) * previous_spread);
-              if (shrinking && delta <= settings_.endgame_tolerance * norm(estimate) &&
-                  (c == 1 || branches_meet(estimate)))
-                return classify(estimate, delta, end);
-            }
-            previous = estimate;
-            previous_c = c;
-            previous_spread = spread;
-            have_previous = true;
+            if (!finite(estimates.estimate)) return fail(X);
+            if (conclude(X, t, c, spread, estimates, end)) return;
             break;
         }
       }
       const TPath inward{t, -1.0, true};
-      if (t * settings_.endgame_ratio < settings_.endgame_min_t) return fail(have_previous ? estimate : X);
+      if (t * settings_.endgame_ratio < settings_.endgame_min_t)
+        return fail(estimates.have_previous ? estimates.estimate : X);
       if (!run(inward, radial, radial, X, radial_h, end)) return fail(X);
       t = inward.at(radial).real();
     }

@@ -269,6 +269,68 @@ std::vector<Interval> domain_box(const Domain& domain) {
   return box;
 }
 
+//! The earlier of options.deadline and the end of options.time_limit_seconds from `started` (a
+//! limit beyond half the clock's remaining range is no limit: its end would not be representable).
+std::optional<Clock::time_point> solve_deadline(const HomotopyOptions& options, Clock::time_point started) {
+  std::optional<Clock::time_point> deadline = options.deadline;
+  if (options.time_limit_seconds > 0 &&
+      options.time_limit_seconds < 0.5 * std::chrono::duration<double>(Clock::time_point::max() - started).count()) {
+    const auto by_limit =
+        started + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.time_limit_seconds));
+    deadline = deadline ? std::min(*deadline, by_limit) : by_limit;
+  }
+  return deadline;
+}
+
+//! The certified roots without repetitions: intersecting uniqueness boxes whose hull still holds a
+//! unique root are the same root (the narrower box is kept); intersecting boxes whose hull does
+//! not are a cluster, reported undecided.
+std::vector<Certified> distinct_roots(std::vector<Certified> certified, const EndpointCertifier& certifier,
+                                      std::vector<UndecidedBox>& undecided) {
+  std::sort(certified.begin(), certified.end(),
+            [](const Certified& a, const Certified& b) { return a.midpoint < b.midpoint; });
+  std::vector<Certified> distinct;
+  for (auto& root : certified) {
+    bool merged = false;
+    for (auto& kept : distinct) {
+      if (!boxes_intersect(kept.box, root.box)) continue;
+      if (certifier.unique(hull(kept.box, root.box))) {
+        if (width(root.box) < width(kept.box)) kept = root;
+      } else {
+        add_undecided(undecided, hull(kept.box, root.box), UndecidedReason::cluster, certifier);
+      }
+      merged = true;
+      break;
+    }
+    if (!merged) distinct.push_back(std::move(root));
+  }
+  return distinct;
+}
+
+//! Each distinct certified root by its place in the domain: outside (counted), on its boundary
+//! (undecided, boundary_root) or inside (a root of the result).
+void place_roots(const std::vector<Certified>& distinct, const Domain& domain, const EndpointCertifier& certifier,
+                 SolveResult& result) {
+  for (const auto& root : distinct) {
+    switch (place(root.box, domain)) {
+      case DomainSide::outside: ++result.counters.roots_outside; break;
+      case DomainSide::boundary:
+        add_undecided(result.undecided, root.box, UndecidedReason::boundary_root, certifier);
+        break;
+      case DomainSide::inside: {
+        CertifiedRoot r;
+        r.box = to_solver_box(root.box);
+        r.midpoint = root.midpoint;
+        r.world = certifier.world(root.midpoint);
+        r.inside_domain = true;
+        result.roots.push_back(std::move(r));
+        ++result.counters.krawczyk_successes;
+        break;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>& degrees,
@@ -277,15 +339,7 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
   validate(system, degrees, parameters, domain);
   const auto started = Clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - started).count(); };
-  // The earlier of options.deadline and the end of options.time_limit_seconds.
-  // (A limit beyond half the clock's remaining range is no limit: its end would not be representable.)
-  std::optional<Clock::time_point> deadline = options.deadline;
-  if (options.time_limit_seconds > 0 &&
-      options.time_limit_seconds < 0.5 * std::chrono::duration<double>(Clock::time_point::max() - started).count()) {
-    const auto by_limit =
-        started + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.time_limit_seconds));
-    deadline = deadline ? std::min(*deadline, by_limit) : by_limit;
-  }
+  const std::optional<Clock::time_point> deadline = solve_deadline(options, started);
   const std::size_t n = system.n_unknowns();
 
   // γ: a unit complex number drawn from the seed (the gamma trick).
@@ -447,44 +501,7 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
       add_undecided(result.undecided, box, UndecidedReason::precision, certifier);
   }
 
-  // De-duplicate certified roots: intersecting uniqueness boxes whose hull still holds a unique
-  // root are the same root.
-  std::sort(certified.begin(), certified.end(),
-            [](const Certified& a, const Certified& b) { return a.midpoint < b.midpoint; });
-  std::vector<Certified> distinct;
-  for (auto& root : certified) {
-    bool merged = false;
-    for (auto& kept : distinct) {
-      if (!boxes_intersect(kept.box, root.box)) continue;
-      if (certifier.unique(hull(kept.box, root.box))) {
-        if (width(root.box) < width(kept.box)) kept = root;
-      } else {
-        add_undecided(result.undecided, hull(kept.box, root.box), UndecidedReason::cluster, certifier);
-      }
-      merged = true;
-      break;
-    }
-    if (!merged) distinct.push_back(std::move(root));
-  }
-
-  for (auto& root : distinct) {
-    switch (place(root.box, domain)) {
-      case DomainSide::outside: ++result.counters.roots_outside; break;
-      case DomainSide::boundary:
-        add_undecided(result.undecided, root.box, UndecidedReason::boundary_root, certifier);
-        break;
-      case DomainSide::inside: {
-        CertifiedRoot r;
-        r.box = to_solver_box(root.box);
-        r.midpoint = root.midpoint;
-        r.world = certifier.world(root.midpoint);
-        r.inside_domain = true;
-        result.roots.push_back(std::move(r));
-        ++result.counters.krawczyk_successes;
-        break;
-      }
-    }
-  }
+  place_roots(distinct_roots(std::move(certified), certifier, result.undecided), domain, certifier, result);
 
   if (out_of_time) {
     add_undecided(result.undecided, domain_box(domain), UndecidedReason::budget, certifier);

@@ -269,6 +269,110 @@ std::vector<Interval> domain_box(const Domain& domain) {
   return box;
 }
 
+//! Sorts the endpoints of the paths (solve_homotopy): a real regular endpoint near the domain is
+//! certified by Krawczyk or its box is undecided (precision); a near-real one's box is settled by
+//! a certified root in it or a proof that it holds none, else undecided; a singular one near the
+//! domain and not certainly complex gives an undecided box (singular_root); the others are dropped.
+class EndpointSorter {
+ public:
+  EndpointSorter(const Domain& domain, const EndpointCertifier& certifier, std::size_t n)
+      : domain_(domain), certifier_(certifier), n_(n), margin_(tol::homotopy_domain_margin * domain.scale()),
+        near_distance_(tol::homotopy_diverging_near_domain * domain.scale()) {}
+
+  //! One endpoint, counted in `statistics`; certified roots go to `certified`, undecided boxes to
+  //! `undecided`.  True for a diverging path near the domain (the solve is then undecided).
+  bool sort(const PathEndpoint& end, HomotopyStatistics& statistics, std::vector<Certified>& certified,
+            std::vector<UndecidedBox>& undecided) const {
+    switch (end.outcome) {
+      case PathOutcome::finite: ++statistics.finite; break;
+      case PathOutcome::singular: ++statistics.singular; break;
+      case PathOutcome::diverging: ++statistics.diverging; break;
+      case PathOutcome::failed: ++statistics.failed; break;
+    }
+    if (end.outcome == PathOutcome::failed) return false;
+    if (end.outcome == PathOutcome::diverging) {
+      if (!diverging_near_domain(end.point)) return false;
+      ++statistics.diverging_near_domain;
+      return true;
+    }
+    const double scale = 1 + max_abs(end.point);
+    const double imag = max_imag(end.point);
+    std::vector<double> x(n_);
+    for (std::size_t i = 0; i < n_; ++i) x[i] = end.point[i].real();
+    if (end.outcome == PathOutcome::singular) {
+      const double radius =
+          std::max(tol::homotopy_singular_box_radius * scale, 16 * (std::isfinite(end.last_correction) ? end.last_correction : 0));
+      if (imag > std::max(radius, tol::homotopy_near_real * scale)) return false;  // certainly not real
+      const double box_radius = std::max(radius, tol::homotopy_near_real_box_ratio * imag);
+      if (!near_domain(x, box_radius)) return false;
+      if (imag > std::max(radius, tol::homotopy_real_candidate * scale)) ++statistics.near_real;
+      add_undecided(undecided, box_around(x, box_radius), UndecidedReason::singular_root, certifier_);
+      return false;
+    }
+    // finite, regular endpoint
+    if (imag > tol::homotopy_near_real * scale) return false;  // certainly not real
+    if (imag <= tol::homotopy_real_candidate * scale) {
+      if (!near_domain(x, 0)) return false;
+      Certified root;
+      std::vector<Interval> tried;
+      if (certifier_.certify(x, root, tried)) {
+        certified.push_back(std::move(root));
+      } else if (place(tried, domain_) != DomainSide::outside) {
+        add_undecided(undecided, tried, UndecidedReason::precision, certifier_);
+      }
+      return false;
+    }
+    // Near-real: the real root this endpoint may approximate lies about ‖Im u‖∞ from Re u.  The
+    // box there is settled by a root certified in it, or by a proof that it holds none; else it
+    // is undecided.  (A root certified elsewhere is a root all the same, and is kept.)
+    const double box_radius = std::max(tol::homotopy_certify_radius * scale, tol::homotopy_near_real_box_ratio * imag);
+    if (!near_domain(x, box_radius)) return false;
+    ++statistics.near_real;
+    const std::vector<Interval> box = box_around(x, box_radius);
+    Certified root;
+    std::vector<Interval> tried;
+    bool settled = false;
+    if (certifier_.certify(x, root, tried)) {
+      settled = boxes_intersect(root.box, box);
+      certified.push_back(std::move(root));
+    }
+    if (!settled && !certifier_.excludes(box) && place(box, domain_) != DomainSide::outside)
+      add_undecided(undecided, box, UndecidedReason::precision, certifier_);
+    return false;
+  }
+
+ private:
+  //! x within margin + extra of the domain box.
+  bool near_domain(const std::vector<double>& x, double extra) const {
+    for (std::size_t i = 0; i < n_; ++i)
+      if (x[i] < domain_.box.bounds[i][0] - margin_ - extra || x[i] > domain_.box.bounds[i][1] + margin_ + extra)
+        return false;
+    return true;
+  }
+
+  //! A diverging path is near the domain when its last tracked point u (where it was declared at
+  //! infinity) has Re u within near_distance_ of the domain box and ‖Im u‖∞ ≤ near_distance_.
+  bool diverging_near_domain(const std::vector<Complex>& u) const {
+    for (const auto& c : u)
+      if (!std::isfinite(c.real()) || !std::isfinite(c.imag())) return false;
+    std::vector<double> x(n_);
+    for (std::size_t i = 0; i < n_; ++i) x[i] = u[i].real();
+    return max_imag(u) <= near_distance_ && near_domain(x, near_distance_);
+  }
+
+  //! The box of half-width `radius` around x.
+  static std::vector<Interval> box_around(const std::vector<double>& x, double radius) {
+    std::vector<Interval> box;
+    for (double c : x) box.emplace_back(c - radius, c + radius);
+    return box;
+  }
+
+  const Domain& domain_;
+  const EndpointCertifier& certifier_;
+  std::size_t n_;
+  double margin_, near_distance_;
+};
+
 //! The earlier of options.deadline and the end of options.time_limit_seconds from `started` (a
 //! limit beyond half the clock's remaining range is no limit: its end would not be representable).
 std::optional<Clock::time_point> solve_deadline(const HomotopyOptions& options, Clock::time_point started) {
@@ -414,92 +518,11 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
   const bool jumped = find_coincidences(false);
 
   const EndpointCertifier certifier(system, parameters);
-  const double margin = tol::homotopy_domain_margin * domain.scale();
-  const auto near_domain = [&](const std::vector<double>& x, double extra) {
-    for (std::size_t i = 0; i < n; ++i)
-      if (x[i] < domain.box.bounds[i][0] - margin - extra || x[i] > domain.box.bounds[i][1] + margin + extra)
-        return false;
-    return true;
-  };
-
-  // A diverging path is near the domain when its last tracked point u (where it was declared at
-  // infinity) has Re u within `near_distance` of the domain box and ‖Im u‖∞ ≤ near_distance.
-  const double near_distance = tol::homotopy_diverging_near_domain * domain.scale();
-  const auto diverging_near_domain = [&](const std::vector<Complex>& u) {
-    for (const auto& c : u)
-      if (!std::isfinite(c.real()) || !std::isfinite(c.imag())) return false;
-    std::vector<double> x(n);
-    for (std::size_t i = 0; i < n; ++i) x[i] = u[i].real();
-    return max_imag(u) <= near_distance && near_domain(x, near_distance);
-  };
-  // The box of half-width `radius` around x.
-  const auto box_around = [](const std::vector<double>& x, double radius) {
-    std::vector<Interval> box;
-    for (double c : x) box.emplace_back(c - radius, c + radius);
-    return box;
-  };
+  const EndpointSorter sorter(domain, certifier, n);
   bool diverging_undecided = false;
-
   std::vector<Certified> certified;
-  for (const auto& end : ends) {
-    switch (end.outcome) {
-      case PathOutcome::finite: ++statistics.finite; break;
-      case PathOutcome::singular: ++statistics.singular; break;
-      case PathOutcome::diverging: ++statistics.diverging; break;
-      case PathOutcome::failed: ++statistics.failed; break;
-    }
-    if (end.outcome == PathOutcome::failed) continue;
-    if (end.outcome == PathOutcome::diverging) {
-      if (diverging_near_domain(end.point)) {
-        ++statistics.diverging_near_domain;
-        diverging_undecided = true;
-      }
-      continue;
-    }
-    const double scale = 1 + max_abs(end.point);
-    const double imag = max_imag(end.point);
-    std::vector<double> x(n);
-    for (std::size_t i = 0; i < n; ++i) x[i] = end.point[i].real();
-    if (end.outcome == PathOutcome::singular) {
-      const double radius =
-          std::max(tol::homotopy_singular_box_radius * scale, 16 * (std::isfinite(end.last_correction) ? end.last_correction : 0));
-      if (imag > std::max(radius, tol::homotopy_near_real * scale)) continue;  // certainly not real
-      const double box_radius = std::max(radius, tol::homotopy_near_real_box_ratio * imag);
-      if (!near_domain(x, box_radius)) continue;
-      if (imag > std::max(radius, tol::homotopy_real_candidate * scale)) ++statistics.near_real;
-      add_undecided(result.undecided, box_around(x, box_radius), UndecidedReason::singular_root, certifier);
-      continue;
-    }
-    // finite, regular endpoint
-    if (imag > tol::homotopy_near_real * scale) continue;  // certainly not real
-    if (imag <= tol::homotopy_real_candidate * scale) {
-      if (!near_domain(x, 0)) continue;
-      Certified root;
-      std::vector<Interval> tried;
-      if (certifier.certify(x, root, tried)) {
-        certified.push_back(std::move(root));
-      } else if (place(tried, domain) != DomainSide::outside) {
-        add_undecided(result.undecided, tried, UndecidedReason::precision, certifier);
-      }
-      continue;
-    }
-    // Near-real: the real root this endpoint may approximate lies about ‖Im u‖∞ from Re u.  The
-    // box there is settled by a root certified in it, or by a proof that it holds none; else it
-    // is undecided.  (A root certified elsewhere is a root all the same, and is kept.)
-    const double box_radius = std::max(tol::homotopy_certify_radius * scale, tol::homotopy_near_real_box_ratio * imag);
-    if (!near_domain(x, box_radius)) continue;
-    ++statistics.near_real;
-    const std::vector<Interval> box = box_around(x, box_radius);
-    Certified root;
-    std::vector<Interval> tried;
-    bool settled = false;
-    if (certifier.certify(x, root, tried)) {
-      settled = boxes_intersect(root.box, box);
-      certified.push_back(std::move(root));
-    }
-    if (!settled && !certifier.excludes(box) && place(box, domain) != DomainSide::outside)
-      add_undecided(result.undecided, box, UndecidedReason::precision, certifier);
-  }
+  for (const auto& end : ends)
+    if (sorter.sort(end, statistics, certified, result.undecided)) diverging_undecided = true;
 
   place_roots(distinct_roots(std::move(certified), certifier, result.undecided), domain, certifier, result);
 

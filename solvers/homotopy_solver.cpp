@@ -373,6 +373,80 @@ class EndpointSorter {
   double margin_, near_distance_;
 };
 
+//! The paths of one solve from their start solutions, tracked with `settings`; each tracking is
+//! counted in the result's counters and the statistics.
+class Paths {
+ public:
+  Paths(const detail::HomotopyTracker& tracker, const detail::TrackerSettings& settings,
+        std::vector<std::vector<Complex>> starts, SolveResult& result, HomotopyStatistics& statistics)
+      : tracker_(tracker), settings_(settings), starts_(std::move(starts)), result_(result), statistics_(statistics) {}
+
+  //! Tracks every path in order; a path cut off by the deadline is neither an endpoint nor a
+  //! failure: the tracking stops there with out_of_time set.
+  void track_all() {
+    ends.reserve(starts_.size());
+    for (const auto& start : starts_) {
+      PathEndpoint end = track(start, settings_);
+      if (end.stopped) {
+        out_of_time = true;
+        break;
+      }
+      ends.push_back(std::move(end));
+    }
+  }
+
+  //! Two paths at the same regular root: one of them jumped (a regular root is the end of exactly
+  //! one path).  Near-singular coincidences (condition above homotopy_cluster_condition) are a
+  //! multiple root instead: both become singular.  With `retrack`, both jumpers are tracked again
+  //! with stricter settings (unless out of time); without, true if a jump remains.
+  bool find_coincidences(bool retrack) {
+    bool jumped = false;
+    for (std::size_t i = 0; i < ends.size(); ++i)
+      for (std::size_t j = i + 1; j < ends.size(); ++j) {
+        if (!coincide(ends[i], ends[j])) continue;
+        if (std::max(ends[i].condition, ends[j].condition) > tol::homotopy_cluster_condition) {
+          ends[i].outcome = ends[j].outcome = PathOutcome::singular;
+        } else if (retrack && !out_of_time) {
+          for (std::size_t k : {i, j}) {
+            PathEndpoint again = track(starts_[k], settings_.stricter());
+            if (again.stopped) {
+              out_of_time = true;  // keep the first endpoint; the solve reports time_limit
+              break;
+            }
+            ends[k] = std::move(again);
+          }
+        } else {
+          jumped = true;
+        }
+      }
+    return jumped;
+  }
+
+  std::vector<PathEndpoint> ends;  //!< the endpoints, in the order of the start solutions
+  bool out_of_time = false;        //!< the deadline cut the tracking short
+
+ private:
+  PathEndpoint track(const std::vector<Complex>& start, const detail::TrackerSettings& with) {
+    PathEndpoint end = tracker_.track(start, with);
+    ++result_.counters.paths;
+    statistics_.steps += end.steps;
+    statistics_.rejections += end.rejections;
+    statistics_.max_winding = std::max(statistics_.max_winding, end.winding);
+    return end;
+  }
+
+  static bool coincide(const PathEndpoint& a, const PathEndpoint& b) {
+    return a.outcome == PathOutcome::finite && b.outcome == PathOutcome::finite &&
+           distance(a.point, b.point) <= tol::homotopy_duplicate_endpoint * (1 + max_abs(a.point));
+  }
+
+  const detail::HomotopyTracker& tracker_;
+  const detail::TrackerSettings& settings_;
+  std::vector<std::vector<Complex>> starts_;
+  SolveResult& result_;
+  HomotopyStatistics& statistics_;
+};
+
 //! The earlier of options.deadline and the end of options.time_limit_seconds from `started` (a
 //! limit beyond half the clock's remaining range is no limit: its end would not be representable).
 std::optional<Clock::time_point> solve_deadline(const HomotopyOptions& options, Clock::time_point started) {
@@ -465,57 +539,12 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
 
   SolveResult result;
   HomotopyStatistics statistics;
-  const auto track = [&](const std::vector<Complex>& start, const detail::TrackerSettings& with) {
-    PathEndpoint end = tracker.track(start, with);
-    ++result.counters.paths;
-    statistics.steps += end.steps;
-    statistics.rejections += end.rejections;
-    statistics.max_winding = std::max(statistics.max_winding, end.winding);
-    return end;
-  };
-  const auto starts = total_degree_start_solutions(degrees);
-  std::vector<PathEndpoint> ends;
-  ends.reserve(starts.size());
-  bool out_of_time = false;
-  for (const auto& start : starts) {
-    PathEndpoint end = track(start, settings);
-    if (end.stopped) {  // cut off by the deadline: neither an endpoint nor a failure
-      out_of_time = true;
-      break;
-    }
-    ends.push_back(std::move(end));
-  }
-
-  // Two paths at the same regular root: one of them jumped (a regular root is the end of exactly
-  // one path).  Near-singular coincidences are a multiple root instead.  Re-track jumpers once.
-  const auto coincide = [&](const PathEndpoint& a, const PathEndpoint& b) {
-    return a.outcome == PathOutcome::finite && b.outcome == PathOutcome::finite &&
-           distance(a.point, b.point) <= tol::homotopy_duplicate_endpoint * (1 + max_abs(a.point));
-  };
-  const auto find_coincidences = [&](bool retrack) {
-    bool jumped = false;
-    for (std::size_t i = 0; i < ends.size(); ++i)
-      for (std::size_t j = i + 1; j < ends.size(); ++j) {
-        if (!coincide(ends[i], ends[j])) continue;
-        if (std::max(ends[i].condition, ends[j].condition) > tol::homotopy_cluster_condition) {
-          ends[i].outcome = ends[j].outcome = PathOutcome::singular;
-        } else if (retrack && !out_of_time) {
-          for (std::size_t k : {i, j}) {
-            PathEndpoint again = track(starts[k], settings.stricter());
-            if (again.stopped) {
-              out_of_time = true;  // keep the first endpoint; the solve reports time_limit
-              break;
-            }
-            ends[k] = std::move(again);
-          }
-        } else {
-          jumped = true;
-        }
-      }
-    return jumped;
-  };
-  find_coincidences(true);
-  const bool jumped = find_coincidences(false);
+  Paths paths(tracker, settings, total_degree_start_solutions(degrees), result, statistics);
+  paths.track_all();
+  paths.find_coincidences(true);
+  const bool jumped = paths.find_coincidences(false);
+  const std::vector<PathEndpoint>& ends = paths.ends;
+  const bool out_of_time = paths.out_of_time;
 
   const EndpointCertifier certifier(system, parameters);
   const EndpointSorter sorter(domain, certifier, n);

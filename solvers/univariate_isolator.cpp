@@ -402,17 +402,22 @@ class Isolation {
   }
 
   // ---- any E: interval Newton and bisection on the compiled line system ----
-  //! Isolates the zeros in [lo, hi] ⊆ [t0, t1] (the whole segment, or a Bernstein node's range).
+  //! An interval [a, b] of run_newton's work list, with the certain signs of E at a and b (or
+  //! unknown_sign until they are needed: a sign is evaluated once and handed to the subintervals
+  //! that share the point).
+  struct NewtonNode {
+    double a, b;
+    int sa, sb;
+  };
+
+  int sign_at(const LineSystemEvaluator& eval, double t) const { return certain_sign(eval.value(Interval(t))); }
+
+  //! Isolates the zeros in [lo, hi] ⊆ [t0, t1] (the whole segment, or a Bernstein node's range):
+  //! each interval of the work list is examined by newton_step() until the list is empty or the
+  //! solve stops; intervals left then are undecided (unexplored).
   void run_newton(double lo, double hi) {
     const LineSystemEvaluator eval{line_, parameter_intervals_, parameters_};
-    // The certain sign of E at an end point is evaluated once and handed to the subintervals
-    // that share the point (unknown_sign until it is needed).
-    const auto sign_at = [&](double t) { return certain_sign(eval.value(Interval(t))); };
-    struct Node {
-      double a, b;
-      int sa, sb;  // certain signs of E at a and b, or unknown_sign
-    };
-    static thread_local std::vector<Node> nodes;
+    static thread_local std::vector<NewtonNode> nodes;
     nodes.clear();
     nodes.push_back({lo, hi, unknown_sign, unknown_sign});
     while (!nodes.empty()) {
@@ -421,7 +426,7 @@ class Isolation {
         progress_.stop(SolveStatus::time_limit);
         break;
       }
-      Node node = nodes.back();
+      NewtonNode node = nodes.back();
       nodes.pop_back();
       ++counters_.boxes;
       if (counters_.boxes > options_.box_budget) {
@@ -429,91 +434,112 @@ class Isolation {
         progress_.stop(SolveStatus::box_limit);
         break;
       }
-      const Interval T(node.a, node.b);
-      Interval f, df;
-      eval.value_and_derivative(T, f, df);
-      if (certainly_nonzero(f)) {
-        ++counters_.exclusions;
-        continue;
-      }
-      const double w = (node.b - node.a) / scale_;
-      if (node.sa == unknown_sign) node.sa = sign_at(node.a);
-      if (node.sb == unknown_sign) node.sb = sign_at(node.b);
-      const int sa = node.sa, sb = node.sb;
-      const bool monotone = certainly_nonzero(df);
-      if (monotone && sa != 0 && sb != 0) {
-        if (sa == sb) {
-          ++counters_.exclusions;
-        } else {
-          double lo, hi;
-          if (refine_root(eval, node.a, node.b, midpoint(T), scale_, lo, hi))
-            certified(lo, hi, true);  // inside [a, b], where E' ≠ 0
-          else
-            undecided_leaf(node.a, node.b, UndecidedReason::precision);
-        }
-        continue;
-      }
-      // Mean-value form over T: E(m) + E'(T) (T − m).
-      const double m = midpoint(T);
-      const Interval fm = eval.value(Interval(m));
-      const Interval mean_value = fm + df * (T - Interval(m));
-      if (certainly_nonzero(mean_value)) {
-        ++counters_.exclusions;
-        continue;
-      }
-      if (monotone) {
-        // Interval Newton: every zero in T lies in m − f(m)/f'(T).
-        const Interval n = Interval(m) - fm / df;
-        if (detail::is_finite(n)) {
-          if (detail::disjoint(n, T)) {
-            ++counters_.exclusions;
-            continue;
-          }
-          const Interval c = detail::intersection(n, T);
-          if (detail::width(c) < tolerances::krawczyk_contraction_ratio * detail::width(T) && c.inf() < c.sup()) {
-            nodes.push_back({c.inf(), c.sup(), c.inf() == node.a ? sa : unknown_sign,
-                             c.sup() == node.b ? sb : unknown_sign});
-            continue;
-          }
-        }
-      }
-      const bool boundary = (node.a == t0_ && sa == 0) || (node.b == t1_ && sb == 0);
-      const bool leaf = is_leaf(w, monotone);
-      // Split, avoiding a split point at which the value is not certainly nonzero.
-      double split = midpoint(T);
-      int s_split = unknown_sign;
-      for (double ratio : split_ratios) {
-        if (leaf) break;
-        split = node.a + ratio * (node.b - node.a);
-        if (split <= node.a || split >= node.b) split = midpoint(T);
-        s_split = sign_at(split);
-        if (s_split != 0) break;
-      }
-      // Rounding, not T's width, limits what doubles can decide on T when the value at one point
-      // is nearly as uncertain as the mean-value form over all of T, or when no candidate split
-      // point has a certain sign: T is escalated to MPFI now (once per region).
-      const bool rounding_limited =
-          detail::width(fm) > tolerances::univariate_precision_limited_ratio * detail::width(mean_value) ||
-          s_split == 0;
-      if (rounding_limited && !inside_failed(node.a, node.b)) {
-        const Escalation outcome = escalate(node.a, node.b);
-        if (outcome == Escalation::decided) continue;
-        if (outcome == Escalation::timed_out) {
-          nodes.push_back(node);
-          progress_.stop(SolveStatus::time_limit);
-          break;
-        }
-        failed_.push_back({node.a, node.b});
-      }
-      if (leaf) {
-        undecided_leaf(node.a, node.b, leaf_reason(boundary, monotone), inside_failed(node.a, node.b));
-        continue;
-      }
-      nodes.push_back({split, node.b, s_split, sb});
-      nodes.push_back({node.a, split, sa, s_split});
+      if (!newton_step(eval, node, nodes)) break;
     }
-    for (const Node& node : nodes) leaves_.push_back({node.a, node.b, progress_.unexplored_reason(), false});
+    for (const NewtonNode& node : nodes) leaves_.push_back({node.a, node.b, progress_.unexplored_reason(), false});
     nodes.clear();
+  }
+
+  //! One interval T = [a, b] of run_newton(): excluded (E(T), the mean-value form or interval
+  //! Newton proves no zero; E monotone with the same certain sign at both ends), certified (E
+  //! monotone with a sign change), contracted by interval Newton (queued again), or handed to
+  //! split_or_settle().  False when the solve must stop (node queued again).
+  bool newton_step(const LineSystemEvaluator& eval, NewtonNode node, std::vector<NewtonNode>& nodes) {
+    const Interval T(node.a, node.b);
+    Interval f, df;
+    eval.value_and_derivative(T, f, df);
+    if (certainly_nonzero(f)) {
+      ++counters_.exclusions;
+      return true;
+    }
+    if (node.sa == unknown_sign) node.sa = sign_at(eval, node.a);
+    if (node.sb == unknown_sign) node.sb = sign_at(eval, node.b);
+    const int sa = node.sa, sb = node.sb;
+    const bool monotone = certainly_nonzero(df);
+    if (monotone && sa != 0 && sb != 0) {
+      if (sa == sb) {
+        ++counters_.exclusions;
+      } else {
+        double lo, hi;
+        if (refine_root(eval, node.a, node.b, midpoint(T), scale_, lo, hi))
+          certified(lo, hi, true);  // inside [a, b], where E' ≠ 0
+        else
+          undecided_leaf(node.a, node.b, UndecidedReason::precision);
+      }
+      return true;
+    }
+    // Mean-value form over T: E(m) + E'(T) (T − m).
+    const double m = midpoint(T);
+    const Interval fm = eval.value(Interval(m));
+    const Interval mean_value = fm + df * (T - Interval(m));
+    if (certainly_nonzero(mean_value)) {
+      ++counters_.exclusions;
+      return true;
+    }
+    if (monotone) {
+      // Interval Newton: every zero in T lies in m − f(m)/f'(T).
+      const Interval n = Interval(m) - fm / df;
+      if (detail::is_finite(n)) {
+        if (detail::disjoint(n, T)) {
+          ++counters_.exclusions;
+          return true;
+        }
+        const Interval c = detail::intersection(n, T);
+        if (detail::width(c) < tolerances::krawczyk_contraction_ratio * detail::width(T) && c.inf() < c.sup()) {
+          nodes.push_back({c.inf(), c.sup(), c.inf() == node.a ? sa : unknown_sign,
+                           c.sup() == node.b ? sb : unknown_sign});
+          return true;
+        }
+      }
+    }
+    return split_or_settle(eval, node, fm, mean_value, monotone, nodes);
+  }
+
+  //! An interval of newton_step() still open (fm ∋ E(midpoint), mean_value its mean-value form,
+  //! monotone: E' ≠ 0 on it): escalated to MPFI (once per region) where rounding limits what
+  //! doubles decide; then, a leaf (is_leaf()) is undecided, any other interval is split (at a
+  //! point with a certain sign of E if one of split_ratios gives one).  False when the escalation
+  //! ran out of time (node queued again, the solve stopped).
+  bool split_or_settle(const LineSystemEvaluator& eval, const NewtonNode& node, const Interval& fm,
+                       const Interval& mean_value, bool monotone, std::vector<NewtonNode>& nodes) {
+    const Interval T(node.a, node.b);
+    const int sa = node.sa, sb = node.sb;
+    const double w = (node.b - node.a) / scale_;
+    const bool boundary = (node.a == t0_ && sa == 0) || (node.b == t1_ && sb == 0);
+    const bool leaf = is_leaf(w, monotone);
+    // Split, avoiding a split point at which the value is not certainly nonzero.
+    double split = midpoint(T);
+    int s_split = unknown_sign;
+    for (double ratio : split_ratios) {
+      if (leaf) break;
+      split = node.a + ratio * (node.b - node.a);
+      if (split <= node.a || split >= node.b) split = midpoint(T);
+      s_split = sign_at(eval, split);
+      if (s_split != 0) break;
+    }
+    // Rounding, not T's width, limits what doubles can decide on T when the value at one point
+    // is nearly as uncertain as the mean-value form over all of T, or when no candidate split
+    // point has a certain sign: T is escalated to MPFI now (once per region).
+    const bool rounding_limited =
+        detail::width(fm) > tolerances::univariate_precision_limited_ratio * detail::width(mean_value) ||
+        s_split == 0;
+    if (rounding_limited && !inside_failed(node.a, node.b)) {
+      const Escalation outcome = escalate(node.a, node.b);
+      if (outcome == Escalation::decided) return true;
+      if (outcome == Escalation::timed_out) {
+        nodes.push_back(node);
+        progress_.stop(SolveStatus::time_limit);
+        return false;
+      }
+      failed_.push_back({node.a, node.b});
+    }
+    if (leaf) {
+      undecided_leaf(node.a, node.b, leaf_reason(boundary, monotone), inside_failed(node.a, node.b));
+      return true;
+    }
+    nodes.push_back({split, node.b, s_split, sb});
+    nodes.push_back({node.a, split, sa, s_split});
+    return true;
   }
 
   // ---- MPFI escalation of undecided intervals ----

@@ -229,6 +229,13 @@ inline constexpr double face_membership_relative_tolerance = 1e-7;
 //! polytope_clip_min_extent so that the tolerance is positive.
 inline constexpr double polytope_clip_relative_tolerance = 1e-13;
 inline constexpr double polytope_clip_min_extent = 1e-300;
+//! A half-space whose normal makes |⟨n, d⟩| ≤ this·|n|·|d| with a line's direction d is taken as
+//! parallel to the line when the line is clipped by it: it keeps the whole line or nothing.
+inline constexpr double parallel_half_space_relative_slope = 1e-15;
+//! Two corners of a clipped Voronoi facet closer than this fraction of the facet's extent (or
+//! of the box diagonal, if larger) are one corner; a facet whose polygon then has fewer than
+//! three corners or no more area than this length squared is degenerate.
+inline constexpr double facet_repeated_corner_relative_distance = 1e-12;
 //! A witness closer than this fraction of the box diagonal to an existing sample is a duplicate
 //! and is not inserted (it is counted as rejected).
 inline constexpr double duplicate_sample_relative_distance = 1e-9;

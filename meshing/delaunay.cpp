@@ -292,6 +292,33 @@ std::vector<TriangleKey> Delaunay::edge_triangles(const EdgeKey& e) const {
   return out;
 }
 
+std::vector<Delaunay::RingTriangle> Delaunay::edge_ring(const EdgeKey& e) const {
+  std::vector<RingTriangle> out;
+  const auto& dt = impl_->dt;
+  if (dt.dimension() != 3 || !contains(e[0]) || !contains(e[1])) return out;
+  detail::Dt::Cell_handle c;
+  int i = 0, j = 0;
+  if (!dt.is_edge(impl_->handles[e[0]], impl_->handles[e[1]], c, i, j)) return out;
+  auto start = dt.incident_facets(detail::Dt::Edge(c, i, j));
+  auto f = start;
+  do {
+    const auto cell = f->first;
+    const int opposite = f->second;
+    VertexId third = -1;
+    bool finite = true;
+    for (int k = 1; k <= 3; ++k) {
+      const auto v = cell->vertex((opposite + k) & 3);
+      if (dt.is_infinite(v)) finite = false;
+      else if (v->info().id != e[0] && v->info().id != e[1]) third = v->info().id;
+    }
+    if (finite) {
+      const auto other = cell->neighbor(opposite);
+      out.push_back({third, {vertex_id(dt, cell->vertex(opposite)), vertex_id(dt, other->vertex(other->index(cell)))}});
+    }
+  } while (++f != start);
+  return out;
+}
+
 std::vector<EdgeKey> Delaunay::incident_edges(VertexId id) const {
   std::vector<EdgeKey> out;
   for (VertexId w : neighbours(id)) out.push_back(make_edge_key(id, w));

@@ -92,6 +92,16 @@ class Delaunay {
   std::vector<std::array<VertexId, 4>> incident_cells(VertexId x) const;
   //! Delaunay triangles that contain the edge e (sorted keys, ascending; empty if e is not an edge).
   std::vector<TriangleKey> edge_triangles(const EdgeKey& e) const;
+  //! A finite triangle pqr around a Delaunay edge pq: its third vertex r and its apexes (as
+  //! triangle_apexes).
+  struct RingTriangle {
+    VertexId third;
+    std::array<VertexId, 2> apexes;
+  };
+  //! In dimension 3: the finite triangles around the edge e, in the order of the cells around e
+  //! (one circulation, no lookup per triangle); empty if e is not an edge.  Below dimension 3:
+  //! empty.
+  std::vector<RingTriangle> edge_ring(const EdgeKey& e) const;
   //! Delaunay edges incident to id (sorted keys, ascending).
   std::vector<EdgeKey> incident_edges(VertexId id) const;
   //! All Delaunay triangles (ascending).

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "meshing/detail/candidates.h"
+#include "meshing/detail/line_clip.h"
 #include "meshing/detail/vec3.h"
 
 namespace delmesh {
@@ -14,22 +15,12 @@ namespace {
 
 // The parameter interval [s0, s1] of {(ux + s, vx)} ∩ F, or nothing if it is empty.
 std::optional<std::array<double, 2>> clip_line_to_facet(const VoronoiFacet& f, double ux, double vx) {
-  double s0 = f.domain.box.bounds[0][0] - ux, s1 = f.domain.box.bounds[0][1] - ux;
   if (vx < f.domain.box.bounds[1][0] || vx > f.domain.box.bounds[1][1]) return std::nullopt;
-  for (const auto& h : f.domain.half_spaces) {
-    const double rhs = h.offset - h.normal[0] * ux - h.normal[1] * vx;
-    if (std::abs(h.normal[0]) < 1e-300) {
-      if (rhs < 0) return std::nullopt;
-      continue;
-    }
-    const double bound = rhs / h.normal[0];
-    if (h.normal[0] > 0)
-      s1 = std::min(s1, bound);
-    else
-      s0 = std::max(s0, bound);
-  }
-  if (!(s0 < s1)) return std::nullopt;
-  return std::array<double, 2>{s0, s1};
+  LineClip line(f.domain.box.bounds[0][0] - ux, f.domain.box.bounds[0][1] - ux);
+  for (const auto& h : f.domain.half_spaces)
+    line.keep(h.normal[0], h.offset - h.normal[0] * ux - h.normal[1] * vx, std::hypot(h.normal[0], h.normal[1]));
+  if (!line.nonempty()) return std::nullopt;
+  return std::array<double, 2>{line.t0, line.t1};
 }
 
 }  // namespace

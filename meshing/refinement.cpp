@@ -211,7 +211,8 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
 std::vector<VertexId> Refinement::prepare_new_edges(VertexId x, const std::vector<Delaunay::StarTriangle>& star,
                                                     const std::vector<RestrictedDelaunay::StarRecord>& records) {
   // The facet of a new edge xq is cut by the third vertices r of the triangles xqr, all of which
-  // are in the star, and bounded by their Voronoi edges, whose records are up to date.
+  // are in the star with their apexes, and bounded by their Voronoi edges, whose records are up
+  // to date.
   struct RingEntry {
     VertexId q, r;
     std::size_t index;  // of xqr in the star
@@ -229,15 +230,15 @@ std::vector<VertexId> Refinement::prepare_new_edges(VertexId x, const std::vecto
   }
   std::sort(ring.begin(), ring.end());
   std::vector<VertexId> neighbours;
-  std::vector<std::pair<EdgeKey, std::vector<VertexId>>> new_edges;
+  std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>> new_edges;
   std::vector<const EdgeRecord*> boundary;
   for (std::size_t i = 0; i < ring.size();) {
     const VertexId q = ring[i].q;
     neighbours.push_back(q);
-    std::vector<VertexId> thirds;
+    std::vector<Delaunay::RingTriangle> thirds;
     boundary.clear();
     for (; i < ring.size() && ring[i].q == q; ++i) {
-      thirds.push_back(ring[i].r);
+      thirds.push_back({ring[i].r, star[ring[i].index].apexes});
       boundary.push_back(records[ring[i].index].record);
     }
     // A facet proved to miss Σ is not built, and the rows silent off Σ (FacetContact,

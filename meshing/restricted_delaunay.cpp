@@ -150,7 +150,7 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
   return out;
 }
 
-void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<VertexId>>>& edges,
+void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>>& edges,
                                         const detail::ParallelFor& parallel) {
   std::vector<FacetEntry> built(edges.size());
   parallel.run(edges.size(), [&](std::size_t i) {
@@ -220,7 +220,7 @@ std::optional<EdgeRecord> RestrictedDelaunay::restrict_record(const EdgeRecord& 
   return r;
 }
 
-const VoronoiFacet& RestrictedDelaunay::facet(const EdgeKey& e, const std::vector<VertexId>* ring) {
+const VoronoiFacet& RestrictedDelaunay::facet(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>* ring) {
   if (const FacetEntry* entry = facets_.find(e)) return entry->facet;
   ++facets_built_;
   FacetEntry& entry = *facets_.try_emplace(e).first;
@@ -304,19 +304,24 @@ EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<Ve
   // A zero of E in the parameter range [lo, hi] that may be at the Voronoi vertex v = e.at(tv)
   // (a certified root within the vertex tolerance, or a boundary_root region the isolator could
   // not separate from v), settled by interval proofs on the part R of [lo, hi] ∪ {tv} in e.
+  // The vertex v is the point voronoi_edge_ends() shares with the other edges at it, so they all
+  // see the same sign of E(v).
+  std::optional<std::array<Vec3, 2>> ends;
   auto add_near_vertex = [&](double tv, bool at_start, double lo, double hi) {
     const double tf = at_start ? std::max(hi, tv) : std::min(lo, tv);  // the far end of R
     const Vec3 into = at_start ? e.direction : (-1.0) * e.direction;   // direction of u − v
-    const int s = oracle_.gradient_sign(e.at(tv), e.at(tf), into);
-    const int sv = oracle_.value_sign(e.at(tv));
+    if (!ends) ends = voronoi_edge_ends(del_, e, apexes);
+    const Vec3 v = (*ends)[at_start ? 0 : 1];
+    const int s = oracle_.gradient_sign(v, e.at(tf), into);
+    const int sv = oracle_.value_sign(v);
     if (s == 0) {
       // E is not proved monotone on R: it may hold several zeros.  Kept as a crossing, unresolved.
-      r.crossings.push_back(e.at(tv));
+      r.crossings.push_back(v);
       r.crossing_range.push_back({lo, hi});
-      r.unresolved.push_back(e.at(tv));
+      r.unresolved.push_back(v);
     } else if (sv == 0) {
       // E(v) = 0 up to rounding and E monotone on R: v is R's only zero, the §5.1 case.
-      r.crossings.push_back(e.at(tv));
+      r.crossings.push_back(v);
       r.crossing_range.push_back({std::min(lo, tv), std::max(hi, tv)});
       vertex_root_excluded.push_back(s > 0);
     } else if (const auto t = monotone_zero(oracle_, e, tv, tf, sv)) {

@@ -103,9 +103,9 @@ class RestrictedDelaunay {
   //! the records are forgotten.
   std::vector<StarRecord> prepare_star(const std::vector<Delaunay::StarTriangle>& star,
                                        const detail::ParallelFor& parallel);
-  //! Builds the facets of these edges (with the third vertices of their triangles) and their
+  //! Builds the facets of these edges (with the triangles around them, as Delaunay::edge_ring) and their
   //! section certificates, on `parallel`'s threads.
-  void prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<VertexId>>>& edges,
+  void prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>>& edges,
                       const detail::ParallelFor& parallel);
   //! Whether Σ misses the facet F of a Delaunay edge pq, proved from `boundary`, the current records
   //! of all the triangles pqr: when each of their Voronoi edges is valid with both ends at Voronoi
@@ -118,8 +118,8 @@ class RestrictedDelaunay {
   //! Whether the facet of e is cached (then e is a current Delaunay edge).
   bool has_facet(const EdgeKey& e) const { return facets_.find(e) != nullptr; }
   //! The facet of a current Delaunay edge (computed on first use, then cached).  `ring`, if
-  //! given, holds the third vertices of the triangles containing e (saves looking them up).
-  const VoronoiFacet& facet(const EdgeKey& e, const std::vector<VertexId>* ring = nullptr);
+  //! given, is Delaunay::edge_ring(e) in any order (saves looking it up).
+  const VoronoiFacet& facet(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>* ring = nullptr);
   //! Whether Σ ∩ F is proved to be a regular curve with no critical point in some in-plane
   //! direction (solvers/gradient_cone.h, with w the in-plane part of ∇E at the midpoint of pq): then
   //! FacetContact and FacetCycle have no witness in F.  Computed once per facet.

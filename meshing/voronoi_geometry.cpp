@@ -6,6 +6,7 @@
 
 #include "common/tolerances.h"
 #include "meshing/detail/convex_polytope.h"
+#include "meshing/detail/line_clip.h"
 #include "meshing/detail/vec3.h"
 #include "solvers/query_geometry.h"
 
@@ -43,6 +44,16 @@ double polygon_area(const std::vector<P2>& poly) {
   return 0.5 * area;
 }
 
+std::vector<std::array<double, 2>> polygon_bounds(const std::vector<P2>& poly) {
+  std::vector<std::array<double, 2>> bounds{{poly[0][0], poly[0][0]}, {poly[0][1], poly[0][1]}};
+  for (const auto& w : poly)
+    for (int k = 0; k < 2; ++k) {
+      bounds[k][0] = std::min(bounds[k][0], w[k]);
+      bounds[k][1] = std::max(bounds[k][1], w[k]);
+    }
+  return bounds;
+}
+
 Vec3 circumcentre(const Vec3& p, const Vec3& q, const Vec3& r) {
   const Vec3 a = q - p, b = r - p;
   const Vec3 axb = cross(a, b);
@@ -59,44 +70,75 @@ Vec3 circumcentre(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
   return p + (1.0 / d) * num;
 }
 
-// The edge of t in dimension 3 from the circumcentres of its two cells: a segment between them,
-// or (one cell infinite) a ray from the finite one away from its apex, clipped by the box.
+// The parameters on e's line of the ends of the Voronoi edge of e.triangle in dimension 3, before
+// clipping by the box: the projections of the Voronoi vertices of its two cells (the vertices
+// kept), or for a ray (one cell infinite) the finite vertex's at one end and ±∞ at the other.
+struct CellEnds {
+  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  Vec3 lo_vertex{}, hi_vertex{};
+};
+
+CellEnds cell_ends(const Delaunay& del, const VoronoiEdge& e, const std::array<VertexId, 2>& apexes) {
+  const TriangleKey& t = e.triangle;
+  auto vertex = [&](VertexId apex) { return voronoi_vertex(del, {t[0], t[1], t[2], apex}); };
+  CellEnds ends;
+  if (apexes[0] >= 0 && apexes[1] >= 0) {
+    const Vec3 v0 = vertex(apexes[0]), v1 = vertex(apexes[1]);
+    const double s0 = dot(v0 - e.point, e.direction), s1 = dot(v1 - e.point, e.direction);
+    const bool first_low = s0 <= s1;
+    ends.lo = first_low ? s0 : s1;
+    ends.hi = first_low ? s1 : s0;
+    ends.lo_vertex = first_low ? v0 : v1;
+    ends.hi_vertex = first_low ? v1 : v0;
+    return ends;
+  }
+  const VertexId apex = apexes[0] >= 0 ? apexes[0] : apexes[1];
+  const Vec3 v = vertex(apex);
+  const double s = dot(v - e.point, e.direction);
+  // The ray leaves the hull on the side of t away from the finite cell's apex.
+  if (dot(del.point(apex) - del.point(t[0]), e.direction) > 0) {
+    ends.hi = s;
+    ends.hi_vertex = v;
+  } else {
+    ends.lo = s;
+    ends.lo_vertex = v;
+  }
+  return ends;
+}
+
+// The edge of t in dimension 3 from the vertices of its two cells: a segment between them, or
+// (one cell infinite) a ray from the finite one away from its apex, clipped by the box.
 void edge_from_cells(const Delaunay& del, const std::array<VertexId, 2>& apexes, const Box3& box, VoronoiEdge& e) {
   const auto clipped = clip_line_to_box(e.point, e.direction, box);
   if (!clipped) return;
-  const Vec3& p = del.point(e.triangle[0]);
-  const Vec3& q = del.point(e.triangle[1]);
-  const Vec3& r = del.point(e.triangle[2]);
-  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
-  if (apexes[0] >= 0 && apexes[1] >= 0) {
-    const double s0 = dot(circumcentre(p, q, r, del.point(apexes[0])) - e.point, e.direction);
-    const double s1 = dot(circumcentre(p, q, r, del.point(apexes[1])) - e.point, e.direction);
-    lo = std::min(s0, s1);
-    hi = std::max(s0, s1);
-  } else {
-    const VertexId apex = apexes[0] >= 0 ? apexes[0] : apexes[1];
-    const Vec3& o = del.point(apex);
-    const double s = dot(circumcentre(p, q, r, o) - e.point, e.direction);
-    // The ray leaves the hull on the side of t away from the finite cell's apex.
-    if (dot(o - p, e.direction) > 0)
-      hi = s;
-    else
-      lo = s;
-  }
-  e.at_vertex0 = lo > (*clipped)[0];
-  e.at_vertex1 = hi < (*clipped)[1];
-  if (!(lo < hi)) {
-    const double m = 0.5 * (lo + hi);
+  const CellEnds ends = cell_ends(del, e, apexes);
+  e.at_vertex0 = ends.lo > (*clipped)[0];
+  e.at_vertex1 = ends.hi < (*clipped)[1];
+  if (!(ends.lo < ends.hi)) {
+    const double m = 0.5 * (ends.lo + ends.hi);
     e.degenerate = m >= (*clipped)[0] && m <= (*clipped)[1];
     e.t0 = e.t1 = m;
     return;
   }
-  e.t0 = std::max(lo, (*clipped)[0]);
-  e.t1 = std::min(hi, (*clipped)[1]);
+  e.t0 = std::max(ends.lo, (*clipped)[0]);
+  e.t1 = std::min(ends.hi, (*clipped)[1]);
   e.valid = e.t0 < e.t1;
 }
 
 }  // namespace
+
+Vec3 voronoi_vertex(const Delaunay& del, std::array<VertexId, 4> cell) {
+  // Ascending ids by a sorting network of four.
+  auto order = [&](int i, int j) {
+    if (cell[j] < cell[i]) std::swap(cell[i], cell[j]);
+  };
+  order(0, 1);
+  order(2, 3);
+  order(0, 2);
+  order(1, 3);
+  order(1, 2);
+  return circumcentre(del.point(cell[0]), del.point(cell[1]), del.point(cell[2]), del.point(cell[3]));
+}
 
 bool half_spaces_contain(const Domain& domain, const std::vector<double>& u, double tolerance) {
   for (const auto& h : domain.half_spaces) {
@@ -146,36 +188,36 @@ VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& t, const Box3& 
   }
   const auto clipped = clip_line_to_box(e.point, e.direction, box);
   if (!clipped) return e;
-  double t0 = (*clipped)[0], t1 = (*clipped)[1];
-  bool v0 = false, v1 = false;
+  LineClip line((*clipped)[0], (*clipped)[1]);
   for (VertexId s : del.neighbours(t[0])) {
     if (s == t[1] || s == t[2]) continue;
     const Vec3& x = del.point(s);
     const Vec3 w = x - p;
-    const double slope = dot(w, e.direction);
-    const double rhs = dot(w, 0.5 * (x + p) - e.point);
-    const double scale = norm(w);
-    if (std::abs(slope) <= 1e-15 * scale) {
-      if (rhs < 0) return e;  // the whole line is outside V_p
-      continue;
-    }
-    const double bound = rhs / slope;
-    if (slope > 0) {
-      if (bound < t1) { t1 = bound; v1 = true; }
-    } else {
-      if (bound > t0) { t0 = bound; v0 = true; }
-    }
+    line.keep(dot(w, e.direction), dot(w, 0.5 * (x + p) - e.point), norm(w));
+    if (line.emptied) return e;  // the whole line is outside V_p
   }
-  e.t0 = t0;
-  e.t1 = t1;
-  e.at_vertex0 = v0;
-  e.at_vertex1 = v1;
-  e.valid = t0 < t1;
+  e.t0 = line.t0;
+  e.t1 = line.t1;
+  e.at_vertex0 = line.cut0;
+  e.at_vertex1 = line.cut1;
+  e.valid = line.nonempty();
   return e;
 }
 
+std::array<Vec3, 2> voronoi_edge_ends(const Delaunay& del, const VoronoiEdge& e,
+                                      const std::array<VertexId, 2>* known_apexes) {
+  std::array<Vec3, 2> out{e.at(e.t0), e.at(e.t1)};
+  if (!e.at_vertex0 && !e.at_vertex1) return out;
+  const auto apexes = known_apexes ? std::optional(*known_apexes) : del.triangle_apexes(e.triangle);
+  if (!apexes) return out;  // below dimension 3 the ends are cut by bisectors, not cells
+  const CellEnds ends = cell_ends(del, e, *apexes);
+  if (e.at_vertex0) out[0] = ends.lo_vertex;
+  if (e.at_vertex1) out[1] = ends.hi_vertex;
+  return out;
+}
+
 VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3& box, double rotation,
-                           const std::vector<VertexId>* ring) {
+                           const std::vector<Delaunay::RingTriangle>* ring) {
   VoronoiFacet f;
   f.edge = edge;
   const Vec3& p = del.point(edge[0]);
@@ -192,29 +234,47 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
   poly.reserve(section->polygon.size() + 8);
   scratch.reserve(section->polygon.size() + 8);
   for (const auto& w : section->polygon) poly.push_back({c * w[0] + s * w[1], -s * w[0] + c * w[1]});
+  const std::vector<P2> section_polygon = poly;
   // F = Π ∩ V_p ∩ B is cut out by the bisectors of p and the third vertices r of the triangles
   // pqr (each edge of the convex polygon F is the Voronoi edge of one pqr, and a convex polygon
   // is the intersection of the half-planes of its edges); other neighbours of p are redundant.
-  std::vector<VertexId> cutting;
-  if (ring && del.dimension() == 3) {
-    cutting = *ring;
-  } else if (del.dimension() == 3) {
-    for (const auto& t : del.edge_triangles(edge))
-      for (VertexId r : t)
-        if (r != edge[0] && r != edge[1]) cutting.push_back(r);
+  // In dimension 3 the half-plane of pqr is moved outwards to hold the Voronoi vertices of pqr's
+  // cells (projected into Π), the ends of that Voronoi edge.
+  std::vector<Delaunay::RingTriangle> cutting;
+  if (del.dimension() == 3) {
+    cutting = ring ? *ring : del.edge_ring(edge);
+    std::sort(cutting.begin(), cutting.end(),
+              [](const Delaunay::RingTriangle& x, const Delaunay::RingTriangle& y) { return x.third < y.third; });
   } else {
-    cutting = del.neighbours(edge[0]);
+    for (VertexId r : del.neighbours(edge[0])) cutting.push_back({r, {-1, -1}});
   }
-  for (VertexId r : cutting) {
+  std::vector<HalfSpace> cuts;
+  // The Voronoi vertices of F projected into Π, by the pair {r, apex} of their cell pqr·apex (each
+  // is met twice, from the two triangles of that cell around pq).
+  std::vector<std::pair<std::array<VertexId, 2>, P2>> corners;
+  auto corner = [&](VertexId r, VertexId apex) {
+    const std::array<VertexId, 2> key{std::min(r, apex), std::max(r, apex)};
+    for (const auto& [k, w] : corners)
+      if (k == key) return w;
+    corners.push_back({key, f.plane_coordinates(voronoi_vertex(del, {edge[0], edge[1], r, apex}))});
+    return corners.back().second;
+  };
+  for (const auto& [r, apexes] : cutting) {
     if (r == edge[1]) continue;
     const Vec3& x = del.point(r);
     const Vec3 w = x - p;
     const P2 n{dot(w, f.a), dot(w, f.b)};
-    const double off = dot(w, 0.5 * (x + p) - f.origin);
-    if (std::abs(n[0]) + std::abs(n[1]) <= 1e-15 * norm(w)) {
+    double off = dot(w, 0.5 * (x + p) - f.origin);
+    if (std::abs(n[0]) + std::abs(n[1]) <= tolerances::parallel_half_space_relative_slope * norm(w)) {
       if (off < 0) return f;
       continue;
     }
+    for (VertexId apex : apexes) {
+      if (apex < 0) continue;  // the edge of pqr is a ray (or there are no cells: dimension < 3)
+      const P2 w = corner(r, apex);
+      off = std::max(off, n[0] * w[0] + n[1] * w[1]);
+    }
+    cuts.push_back(HalfSpace{{n[0], n[1]}, off});
     clip_polygon(poly, n, off, scratch);
     poly.swap(scratch);
     if (poly.size() < 3) {
@@ -227,7 +287,7 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
   std::vector<P2> clean;
   double extent = 0;
   for (const auto& w : poly) extent = std::max({extent, std::abs(w[0]), std::abs(w[1])});
-  const double eps = 1e-12 * std::max(extent, box.diagonal());
+  const double eps = tolerances::facet_repeated_corner_relative_distance * std::max(extent, box.diagonal());
   for (const auto& w : poly)
     if (clean.empty() || std::hypot(w[0] - clean.back()[0], w[1] - clean.back()[1]) > eps)
       clean.push_back(w);
@@ -240,27 +300,94 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
     return f;
   }
   f.polygon = std::move(clean);
-  f.domain = polygon_domain(f.polygon);
+  if (del.dimension() != 3) {
+    f.domain = polygon_domain(f.polygon);
+  } else {
+    // The box of the polygon and of F's Voronoi vertices in B (which the rounded corners of the
+    // polygon may miss by a few units in the last place), the cutting half-planes, and the sides
+    // of Π ∩ B that the polygon reaches (the others are redundant).
+    // Π ∩ B is counter-clockwise: the outward normal of its side ab is (b_v − a_v, a_u − b_u).
+    auto bounds = polygon_bounds(f.polygon);
+    f.domain.half_spaces = std::move(cuts);
+    const std::size_t m = section_polygon.size();
+    for (const auto& [key, w] : corners) {
+      bool inside = true;
+      for (std::size_t i = 0; i < m && inside; ++i) {
+        const P2& a = section_polygon[i];
+        const P2& b = section_polygon[(i + 1) % m];
+        inside = (b[1] - a[1]) * (w[0] - a[0]) + (a[0] - b[0]) * (w[1] - a[1]) <= 0;
+      }
+      if (!inside) continue;
+      for (int k = 0; k < 2; ++k) {
+        bounds[k][0] = std::min(bounds[k][0], w[k]);
+        bounds[k][1] = std::max(bounds[k][1], w[k]);
+      }
+    }
+    f.domain.box.bounds = std::move(bounds);
+    for (std::size_t i = 0; i < m; ++i) {
+      const P2& a = section_polygon[i];
+      const P2& b = section_polygon[(i + 1) % m];
+      const P2 n{b[1] - a[1], a[0] - b[0]};
+      const double off = n[0] * a[0] + n[1] * a[1];
+      const double reach = eps * std::hypot(n[0], n[1]);
+      if (std::any_of(f.polygon.begin(), f.polygon.end(),
+                      [&](const P2& w) { return n[0] * w[0] + n[1] * w[1] - off >= -reach; }))
+        f.domain.half_spaces.push_back(HalfSpace{{n[0], n[1]}, off});
+    }
+  }
   f.valid = true;
   return f;
 }
 
 namespace {
 
-// V_p from its vertices, when it is bounded: in dimension 3 the vertices of V_p are the
-// circumcentres of the cells incident to p, so V_p ∩ B lies in their bounding box ∩ B; the
-// bisectors of p and all its neighbours cut it out (a neighbour whose facet has no area adds a
-// redundant half-space).  Nothing if a cell of p is infinite (V_p is unbounded) or the box ∩ B
-// is empty.
-std::optional<VoronoiCell> cell_from_vertices(const Delaunay& del, VertexId site, const Box3& box) {
+// The Voronoi vertices of the cells of p (unused entries for infinite cells).
+std::vector<Vec3> cell_corners(const Delaunay& del, const std::vector<std::array<VertexId, 4>>& cells) {
+  std::vector<Vec3> corners(cells.size());
+  for (std::size_t k = 0; k < cells.size(); ++k)
+    if (cells[k][1] >= 0 && cells[k][2] >= 0 && cells[k][3] >= 0) corners[k] = voronoi_vertex(del, cells[k]);
+  return corners;
+}
+
+// Moves the half-space of each facet neighbour q (cell.domain.half_spaces[i] for
+// cell.facet_neighbours[i]) outwards to hold the Voronoi vertices of the finite cells of p that
+// contain q, and widens the box to hold those of them in B.
+void hold_vertices(const std::vector<std::array<VertexId, 4>>& cells, const std::vector<Vec3>& corners, const Box3& box,
+                   VoronoiCell& cell) {
+  const auto& neighbours = cell.facet_neighbours;
+  auto& bounds = cell.domain.box.bounds;
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const auto& c = cells[k];
+    if (c[1] < 0 || c[2] < 0 || c[3] < 0) continue;
+    const Vec3& v = corners[k];
+    for (int j = 1; j < 4; ++j) {
+      const auto it = std::lower_bound(neighbours.begin(), neighbours.end(), c[j]);
+      if (it == neighbours.end() || *it != c[j]) continue;  // F_pq lies outside B
+      HalfSpace& h = cell.domain.half_spaces[it - neighbours.begin()];
+      h.offset = std::max(h.offset, h.normal[0] * v[0] + h.normal[1] * v[1] + h.normal[2] * v[2]);
+    }
+    if (!box.contains(v)) continue;
+    for (int i = 0; i < 3; ++i) {
+      bounds[i][0] = std::min(bounds[i][0], v[i]);
+      bounds[i][1] = std::max(bounds[i][1], v[i]);
+    }
+  }
+}
+
+// V_p from its vertices, when it is bounded: in dimension 3 the vertices of V_p are the Voronoi
+// vertices of the cells incident to p, so V_p ∩ B lies in their bounding box ∩ B; the bisectors
+// of p and all its neighbours cut it out (a neighbour whose facet has no area adds a redundant
+// half-space).  Nothing if a cell of p is infinite (V_p is unbounded) or the box ∩ B is empty.
+std::optional<VoronoiCell> cell_from_vertices(const Delaunay& del, VertexId site, const Box3& box,
+                                              const std::vector<std::array<VertexId, 4>>& cells,
+                                              const std::vector<Vec3>& corners) {
   if (del.dimension() != 3) return std::nullopt;
   BoundingBox vertices;
-  for (const auto& c : del.incident_cells(site)) {
-    if (c[1] < 0 || c[2] < 0 || c[3] < 0) return std::nullopt;
-    vertices.add(circumcentre(del.point(c[0]), del.point(c[1]), del.point(c[2]), del.point(c[3])));
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    if (cells[k][1] < 0 || cells[k][2] < 0 || cells[k][3] < 0) return std::nullopt;
+    vertices.add(corners[k]);
   }
-  // The computed circumcentres carry rounding errors: the box is enlarged by a margin, then
-  // intersected with B.
+  // The box is enlarged by a margin for the rounding of the vertices, then intersected with B.
   vertices.enlarge(tolerances::face_membership_relative_tolerance * box.diagonal());
   std::vector<std::array<double, 2>> bounds;
   for (int k = 0; k < 3; ++k) {
@@ -272,6 +399,7 @@ std::optional<VoronoiCell> cell_from_vertices(const Delaunay& del, VertexId site
   cell.domain = Domain::from_box(std::move(bounds));
   cell.facet_neighbours = del.neighbours(site);
   const Vec3& p = del.point(site);
+  cell.domain.half_spaces.reserve(cell.facet_neighbours.size());
   for (VertexId s : cell.facet_neighbours) {
     const Vec3& x = del.point(s);
     const Vec3 w = x - p;
@@ -281,19 +409,18 @@ std::optional<VoronoiCell> cell_from_vertices(const Delaunay& del, VertexId site
   return cell;
 }
 
-}  // namespace
-
-VoronoiCell voronoi_cell(const Delaunay& del, VertexId site, const Box3& box) {
-  if (auto cell = cell_from_vertices(del, site, box)) return std::move(*cell);
+// V_p ∩ B by clipping B with the bisectors of p and its neighbours, nearest first (their
+// bisectors cut the box down to about V_p at once, so most later clips find every vertex
+// inside and return early); its half-spaces are those of the facets left, in the order of
+// facet_neighbours.
+VoronoiCell clipped_cell(const Delaunay& del, VertexId site, const Box3& box) {
   VoronoiCell cell;
   cell.site = site;
   const Vec3& p = del.point(site);
   // One polytope per thread, reset for each cell: its buffers outlive the call.
   thread_local ConvexPolytope polytope;
   polytope.reset(box);
-  // Nearest neighbours first: their bisectors cut the box down to about V_p at once, so most
-  // later clips find every vertex inside and return early.
-  std::vector<VertexId> neighbours = del.neighbours(site);
+  const std::vector<VertexId> neighbours = del.neighbours(site);
   std::vector<std::pair<double, VertexId>> by_distance;
   by_distance.reserve(neighbours.size());
   for (VertexId s : neighbours) {
@@ -301,20 +428,14 @@ VoronoiCell voronoi_cell(const Delaunay& del, VertexId site, const Box3& box) {
     by_distance.push_back({dot(w, w), s});
   }
   std::sort(by_distance.begin(), by_distance.end());
-  for (std::size_t i = 0; i < neighbours.size(); ++i) neighbours[i] = by_distance[i].second;
-  struct Plane {
-    VertexId s;
-    Vec3 w;
-    double off;
-  };
-  std::vector<Plane> planes;
-  planes.reserve(neighbours.size());
-  for (VertexId s : neighbours) {
+  auto bisector = [&](VertexId s) {
     const Vec3& x = del.point(s);
     const Vec3 w = x - p;
-    const double off = dot(w, 0.5 * (x + p));
-    polytope.clip(w, off, s);
-    planes.push_back({s, w, off});
+    return HalfSpace{{w[0], w[1], w[2]}, dot(w, 0.5 * (x + p))};
+  };
+  for (const auto& [d, s] : by_distance) {
+    const HalfSpace h = bisector(s);
+    polytope.clip({h.normal[0], h.normal[1], h.normal[2]}, h.offset, s);
     if (polytope.empty()) return cell;
   }
   const auto bb = polytope.bounding_box();
@@ -329,10 +450,20 @@ VoronoiCell voronoi_cell(const Delaunay& del, VertexId site, const Box3& box) {
   std::sort(cell.facet_neighbours.begin(), cell.facet_neighbours.end());
   cell.facet_neighbours.erase(std::unique(cell.facet_neighbours.begin(), cell.facet_neighbours.end()),
                               cell.facet_neighbours.end());
-  for (const auto& h : planes)
-    if (std::binary_search(cell.facet_neighbours.begin(), cell.facet_neighbours.end(), h.s))
-      cell.domain.half_spaces.push_back(HalfSpace{{h.w[0], h.w[1], h.w[2]}, h.off});
+  for (VertexId s : cell.facet_neighbours) cell.domain.half_spaces.push_back(bisector(s));
   cell.valid = true;
+  return cell;
+}
+
+}  // namespace
+
+VoronoiCell voronoi_cell(const Delaunay& del, VertexId site, const Box3& box) {
+  // Both ways, the half-spaces and the box are then moved out to hold the cell's Voronoi vertices.
+  const auto cells = del.incident_cells(site);
+  const auto corners = cell_corners(del, cells);
+  auto from_vertices = cell_from_vertices(del, site, box, cells, corners);
+  VoronoiCell cell = from_vertices ? std::move(*from_vertices) : clipped_cell(del, site, box);
+  if (cell.valid) hold_vertices(cells, corners, box, cell);
   return cell;
 }
 

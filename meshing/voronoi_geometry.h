@@ -18,7 +18,25 @@
 //!   3 the segment between the circumcentres of pqr's two cells, or the ray from the finite one
 //!   away from its apex (pqr on the hull), clipped by B; in dimension 2 the line clipped by B
 //!   and by the bisectors of p's neighbours.
-//! Constructions are floating point; the combinatorics come from CGAL's exact predicates.
+//!
+//! One diagram.  Constructions are floating point (the combinatorics come from CGAL's exact
+//! predicates), and each Voronoi vertex — the circumcentre of a finite Delaunay cell — is
+//! computed once, by voronoi_vertex(), from its four sites in increasing id order, so every face
+//! at it uses the same point:
+//! - an edge's end at a Voronoi vertex is that point (voronoi_edge_ends(); its parameter is the
+//!   point's projection onto the edge's line), so the sign of E at a vertex, on which §5.1
+//!   decides, is the same for its four edges;
+//! - the half-plane of the facet F_pq for the triangle pqr is the bisector of p and r, moved
+//!   outwards just enough to hold both vertices of pqr's edge (projected into Π), so F_pq holds
+//!   every vertex of its boundary and the facets around a Voronoi edge all reach it;
+//! - the cell V_p's box holds its vertices, and its half-space for a neighbour q is the bisector
+//!   of p and q moved outwards just enough to hold the vertices of the facet F_pq.
+//! The faces are therefore closed sets that overlap on the shared vertices and edges of the
+//! computed diagram: a point of Σ on a shared vertex or edge lies in every face that contains
+//! it, up to the rounding of one projection (a few units in the last place of the box size),
+//! far below tolerances::face_membership_relative_tolerance.  The moves are the rounding errors
+//! of the circumcentres (zero in exact arithmetic), so the faces are those of Vor S up to them.
+//! The rays and the faces of an unbounded cell (pq on the convex hull of S) are cut by B.
 
 #include <array>
 #include <optional>
@@ -31,6 +49,11 @@
 #include "symbolic/surface.h"
 
 namespace delmesh {
+
+//! The Voronoi vertex dual to a finite Delaunay cell: the circumcentre of its four sites,
+//! computed from the sites in increasing id order (the same point for every face at it).
+//! \pre the four ids are distinct vertices of Del S, not coplanar.
+Vec3 voronoi_vertex(const Delaunay& del, std::array<VertexId, 4> cell);
 
 //! The Voronoi edge dual to a Delaunay triangle: {point + t·direction : t ∈ [t0, t1]}.
 struct VoronoiEdge {
@@ -67,10 +90,12 @@ struct VoronoiFacet {
 };
 
 //! The clipped Voronoi cell V_p ∩ B.  When V_p is bounded (dimension 3, every cell of p finite),
-//! its box is the bounding box of its vertices, the circumcentres of p's cells, enlarged by
-//! tolerances::face_membership_relative_tolerance·diag(B) for their rounding and intersected
-//! with B, and its half-spaces are the bisectors of p and all its neighbours; otherwise it is
-//! computed by clipping B by the bisectors, nearest neighbours first.
+//! its box is the bounding box of its vertices (voronoi_vertex() of p's cells), enlarged by
+//! tolerances::face_membership_relative_tolerance·diag(B) and intersected with B, and its
+//! half-spaces are the bisectors of p and all its neighbours; otherwise it is computed by
+//! clipping B by the bisectors, nearest neighbours first.  Either way the half-space of each
+//! neighbour q is then moved outwards to hold the Voronoi vertices of F_pq, and the box to hold
+//! the cell's Voronoi vertices in B.
 struct VoronoiCell {
   VertexId site = -1;
   //! q with a facet pq on ∂V_p: of positive area when clipped; every Delaunay neighbour when built
@@ -85,10 +110,15 @@ struct VoronoiCell {
 //! Delaunay::closed_star); otherwise they are looked up.
 VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& triangle, const Box3& box,
                          const std::array<VertexId, 2>* apexes = nullptr);
-//! `ring`, if given, holds the third vertices of the triangles pqr (Delaunay::edge_triangles,
-//! known to the caller); otherwise they are looked up.
+//! The ends of an edge built by voronoi_edge(): at(t0) and at(t1), except that an end at a Voronoi
+//! vertex is voronoi_vertex() of its cell (on the line up to rounding), the point shared with
+//! the other faces at it.  `apexes` as for voronoi_edge().
+std::array<Vec3, 2> voronoi_edge_ends(const Delaunay& del, const VoronoiEdge& e,
+                                      const std::array<VertexId, 2>* apexes = nullptr);
+//! `ring`, if given, holds the triangles pqr around the edge with their apexes
+//! (Delaunay::edge_ring, known to the caller, in any order); otherwise it is looked up.
 VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3& box, double rotation,
-                           const std::vector<VertexId>* ring = nullptr);
+                           const std::vector<Delaunay::RingTriangle>* ring = nullptr);
 VoronoiCell voronoi_cell(const Delaunay& del, VertexId p, const Box3& box);
 
 //! Whether the point u (solver unknowns) satisfies every half-space of the domain up to tolerance

@@ -1,5 +1,6 @@
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/tolerances.h"
@@ -113,6 +114,59 @@ BOOST_AUTO_TEST_CASE(cell_domain_is_the_voronoi_cell) {
   }
   BOOST_TEST(inside > 1000);
   BOOST_TEST(outside > 1000);
+}
+
+// One diagram: every Voronoi vertex (voronoi_vertex of a finite cell) is the end of each of its
+// four edges, to the bit, and lies in each of its six facets and four cells with no tolerance;
+// a facet built from a given ring is the facet built by looking the ring up.
+BOOST_AUTO_TEST_CASE(faces_share_their_voronoi_vertices) {
+  Delaunay del;
+  for (int i = 0; i < 80; ++i)
+    del.insert({2 * seeded_uniform(11, i, 0) - 1, 2 * seeded_uniform(11, i, 1) - 1, 2 * seeded_uniform(11, i, 2) - 1},
+               false);
+  const Box3 box = Box3::cube(1.5);
+  int vertices = 0, edge_ends = 0, facets = 0, cells = 0;
+  for (VertexId x : del.vertices()) {
+    for (const auto& c : del.incident_cells(x)) {
+      if (c[1] < 0 || c[2] < 0 || c[3] < 0 || c[0] != *std::min_element(c.begin(), c.end())) continue;
+      const Vec3 v = voronoi_vertex(del, c);
+      if (!box.contains(v)) continue;
+      ++vertices;
+      for (int skip = 0; skip < 4; ++skip) {
+        std::array<VertexId, 3> t{};
+        for (int k = 0, j = 0; k < 4; ++k)
+          if (k != skip) t[j++] = c[k];
+        const auto e = voronoi_edge(del, make_triangle_key(t[0], t[1], t[2]), box);
+        if (!e.valid) continue;
+        const auto ends = voronoi_edge_ends(del, e);
+        BOOST_TEST(((e.at_vertex0 && ends[0] == v) || (e.at_vertex1 && ends[1] == v)));
+        ++edge_ends;
+      }
+      for (int i = 0; i < 4; ++i) {
+        for (int j = i + 1; j < 4; ++j) {
+          const EdgeKey pq = make_edge_key(c[i], c[j]);
+          const auto f = voronoi_facet(del, pq, box, 0.7);
+          if (!f.valid) continue;
+          const auto uv = f.plane_coordinates(v);
+          BOOST_TEST(f.contains(uv[0], uv[1], 0.0));
+          for (int k = 0; k < 2; ++k)
+            BOOST_TEST((uv[k] >= f.domain.box.bounds[k][0] && uv[k] <= f.domain.box.bounds[k][1]));
+          const auto ring = del.edge_ring(pq);
+          const auto g = voronoi_facet(del, pq, box, 0.7, &ring);
+          BOOST_TEST((g.polygon == f.polygon));
+          ++facets;
+        }
+        const auto cell = voronoi_cell(del, c[i], box);
+        if (!cell.valid) continue;
+        BOOST_TEST(cell.contains(v, 0.0));
+        ++cells;
+      }
+    }
+  }
+  BOOST_TEST(vertices > 50);
+  BOOST_TEST(edge_ends > 150);
+  BOOST_TEST(facets > 200);
+  BOOST_TEST(cells > 150);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

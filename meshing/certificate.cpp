@@ -169,8 +169,8 @@ Certificate certify_mesh(const std::vector<Point3>& points, const std::vector<st
   const std::vector<TriangleKey> all_triangles = del.triangles();
   for (const auto& t : all_triangles) {
     if (stopped()) break;
-    check_face(FaceKind::triangle, t, [&] { return !restricted.edge_record(t).unresolved.empty(); });
-    const EdgeRecord& record = restricted.edge_record(t);
+    check_face(FaceKind::triangle, t, [&] { return !restricted.voronoi_edge_record(t).unresolved.empty(); });
+    const VoronoiEdgeRecord& record = restricted.voronoi_edge_record(t);
     CheckResult unresolved;
     for (const auto& x : record.unresolved)
       unresolved.unsettled.push_back({CheckKind::vor_edge, UnsettledReason::unresolved_crossing, x});

@@ -54,7 +54,7 @@ enum class Dirtied {
   //! of the restricted star of the vertex, lemma part 4).
   restricted_star,
   //! Triangle rows: the triangles of Tri S|Σ that are new or whose restricted status or dual
-  //! point changed (a function of the triangle's EdgeRecord, lemma part 4).
+  //! point changed (a function of the triangle's VoronoiEdgeRecord, lemma part 4).
   restricted_triangles
 };
 constexpr auto enum_names(Dirtied) {
@@ -107,9 +107,9 @@ struct CheckInfo {
   //! witnesses, points of Σ, in order of preference, and what it could not settle.  Witnesses
   //! are labelled with context.kind (Quality labels its size-bound witnesses CheckKind::size).
   Function check;
-  //! Triangle rows, optional: a check that is a function of the triangle's EdgeRecord alone may
+  //! Triangle rows, optional: a check that is a function of the triangle's VoronoiEdgeRecord alone may
   //! say from the record that it cannot fire; the driver then does not queue the triangle.
-  std::function<bool(const EdgeRecord& record)> may_fire;
+  std::function<bool(const VoronoiEdgeRecord& record)> may_fire;
   //! Edge rows, optional: the check has no witness on a facet F with F ∩ Σ = ∅ (FacetContact,
   //! FacetCycle); the driver then does not queue a new edge whose facet is proved to miss Σ
   //! (RestrictedDelaunay::facet_misses_surface), nor build that facet for it.

@@ -38,7 +38,9 @@ const std::vector<CheckInfo>& builtin_checks() {
                        [](const CheckContext& c, const DelaunayFace& f) {
                          return vor_edge_witness(c.restricted, as_triangle(f));
                        }};
-    vor_edge.may_fire = [](const EdgeRecord& rec) { return !rec.candidates.empty() || rec.crossings.size() >= 2; };
+    vor_edge.may_fire = [](const VoronoiEdgeRecord& rec) {
+      return !rec.candidates.empty() || rec.crossings.size() >= 2;
+    };
     vor_edge.reads_restricted_status = true;
     vor_edge.kind = CheckKind::vor_edge;
     r.push_back(vor_edge);
@@ -101,7 +103,7 @@ const std::vector<CheckInfo>& builtin_checks() {
                      FaceKind::triangle, Dirtied::restricted_triangles, CheckPhase::geometry,
                      [](const CheckContext& c, const DelaunayFace& f) {
                        const TriangleKey t = as_triangle(f);
-                       if (!c.restricted.edge_record(t).restricted) return CheckResult{};
+                       if (!c.restricted.voronoi_edge_record(t).restricted) return CheckResult{};
                        const double threshold = 2 * beta(c.lambda);
                        for (const auto& e : {make_edge_key(t[0], t[1]), make_edge_key(t[0], t[2]),
                                              make_edge_key(t[1], t[2])})

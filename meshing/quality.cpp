@@ -23,7 +23,7 @@ double radius_edge_ratio(const Vec3& p, const Vec3& q, const Vec3& r) {
 }
 
 std::optional<Witness> quality_witness(RestrictedDelaunay& restricted, const TriangleKey& t, double lambda) {
-  const auto& rec = restricted.edge_record(t);
+  const auto& rec = restricted.voronoi_edge_record(t);
   if (!rec.restricted) return std::nullopt;
   const auto& del = restricted.delaunay();
   const Vec3 &p = del.point(t[0]), &q = del.point(t[1]), &r = del.point(t[2]);
@@ -35,7 +35,7 @@ std::optional<Witness> quality_witness(RestrictedDelaunay& restricted, const Tri
 }
 
 std::optional<Witness> size_witness(RestrictedDelaunay& restricted, const TriangleKey& t, double size_bound) {
-  const auto& rec = restricted.edge_record(t);
+  const auto& rec = restricted.voronoi_edge_record(t);
   if (!rec.restricted) return std::nullopt;
   const auto& del = restricted.delaunay();
   if (distance(rec.dual_point, del.point(t[0])) <= size_bound) return std::nullopt;

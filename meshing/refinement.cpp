@@ -81,7 +81,7 @@ void Refinement::enable_geometry(double lambda, std::optional<double> size_bound
   }
 }
 
-void Refinement::queue(const Simplex& f, FaceKind kind, Dirtied dirtied, const EdgeRecord* record,
+void Refinement::queue(const Simplex& f, FaceKind kind, Dirtied dirtied, const VoronoiEdgeRecord* record,
                        bool facet_misses_surface) {
   for (auto& step : steps_) {
     const CheckInfo& row = *step.row;
@@ -93,10 +93,10 @@ void Refinement::queue(const Simplex& f, FaceKind kind, Dirtied dirtied, const E
 }
 
 void Refinement::queue_triangle(const TriangleKey& t, bool new_face) {
-  queue_triangle(t, new_face, restricted_.edge_record(t));
+  queue_triangle(t, new_face, restricted_.voronoi_edge_record(t));
 }
 
-void Refinement::queue_triangle(const TriangleKey& t, bool new_face, const EdgeRecord& r) {
+void Refinement::queue_triangle(const TriangleKey& t, bool new_face, const VoronoiEdgeRecord& r) {
   // The record is computed eagerly (the checks would compute it anyway).  A row that is a
   // function of the record alone (VorEdge) is skipped when its may_fire says it cannot fire;
   // restricted_triangles rows (Quality, size, Smooth) only look at restricted triangles.
@@ -181,7 +181,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
   const auto records = restricted_.prepare_star(star, parallel_);
   for (std::size_t i = 0; i < star.size(); ++i) {
     const auto& t = star[i].key;
-    const EdgeRecord& r = *records[i].record;
+    const VoronoiEdgeRecord& r = *records[i].record;
     const bool contains_x = star[i].contains_vertex;
     if (contains_x) {
       // The faces dual to simplices containing x are new: all their checks run.
@@ -231,7 +231,7 @@ std::vector<VertexId> Refinement::prepare_new_edges(VertexId x, const std::vecto
   std::sort(ring.begin(), ring.end());
   std::vector<VertexId> neighbours;
   std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>> new_edges;
-  std::vector<const EdgeRecord*> boundary;
+  std::vector<const VoronoiEdgeRecord*> boundary;
   for (std::size_t i = 0; i < ring.size();) {
     const VertexId q = ring[i].q;
     neighbours.push_back(q);

@@ -268,12 +268,12 @@ class Refinement {
   //! Queues f for the enabled rows of its FaceKind and rule `dirtied`; a triangle's `record`, if
   //! given, lets a row's may_fire skip it (under RecheckPolicy::new_faces), and an edge whose
   //! facet is proved to miss Σ skips the rows silent off the surface.
-  void queue(const Simplex& f, FaceKind kind, Dirtied dirtied, const EdgeRecord* record = nullptr,
+  void queue(const Simplex& f, FaceKind kind, Dirtied dirtied, const VoronoiEdgeRecord* record = nullptr,
              bool facet_misses_surface = false);
   //! Queues t for the rows of Dirtied::restricted_triangles if it is restricted, and for the
   //! new_faces rows if `new_face`.
   void queue_triangle(const TriangleKey& t, bool new_face);
-  void queue_triangle(const TriangleKey& t, bool new_face, const EdgeRecord& record);
+  void queue_triangle(const TriangleKey& t, bool new_face, const VoronoiEdgeRecord& record);
   void queue_edge(const EdgeKey& e, bool facet_misses_surface = false);
   //! Queues the sample for the vertex rows: restricted_star ones, and also new_faces ones if
   //! `new_cell`.

@@ -13,21 +13,10 @@ namespace delmesh {
 
 using namespace detail;
 
-double seeded_uniform(std::uint64_t seed, std::int64_t a, std::int64_t b, std::int64_t c) {
-  std::uint64_t z = seed * 0x9E3779B97F4A7C15ULL;
-  for (std::int64_t w : {a, b, c}) {
-    z += static_cast<std::uint64_t>(w) + 0x9E3779B97F4A7C15ULL;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    z ^= z >> 31;
-  }
-  return static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0);
-}
-
 namespace {
 
 //! The record's (valid) edge meets Σ nowhere, and nothing on it is unsettled.
-bool misses_surface(const EdgeRecord& r) {
+bool misses_surface(const VoronoiEdgeRecord& r) {
   return r.edge.valid && r.crossings.empty() && r.candidates.empty() && r.unresolved.empty();
 }
 
@@ -37,7 +26,7 @@ RestrictedDelaunay::RestrictedDelaunay(const Delaunay& del, SurfaceOracle& oracl
     : del_(del), oracle_(oracle), seed_(seed) {}
 
 double RestrictedDelaunay::facet_rotation(const EdgeKey& e) const {
-  return 2 * M_PI * seeded_uniform(seed_, e[0], e[1], 17);
+  return 2 * M_PI * seeded_uniform(seed_, e[0], e[1], generic_stream::facet_rotation);
 }
 
 void RestrictedDelaunay::track(const TriangleKey& t, bool was_restricted, bool is_restricted) {
@@ -54,26 +43,26 @@ void RestrictedDelaunay::track(const TriangleKey& t, bool was_restricted, bool i
 }
 
 void RestrictedDelaunay::erase_record(const TriangleKey& t) {
-  if (const EdgeRecord* r = edges_.take(t)) track(t, r->restricted, false);
+  if (const VoronoiEdgeRecord* r = edges_.take(t)) track(t, r->restricted, false);
 }
 
-const EdgeRecord& RestrictedDelaunay::assign(const TriangleKey& t, EdgeRecord& slot, bool was_restricted,
-                                             EdgeRecord&& record, bool solved) {
+const VoronoiEdgeRecord& RestrictedDelaunay::assign(const TriangleKey& t, VoronoiEdgeRecord& slot, bool was_restricted,
+                                                    VoronoiEdgeRecord&& record, bool solved) {
   ++(solved ? records_solved_ : records_restricted_);
   slot = std::move(record);
   track(t, was_restricted, slot.restricted);
   return slot;
 }
 
-const EdgeRecord& RestrictedDelaunay::install(const TriangleKey& t, EdgeRecord&& record, bool solved) {
+const VoronoiEdgeRecord& RestrictedDelaunay::install(const TriangleKey& t, VoronoiEdgeRecord&& record, bool solved) {
   const auto [slot, inserted] = edges_.try_emplace(t);
   return assign(t, *slot, !inserted && slot->restricted, std::move(record), solved);
 }
 
-std::optional<EdgeRecord> RestrictedDelaunay::update_without_solving(const TriangleKey& t,
-                                                                    const std::array<VertexId, 2>* apexes,
-                                                                    const EdgeRecord*& current) {
-  EdgeRecord* cached = edges_.find(t);
+std::optional<VoronoiEdgeRecord> RestrictedDelaunay::update_without_solving(const TriangleKey& t,
+                                                                            const std::array<VertexId, 2>* apexes,
+                                                                    const VoronoiEdgeRecord*& current) {
+  VoronoiEdgeRecord* cached = edges_.find(t);
   current = nullptr;
   if (!cached) return std::nullopt;
   if (!cached->shrunk || misses_surface(*cached)) {
@@ -86,8 +75,9 @@ std::optional<EdgeRecord> RestrictedDelaunay::update_without_solving(const Trian
   return restrict_record(*cached, voronoi_edge(del_, t, oracle_.box(), apexes));
 }
 
-const EdgeRecord& RestrictedDelaunay::edge_record(const TriangleKey& t, const std::array<VertexId, 2>* apexes) {
-  const EdgeRecord* current = nullptr;
+const VoronoiEdgeRecord& RestrictedDelaunay::voronoi_edge_record(const TriangleKey& t,
+                                                                 const std::array<VertexId, 2>* apexes) {
+  const VoronoiEdgeRecord* current = nullptr;
   if (auto restricted = update_without_solving(t, apexes, current)) return install(t, std::move(*restricted), false);
   if (current) return *current;
   return install(t, compute(t, apexes), true);
@@ -96,7 +86,7 @@ const EdgeRecord& RestrictedDelaunay::edge_record(const TriangleKey& t, const st
 std::vector<TriangleKey> RestrictedDelaunay::forget_destroyed(const InsertionChange& change) {
   std::vector<TriangleKey> left;
   for (const auto& t : change.destroyed_triangles) {
-    const EdgeRecord* r = edges_.take(t);
+    const VoronoiEdgeRecord* r = edges_.take(t);
     if (!r || r->restricted || r->shrunk) left.push_back(t);
     if (r) track(t, r->restricted, false);
   }
@@ -115,7 +105,7 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
   for (std::size_t i = 0; i < star.size(); ++i) {
     const auto& s = star[i];
     // A triangle containing the new vertex is new: it has no record.
-    EdgeRecord* cached = s.contains_vertex ? nullptr : edges_.find(s.key);
+    VoronoiEdgeRecord* cached = s.contains_vertex ? nullptr : edges_.find(s.key);
     if (!cached) {
       to_solve.push_back(i);
       continue;
@@ -140,7 +130,7 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
     }
     out[i].record = &assign(s.key, *cached, cached->restricted, std::move(*restricted), false);
   }
-  std::vector<EdgeRecord> solved(to_solve.size());
+  std::vector<VoronoiEdgeRecord> solved(to_solve.size());
   parallel.run(to_solve.size(), [&](std::size_t k) {
     const auto& s = star[to_solve[k]];
     solved[k] = compute(s.key, &s.apexes);
@@ -162,10 +152,10 @@ void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std
   facets_built_ += edges.size();
 }
 
-bool RestrictedDelaunay::facet_misses_surface(const std::vector<const EdgeRecord*>& boundary) {
+bool RestrictedDelaunay::facet_misses_surface(const std::vector<const VoronoiEdgeRecord*>& boundary) {
   if (boundary.empty()) return false;
   BoundingBox ends;
-  for (const EdgeRecord* r : boundary) {
+  for (const VoronoiEdgeRecord* r : boundary) {
     const VoronoiEdge& e = r->edge;
     if (!e.valid || !e.at_vertex0 || !e.at_vertex1) return false;
     ends.add(e.at(e.t0));
@@ -177,11 +167,12 @@ bool RestrictedDelaunay::facet_misses_surface(const std::vector<const EdgeRecord
   return true;
 }
 
-const EdgeRecord* RestrictedDelaunay::cached_record(const TriangleKey& t) const {
+const VoronoiEdgeRecord* RestrictedDelaunay::cached_record(const TriangleKey& t) const {
   return edges_.find(t);
 }
 
-std::optional<EdgeRecord> RestrictedDelaunay::restrict_record(const EdgeRecord& old, const VoronoiEdge& edge) const {
+std::optional<VoronoiEdgeRecord> RestrictedDelaunay::restrict_record(const VoronoiEdgeRecord& old,
+                                                                     const VoronoiEdge& edge) const {
   const VoronoiEdge& e = old.edge;
   if (!old.unresolved.empty() || !e.valid || !edge.valid) return std::nullopt;
   if (edge.point != e.point || edge.direction != e.direction) return std::nullopt;
@@ -195,7 +186,7 @@ std::optional<EdgeRecord> RestrictedDelaunay::restrict_record(const EdgeRecord& 
     if (range[0] > t0 + margin && range[1] < t1 - margin) return 1;
     return -1;
   };
-  EdgeRecord r;
+  VoronoiEdgeRecord r;
   r.edge = edge;
   r.edge.t0 = t0;
   r.edge.t1 = t1;
@@ -282,8 +273,8 @@ std::optional<double> monotone_zero(const SurfaceOracle& oracle, const VoronoiEd
 
 }  // namespace
 
-EdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes) const {
-  EdgeRecord r;
+VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes) const {
+  VoronoiEdgeRecord r;
   r.edge = voronoi_edge(del_, t, oracle_.box(), apexes);
   if (r.edge.degenerate) {
     // The edge is numerically the point v: Σ passes through it unless SurfaceLine excludes a
@@ -395,7 +386,7 @@ void RestrictedDelaunay::shrink(const InsertionChange& change) {
   }
   forget_destroyed(change);
   for (const auto& t : change.shrunk_triangles)
-    if (EdgeRecord* r = edges_.find(t)) r->shrunk = true;
+    if (VoronoiEdgeRecord* r = edges_.find(t)) r->shrunk = true;
 }
 
 std::vector<TriangleKey> RestrictedDelaunay::star(VertexId p) {
@@ -406,13 +397,13 @@ std::vector<TriangleKey> RestrictedDelaunay::star(VertexId p) {
     return out;
   }
   for (const auto& t : del_.incident_triangles(p))
-    if (edge_record(t).restricted) out.push_back(t);
+    if (voronoi_edge_record(t).restricted) out.push_back(t);
   return out;
 }
 
 std::vector<std::pair<TriangleKey, Vec3>> RestrictedDelaunay::unresolved_regions() const {
   std::vector<std::pair<TriangleKey, Vec3>> out;
-  edges_.for_each([&](const TriangleKey& t, const EdgeRecord& r) {
+  edges_.for_each([&](const TriangleKey& t, const VoronoiEdgeRecord& r) {
     for (const auto& x : r.unresolved) out.push_back({t, x});
   });
   std::sort(out.begin(), out.end());
@@ -422,7 +413,7 @@ std::vector<std::pair<TriangleKey, Vec3>> RestrictedDelaunay::unresolved_regions
 std::vector<TriangleKey> RestrictedDelaunay::triangles() {
   std::vector<TriangleKey> out;
   for (const auto& t : del_.triangles())
-    if (edge_record(t).restricted) out.push_back(t);
+    if (voronoi_edge_record(t).restricted) out.push_back(t);
   return out;
 }
 

@@ -44,16 +44,18 @@
 #include <optional>
 #include <vector>
 
+#include "common/seeded_uniform.h"
 #include "meshing/delaunay.h"
 #include "meshing/detail/flat_table.h"
 #include "meshing/detail/parallel_for.h"
+#include "common/seeded_uniform.h"
 #include "meshing/surface_oracle.h"
 #include "meshing/voronoi_geometry.h"
 
 namespace delmesh {
 
 //! The Voronoi edge of one Delaunay triangle and its intersections with Σ.
-struct EdgeRecord {
+struct VoronoiEdgeRecord {
   // The fields read on every lookup come first (one cache line).
   bool restricted = false;       //!< the triangle is in Tri S|Σ (with the §5.1 rule)
   bool shrunk = false;           //!< the dual edge shrank since: restrict or solve again on use
@@ -75,11 +77,11 @@ class RestrictedDelaunay {
 
   //! The record of a current Delaunay triangle (computed on first use, then cached).  `apexes`,
   //! if given, are Delaunay::triangle_apexes(t) (saves looking them up).
-  const EdgeRecord& edge_record(const TriangleKey& t, const std::array<VertexId, 2>* apexes = nullptr);
+  const VoronoiEdgeRecord& voronoi_edge_record(const TriangleKey& t, const std::array<VertexId, 2>* apexes = nullptr);
   //! The cached record of t as it stands (possibly marked shrunk), or nullptr; computes nothing.
   //! Invariant: while every change of Del S is reported (shrink(), forget() before a removal),
   //! records and facets are cached only for current Delaunay triangles and edges.
-  const EdgeRecord* cached_record(const TriangleKey& t) const;
+  const VoronoiEdgeRecord* cached_record(const TriangleKey& t) const;
   //! Drops the cached geometry of the facet of e (it is rebuilt if asked for again): the driver
   //! calls it once the facet checks of e are done, so that memory stays proportional to the
   //! facets in work, not to all of Vor S.
@@ -91,7 +93,7 @@ class RestrictedDelaunay {
   std::vector<TriangleKey> forget_destroyed(const InsertionChange& change);
   //! A triangle of prepare_star(): its record now, and what its record said before.
   struct StarRecord {
-    const EdgeRecord* record = nullptr;
+    const VoronoiEdgeRecord* record = nullptr;
     bool had_record = false;      //!< an up-to-date record existed before
     bool was_restricted = false;  //!< … and it was restricted
     Vec3 old_dual_point{};        //!< … with this dual point
@@ -114,7 +116,7 @@ class RestrictedDelaunay {
   //! tolerances::face_membership_relative_tolerance·diag for the rounding of the constructed
   //! vertices, proves F ∩ Σ = ∅.  False proves nothing (e.g. F reaches ∂B, or a Voronoi edge of F
   //! is degenerate).  Counted (facets_missing_surface()).
-  bool facet_misses_surface(const std::vector<const EdgeRecord*>& boundary);
+  bool facet_misses_surface(const std::vector<const VoronoiEdgeRecord*>& boundary);
   //! Whether the facet of e is cached (then e is a current Delaunay edge).
   bool has_facet(const EdgeKey& e) const { return facets_.find(e) != nullptr; }
   //! The facet of a current Delaunay edge (computed on first use, then cached).  `ring`, if
@@ -155,7 +157,7 @@ class RestrictedDelaunay {
   const Delaunay& delaunay() const { return del_; }
   SurfaceOracle& oracle() { return oracle_; }
   std::uint64_t seed() const { return seed_; }
-  //! The unresolved regions (EdgeRecord::unresolved) of the current Delaunay triangles, by
+  //! The unresolved regions (VoronoiEdgeRecord::unresolved) of the current Delaunay triangles, by
   //! triangle, ascending.  Precondition: assume_every_triangle_recorded() and every record up to
   //! date (no insertion since the last prepare_star()).
   std::vector<std::pair<TriangleKey, Vec3>> unresolved_regions() const;
@@ -164,24 +166,24 @@ class RestrictedDelaunay {
   //! Solves the record of t: SurfaceLine on its dual edge, unless one interval evaluation of E on
   //! a box holding the edge proves E ≠ 0 there (then e ∩ Σ = ∅).  Touches no member: safe to
   //! call from several threads at once.
-  EdgeRecord compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes) const;
+  VoronoiEdgeRecord compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes) const;
   //! The record of t restricted from its shrunk one, or nothing with `current` set to the
   //! cached record if it is up to date (nullptr if none or if it must be solved).
-  std::optional<EdgeRecord> update_without_solving(const TriangleKey& t, const std::array<VertexId, 2>* apexes,
-                                                   const EdgeRecord*& current);
-  using RecordTable = detail::FlatTable<3, EdgeRecord>;
+  std::optional<VoronoiEdgeRecord> update_without_solving(const TriangleKey& t, const std::array<VertexId, 2>* apexes,
+                                                          const VoronoiEdgeRecord*& current);
+  using RecordTable = detail::FlatTable<3, VoronoiEdgeRecord>;
   //! Stores the record of t (counting it as solved or restricted) and keeps stars_ in step.
-  const EdgeRecord& install(const TriangleKey& t, EdgeRecord&& record, bool solved);
+  const VoronoiEdgeRecord& install(const TriangleKey& t, VoronoiEdgeRecord&& record, bool solved);
   //! The same at a known slot whose previous record had restricted status `was_restricted`.
-  const EdgeRecord& assign(const TriangleKey& t, EdgeRecord& slot, bool was_restricted, EdgeRecord&& record,
-                           bool solved);
+  const VoronoiEdgeRecord& assign(const TriangleKey& t, VoronoiEdgeRecord& slot, bool was_restricted,
+                                  VoronoiEdgeRecord&& record, bool solved);
   //! The gradient-cone certificate of facet_section_certified().  Thread-safe.
   bool certify_section(const EdgeKey& e, const VoronoiFacet& f) const;
   //! Keeps stars_ in step with a record of t whose restricted status went from `was` to `is`.
   void track(const TriangleKey& t, bool was_restricted, bool is_restricted);
   void erase_record(const TriangleKey& t);
   //! The record of the shrunk edge `edge` restricted from `old`, or nothing if it must be solved.
-  std::optional<EdgeRecord> restrict_record(const EdgeRecord& old, const VoronoiEdge& edge) const;
+  std::optional<VoronoiEdgeRecord> restrict_record(const VoronoiEdgeRecord& old, const VoronoiEdge& edge) const;
 
   const Delaunay& del_;
   SurfaceOracle& oracle_;
@@ -198,9 +200,5 @@ class RestrictedDelaunay {
   std::vector<std::vector<TriangleKey>> stars_;
   bool every_triangle_recorded_ = false;
 };
-
-//! A deterministic pseudo-random number in [0, 1) from a seed and up to three integers
-//! (splitmix64); used for every "generic" choice of the mesher.
-double seeded_uniform(std::uint64_t seed, std::int64_t a, std::int64_t b = 0, std::int64_t c = 0);
 
 }  // namespace delmesh

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/errors.h"
+#include "common/seeded_uniform.h"
 #include "common/tolerances.h"
 #include "meshing/detail/vec3.h"
 
@@ -10,19 +11,10 @@ namespace delmesh {
 
 using namespace detail;
 
-namespace {
-
-// The last argument of seeded_uniform for this choice: each generic choice of the mesher has its
-// own constant (the facet frames' rotation 17, the silhouette direction 29, this direction 101),
-// so that choices made with the same seed and the same ids are independent of each other.
-constexpr std::int64_t height_direction_stream = 101;
-
-}  // namespace
-
 Vec3 generic_direction(std::uint64_t seed, int k) {
   // A uniform point of the unit sphere: z uniform in [-1, 1], the azimuth uniform.
-  const double z = 2 * seeded_uniform(seed, k, 1, height_direction_stream) - 1;
-  const double phi = 2 * M_PI * seeded_uniform(seed, k, 2, height_direction_stream);
+  const double z = 2 * seeded_uniform(seed, k, 1, generic_stream::height_direction) - 1;
+  const double phi = 2 * M_PI * seeded_uniform(seed, k, 2, generic_stream::height_direction);
   const double r = std::sqrt(std::max(0.0, 1 - z * z));
   return {r * std::cos(phi), r * std::sin(phi), z};
 }

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 
+#include "common/seeded_uniform.h"
 #include "meshing/detail/candidates.h"
 #include "meshing/detail/vec3.h"
 #include "solvers/query_geometry.h"
@@ -12,18 +12,9 @@ namespace delmesh {
 
 using namespace detail;
 
-namespace {
-
-// The last argument of seeded_uniform for this choice: each generic choice of the mesher has its
-// own constant (the facet frames' rotation 17, this direction 29, the height direction 101), so
-// that choices made with the same seed and the same ids are independent of each other.
-constexpr std::int64_t silhouette_direction_stream = 29;
-
-}  // namespace
-
 Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, const Vec3& n_p) {
   const auto frame = orthonormal_frame(n_p);
-  const double angle = 2 * M_PI * seeded_uniform(restricted.seed(), p, 0, silhouette_direction_stream);
+  const double angle = 2 * M_PI * seeded_uniform(restricted.seed(), p, 0, generic_stream::silhouette_direction);
   return std::cos(angle) * frame.a + std::sin(angle) * frame.b;
 }
 
@@ -53,7 +44,7 @@ CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool 
   std::vector<VertexId> crossing;
   if (facets_clean) {
     for (const auto& t : del.incident_triangles(p)) {
-      const auto& rec = restricted.edge_record(t);
+      const auto& rec = restricted.voronoi_edge_record(t);
       if (rec.crossings.empty() && rec.candidates.empty() && rec.unresolved.empty()) continue;
       for (VertexId v : t)
         if (v != p) crossing.push_back(v);

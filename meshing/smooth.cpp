@@ -14,7 +14,7 @@ Vec3 outward_normal(RestrictedDelaunay& restricted, const TriangleKey& t) {
   const auto& del = restricted.delaunay();
   const Vec3 &p = del.point(t[0]), &q = del.point(t[1]), &r = del.point(t[2]);
   Vec3 n = normalized(cross(q - p, r - p));
-  const auto& rec = restricted.edge_record(t);
+  const auto& rec = restricted.voronoi_edge_record(t);
   if (dot(n, restricted.oracle().gradient(rec.dual_point)) < 0) n = (-1.0) * n;
   return n;
 }
@@ -29,7 +29,7 @@ std::optional<Witness> smooth_witness(RestrictedDelaunay& restricted, const Edge
   if (!(g > threshold)) return std::nullopt;
   WitnessCollector collector(CheckKind::smooth, pq[0], restricted.delaunay().point(pq[0]));
   for (const auto& t : pair)
-    for (const auto& x : restricted.edge_record(t).crossings) collector.add(x);
+    for (const auto& x : restricted.voronoi_edge_record(t).crossings) collector.add(x);
   auto witnesses = collector.take().witnesses;
   if (witnesses.empty()) return std::nullopt;  // restricted triangles have crossings: not reached
   return witnesses.front();

@@ -5,7 +5,7 @@
 namespace delmesh {
 
 CheckResult vor_edge_witness(RestrictedDelaunay& restricted, const TriangleKey& t) {
-  const EdgeRecord& r = restricted.edge_record(t);
+  const VoronoiEdgeRecord& r = restricted.voronoi_edge_record(t);
   const VertexId p = t[0];
   const Vec3& pp = restricted.delaunay().point(p);
   // Tangency candidates first; the crossings (when there are two or more) after them.

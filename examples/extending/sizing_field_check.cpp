@@ -23,7 +23,7 @@ double mid_plane_field(const Vec3& x, const Box3& box) {
 
 CheckResult sizing_field_witness(const CheckContext& context, const DelaunayFace& face) {
   const TriangleKey t = face;
-  const EdgeRecord& record = context.restricted.edge_record(t);
+  const VoronoiEdgeRecord& record = context.restricted.voronoi_edge_record(t);
   if (!record.restricted) return {};
   const Vec3& c = record.dual_point;
   const double r = detail::distance(c, context.restricted.delaunay().point(t[0]));

@@ -96,7 +96,7 @@ BOOST_AUTO_TEST_CASE(fires_exactly_where_the_ball_exceeds_the_field) {
   CheckFixture f(test::unit_sphere, 1.5, fibonacci_sphere(300));
   int fired = 0, silent = 0, unrestricted = 0;
   for (const auto& t : f.del.triangles()) {
-    const EdgeRecord& record = f.restricted.edge_record(t);
+    const VoronoiEdgeRecord& record = f.restricted.voronoi_edge_record(t);
     const CheckResult result = run_check(f, t);
     BOOST_TEST(result.unsettled.empty());
     if (!record.restricted) {

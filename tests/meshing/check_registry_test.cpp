@@ -52,7 +52,7 @@ BOOST_AUTO_TEST_CASE(paper_rows_in_the_drivers_order) {
 BOOST_AUTO_TEST_CASE(vor_edge_may_fire_only_on_a_candidate_or_two_crossings) {
   const auto& may_fire = find_check("vor_edge").may_fire;
   BOOST_TEST_REQUIRE(static_cast<bool>(may_fire));
-  EdgeRecord record;
+  VoronoiEdgeRecord record;
   BOOST_TEST(!may_fire(record));
   record.crossings = {{0, 0, 1}};
   BOOST_TEST(!may_fire(record));

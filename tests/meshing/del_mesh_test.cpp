@@ -150,7 +150,7 @@ BOOST_AUTO_TEST_CASE(size_bound_holds_for_every_surface_delaunay_ball) {
   const auto triangles = restricted.triangles();
   double largest = 0;
   for (const auto& t : triangles) {
-    const auto& rec = restricted.edge_record(t);
+    const auto& rec = restricted.voronoi_edge_record(t);
     BOOST_TEST_REQUIRE(rec.restricted);
     const double radius = detail::distance(rec.dual_point, refinement.delaunay().point(t[0]));
     for (int k = 1; k < 3; ++k)  // the dual point is on the Voronoi edge: equidistant

@@ -21,7 +21,7 @@ BOOST_AUTO_TEST_CASE(voronoi_vertex_on_the_surface_follows_section_5_1) {
                   {-r * t, -r * std::sqrt(2.0 / 3), 1 - r / 3}});
   int kept = 0, excluded = 0;
   for (const auto& tri : f.del.triangles()) {
-    const auto& rec = f.restricted.edge_record(tri);
+    const auto& rec = f.restricted.voronoi_edge_record(tri);
     const bool bottom = tri == TriangleKey{1, 2, 3};
     if (bottom) {
       BOOST_TEST(rec.restricted);
@@ -63,12 +63,12 @@ BOOST_AUTO_TEST_CASE(shrunk_records_equal_solved_records) {
   BOOST_TEST_REQUIRE(!change.shrunk_triangles.empty());
   f.restricted.shrink(change);
   const auto restricted_before = f.restricted.records_restricted();
-  std::vector<EdgeRecord> kept;
-  for (const auto& t : change.shrunk_triangles) kept.push_back(f.restricted.edge_record(t));
+  std::vector<VoronoiEdgeRecord> kept;
+  for (const auto& t : change.shrunk_triangles) kept.push_back(f.restricted.voronoi_edge_record(t));
   BOOST_TEST(f.restricted.records_restricted() > restricted_before);
   RestrictedDelaunay fresh(f.del, f.oracle, 1);
   for (std::size_t i = 0; i < kept.size(); ++i) {
-    const auto& solved = fresh.edge_record(change.shrunk_triangles[i]);
+    const auto& solved = fresh.voronoi_edge_record(change.shrunk_triangles[i]);
     BOOST_TEST(kept[i].restricted == solved.restricted);
     BOOST_TEST(kept[i].crossings.size() == solved.crossings.size());
     for (std::size_t k = 0; k < std::min(kept[i].crossings.size(), solved.crossings.size()); ++k)
@@ -101,7 +101,7 @@ Vec3 voronoi_vertex(const VoronoiEdge& e) { return e.at(e.at_vertex0 ? e.t0 : e.
 // ⟨∇E, u − v⟩ > 0: the face is excluded and nothing is left unresolved.
 BOOST_AUTO_TEST_CASE(exact_vertex_zero_is_excluded_by_a_proved_sign) {
   CheckFixture f(test::unit_sphere, 1.6, tetrahedron_about(0));
-  const auto& rec = f.restricted.edge_record({0, 1, 2});
+  const auto& rec = f.restricted.voronoi_edge_record({0, 1, 2});
   BOOST_TEST_REQUIRE(rec.edge.at_vertex0 != rec.edge.at_vertex1);
   BOOST_TEST_REQUIRE(detail::distance(voronoi_vertex(rec.edge), {1, 0, 0}) == 0.0);
   BOOST_TEST(!rec.restricted);
@@ -116,7 +116,7 @@ BOOST_AUTO_TEST_CASE(exact_vertex_zero_is_excluded_by_a_proved_sign) {
 BOOST_AUTO_TEST_CASE(crossing_next_to_a_vertex_is_not_collapsed_onto_it) {
   const double delta = std::ldexp(1.0, -33);
   CheckFixture f(test::unit_sphere, 1.6, tetrahedron_about(delta));
-  const auto& rec = f.restricted.edge_record({0, 1, 2});
+  const auto& rec = f.restricted.voronoi_edge_record({0, 1, 2});
   BOOST_TEST_REQUIRE(detail::distance(voronoi_vertex(rec.edge), {1 - delta, 0, 0}) == 0.0);
   BOOST_TEST(rec.restricted);
   BOOST_TEST(rec.unresolved.empty());
@@ -141,8 +141,8 @@ BOOST_AUTO_TEST_CASE(facet_missing_surface_is_claimed_only_off_the_surface) {
   for (VertexId p = 0; p < n; ++p)
     for (VertexId q : f.del.neighbours(p)) {
       if (q < p) continue;
-      std::vector<const EdgeRecord*> boundary;
-      for (const auto& t : f.del.edge_triangles({p, q})) boundary.push_back(&f.restricted.edge_record(t));
+      std::vector<const VoronoiEdgeRecord*> boundary;
+      for (const auto& t : f.del.edge_triangles({p, q})) boundary.push_back(&f.restricted.voronoi_edge_record(t));
       const bool misses = f.restricted.facet_misses_surface(boundary);
       const VoronoiFacet facet = voronoi_facet(f.del, {p, q}, f.box, 0.0);
       if (misses) ++cleared;

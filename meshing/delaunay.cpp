@@ -276,14 +276,7 @@ std::vector<TriangleKey> Delaunay::edge_triangles(const EdgeKey& e) const {
   const auto& dt = impl_->dt;
   if (!contains(e[0]) || !contains(e[1])) return out;
   if (dt.dimension() == 3) {
-    detail::Dt::Cell_handle c;
-    int i = 0, j = 0;
-    if (!dt.is_edge(impl_->handles[e[0]], impl_->handles[e[1]], c, i, j)) return out;
-    auto start = dt.incident_facets(detail::Dt::Edge(c, i, j));
-    auto f = start;
-    do {
-      if (const auto t = facet_key(dt, *f)) out.push_back(*t);
-    } while (++f != start);
+    for (const auto& t : edge_ring(e)) out.push_back(make_triangle_key(e[0], e[1], t.third));
   } else {
     for (const auto& t : incident_triangles(e[0]))
       if (std::find(t.begin(), t.end(), e[1]) != t.end()) out.push_back(t);

@@ -17,7 +17,7 @@ namespace {
 //! `delmesh mesh --surface sphere EXTRA... --out keep.off --stats keep.json --quiet` must fail with
 //! exit 2 and `mention`, and leave the two existing files as they were.
 void require_mesh_refused(const std::vector<std::string>& extra, const std::string& mention) {
-  ScratchDirectory dir;
+  TempDir dir;
   write_text(dir / "keep.off", "old mesh");
   write_text(dir / "keep.json", "old statistics");
   std::vector<std::string> args{"mesh"};
@@ -76,7 +76,7 @@ BOOST_AUTO_TEST_CASE(numeric_options_are_range_checked) {
   require_invalid_input(run_delmesh({"solve", "--surface", "sphere", "--primitive", "surface_line", "--point", "0,0,nan",
                                      "--direction", "0,0,1"}),
                         "--point");
-  ScratchDirectory dir;
+  TempDir dir;
   write_text(dir / "octahedron.off", octahedron_off);
   require_invalid_input(run_delmesh({"check", "octahedron.off", "--lambda", "nan"}, dir.path), "--lambda: expected a finite number");
 }
@@ -106,7 +106,7 @@ BOOST_AUTO_TEST_CASE(expressions_and_boxes_beyond_the_limits) {
 
 // Paths: a directory as --out or --stats, a missing folder, an unknown extension.
 BOOST_AUTO_TEST_CASE(output_paths) {
-  ScratchDirectory dir;
+  TempDir dir;
   std::filesystem::create_directory(dir / "folder.off");
   write_text(dir / "keep.json", "old statistics");
   require_invalid_input(
@@ -129,7 +129,7 @@ BOOST_AUTO_TEST_CASE(output_paths) {
 
 // Mesh files given to `delmesh check`: each corrupt file gets one line saying what is wrong.
 BOOST_AUTO_TEST_CASE(corrupt_mesh_files) {
-  ScratchDirectory dir;
+  TempDir dir;
   const std::string ply_header =
       "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
@@ -196,7 +196,7 @@ BOOST_AUTO_TEST_CASE(corrupt_mesh_files) {
 // colours, negative or huge counts cast to sizes, a property before its element, list sizes that
 // allocated gigabytes) gets exit code 2 and one error line from `delmesh check`.
 BOOST_AUTO_TEST_CASE(fuzzer_crash_inputs_get_one_error_line) {
-  ScratchDirectory dir;
+  TempDir dir;
   std::size_t files = 0;
   for (const char* target : {"fuzz_read_off", "fuzz_read_ply", "fuzz_read_obj"}) {
     const std::filesystem::path crashes = std::filesystem::path(DELMESH_SOURCE_DIR) / "fuzz" / "crashes" / target;

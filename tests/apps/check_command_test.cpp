@@ -10,7 +10,7 @@ using namespace delmesh::test;
 BOOST_AUTO_TEST_SUITE(check_command)
 
 BOOST_AUTO_TEST_CASE(octahedron_has_genus_zero) {
-  ScratchDirectory dir;
+  TempDir dir;
   write_text(dir / "octahedron.off", octahedron_off);
   const RunResult r = run_delmesh({"check", "octahedron.off", "--json"}, dir.path);
   BOOST_TEST(r.exit_code == 0, r.err);
@@ -31,7 +31,7 @@ BOOST_AUTO_TEST_CASE(octahedron_has_genus_zero) {
 }
 
 BOOST_AUTO_TEST_CASE(theorem_bounds_pass_and_fail_per_bound) {
-  ScratchDirectory dir;
+  TempDir dir;
   write_text(dir / "octahedron.off", octahedron_off);
   // Angles and radius-edge ratio satisfy the λ = 0.06 bounds, the roughness (≈ 1.23 rad > 2β) does not.
   const RunResult r = run_delmesh({"check", "octahedron.off", "--lambda", "0.06", "--json"}, dir.path);
@@ -48,7 +48,7 @@ BOOST_AUTO_TEST_CASE(theorem_bounds_pass_and_fail_per_bound) {
 }
 
 BOOST_AUTO_TEST_CASE(bad_files_and_lambda_are_invalid_input) {
-  ScratchDirectory dir;
+  TempDir dir;
   write_text(dir / "octahedron.off", octahedron_off);
   write_text(dir / "corrupt.off", "OFF\n6 8 0\n1 0 0\n-1 0\nnot a number\n");
   write_text(dir / "indices.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
@@ -63,7 +63,7 @@ BOOST_AUTO_TEST_CASE(bad_files_and_lambda_are_invalid_input) {
 // and loops and of non-manifold edges and vertices; the genus only where it is defined (null in
 // JSON, "-" in the text).  A single triangle used to be refused or given genus -1.
 BOOST_AUTO_TEST_CASE(open_non_manifold_and_non_orientable_meshes_are_reported) {
-  ScratchDirectory dir;
+  TempDir dir;
   write_text(dir / "triangle.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   // A Möbius strip: a band of six triangles closed with a half twist.
   write_text(dir / "mobius.off",
@@ -131,7 +131,7 @@ BOOST_AUTO_TEST_CASE(open_non_manifold_and_non_orientable_meshes_are_reported) {
 
 // The partial mesh of a run stopped at 8 points (7 triangles pinched at a vertex) is checkable.
 BOOST_AUTO_TEST_CASE(partial_mesh_of_a_point_limited_run_is_checkable) {
-  ScratchDirectory dir;
+  TempDir dir;
   const RunResult m = run_delmesh(
       {"mesh", "--surface", "torus", "--max-points", "8", "--out", "t.off", "--stats", "t.json", "--quiet"}, dir.path);
   BOOST_TEST(m.exit_code == 3, m.err);
@@ -148,7 +148,7 @@ BOOST_AUTO_TEST_CASE(partial_mesh_of_a_point_limited_run_is_checkable) {
 
 // The certificate of delmesh's own output: certified, and the mesh is Tri S|Σ of its vertices.
 BOOST_AUTO_TEST_CASE(certify_delmesh_output) {
-  ScratchDirectory dir;
+  TempDir dir;
   const RunResult m = run_delmesh(
       {"mesh", "--surface", "sphere", "--out", "sphere.off", "--stats", "sphere.json", "--quiet"}, dir.path);
   BOOST_TEST(m.exit_code == 0, m.err);
@@ -170,7 +170,7 @@ BOOST_AUTO_TEST_CASE(certify_delmesh_output) {
 
 // A tetrahedron whose vertices lie on the thin torus misses its handle: never certified (exit 1).
 BOOST_AUTO_TEST_CASE(certify_refuses_a_mesh_that_misses_a_handle) {
-  ScratchDirectory dir;
+  TempDir dir;
   write_text(dir / "tetra.off",
              "OFF\n4 4 0\n1.08 0 0\n-1.08 0 0\n0 0.92 0\n0 -1 0.08\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
   const RunResult r = run_delmesh({"check", "tetra.off", "--surface", "thin_handle", "--certify", "--json"}, dir.path);
@@ -183,7 +183,7 @@ BOOST_AUTO_TEST_CASE(certify_refuses_a_mesh_that_misses_a_handle) {
 }
 
 BOOST_AUTO_TEST_CASE(certify_options_are_validated) {
-  ScratchDirectory dir;
+  TempDir dir;
   write_text(dir / "octahedron.off", octahedron_off);
   require_invalid_input(run_delmesh({"check", "octahedron.off", "--certify"}, dir.path), "--certify");
   require_invalid_input(run_delmesh({"check", "octahedron.off", "--surface", "sphere"}, dir.path), "--certify");
@@ -198,7 +198,7 @@ BOOST_AUTO_TEST_CASE(certify_options_are_validated) {
 
 // Acceptance: `check --certify` on delmesh's own output at lambda 0.06, every catalog surface.
 BOOST_AUTO_TEST_CASE(certify_every_catalog_output, *boost::unit_test::label("slow")) {
-  ScratchDirectory dir;
+  TempDir dir;
   const nlohmann::json catalog = nlohmann::json::parse(run_delmesh({"surfaces", "--json"}, dir.path).out);
   BOOST_REQUIRE(catalog.size() >= 10u);
   for (const auto& entry : catalog) {

@@ -71,7 +71,7 @@ int run_and_signal(const std::vector<std::string>& args, const std::filesystem::
 // status interrupted, and both files written completely — the mesh that stood in the output's
 // place before is replaced by a partial mesh that matches the statistics.
 void check_interrupted_by(int signal) {
-  ScratchDirectory scratch;
+  TempDir scratch;
   write_text(scratch / "torus.off", "previous contents\n");
   const int status = run_and_signal({"mesh", "--surface", "torus", "--size-bound", "0.01", "--threads", "1"},
                                     scratch.path, signal, std::chrono::milliseconds(1500));
@@ -99,7 +99,7 @@ BOOST_AUTO_TEST_CASE(sigterm_stops_the_run_with_its_partial_mesh) { check_interr
 // given to `check --certify` and interrupted: exit code 3, the report on stdout with the
 // certificate interrupted, one warning on stderr.
 BOOST_AUTO_TEST_CASE(a_signal_stops_a_certificate_with_nothing_lost) {
-  ScratchDirectory scratch;
+  TempDir scratch;
   write_text(scratch / "torus.off", "previous contents\n");
   int status = run_and_signal({"mesh", "--surface", "torus", "--size-bound", "0.05", "--threads", "1", "--certify"},
                               scratch.path, SIGINT, std::chrono::milliseconds(100), "certifying the mesh");

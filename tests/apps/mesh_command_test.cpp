@@ -34,7 +34,7 @@ delmesh::MeshReport read_and_check(const std::filesystem::path& path, delmesh::T
 //! topology (`components`, `genus`, from `delmesh surfaces --json`).
 void check_topology_for_seed(const std::string& surface, const std::string& phase, int seed, int components,
                              const std::vector<int>& genus) {
-  ScratchDirectory dir;
+  TempDir dir;
   const RunResult r = run_delmesh({"mesh", "--surface", surface, "--phase", phase, "--seed", std::to_string(seed),
                                    "--quiet", "--out", "m.off", "--stats", "m.json"},
                                   dir.path);
@@ -52,7 +52,7 @@ void check_topology_for_seed(const std::string& surface, const std::string& phas
 }
 
 //! Files of the scratch directory other than the runner's own.
-std::vector<std::string> files_in(const ScratchDirectory& dir) {
+std::vector<std::string> files_in(const TempDir& dir) {
   std::vector<std::string> names;
   for (const auto& e : std::filesystem::directory_iterator(dir.path)) names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
@@ -88,7 +88,7 @@ BOOST_AUTO_TEST_CASE(bad_options_are_invalid_input) {
 }
 
 BOOST_AUTO_TEST_CASE(input_mesh_is_validated_then_remeshed) {
-  ScratchDirectory dir;
+  TempDir dir;
   write_text(dir / "octahedron.off", octahedron_off);
   write_text(dir / "corrupt.off", "OFF\n6 8 0\n1 0 0\nbroken\n");
   require_invalid_input(run_delmesh({"mesh", "--input-mesh", "missing.off"}, dir.path));
@@ -115,7 +115,7 @@ BOOST_AUTO_TEST_CASE(input_mesh_is_validated_then_remeshed) {
 }
 
 BOOST_AUTO_TEST_CASE(a_failing_run_leaves_existing_outputs_untouched) {
-  ScratchDirectory dir;
+  TempDir dir;
   write_text(dir / "keep.off", octahedron_off);
   write_text(dir / "keep.json", "{\"previous\": true}\n");
   const std::vector<std::string> outputs{"--out", "keep.off", "--stats", "keep.json", "--quiet"};
@@ -141,7 +141,7 @@ BOOST_AUTO_TEST_CASE(invalid_surfaces_are_rejected_with_one_error_line) {
 }
 
 BOOST_AUTO_TEST_CASE(sphere_mesh_and_statistics_are_written) {
-  ScratchDirectory dir;
+  TempDir dir;
   const RunResult r = run_delmesh({"mesh", "--surface", "sphere", "--quiet"}, dir.path);
   BOOST_TEST(r.exit_code == 0, r.err);
   BOOST_TEST(r.err.empty(), r.err);
@@ -169,7 +169,7 @@ BOOST_AUTO_TEST_CASE(sphere_mesh_and_statistics_are_written) {
 }
 
 BOOST_AUTO_TEST_CASE(progress_and_the_uncovered_lambda_warning_go_to_stderr) {
-  ScratchDirectory dir;
+  TempDir dir;
   const RunResult r = run_delmesh(
       {"mesh", "--surface", "sphere", "--phase", "topology", "--lambda", "0.1", "--out", "s.ply", "--stats", "-"},
       dir.path);
@@ -191,7 +191,7 @@ BOOST_AUTO_TEST_CASE(progress_and_the_uncovered_lambda_warning_go_to_stderr) {
 // vertices are samples.
 BOOST_AUTO_TEST_CASE(a_point_limit_stops_with_exit_3_and_writes_the_partial_outputs) {
   for (std::size_t limit : {8, 100}) {
-    ScratchDirectory dir;
+    TempDir dir;
     const RunResult r = run_delmesh(
         {"mesh", "--surface", "torus", "--max-points", std::to_string(limit), "--quiet", "--out", "t.obj"}, dir.path);
     BOOST_TEST(!r.signalled);
@@ -212,7 +212,7 @@ BOOST_AUTO_TEST_CASE(a_point_limit_stops_with_exit_3_and_writes_the_partial_outp
 }
 
 BOOST_AUTO_TEST_CASE(a_time_limit_stops_with_exit_3_and_replaces_outputs_atomically) {
-  ScratchDirectory dir;
+  TempDir dir;
   write_text(dir / "g.off", octahedron_off);
   const RunResult r = run_delmesh({"mesh", "--surface", "genus2", "--size-bound", "0.01", "--time-limit", "0.5",
                                    "--quiet", "--out", "g.off", "--stats", "g.json"},
@@ -245,7 +245,7 @@ BOOST_AUTO_TEST_CASE(a_time_limit_stops_with_exit_3_and_replaces_outputs_atomica
 BOOST_AUTO_TEST_CASE(same_seed_same_files_across_processes) {
   const std::vector<std::string> args{"mesh", "--surface", "torus", "--seed", "5", "--quiet",
                                       "--out", "m.off", "--stats", "m.json"};
-  ScratchDirectory first, second, other;
+  TempDir first, second, other;
   const RunResult a = run_delmesh(args, first.path), b = run_delmesh(args, second.path);
   BOOST_TEST(a.exit_code == 0, a.err);
   BOOST_TEST(b.exit_code == 0, b.err);
@@ -298,7 +298,7 @@ BOOST_AUTO_TEST_CASE(three_seeds_same_topology_on_the_catalog, *boost::unit_test
 
 // --certify: the certificate of the run's own mesh in the statistics.
 BOOST_AUTO_TEST_CASE(certify_puts_the_certificate_in_the_statistics) {
-  ScratchDirectory dir;
+  TempDir dir;
   const RunResult r = run_delmesh(
       {"mesh", "--surface", "torus", "--out", "torus.off", "--stats", "torus.json", "--certify", "--quiet"}, dir.path);
   BOOST_TEST(r.exit_code == 0, r.err);

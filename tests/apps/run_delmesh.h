@@ -15,6 +15,8 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include "tests/temp_dir.h"
+
 namespace delmesh::test {
 
 //! The regular octahedron as an outward-oriented OFF file: genus 0, angles 60°, radius-edge ratio
@@ -66,23 +68,6 @@ inline std::string shell_quote(const std::string& s) {
   return q + "'";
 }
 
-//! A fresh scratch directory under the system temp directory, removed on destruction.
-struct ScratchDirectory {
-  std::filesystem::path path;
-  ScratchDirectory() {
-    static int counter = 0;
-    path = std::filesystem::temp_directory_path() /
-           ("delmesh-apps-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    std::filesystem::remove_all(path);
-    std::filesystem::create_directories(path);
-  }
-  ~ScratchDirectory() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path, ignored);
-  }
-  std::filesystem::path operator/(const std::string& name) const { return path / name; }
-};
-
 //! Runs `delmesh args...` with `directory` as working directory.
 inline RunResult run_delmesh(const std::vector<std::string>& args, const std::filesystem::path& directory) {
   const std::filesystem::path out_file = directory / ".run.stdout", err_file = directory / ".run.stderr";
@@ -104,7 +89,7 @@ inline RunResult run_delmesh(const std::vector<std::string>& args, const std::fi
 
 //! Runs in a throw-away scratch directory.
 inline RunResult run_delmesh(const std::vector<std::string>& args) {
-  ScratchDirectory scratch;
+  TempDir scratch;
   return run_delmesh(args, scratch.path);
 }
 

@@ -13,7 +13,7 @@
 #include "common/tolerances.h"
 #include "meshing/mesh_io.h"
 #include "tests/meshing/known_meshes.h"
-#include "tests/meshing/temp_dir.h"
+#include "tests/temp_dir.h"
 
 using namespace delmesh;
 namespace fs = std::filesystem;

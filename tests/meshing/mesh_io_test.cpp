@@ -14,7 +14,7 @@
 #include "common/errors.h"
 #include "meshing/mesh_checker.h"
 #include "tests/meshing/known_meshes.h"
-#include "tests/meshing/temp_dir.h"
+#include "tests/temp_dir.h"
 
 using namespace delmesh;
 namespace fs = std::filesystem;

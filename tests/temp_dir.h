@@ -1,6 +1,6 @@
 #pragma once
 //! \file temp_dir.h
-//! A fresh temporary directory for one test, shared by the meshing tests that write files.
+//! A fresh temporary directory for one test, shared by the tests that write files.
 
 #include <filesystem>
 #include <fstream>
@@ -19,6 +19,7 @@ struct TempDir {
     static int counter = 0;
     path = std::filesystem::temp_directory_path() /
            ("delmesh_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    std::filesystem::remove_all(path);  // left by an earlier process with the same id
     std::filesystem::create_directories(path);
   }
   ~TempDir() {
@@ -28,6 +29,8 @@ struct TempDir {
   TempDir(const TempDir&) = delete;
   TempDir& operator=(const TempDir&) = delete;
   //! The path of `name` in the directory.
+  std::filesystem::path operator/(const std::string& name) const { return path / name; }
+  //! The same, as a string.
   std::string file(const std::string& name) const { return (path / name).string(); }
   //! Writes `content` (bytes) as `name` and returns its path.
   std::string write(const std::string& name, const std::string& content) const {

@@ -216,30 +216,31 @@ std::array<Vec3, 2> voronoi_edge_ends(const Delaunay& del, const VoronoiEdge& e,
   return out;
 }
 
-VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3& box, double rotation,
-                           const std::vector<Delaunay::RingTriangle>* ring) {
-  VoronoiFacet f;
-  f.edge = edge;
-  const Vec3& p = del.point(edge[0]);
-  const Vec3& q = del.point(edge[1]);
+namespace {
+
+// Sets the plane frame of the facet of pq (origin, a, b, normal: the frame of Π ∩ B rotated by
+// `rotation` in Π) and returns Π ∩ B in it; nothing if Π misses B.
+std::optional<std::vector<P2>> facet_frame(const Vec3& p, const Vec3& q, const Box3& box, double rotation,
+                                           VoronoiFacet& f) {
   f.origin = 0.5 * (p + q);
   const auto section = plane_box_section(f.origin, q - p, box);
-  if (!section) return f;
+  if (!section) return std::nullopt;
   const double c = std::cos(rotation), s = std::sin(rotation);
   f.a = c * section->frame.a + s * section->frame.b;
   f.b = (-s) * section->frame.a + c * section->frame.b;
   f.normal = section->frame.d;
   f.origin = section->origin;
-  std::vector<P2> poly, scratch;
-  poly.reserve(section->polygon.size() + 8);
-  scratch.reserve(section->polygon.size() + 8);
-  for (const auto& w : section->polygon) poly.push_back({c * w[0] + s * w[1], -s * w[0] + c * w[1]});
-  const std::vector<P2> section_polygon = poly;
-  // F = Π ∩ V_p ∩ B is cut out by the bisectors of p and the third vertices r of the triangles
-  // pqr (each edge of the convex polygon F is the Voronoi edge of one pqr, and a convex polygon
-  // is the intersection of the half-planes of its edges); other neighbours of p are redundant.
-  // In dimension 3 the half-plane of pqr is moved outwards to hold the Voronoi vertices of pqr's
-  // cells (projected into Π), the ends of that Voronoi edge.
+  std::vector<P2> polygon;
+  polygon.reserve(section->polygon.size());
+  for (const auto& w : section->polygon) polygon.push_back({c * w[0] + s * w[1], -s * w[0] + c * w[1]});
+  return polygon;
+}
+
+// The samples r whose bisectors with p cut the facet of pq, by increasing id: the third vertices
+// of the triangles pqr with their apexes (`ring` if given) in dimension 3, all of N(p) (without
+// apexes) below.
+std::vector<Delaunay::RingTriangle> facet_cutters(const Delaunay& del, const EdgeKey& edge,
+                                                  const std::vector<Delaunay::RingTriangle>* ring) {
   std::vector<Delaunay::RingTriangle> cutting;
   if (del.dimension() == 3) {
     cutting = ring ? *ring : del.edge_ring(edge);
@@ -248,6 +249,84 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
   } else {
     for (VertexId r : del.neighbours(edge[0])) cutting.push_back({r, {-1, -1}});
   }
+  return cutting;
+}
+
+// The largest |u| or |v| of a polygon's corners.
+double extent_of(const std::vector<P2>& poly) {
+  double extent = 0;
+  for (const auto& w : poly) extent = std::max({extent, std::abs(w[0]), std::abs(w[1])});
+  return extent;
+}
+
+// The polygon without (numerically) repeated corners: consecutive ones closer than eps are one.
+std::vector<P2> without_repeated_corners(const std::vector<P2>& poly, double eps) {
+  std::vector<P2> clean;
+  for (const auto& w : poly)
+    if (clean.empty() || std::hypot(w[0] - clean.back()[0], w[1] - clean.back()[1]) > eps) clean.push_back(w);
+  while (clean.size() >= 2 && std::hypot(clean.front()[0] - clean.back()[0], clean.front()[1] - clean.back()[1]) <= eps)
+    clean.pop_back();
+  return clean;
+}
+
+// The solver domain of a facet in dimension 3: the box of the polygon and of F's Voronoi vertices
+// in B (which the rounded corners of the polygon may miss by a few units in the last place), the
+// cutting half-planes, and the sides of Π ∩ B that the polygon reaches (the others are
+// redundant).  Π ∩ B is counter-clockwise: the outward normal of its side ab is
+// (b_v − a_v, a_u − b_u).
+Domain facet_domain(const std::vector<P2>& polygon, std::vector<HalfSpace> cuts,
+                    const std::vector<std::pair<std::array<VertexId, 2>, P2>>& corners,
+                    const std::vector<P2>& section_polygon, double eps) {
+  Domain domain;
+  auto bounds = polygon_bounds(polygon);
+  domain.half_spaces = std::move(cuts);
+  const std::size_t m = section_polygon.size();
+  for (const auto& [key, w] : corners) {
+    bool inside = true;
+    for (std::size_t i = 0; i < m && inside; ++i) {
+      const P2& a = section_polygon[i];
+      const P2& b = section_polygon[(i + 1) % m];
+      inside = (b[1] - a[1]) * (w[0] - a[0]) + (a[0] - b[0]) * (w[1] - a[1]) <= 0;
+    }
+    if (!inside) continue;
+    for (int k = 0; k < 2; ++k) {
+      bounds[k][0] = std::min(bounds[k][0], w[k]);
+      bounds[k][1] = std::max(bounds[k][1], w[k]);
+    }
+  }
+  domain.box.bounds = std::move(bounds);
+  for (std::size_t i = 0; i < m; ++i) {
+    const P2& a = section_polygon[i];
+    const P2& b = section_polygon[(i + 1) % m];
+    const P2 n{b[1] - a[1], a[0] - b[0]};
+    const double off = n[0] * a[0] + n[1] * a[1];
+    const double reach = eps * std::hypot(n[0], n[1]);
+    if (std::any_of(polygon.begin(), polygon.end(),
+                    [&](const P2& w) { return n[0] * w[0] + n[1] * w[1] - off >= -reach; }))
+      domain.half_spaces.push_back(HalfSpace{{n[0], n[1]}, off});
+  }
+  return domain;
+}
+
+}  // namespace
+
+VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3& box, double rotation,
+                           const std::vector<Delaunay::RingTriangle>* ring) {
+  VoronoiFacet f;
+  f.edge = edge;
+  const Vec3& p = del.point(edge[0]);
+  const auto section = facet_frame(p, del.point(edge[1]), box, rotation, f);
+  if (!section) return f;
+  const std::vector<P2>& section_polygon = *section;
+  std::vector<P2> poly = section_polygon, scratch;
+  poly.reserve(section_polygon.size() + 8);
+  scratch.reserve(section_polygon.size() + 8);
+  // F = Π ∩ V_p ∩ B is cut out by the bisectors of p and the third vertices r of the triangles
+  // pqr (each edge of the convex polygon F is the Voronoi edge of one pqr, and a convex polygon
+  // is the intersection of the half-planes of its edges); other neighbours of p are redundant.
+  // In dimension 3 the half-plane of pqr is moved outwards to hold the Voronoi vertices of pqr's
+  // cells (projected into Π), the ends of that Voronoi edge.
+  const std::vector<Delaunay::RingTriangle> cutting = facet_cutters(del, edge, ring);
   std::vector<HalfSpace> cuts;
   // The Voronoi vertices of F projected into Π, by the pair {r, apex} of their cell pqr·apex (each
   // is met twice, from the two triangles of that cell around pq).
@@ -271,8 +350,8 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
     }
     for (VertexId apex : apexes) {
       if (apex < 0) continue;  // the edge of pqr is a ray (or there are no cells: dimension < 3)
-      const P2 w = corner(r, apex);
-      off = std::max(off, n[0] * w[0] + n[1] * w[1]);
+      const P2 v = corner(r, apex);
+      off = std::max(off, n[0] * v[0] + n[1] * v[1]);
     }
     cuts.push_back(HalfSpace{{n[0], n[1]}, off});
     clip_polygon(poly, n, off, scratch);
@@ -283,58 +362,16 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
       return f;
     }
   }
-  // Drop (numerically) repeated vertices.
-  std::vector<P2> clean;
-  double extent = 0;
-  for (const auto& w : poly) extent = std::max({extent, std::abs(w[0]), std::abs(w[1])});
-  const double eps = tolerances::facet_repeated_corner_relative_distance * std::max(extent, box.diagonal());
-  for (const auto& w : poly)
-    if (clean.empty() || std::hypot(w[0] - clean.back()[0], w[1] - clean.back()[1]) > eps)
-      clean.push_back(w);
-  while (clean.size() >= 2 &&
-         std::hypot(clean.front()[0] - clean.back()[0], clean.front()[1] - clean.back()[1]) <= eps)
-    clean.pop_back();
+  const double eps = tolerances::facet_repeated_corner_relative_distance * std::max(extent_of(poly), box.diagonal());
+  std::vector<P2> clean = without_repeated_corners(poly, eps);
   if (clean.size() < 3 || polygon_area(clean) <= eps * eps) {
     f.degenerate = true;
     f.polygon = std::move(poly);
     return f;
   }
   f.polygon = std::move(clean);
-  if (del.dimension() != 3) {
-    f.domain = polygon_domain(f.polygon);
-  } else {
-    // The box of the polygon and of F's Voronoi vertices in B (which the rounded corners of the
-    // polygon may miss by a few units in the last place), the cutting half-planes, and the sides
-    // of Π ∩ B that the polygon reaches (the others are redundant).
-    // Π ∩ B is counter-clockwise: the outward normal of its side ab is (b_v − a_v, a_u − b_u).
-    auto bounds = polygon_bounds(f.polygon);
-    f.domain.half_spaces = std::move(cuts);
-    const std::size_t m = section_polygon.size();
-    for (const auto& [key, w] : corners) {
-      bool inside = true;
-      for (std::size_t i = 0; i < m && inside; ++i) {
-        const P2& a = section_polygon[i];
-        const P2& b = section_polygon[(i + 1) % m];
-        inside = (b[1] - a[1]) * (w[0] - a[0]) + (a[0] - b[0]) * (w[1] - a[1]) <= 0;
-      }
-      if (!inside) continue;
-      for (int k = 0; k < 2; ++k) {
-        bounds[k][0] = std::min(bounds[k][0], w[k]);
-        bounds[k][1] = std::max(bounds[k][1], w[k]);
-      }
-    }
-    f.domain.box.bounds = std::move(bounds);
-    for (std::size_t i = 0; i < m; ++i) {
-      const P2& a = section_polygon[i];
-      const P2& b = section_polygon[(i + 1) % m];
-      const P2 n{b[1] - a[1], a[0] - b[0]};
-      const double off = n[0] * a[0] + n[1] * a[1];
-      const double reach = eps * std::hypot(n[0], n[1]);
-      if (std::any_of(f.polygon.begin(), f.polygon.end(),
-                      [&](const P2& w) { return n[0] * w[0] + n[1] * w[1] - off >= -reach; }))
-        f.domain.half_spaces.push_back(HalfSpace{{n[0], n[1]}, off});
-    }
-  }
+  f.domain = del.dimension() == 3 ? facet_domain(f.polygon, std::move(cuts), corners, section_polygon, eps)
+                                  : polygon_domain(f.polygon);
   f.valid = true;
   return f;
 }

@@ -208,7 +208,8 @@ std::vector<TriangleKey> Delaunay::incident_triangles(VertexId id) const {
     std::vector<detail::Dt::Cell_handle> cells;
     dt.incident_cells(v, std::back_inserter(cells));
     for (auto c : cells) {
-      if (dt.is_infinite(c)) continue;
+      // Triangulation_3::is_infinite(Cell_handle) requires dimension 3: test the vertex directly.
+      if (c->has_vertex(dt.infinite_vertex())) continue;
       out.push_back(make_triangle_key(c->vertex(0)->info().id, c->vertex(1)->info().id,
                                       c->vertex(2)->info().id));
     }

@@ -74,6 +74,14 @@ VertexId vertex_id(const Dt& dt, typename Dt::Vertex_handle v) {
   return dt.is_infinite(v) ? VertexId(-1) : v->info().id;
 }
 
+// The apexes of facet (c, i): the vertex of c opposite it and that of the neighbour across it (−1
+// for the infinite vertex).
+template <class Dt>
+std::array<VertexId, 2> facet_apexes(const Dt& dt, typename Dt::Cell_handle c, int i) {
+  const auto other = c->neighbor(i);
+  return {vertex_id(dt, c->vertex(i)), vertex_id(dt, other->vertex(other->index(c)))};
+}
+
 template <class Key>
 void sort_unique(std::vector<Key>& keys) {
   std::sort(keys.begin(), keys.end());
@@ -228,9 +236,7 @@ std::optional<std::array<VertexId, 2>> Delaunay::triangle_apexes(const TriangleK
   int i = 0, j = 0, k = 0;
   if (!dt.is_facet(impl_->handles[t[0]], impl_->handles[t[1]], impl_->handles[t[2]], c, i, j, k))
     return std::nullopt;
-  const int opposite = 6 - i - j - k;
-  const auto other = c->neighbor(opposite);
-  return std::array<VertexId, 2>{vertex_id(dt, c->vertex(opposite)), vertex_id(dt, other->vertex(other->index(c)))};
+  return facet_apexes(dt, c, 6 - i - j - k);
 }
 
 std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x) const {
@@ -247,9 +253,8 @@ std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x) const {
       if (!t) continue;
       // A facet containing x lies in two cells of x's star: it is kept from the one at the lower
       // address (the facet opposite x lies in one cell of the star only).
-      const auto other = c->neighbor(j);
-      if (j != ix && &*other < &*c) continue;
-      out.push_back({*t, {vertex_id(dt, c->vertex(j)), vertex_id(dt, other->vertex(other->index(c)))}, j != ix});
+      if (j != ix && &*c->neighbor(j) < &*c) continue;
+      out.push_back({*t, facet_apexes(dt, c, j), j != ix});
     }
   }
   std::sort(out.begin(), out.end(), [](const StarTriangle& a, const StarTriangle& b) { return a.key < b.key; });
@@ -296,18 +301,11 @@ std::vector<Delaunay::RingTriangle> Delaunay::edge_ring(const EdgeKey& e) const 
   auto start = dt.incident_facets(detail::Dt::Edge(c, i, j));
   auto f = start;
   do {
-    const auto cell = f->first;
-    const int opposite = f->second;
-    VertexId third = -1;
-    bool finite = true;
-    for (int k = 1; k <= 3; ++k) {
-      const auto v = cell->vertex((opposite + k) & 3);
-      if (dt.is_infinite(v)) finite = false;
-      else if (v->info().id != e[0] && v->info().id != e[1]) third = v->info().id;
-    }
-    if (finite) {
-      const auto other = cell->neighbor(opposite);
-      out.push_back({third, {vertex_id(dt, cell->vertex(opposite)), vertex_id(dt, other->vertex(other->index(cell)))}});
+    if (const auto t = facet_key(dt, *f)) {
+      VertexId third = -1;
+      for (VertexId v : *t)
+        if (v != e[0] && v != e[1]) third = v;
+      out.push_back({third, facet_apexes(dt, f->first, f->second)});
     }
   } while (++f != start);
   return out;

@@ -378,6 +378,12 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
 
 namespace {
 
+// The half-space {x : |x − p| ≤ |x − q|} of the sites p and q: ⟨q − p, x⟩ ≤ ⟨q − p, (p + q)/2⟩.
+HalfSpace bisector(const Vec3& p, const Vec3& q) {
+  const Vec3 w = q - p;
+  return HalfSpace{{w[0], w[1], w[2]}, dot(w, 0.5 * (q + p))};
+}
+
 // The Voronoi vertices of the cells of p (unused entries for infinite cells).
 std::vector<Vec3> cell_corners(const Delaunay& del, const std::vector<std::array<VertexId, 4>>& cells) {
   std::vector<Vec3> corners(cells.size());
@@ -437,11 +443,7 @@ std::optional<VoronoiCell> cell_from_vertices(const Delaunay& del, VertexId site
   cell.facet_neighbours = del.neighbours(site);
   const Vec3& p = del.point(site);
   cell.domain.half_spaces.reserve(cell.facet_neighbours.size());
-  for (VertexId s : cell.facet_neighbours) {
-    const Vec3& x = del.point(s);
-    const Vec3 w = x - p;
-    cell.domain.half_spaces.push_back(HalfSpace{{w[0], w[1], w[2]}, dot(w, 0.5 * (x + p))});
-  }
+  for (VertexId s : cell.facet_neighbours) cell.domain.half_spaces.push_back(bisector(p, del.point(s)));
   cell.valid = true;
   return cell;
 }
@@ -465,13 +467,8 @@ VoronoiCell clipped_cell(const Delaunay& del, VertexId site, const Box3& box) {
     by_distance.push_back({dot(w, w), s});
   }
   std::sort(by_distance.begin(), by_distance.end());
-  auto bisector = [&](VertexId s) {
-    const Vec3& x = del.point(s);
-    const Vec3 w = x - p;
-    return HalfSpace{{w[0], w[1], w[2]}, dot(w, 0.5 * (x + p))};
-  };
   for (const auto& [d, s] : by_distance) {
-    const HalfSpace h = bisector(s);
+    const HalfSpace h = bisector(p, del.point(s));
     polytope.clip({h.normal[0], h.normal[1], h.normal[2]}, h.offset, s);
     if (polytope.empty()) return cell;
   }
@@ -487,7 +484,7 @@ VoronoiCell clipped_cell(const Delaunay& del, VertexId site, const Box3& box) {
   std::sort(cell.facet_neighbours.begin(), cell.facet_neighbours.end());
   cell.facet_neighbours.erase(std::unique(cell.facet_neighbours.begin(), cell.facet_neighbours.end()),
                               cell.facet_neighbours.end());
-  for (VertexId s : cell.facet_neighbours) cell.domain.half_spaces.push_back(bisector(s));
+  for (VertexId s : cell.facet_neighbours) cell.domain.half_spaces.push_back(bisector(p, del.point(s)));
   cell.valid = true;
   return cell;
 }

@@ -75,6 +75,34 @@ inline constexpr int homotopy_endpoint_newton_iterations = 60;
 inline constexpr double homotopy_endpoint_newton_travel = 1e-3;
 //! Half-width (relative to 1 + ‖u‖∞) of the undecided box reported around a singular endpoint.
 inline constexpr double homotopy_singular_box_radius = 1e-5;
+//! Homotopy endpoint: a singular endpoint estimate u (the endgame's loops closed after c > 1 turns,
+//! or J_f is ill conditioned at u) is a zero of f only if ‖f(u)‖∞ ≤ this · (1 + ‖u‖∞) · ‖J_f(u)‖∞;
+//! else the path has failed.  Within δ of a zero z, f(u) = J_f(u)(u − z) + O(δ²) and the ratio
+//! ‖f‖/‖J_f‖ is about δ or less (δ/m at an m-fold root in one variable), so every estimate accurate
+//! to this passes; and ‖f‖/‖J_f‖ ≤ ‖J_f⁻¹ f‖, so it is the Newton correction's lower bound, which
+//! unlike the correction stays meaningful where J_f is singular.  The same level as
+//! homotopy_endpoint_newton_step, far below homotopy_near_real: a singular endpoint dropped as not
+//! real is then an approximate zero that far from the reals.
+inline constexpr double homotopy_singular_endpoint_residual = 1e-6;
+//! Homotopy Newton iterations stop once a correction is at most this many machine epsilons
+//! relative to the point: on f in the affine chart and in the real polish before certification
+//! (homotopy_newton_converged_ulps), and on H(·, t) when a sample of the endgame is refined
+//! (homotopy_refine_converged_ulps, at most homotopy_refine_iterations steps: the corrector has
+//! already converged to its own tolerance).  A loop of the endgame has also closed when its end is
+//! within homotopy_loop_closure_ulps machine epsilons (relative) of its start, whatever the spacing
+//! of its samples.
+inline constexpr double homotopy_newton_converged_ulps = 4;
+inline constexpr double homotopy_refine_converged_ulps = 16;
+inline constexpr int homotopy_refine_iterations = 2;
+inline constexpr double homotopy_loop_closure_ulps = 64;
+//! Homotopy certification: the real Newton polish of an endpoint takes at most this many steps
+//! (it starts at a point accurate to the endgame's tolerance, so a few quadratic steps suffice).
+inline constexpr int homotopy_polish_iterations = 12;
+//! Homotopy certification: Krawczyk iteration contracts a certified box at most this many times.
+inline constexpr int homotopy_contract_iterations = 8;
+//! Homotopy: a box built around an estimate whose last Newton correction (or endgame accuracy) is c
+//! has half-width at least this · c, so that the zero the correction points to lies well inside.
+inline constexpr double homotopy_correction_box_factor = 16;
 
 //! Homotopy: two regular endpoints closer than this (relative to 1 + ‖u‖∞) mean that a path
 //! jumped; the paths are re-tracked with smaller steps.
@@ -365,6 +393,10 @@ inline constexpr double univariate_precision_limited_ratio = 0.25;
 //! an edge or a corner, not a polygon (solvers/query_geometry.cpp: plane_box_section): rounding
 //! noise at the box's size.
 inline constexpr double degenerate_section_relative_area = std::numeric_limits<double>::epsilon();
+//! A query's direction whose part orthogonal to another (the plane normal of curve_critical, the
+//! other direction of silhouette_critical) is at most this relative to its length is taken as
+//! parallel to it, and the query is refused: its frame would rest on rounding noise.
+inline constexpr double query_parallel_directions = 1e-12;
 
 // ---- Taylor forms of polynomial systems (symbolic/polynomial_form.h, subdivision_solver.cpp) ----
 //! A system polynomial in its unknowns gets a monomial form (PolynomialForm) only if its expanded

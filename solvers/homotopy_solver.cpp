@@ -125,13 +125,12 @@ class EndpointCertifier {
 
   //! Newton in double from x; returns the size of the last correction (∞ if it broke down).
   double polish(std::vector<double>& x) const {
-    constexpr int iterations = 12;
     constexpr double eps = std::numeric_limits<double>::epsilon();
     std::vector<double> f(n_), J(n_ * n_);
     Eigen::MatrixXd A(n_, n_);
     Eigen::VectorXd b(n_);
     double last = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < iterations; ++k) {
+    for (int k = 0; k < tol::homotopy_polish_iterations; ++k) {
       system_.values_and_jacobian<double>(x.data(), parameters_.data(), f.data(), J.data());
       for (std::size_t i = 0; i < n_; ++i) {
         b[i] = -f[i];
@@ -147,16 +146,15 @@ class EndpointCertifier {
       const double size = delta.cwiseAbs().maxCoeff();
       if (size > last && k > 2) break;  // round-off level reached
       last = size;
-      if (size <= 4 * eps * (1 + scale)) break;
+      if (size <= tol::homotopy_newton_converged_ulps * eps * (1 + scale)) break;
     }
     return last;
   }
 
   //! Krawczyk iteration from a box known to hold a unique root: shrink while it keeps proving.
   std::vector<Interval> contract(std::vector<Interval> box) const {
-    constexpr int iterations = 8;
     RoundingGuard guard;
-    for (int k = 0; k < iterations; ++k) {
+    for (int k = 0; k < tol::homotopy_contract_iterations; ++k) {
       const KrawczykResult r = krawczyk_test(system_, parameters_, box);
       if (r.outcome != KrawczykOutcome::unique_root || !(width(r.contracted) < width(box))) break;
       box = r.contracted;
@@ -181,7 +179,7 @@ class EndpointCertifier {
     double scale = 0;
     for (double c : x) scale = std::max(scale, std::abs(c));
     double radius = tol::homotopy_certify_radius * (1 + scale);
-    if (std::isfinite(correction)) radius = std::max(radius, 16 * correction);
+    if (std::isfinite(correction)) radius = std::max(radius, tol::homotopy_correction_box_factor * correction);
     for (int attempt = 0; attempt < tol::homotopy_certify_attempts; ++attempt, radius *= tol::homotopy_certify_growth) {
       std::vector<Interval> box;
       for (double c : x) box.emplace_back(c - radius, c + radius);
@@ -301,7 +299,8 @@ class EndpointSorter {
     for (std::size_t i = 0; i < n_; ++i) x[i] = end.point[i].real();
     if (end.outcome == PathOutcome::singular) {
       const double radius =
-          std::max(tol::homotopy_singular_box_radius * scale, 16 * (std::isfinite(end.last_correction) ? end.last_correction : 0));
+          std::max(tol::homotopy_singular_box_radius * scale,
+                   tol::homotopy_correction_box_factor * (std::isfinite(end.last_correction) ? end.last_correction : 0));
       if (imag > std::max(radius, tol::homotopy_near_real * scale)) return false;  // certainly not real
       const double box_radius = std::max(radius, tol::homotopy_near_real_box_ratio * imag);
       if (!near_domain(x, box_radius)) return false;

@@ -88,8 +88,9 @@ std::vector<std::vector<Complex>> total_degree_start_solutions(const std::vector
 //!     over the reals and certified by the Krawczyk test (krawczyk.h) on a small box around it,
 //!     contracted by Krawczyk iteration and classified against the domain; not certified → the
 //!     largest box tried undecided (precision), unless it is certainly outside the domain;
-//!  2. singular endpoint with ι ≤ max(r, homotopy_near_real · s), r = max(homotopy_singular_box_radius
-//!     · s, 16 · its accuracy estimate), x near the domain with extra b: the box of half-width
+//!  2. singular endpoint (an approximate zero of f by the tracker's residual test, else the path
+//!     failed: rule 5) with ι ≤ max(r, homotopy_near_real · s), r = max(homotopy_singular_box_radius
+//!     · s, homotopy_correction_box_factor · its accuracy estimate), x near the domain with extra b: the box of half-width
 //!     b = max(r, homotopy_near_real_box_ratio · ι) around x undecided (singular_root);
 //!  3. near-real regular endpoint (homotopy_real_candidate · s < ι ≤ homotopy_near_real · s), x near
 //!     the domain with extra b, B the box of half-width b = max(homotopy_certify_radius · s,

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/errors.h"
+#include "common/tolerances.h"
 
 namespace delmesh {
 
@@ -83,7 +84,7 @@ PrimitiveQuery curve_critical_query(const QueryOptions& o, const Box3& box) {
   const Vec3 given = o.at(Q::direction);
   const double along = dot3(given, normal);
   const Vec3 in_plane{given[0] - along * normal[0], given[1] - along * normal[1], given[2] - along * normal[2]};
-  if (std::sqrt(dot3(in_plane, in_plane)) <= 1e-12 * std::sqrt(dot3(given, given))) {
+  if (std::sqrt(dot3(in_plane, in_plane)) <= tolerances::query_parallel_directions * std::sqrt(dot3(given, given))) {
     throw InvalidInput("--direction must not be normal to the plane for curve_critical");
   }
   frame.a = unit_vector(in_plane);
@@ -94,7 +95,7 @@ PrimitiveQuery curve_critical_query(const QueryOptions& o, const Box3& box) {
 PrimitiveQuery silhouette_critical_query(const QueryOptions& o, const Box3& box) {
   const Vec3 d = unit_vector(o.at(Q::direction)), e = unit_vector(o.at(Q::direction2));
   const Vec3 c = cross3(d, e);
-  if (std::sqrt(dot3(c, c)) <= 1e-12) throw InvalidInput("--direction and --direction2 must not be parallel");
+  if (std::sqrt(dot3(c, c)) <= tolerances::query_parallel_directions) throw InvalidInput("--direction and --direction2 must not be parallel");
   return box_query(box, {d, e}, "direction " + vector_text(d) + ", direction2 " + vector_text(e));
 }
 

@@ -23,7 +23,7 @@ TrackerSettings TrackerSettings::defaults() {
           tol::homotopy_endgame_min_t,       tol::homotopy_endgame_closure,
           tol::homotopy_endgame_valuation_stable, tol::homotopy_endgame_valuation_infinity,
           tol::homotopy_endgame_direct_steps,  tol::homotopy_endgame_valuation_max_t,
-          tol::homotopy_cluster_condition};
+          tol::homotopy_cluster_condition,    tol::homotopy_singular_endpoint_residual};
 }
 
 TrackerSettings TrackerSettings::stricter() const {
@@ -215,7 +215,7 @@ class PathTracker {
     Vec H, Ht;
     Mat HX;
     double last = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 2; ++k) {
+    for (int k = 0; k < tolerances::homotopy_refine_iterations; ++k) {
       evaluate(X, t, H, HX, Ht);
       Eigen::PartialPivLU<Mat> lu(HX);
       const Vec delta = -lu.solve(H);
@@ -223,7 +223,7 @@ class PathTracker {
       if (!finite(delta) || size > last) return;
       X += delta;
       last = size;
-      if (size <= 16 * eps * norm(X)) return;
+      if (size <= tolerances::homotopy_refine_converged_ulps * eps * norm(X)) return;
     }
   }
 
@@ -309,7 +309,7 @@ class PathTracker {
       // successive samples (one loop short of closing, the path is on another branch, at least
       // about that distance away) or up to round-off.
       const double gap = norm(Vec(X - first));
-      if (gap <= settings_.endgame_closure * spacing || gap <= 64 * eps * norm(first)) {
+      if (gap <= settings_.endgame_closure * spacing || gap <= tolerances::homotopy_loop_closure_ulps * eps * norm(first)) {
         c = loop;
         estimate = sum / static_cast<double>(loop * samples);
         return LoopOutcome::closed;
@@ -496,7 +496,7 @@ class PathTracker {
       if (norm(AffineVec(next - u0)) > max_travel * (1 + norm(u0))) break;
       u = next;
       last = size;
-      if (size <= 4 * eps * (1 + norm(u))) break;
+      if (size <= tolerances::homotopy_newton_converged_ulps * eps * (1 + norm(u))) break;
     }
     return last;
   }
@@ -597,10 +597,22 @@ class PathTracker {
       }
     }
     // c > 1 (a branch point: the endpoint is singular) or an ill-conditioned Jacobian: the Cauchy
-    // estimate, more accurate than Newton (only linear at a singular zero)
-    end.outcome = PathOutcome::singular;
+    // estimate, more accurate than Newton (only linear at a singular zero), if it is a zero of f
+    end.outcome = near_a_zero(u) ? PathOutcome::singular : PathOutcome::failed;
     end.condition = condition(u);
     end.last_correction = accuracy;
+  }
+
+  //! The residual test of a singular endpoint estimate u: ‖f(u)‖∞ ≤
+  //! settings.singular_residual · (1 + ‖u‖∞) · ‖J_f(u)‖∞ (the operator norm, maximal row
+  //! sum).  About the distance to the nearest zero where J_f is singular as well as where it is not.
+  bool near_a_zero(const AffineVec& u) {
+    AffineVec fv;
+    AffineMat fj;
+    evaluate_f(u, fv, fj);
+    if (!finite(fv) || !fj.allFinite()) return false;
+    const double jacobian_norm = fj.cwiseAbs().rowwise().sum().maxCoeff();
+    return fv.cwiseAbs().maxCoeff() <= settings_.singular_residual * (1 + norm(u)) * jacobian_norm;
   }
 
   const CompiledSystem& f_;

@@ -47,10 +47,13 @@
 //!    what this tracker did for every path before it had an endgame).
 //! The loops stay at |t| = t_k, away from the singular endpoint, so the estimate is accurate even
 //! where the Jacobian at t = 0 is singular.  The estimate is then classified: at infinity →
-//! diverging; c > 1 → singular; c = 1 → Newton on f in the affine chart, regular if the Jacobian
-//! there is well conditioned and the Newton correction there is below
-//! tolerances::homotopy_endpoint_newton_step (the point is a zero of f), singular if the Jacobian is
-//! ill conditioned, and failed otherwise (a well-conditioned point that is not a zero).  An endgame that does not conclude before t_k
+//! diverging; c = 1 → Newton on f in the affine chart, regular if the Jacobian there is well
+//! conditioned and the Newton correction there is below tolerances::homotopy_endpoint_newton_step
+//! (the point is a zero of f), failed if it is well conditioned and not a zero; c > 1, or c = 1
+//! with an ill-conditioned Jacobian → singular if the estimate passes the residual test of
+//! TrackerSettings::singular_residual (‖f‖ against ‖J_f‖: it is a zero of f), failed
+//! otherwise.  So every finite or singular endpoint is an approximate zero of f, and an endgame
+//! estimate that is not one is never taken for a root, real or not.  An endgame that does not conclude before t_k
 //! falls below endgame_min_t, or runs out of the step budget, or whose steps underflow, makes the
 //! path failed: it is reported, never dropped.
 //!
@@ -109,6 +112,7 @@ struct TrackerSettings {
   std::size_t endgame_direct_steps;  //!< steps allowed to finish directly from t_k to 0
   double endgame_valuation_max_t;    //!< the valuation test for infinity only at t_k ≤ this
   double cluster_condition;          //!< c > 1 estimate accepted only where cond J_f ≥ this (or at ∞)
+  double singular_residual;          //!< singular endpoint only if ‖f‖∞ ≤ this (1 + ‖u‖∞) ‖J_f‖∞ there
   //! If set: no step is attempted once the clock has reached it; the path then ends failed with
   //! PathEndpoint::stopped (the clock is read before every predictor–corrector step).
   std::optional<std::chrono::steady_clock::time_point> deadline{};

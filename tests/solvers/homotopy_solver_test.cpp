@@ -400,6 +400,35 @@ BOOST_AUTO_TEST_CASE(an_endpoint_estimate_that_is_not_a_zero_fails_the_path) {
   BOOST_TEST(count(ends, detail::PathOutcome::failed) == 2u);
 }
 
+BOOST_AUTO_TEST_CASE(a_singular_estimate_must_pass_the_residual_test) {
+  // x² + y² = 1 and (x − 2)² + y² = 1 touch at (1, 0) (c = 2).  With the poor endgame of the test
+  // above (loops from t = 0.35, one sample per loop, any two estimates taken to agree) the estimate
+  // is off by a few 1e-7, so ‖f‖/‖J_f‖ is about 1e-7: it passes the default bound
+  // (homotopy_singular_endpoint_residual = 1e-6) but not a bound of 1e-9, and those paths must then
+  // fail rather than end singular.  The default endgame's estimate passes even that bound.
+  const auto s = make_system({X() * X() + Y() * Y() - 1, (X() - 2) * (X() - 2) + Y() * Y() - 1}, {X(), Y()});
+  auto strict = detail::TrackerSettings::defaults();
+  strict.singular_residual = 1e-9;
+  BOOST_TEST(count(track_all(s, strict), detail::PathOutcome::singular) == 2u);
+  auto poor = detail::TrackerSettings::defaults();
+  poor.endgame_direct_steps = 0;
+  poor.endgame_samples = 1;
+  poor.endgame_start = 0.3;
+  poor.endgame_valuation_stable = 1e300;
+  poor.endgame_tolerance = 1e300;
+  const auto accepted = track_all(s, poor);
+  BOOST_TEST(count(accepted, detail::PathOutcome::singular) == 2u);
+  for (const auto& end : accepted)
+    if (end.outcome == detail::PathOutcome::singular) {
+      BOOST_TEST(std::abs(end.point[0] - 1.0) <= 1e-5);
+      BOOST_TEST(std::abs(end.point[0] - 1.0) >= 1e-9);  // a poor estimate indeed
+    }
+  poor.singular_residual = 1e-9;
+  const auto rejected = track_all(s, poor);
+  BOOST_TEST(count(rejected, detail::PathOutcome::singular) == 0u);
+  BOOST_TEST(count(rejected, detail::PathOutcome::failed) == 2u);
+}
+
 BOOST_AUTO_TEST_CASE(cauchy_endgame_at_tangent_circles_and_the_circular_points) {
   // x² + y² = 1 and (x − 2)² + y² = 1 touch at (1, 0) (multiplicity 2, one cycle of c = 2);
   // the other two paths go to the circular points at infinity (1 : ±i : 0).

@@ -267,6 +267,10 @@ inline constexpr double facet_repeated_corner_relative_distance = 1e-12;
 //! A witness closer than this fraction of the box diagonal to an existing sample is a duplicate
 //! and is not inserted (it is counted as rejected).
 inline constexpr double duplicate_sample_relative_distance = 1e-9;
+//! A check whose answer rests on a seeded generic choice (FacetCycle's in-plane direction,
+//! Silhouette's d′; CheckInfo::generic_choice) and all of whose witnesses were rejected is run
+//! again with another choice, up to this many choices in all, before its face is left unsettled.
+inline constexpr int generic_choice_attempts = 3;
 //! Box budget of one gradient-cone certificate (solvers/gradient_cone.h) over a Voronoi facet or
 //! cell; the full solvers run when it does not suffice.  Small, because a certificate that needs
 //! many boxes rarely succeeds and the solve is then needed anyway.

@@ -84,6 +84,9 @@ struct CheckContext {
   //! always says true: a row runs only when the queues of the rows before it are empty.  The
   //! certificate says whether its own checks of those faces were clean.
   bool cell_faces_clean = true;
+  //! Rows with a generic choice (CheckInfo::generic_choice): 0 for the face's seeded choice, k > 0
+  //! for the k-th alternative (attempt_seed()).  Other rows ignore it.
+  int attempt = 0;
 };
 
 //! One row of the registry.
@@ -125,6 +128,13 @@ struct CheckInfo {
   //! (VorEdge, TopoDisk): the certificate counts it as proved only if none of their records has
   //! an unresolved region.
   bool reads_restricted_status = false;
+  //! The row's witnesses depend on a seeded generic choice that CheckContext::attempt varies
+  //! (FacetCycle's in-plane direction, Silhouette's d′).  When every witness of the row on a face
+  //! is rejected (a duplicate of a sample, or below the termination floor), the driver runs it
+  //! again on the face with the next attempt, up to tolerances::generic_choice_attempts choices,
+  //! before it leaves the face unsettled.  Any attempt's clean answer is a proof: the lemmas hold
+  //! for every direction outside a measure-zero set, and the seeded choices avoid it alike.
+  bool generic_choice = false;
   //! Set by the registry: the paper's enumerator for a row of builtin_checks(), the next kind
   //! after CheckKind::size for any other row.
   CheckKind kind = CheckKind::seed;

@@ -68,8 +68,9 @@ const std::vector<CheckInfo>& builtin_checks() {
                           "FacetCycle (Lemma 4.9): Σ ∩ (dual Voronoi facet) contains no closed curve",
                           FaceKind::edge, Dirtied::new_faces, CheckPhase::topology,
                           [](const CheckContext& c, const DelaunayFace& f) {
-                            return facet_cycle_witness(c.restricted, as_edge(f));
+                            return facet_cycle_witness(c.restricted, as_edge(f), c.attempt);
                           }};
+    facet_cycle.generic_choice = true;
     facet_cycle.after_clean_predecessors = true;
     facet_cycle.silent_off_surface = true;
     facet_cycle.kind = CheckKind::facet_cycle;
@@ -79,8 +80,9 @@ const std::vector<CheckInfo>& builtin_checks() {
     CheckInfo silhouette{"silhouette", "Silhouette (Lemmas 4.13, 4.14): the cell misses the silhouette J_{n_p}",
                          FaceKind::vertex, Dirtied::new_faces, CheckPhase::topology,
                          [](const CheckContext& c, const DelaunayFace& f) {
-                           return silhouette_witness(c.restricted, f[0], c.cell_faces_clean);
+                           return silhouette_witness(c.restricted, f[0], c.cell_faces_clean, c.attempt);
                          }};
+    silhouette.generic_choice = true;
     silhouette.kind = CheckKind::silhouette;
     r.push_back(silhouette);
 

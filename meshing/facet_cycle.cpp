@@ -25,10 +25,20 @@ std::optional<std::array<double, 2>> clip_line_to_facet(const VoronoiFacet& f, d
 
 }  // namespace
 
-CheckResult facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& pq) {
-  const VoronoiFacet& f = restricted.facet(pq);
-  if (!f.valid || restricted.facet_section_certified(pq)) return {};
+CheckResult facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& pq, int attempt) {
+  const VoronoiFacet& cached = restricted.facet(pq);
+  if (!cached.valid || restricted.facet_section_certified(pq)) return {};
+  // Another generic direction d: the same facet in another frame.
+  const VoronoiFacet rotated = attempt > 0 ? restricted.rotated_facet(pq, attempt) : VoronoiFacet{};
+  const VoronoiFacet& f = attempt > 0 ? rotated : cached;
   auto& oracle = restricted.oracle();
+  const Vec3& p = restricted.delaunay().point(pq[0]);
+  WitnessCollector collector(CheckKind::facet_cycle, pq[0], p);
+  if (!f.valid) {
+    // The cached facet is valid, so the same polygon in another frame is too, up to rounding.
+    collector.add_unsettled(UnsettledReason::degenerate_face, p);
+    return collector.take();
+  }
   const auto critical = oracle.curve_critical(f.origin, f.a, f.b, f.domain);
   // (u, v) of each start, and whether it is the centre of an undecided region (then ℓ_x is not
   // known to pass through a critical point, and its points are candidate witnesses only).
@@ -41,8 +51,6 @@ CheckResult facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& p
   for (const auto& u : critical.undecided)
     starts.push_back({0.5 * (u.box.bounds[0][0] + u.box.bounds[0][1]), 0.5 * (u.box.bounds[1][0] + u.box.bounds[1][1]),
                       true});
-  const Vec3& p = restricted.delaunay().point(pq[0]);
-  WitnessCollector collector(CheckKind::facet_cycle, pq[0], p);
   for (const auto& [ux, vx, undecided_start] : starts) {
     // ℓ_x ∩ F = {(ux + s, vx)} clipped by the polygon's half-planes and bounding box.
     const auto range = clip_line_to_facet(f, ux, vx);

@@ -10,7 +10,8 @@
 namespace delmesh {
 
 //! CurveCritical(Σ, Π, d) with d = a, the first axis of the facet's frame (a seeded generic
-//! in-plane direction, RestrictedDelaunay::facet_rotation), over the polygon F.  For each
+//! in-plane direction, RestrictedDelaunay::facet_rotation(pq, attempt): attempt 0 is the cached
+//! facet's frame, attempt k > 0 the k-th alternative), over the polygon F.  For each
 //! critical point x in F (certified, or the centre of an undecided region), the line ℓ_x through
 //! x parallel to d is clipped to F and SurfaceLine(Σ, ℓ_x ∩ F) is solved; if it has ≥ 2 points
 //! (undecided regions on ℓ_x count, projected onto Σ), the one furthest from p (the smaller id of
@@ -18,6 +19,6 @@ namespace delmesh {
 //! undecided region are marked from_undecided (that centre is not known to be critical).  An
 //! undecided region of SurfaceLine whose projection onto Σ fails is unsettled, never a witness.
 //! Precondition (the paper's): FacetContact(F) returned nothing.
-CheckResult facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& pq);
+CheckResult facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& pq, int attempt = 0);
 
 }  // namespace delmesh

@@ -297,20 +297,30 @@ MeshStatus Refinement::run() {
     const Simplex item = step->queue.pop();
     const int index = static_cast<int>(step - steps_.begin());
     const CheckInfo& row = *step->row;
-    CheckResult result;
-    // A face no longer in Del S has nothing to check.
-    if (face_current(item)) {
-      const CheckContext context{restricted_, row.kind, lambda_, size_bound_, /*cell_faces_clean=*/true};
-      result = row.check(context, item);
-      // The last edge check of the edge: its facet's geometry is not kept.
-      if (index == last_edge_step_ && result.clean()) restricted_.release_facet(as_edge(item));
-    }
     const auto k = static_cast<int>(row.kind);
-    const auto checked = std::chrono::steady_clock::now();
-    seconds_[k] += std::chrono::duration<double>(checked - now).count();
-    ++checks_[k];
-    now = checked;
-    if (settle(index, item, std::move(result))) {
+    // A face no longer in Del S has nothing to check.  A row with a generic choice whose witnesses
+    // were all rejected runs again with the next choice (S is unchanged: the face is still current).
+    const bool current_face = face_current(item);
+    CheckContext context{restricted_, row.kind, lambda_, size_bound_, /*cell_faces_clean=*/true};
+    bool inserted = false, retry = false;
+    do {
+      CheckResult result;
+      if (current_face) {
+        result = row.check(context, item);
+        // The last edge check of the edge: its facet's geometry is not kept.
+        if (index == last_edge_step_ && result.clean()) restricted_.release_facet(as_edge(item));
+      }
+      const auto checked = std::chrono::steady_clock::now();
+      seconds_[k] += std::chrono::duration<double>(checked - now).count();
+      ++checks_[k];
+      now = checked;
+      const bool had_witness = !result.witnesses.empty();
+      inserted = settle(index, item, std::move(result));
+      retry = !inserted && had_witness && row.generic_choice &&
+              ++context.attempt < tolerances::generic_choice_attempts;
+      if (retry) ++retries_;
+    } while (retry);
+    if (inserted) {
       // A face that gave a witness is not clean: it is examined again once the witness is in S
       // (e.g. V_p keeps other points of J_{n_p} after the furthest one is inserted).
       step->queue.push(item);
@@ -385,6 +395,7 @@ nlohmann::json Refinement::insertions_json() const {
   }
   j["seeds_deleted"] = seeds_deleted_;
   j["rejected_witnesses"] = rejected_;
+  j["generic_choice_retries"] = retries_;
   return j;
 }
 

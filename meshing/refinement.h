@@ -75,7 +75,12 @@
 //! Witnesses within tolerances::duplicate_sample_relative_distance of an existing sample are not
 //! inserted (counted as `rejected_witnesses`), so the loop cannot cycle on a degenerate answer.
 //! A check lists its witnesses in order of preference; when the first is rejected the next is
-//! tried, and when all are, the face is left unsettled (rejected_witness).
+//! tried.  When all are, a row with a generic choice (CheckInfo::generic_choice: FacetCycle,
+//! Silhouette) is run on the face again at once with the next alternative choice
+//! (CheckContext::attempt), up to tolerances::generic_choice_attempts choices in all (counted as
+//! `generic_choice_retries`); a clean answer with any choice settles the face (by the lemma above
+//! it stays clean as the face shrinks, for that choice).  When no choice gives a witness that can
+//! be inserted, the face is left unsettled (rejected_witness).
 //!
 //! Unsettled faces.  A check that leaves something unsettled (witness.h: UnsettledReason) keeps
 //! its face on a list.  When every queue is empty, each face on the list that is still in Del S
@@ -193,13 +198,16 @@ class Refinement {
   std::size_t insertions(CheckKind kind) const { return insertions_[static_cast<int>(kind)]; }
   std::size_t seeds_deleted() const { return seeds_deleted_; }
   std::size_t rejected_witnesses() const { return rejected_; }
+  //! Checks run again with another generic choice after every witness was rejected.
+  std::size_t generic_choice_retries() const { return retries_; }
   //! Seconds spent in each check, and the number of items each step examined.
   double seconds(CheckKind kind) const { return seconds_[static_cast<int>(kind)]; }
   std::size_t checks(CheckKind kind) const { return checks_[static_cast<int>(kind)]; }
   //! Seconds spent inserting: updating Del S and the records and facets of the changed faces.
   double seconds_insertion() const { return seconds_insertion_; }
 
-  //! {seeds, vor_edge, …, size, (registered checks), seeds_deleted, rejected_witnesses}
+  //! {seeds, vor_edge, …, size, (registered checks), seeds_deleted, rejected_witnesses,
+  //! generic_choice_retries}
   nlohmann::json insertions_json() const;
   //! The termination floor: {value, topology_value, reached, witnesses_below (count), locations
   //! (the first tolerances::floor_locations_listed distinct ones)}.
@@ -300,7 +308,7 @@ class Refinement {
   std::vector<std::size_t> insertions_, checks_;
   std::vector<double> seconds_;
   double seconds_insertion_ = 0;
-  std::size_t seeds_deleted_ = 0, rejected_ = 0;
+  std::size_t seeds_deleted_ = 0, rejected_ = 0, retries_ = 0;
   //! Insertions and deletions so far: a face checked at this count has seen the current S.
   std::size_t changes() const { return log_.size() + seeds_deleted_; }
   struct UnsettledFace {

@@ -25,8 +25,12 @@ bool misses_surface(const VoronoiEdgeRecord& r) {
 RestrictedDelaunay::RestrictedDelaunay(const Delaunay& del, SurfaceOracle& oracle, std::uint64_t seed)
     : del_(del), oracle_(oracle), seed_(seed) {}
 
-double RestrictedDelaunay::facet_rotation(const EdgeKey& e) const {
-  return 2 * M_PI * seeded_uniform(seed_, e[0], e[1], generic_stream::facet_rotation);
+double RestrictedDelaunay::facet_rotation(const EdgeKey& e, int attempt) const {
+  return 2 * M_PI * seeded_uniform(attempt_seed(seed_, attempt), e[0], e[1], generic_stream::facet_rotation);
+}
+
+VoronoiFacet RestrictedDelaunay::rotated_facet(const EdgeKey& e, int attempt) const {
+  return voronoi_facet(del_, e, oracle_.box(), facet_rotation(e, attempt));
 }
 
 void RestrictedDelaunay::track(const TriangleKey& t, bool was_restricted, bool is_restricted) {

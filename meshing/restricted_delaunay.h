@@ -126,8 +126,12 @@ class RestrictedDelaunay {
   //! direction (solvers/gradient_cone.h, with w the in-plane part of ∇E at the midpoint of pq): then
   //! FacetContact and FacetCycle have no witness in F.  Computed once per facet.
   bool facet_section_certified(const EdgeKey& e);
-  //! The seeded rotation of the frame of facet e (generic in-plane direction d = a).
-  double facet_rotation(const EdgeKey& e) const;
+  //! The seeded rotation of the frame of facet e (generic in-plane direction d = a); attempt k > 0
+  //! gives the k-th alternative rotation (attempt_seed()).
+  double facet_rotation(const EdgeKey& e, int attempt = 0) const;
+  //! The facet of a current Delaunay edge e in the frame of rotation facet_rotation(e, attempt),
+  //! built anew (not cached): the same polygon and domain as facet(e) in another frame.
+  VoronoiFacet rotated_facet(const EdgeKey& e, int attempt) const;
 
   //! Forgets the cached record of every current Delaunay triangle and edge all of whose vertices
   //! are in `vertices` (sorted ascending).

@@ -12,13 +12,14 @@ namespace delmesh {
 
 using namespace detail;
 
-Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, const Vec3& n_p) {
+Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, const Vec3& n_p, int attempt) {
   const auto frame = orthonormal_frame(n_p);
-  const double angle = 2 * M_PI * seeded_uniform(restricted.seed(), p, 0, generic_stream::silhouette_direction);
+  const double angle =
+      2 * M_PI * seeded_uniform(attempt_seed(restricted.seed(), attempt), p, 0, generic_stream::silhouette_direction);
   return std::cos(angle) * frame.a + std::sin(angle) * frame.b;
 }
 
-CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool facets_clean) {
+CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool facets_clean, int attempt) {
   const auto& del = restricted.delaunay();
   auto& oracle = restricted.oracle();
   const Vec3& pp = del.point(p);
@@ -37,7 +38,7 @@ CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool 
   }
   // J_{n_p} ∩ V_p = ∅ proved by the gradient cone (solvers/gradient_cone.h): nothing to solve.
   if (oracle.prove_gradient_cone(AffineChart::identity(), cell.domain, n_p)) return {};
-  const Vec3 d2 = silhouette_direction(restricted, p, n_p);
+  const Vec3 d2 = silhouette_direction(restricted, p, n_p, attempt);
   collector.add_result(oracle, cell, oracle.silhouette_critical(n_p, d2, cell.domain));
   if (collector.points() > 0) return collector.take();
   // Neighbours q such that a Voronoi edge of the facet pq meets Σ (see facets_clean).

@@ -10,8 +10,9 @@
 namespace delmesh {
 
 //! The generic direction d′ ⟂ n_p used for p: the frame of n_p (solvers/query_geometry.h)
-//! rotated by a seeded angle.  n_p = ∇E(p)/|∇E(p)|.
-Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, const Vec3& n_p);
+//! rotated by a seeded angle (attempt k > 0: the k-th alternative angle, attempt_seed()).
+//! n_p = ∇E(p)/|∇E(p)|.
+Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, const Vec3& n_p, int attempt = 0);
 
 //! SilhouetteCritical(Σ, n_p, d′) over the clipped cell V_p: a point inside V_p (the furthest
 //! from p; undecided regions are projected candidates) is returned.  Otherwise, for every facet
@@ -32,6 +33,8 @@ Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, cons
 //! of J_{n_p}, hence no root of SilhouetteCritical (resp. SilhouettePlane), and the solve is
 //! skipped.  The certificate proves what an empty solver answer would say, so no root is lost;
 //! only undecided regions (which it shows to hold no root) are not reported.
-CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool facets_clean = false);
+//!
+//! attempt: which generic direction d′ SilhouetteCritical uses (silhouette_direction()).
+CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool facets_clean = false, int attempt = 0);
 
 }  // namespace delmesh

@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "check_fixture.h"
+#include "common/tolerances.h"
+#include "meshing/detail/vec3.h"
 #include "meshing/facet_cycle.h"
 
 using namespace delmesh;
@@ -18,6 +20,27 @@ BOOST_AUTO_TEST_CASE(facet_containing_a_closed_curve_fires) {
   BOOST_TEST(w.witnesses.front().kind == CheckKind::facet_cycle);
   BOOST_TEST(std::abs(w.witnesses.front().point[0] - 0.4) < 1e-9);
   BOOST_TEST(std::abs(f.oracle.E(w.witnesses.front().point)) < 1e-9);
+}
+
+// A closed curve has critical points in every direction: with the alternative frames of the
+// driver's retries (attempts 1 and 2) the check still fires, in the same plane, with a witness on
+// another line of the facet.
+BOOST_AUTO_TEST_CASE(alternative_directions_find_the_closed_curve_too) {
+  CheckFixture f(test::unit_sphere, 1.6, {{0.2, 0, 0}, {0.6, 0, 0}});
+  const VoronoiFacet& cached = f.restricted.facet({0, 1});
+  const Vec3 first = facet_cycle_witness(f.restricted, {0, 1}).witnesses.at(0).point;
+  for (int attempt = 1; attempt < tolerances::generic_choice_attempts; ++attempt) {
+    const VoronoiFacet rotated = f.restricted.rotated_facet({0, 1}, attempt);
+    BOOST_TEST_REQUIRE(rotated.valid);
+    BOOST_TEST(detail::distance(rotated.normal, cached.normal) < 1e-15);
+    BOOST_TEST(std::abs(detail::dot(rotated.a, cached.a)) < 1 - 1e-6);  // another in-plane direction
+    const auto w = facet_cycle_witness(f.restricted, {0, 1}, attempt);
+    BOOST_TEST_REQUIRE(!w.witnesses.empty());
+    const Vec3 x = w.witnesses.front().point;
+    BOOST_TEST(std::abs(x[0] - 0.4) < 1e-9);
+    BOOST_TEST(std::abs(f.oracle.E(x)) < 1e-9);
+    BOOST_TEST(detail::distance(x, first) > 1e-6);
+  }
 }
 
 // The facet x = 1.2 misses the sphere.

@@ -154,6 +154,11 @@ BOOST_AUTO_TEST_CASE(rejected_witnesses_leave_the_run_uncertified) {
   const MeshStatus status = sample_topology(refinement, seeds);
   BOOST_TEST_REQUIRE(status == MeshStatus::complete);
   BOOST_TEST_REQUIRE(refinement.rejected_witnesses() > 0u);
+  // FacetCycle and Silhouette faces whose witnesses were all rejected were run again with other
+  // generic directions; each retry follows a rejection.
+  BOOST_TEST(refinement.generic_choice_retries() > 0u);
+  BOOST_TEST(refinement.generic_choice_retries() <= refinement.rejected_witnesses());
+  BOOST_TEST(refinement.insertions_json().at("generic_choice_retries") == refinement.generic_choice_retries());
   const auto unsettled = refinement.unsettled();
   BOOST_TEST_REQUIRE(!unsettled.empty());
   for (const auto& u : unsettled) {

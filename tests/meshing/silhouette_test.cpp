@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "check_fixture.h"
+#include "common/tolerances.h"
 #include "meshing/detail/vec3.h"
 #include "meshing/silhouette.h"
 
@@ -21,6 +22,27 @@ BOOST_AUTO_TEST_CASE(cell_containing_a_handle_fires) {
   BOOST_TEST(std::abs(f.oracle.E(w.witnesses.front().point)) < 1e-8);
   const auto n = f.oracle.normal({1.4, 0, 0});
   BOOST_TEST(std::abs(detail::dot(f.oracle.normal(w.witnesses.front().point), n)) < 1e-6);  // w ∈ J_{n_p}
+}
+
+// The driver's retries use other directions d′ ⟂ n_p (attempts 1 and 2): each still finds a point
+// of J_{n_p} in the cell, and not the same point as the seeded direction.
+BOOST_AUTO_TEST_CASE(alternative_directions_give_other_witnesses) {
+  CheckFixture f("(x^2+y^2+z^2+0.84)^2-4*(x^2+y^2)", 1.65, {{1.4, 0, 0}});
+  const auto n = f.oracle.normal({1.4, 0, 0});
+  const Vec3 d0 = silhouette_direction(f.restricted, 0, n);
+  const Vec3 first = silhouette_witness(f.restricted, 0).witnesses.at(0).point;
+  for (int attempt = 1; attempt < tolerances::generic_choice_attempts; ++attempt) {
+    const Vec3 d = silhouette_direction(f.restricted, 0, n, attempt);
+    BOOST_TEST(std::abs(detail::norm(d) - 1) < 1e-12);
+    BOOST_TEST(std::abs(detail::dot(d, n)) < 1e-12);
+    BOOST_TEST(std::abs(detail::dot(d, d0)) < 1 - 1e-6);
+    const auto w = silhouette_witness(f.restricted, 0, false, attempt);
+    BOOST_TEST_REQUIRE(!w.witnesses.empty());
+    const Vec3 x = w.witnesses.front().point;
+    BOOST_TEST(std::abs(f.oracle.E(x)) < 1e-8);
+    BOOST_TEST(std::abs(detail::dot(f.oracle.normal(x), n)) < 1e-6);  // x ∈ J_{n_p}
+    BOOST_TEST(detail::distance(x, first) > 1e-6);
+  }
 }
 
 // Two samples on the torus on opposite sides: V_p ∩ Σ is half of the torus, which still meets

@@ -17,25 +17,27 @@ Domain Domain::from_box(std::vector<std::array<double, 2>> bounds) {
 }
 
 void Domain::validate() const {
-  if (box.bounds.empty()) throw InvalidInput("solver domain: the box has no sides");
+  if (box.bounds.empty()) throw PreconditionViolation("solver domain: the box has no sides");
   for (std::size_t i = 0; i < box.bounds.size(); ++i) {
     const auto& side = box.bounds[i];
     if (!std::isfinite(side[0]) || !std::isfinite(side[1]) || !(side[0] < side[1]))
-      throw InvalidInput("solver domain: side " + std::to_string(i) + " is not a finite interval lo < hi");
+      throw PreconditionViolation("solver domain: side " + std::to_string(i) + " is not a finite interval lo < hi");
   }
   for (std::size_t k = 0; k < half_spaces.size(); ++k) {
     const HalfSpace& h = half_spaces[k];
     if (h.normal.size() != box.bounds.size())
-      throw InvalidInput("solver domain: half-space " + std::to_string(k) + " has a normal of dimension " +
-                         std::to_string(h.normal.size()) + ", the box has " +
-                         std::to_string(box.bounds.size()));
+      throw PreconditionViolation("solver domain: half-space " + std::to_string(k) + " has a normal of dimension " +
+                                  std::to_string(h.normal.size()) + ", the box has " +
+                                  std::to_string(box.bounds.size()));
     bool nonzero = false;
     for (double c : h.normal) {
-      if (!std::isfinite(c)) throw InvalidInput("solver domain: half-space " + std::to_string(k) + " is not finite");
+      if (!std::isfinite(c))
+        throw PreconditionViolation("solver domain: half-space " + std::to_string(k) + " is not finite");
       nonzero = nonzero || c != 0;
     }
     if (!nonzero || !std::isfinite(h.offset))
-      throw InvalidInput("solver domain: half-space " + std::to_string(k) + " has a zero normal or infinite offset");
+      throw PreconditionViolation("solver domain: half-space " + std::to_string(k) +
+                                  " has a zero normal or infinite offset");
   }
 }
 

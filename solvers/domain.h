@@ -27,8 +27,8 @@ struct Domain {
   std::size_t dimension() const { return box.bounds.size(); }
   //! The box [lo0,hi0]×…; no half-spaces.
   static Domain from_box(std::vector<std::array<double, 2>> bounds);
-  //! Throws InvalidInput unless dimension() ≥ 1, every side satisfies −∞ < lo < hi < ∞, and every
-  //! half-space has dimension() finite normal entries, not all zero, and a finite offset.
+  //! Throws PreconditionViolation unless dimension() ≥ 1, every side satisfies −∞ < lo < hi < ∞,
+  //! and every half-space has dimension() finite normal entries, not all zero, and a finite offset.
   void validate() const;
   //! The widest side of the box, max_i (hi_i − lo_i): the scale of relative widths.
   double scale() const;

@@ -40,7 +40,7 @@ std::vector<int> equation_degrees(const PrimitiveSystem& system) {
 }
 
 std::size_t bezout_number(const std::vector<int>& degrees) {
-  if (degrees.empty()) throw InvalidInput("bezout_number: no equations");
+  if (degrees.empty()) throw PreconditionViolation("bezout_number: no equations");
   std::size_t product = 1;
   for (int d : degrees) {
     if (d < 1) throw InvalidInput("homotopy: every equation needs degree ≥ 1, got " + std::to_string(d));
@@ -223,18 +223,19 @@ void validate(const CompiledSystem& system, const std::vector<int>& degrees, con
               const Domain& domain) {
   const std::size_t n = system.n_unknowns();
   if (n == 0 || system.n_equations() != n)
-    throw InvalidInput("solve_homotopy: the system must be square, got " + std::to_string(system.n_equations()) +
-                       " equations in " + std::to_string(n) + " unknowns");
+    throw PreconditionViolation("solve_homotopy: the system must be square, got " +
+                                std::to_string(system.n_equations()) + " equations in " + std::to_string(n) +
+                                " unknowns");
   if (degrees.size() != n)
-    throw InvalidInput("solve_homotopy: " + std::to_string(degrees.size()) + " degrees for " + std::to_string(n) +
-                       " equations");
+    throw PreconditionViolation("solve_homotopy: " + std::to_string(degrees.size()) + " degrees for " +
+                                std::to_string(n) + " equations");
   bezout_number(degrees);  // throws on a degree < 1
   if (parameters.size() != system.n_parameters())
-    throw InvalidInput("solve_homotopy: " + std::to_string(parameters.size()) + " parameters given, the system has " +
-                       std::to_string(system.n_parameters()));
+    throw PreconditionViolation("solve_homotopy: " + std::to_string(parameters.size()) +
+                                " parameters given, the system has " + std::to_string(system.n_parameters()));
   if (domain.dimension() != n)
-    throw InvalidInput("solve_homotopy: the domain has dimension " + std::to_string(domain.dimension()) +
-                       ", the system " + std::to_string(n) + " unknowns");
+    throw PreconditionViolation("solve_homotopy: the domain has dimension " + std::to_string(domain.dimension()) +
+                                ", the system " + std::to_string(n) + " unknowns");
   domain.validate();
 }
 

@@ -70,11 +70,12 @@ struct HomotopyOptions {
 std::vector<int> equation_degrees(const PrimitiveSystem& system);
 
 //! The Bézout number ∏ d_i: the number of paths of the total-degree homotopy.
-//! Throws InvalidInput if degrees is empty or some d_i < 1.
+//! Throws PreconditionViolation if degrees is empty, and InvalidInput if some d_i < 1 (an equation
+//! constant in the unknowns, which a primitive of a user's E can be).
 std::size_t bezout_number(const std::vector<int>& degrees);
 
 //! The ∏ d_i solutions of the start system g_i(u) = u_i^{d_i} − 1 = 0 (tuples of roots of unity),
-//! in a fixed order.  Throws InvalidInput like bezout_number().
+//! in a fixed order.  Throws like bezout_number().
 std::vector<std::vector<Complex>> total_degree_start_solutions(const std::vector<int>& degrees);
 
 //! All roots of the square polynomial system f(u; parameters) = 0 inside the domain, by the
@@ -121,9 +122,10 @@ std::vector<std::vector<Complex>> total_degree_start_solutions(const std::vector
 //! lands on a different root is detected only when two paths end at the same regular root; the
 //! endgame's loop-closure and agreement tests are numerical).  What is certified is each root
 //! returned: its box holds exactly one root of f (Krawczyk, in interval arithmetic).
-//! Preconditions (InvalidInput otherwise): system square with n = domain.dimension() unknowns,
-//! degrees.size() == n with d_i ≥ 1 the total degree of equation i (equation_degrees()),
-//! parameters.size() == system.n_parameters().
+//! Preconditions (PreconditionViolation otherwise): system square with n = domain.dimension()
+//! unknowns, degrees.size() == n, parameters.size() == system.n_parameters(), domain valid
+//! (Domain::validate).  Throws InvalidInput if some d_i < 1 (d_i is the total degree of equation
+//! i, equation_degrees()).
 SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>& degrees,
                            const std::vector<double>& parameters, const Domain& domain,
                            const HomotopyOptions& options = {});

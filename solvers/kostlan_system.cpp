@@ -31,7 +31,7 @@ namespace {
 
 //! The double x as an exact GiNaC rational (every finite double is a dyadic rational).
 GiNaC::numeric exact_rational(double x) {
-  if (!std::isfinite(x)) throw InvalidInput("kostlan: non-finite number " + std::to_string(x));
+  if (!std::isfinite(x)) throw PreconditionViolation("kostlan: non-finite number " + std::to_string(x));
   if (x == 0) return 0;
   int exponent = 0;
   const double mantissa = std::frexp(x, &exponent);  // x = mantissa · 2^exponent, |mantissa| ∈ [1/2, 1)
@@ -71,7 +71,7 @@ double multinomial(int degree, const std::vector<int>& alpha) {
 
 GiNaC::ex kostlan_polynomial(const std::vector<GiNaC::symbol>& variables, int degree, KostlanRng& rng,
                              KostlanCoefficients coefficients) {
-  if (variables.empty()) throw InvalidInput("kostlan_polynomial: no variables");
+  if (variables.empty()) throw PreconditionViolation("kostlan_polynomial: no variables");
   if (degree < 1) throw InvalidInput("kostlan_polynomial: degree must be ≥ 1, got " + std::to_string(degree));
   const std::size_t n = variables.size();
   GiNaC::ex sum = 0;
@@ -107,7 +107,7 @@ void finish_system(PrimitiveSystem& system) {
 
 PrimitiveSystem kostlan_system(const std::vector<int>& degrees, std::uint64_t seed,
                                KostlanCoefficients coefficients) {
-  if (degrees.empty()) throw InvalidInput("kostlan_system: no equations");
+  if (degrees.empty()) throw PreconditionViolation("kostlan_system: no equations");
   const std::size_t n = degrees.size();
   PrimitiveSystem system;
   system.name = "kostlan";
@@ -127,12 +127,12 @@ PrimitiveSystem kostlan_system(const std::vector<int>& degrees, std::uint64_t se
 PrimitiveSystem scale_into_box(const PrimitiveSystem& system, const SolverBox& box) {
   const std::size_t n = system.unknowns.size();
   if (box.bounds.size() != n)
-    throw InvalidInput("scale_into_box: the box has " + std::to_string(box.bounds.size()) + " sides, the system " +
-                       std::to_string(n) + " unknowns");
+    throw PreconditionViolation("scale_into_box: the box has " + std::to_string(box.bounds.size()) +
+                                " sides, the system " + std::to_string(n) + " unknowns");
   GiNaC::exmap substitution;
   for (std::size_t i = 0; i < n; ++i) {
     const auto& [lo, hi] = box.bounds[i];
-    if (!(lo < hi)) throw InvalidInput("scale_into_box: empty side " + std::to_string(i));
+    if (!(lo < hi)) throw PreconditionViolation("scale_into_box: empty side " + std::to_string(i));
     const GiNaC::numeric l = exact_rational(lo), h = exact_rational(hi);
     const GiNaC::numeric centre = (l + h) / 2, half = (h - l) / 2;
     substitution[system.unknowns[i]] = (system.unknowns[i] - centre) / half;

@@ -52,7 +52,8 @@ class KostlanRng {
 
 //! A dense Kostlan polynomial of total degree `degree` ≥ 1 in `variables` (n ≥ 1).  Monomials are
 //! drawn in a fixed order (graded, then lexicographic), so the result depends only on the rng state.
-//! Throws InvalidInput if degree < 1 or variables is empty.
+//! Throws InvalidInput if degree < 1 (a generator parameter), PreconditionViolation if variables
+//! is empty.
 GiNaC::ex kostlan_polynomial(const std::vector<GiNaC::symbol>& variables, int degree, KostlanRng& rng,
                              KostlanCoefficients coefficients = KostlanCoefficients::exact_rational);
 
@@ -60,14 +61,14 @@ GiNaC::ex kostlan_polynomial(const std::vector<GiNaC::symbol>& variables, int de
 //! unknowns, as a PrimitiveSystem named "kostlan" with no parameters, its exact Jacobian, and world
 //! point (u_1, u_2, u_3) (missing coordinates are 0).  Unknowns are the coordinate symbols x, y, z
 //! of surface.h when n ≤ 3 (so an equation can also be used as a Surface), else fresh symbols
-//! u0, u1, ….  Throws InvalidInput if degrees is empty or a degree is < 1.
+//! u0, u1, ….  Throws PreconditionViolation if degrees is empty, InvalidInput if a degree is < 1.
 PrimitiveSystem kostlan_system(const std::vector<int>& degrees, std::uint64_t seed,
                                KostlanCoefficients coefficients = KostlanCoefficients::exact_rational);
 
 //! The system scaled into `box`: g_i(x) = f_i((x − c) / h) (componentwise), with c the centre and h the half-widths of the box, so the roots of f in [−1, 1]^n become the
 //! roots of g in `box`.  Box bounds are converted to exact rationals (doubles are dyadic), so
 //! exact coefficients stay exact.  Parameters are carried over unchanged; the Jacobian is
-//! re-derived.  Throws InvalidInput if box has not n_unknowns() non-empty sides.
+//! re-derived.  Throws PreconditionViolation if box has not n_unknowns() finite non-empty sides.
 PrimitiveSystem scale_into_box(const PrimitiveSystem& system, const SolverBox& box);
 
 }  // namespace delmesh

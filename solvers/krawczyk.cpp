@@ -14,16 +14,16 @@ namespace {
 void check_arguments(const CompiledSystem& system, const std::vector<double>& parameters,
                      const std::vector<Interval>& box) {
   if (system.n_equations() != system.n_unknowns())
-    throw InvalidInput("krawczyk_test: the system is not square (" + std::to_string(system.n_equations()) +
-                       " equations, " + std::to_string(system.n_unknowns()) + " unknowns)");
+    throw PreconditionViolation("krawczyk_test: the system is not square (" + std::to_string(system.n_equations()) +
+                                " equations, " + std::to_string(system.n_unknowns()) + " unknowns)");
   if (box.size() != system.n_unknowns())
-    throw InvalidInput("krawczyk_test: box has " + std::to_string(box.size()) + " sides, the system " +
-                       std::to_string(system.n_unknowns()) + " unknowns");
+    throw PreconditionViolation("krawczyk_test: box has " + std::to_string(box.size()) + " sides, the system " +
+                                std::to_string(system.n_unknowns()) + " unknowns");
   if (parameters.size() != system.n_parameters())
-    throw InvalidInput("krawczyk_test: " + std::to_string(parameters.size()) + " parameters given, the system has " +
-                       std::to_string(system.n_parameters()));
+    throw PreconditionViolation("krawczyk_test: " + std::to_string(parameters.size()) +
+                                " parameters given, the system has " + std::to_string(system.n_parameters()));
   for (const Interval& side : box)
-    if (!detail::is_finite(side)) throw InvalidInput("krawczyk_test: the box is not finite");
+    if (!detail::is_finite(side)) throw PreconditionViolation("krawczyk_test: the box is not finite");
 }
 
 //! Conversions between the double Interval boxes of the interface and the arithmetic T.
@@ -83,7 +83,7 @@ KrawczykResult krawczyk_test(const CompiledSystem& system, const std::vector<dou
 KrawczykResult krawczyk_test_mpfi(const CompiledSystem& system, const std::vector<double>& parameters,
                                   const std::vector<Interval>& box, int precision_bits) {
   check_arguments(system, parameters, box);
-  if (precision_bits < 53) throw InvalidInput("krawczyk_test_mpfi: precision below 53 bits");
+  if (precision_bits < 53) throw PreconditionViolation("krawczyk_test_mpfi: precision below 53 bits");
   RoundingGuard guard;  // the double Interval bookkeeping
   detail::MpfiPrecisionScope scope(precision_bits);
   return krawczyk_step<MpfiInterval>(system, parameters, box);

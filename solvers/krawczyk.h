@@ -36,13 +36,14 @@ struct [[nodiscard]] KrawczykResult {
 //! not exist) or an enclosure has NaN bounds.  `contracted` = K ∩ X contains every zero of f in X.
 //! Precondition: system is square (n equations, n unknowns), box.size() == n with finite
 //! bounds, parameters has system.n_parameters() entries, a RoundingGuard is alive.  Violations
-//! throw InvalidInput.
+//! of all but the last throw PreconditionViolation.
 KrawczykResult krawczyk_test(const CompiledSystem& system, const std::vector<double>& parameters,
                              const std::vector<Interval>& box);
 
-//! The same test in MPFI arithmetic at `precision_bits` (≥ 53; the MPFI default precision is set
-//! for the duration of the call by a detail::MpfiPrecisionScope, which holds the process-wide
-//! MPFI precision lock: concurrent calls from several threads are safe and serialized);
+//! The same test in MPFI arithmetic at `precision_bits` (≥ 53, else PreconditionViolation; the
+//! MPFI default precision is set for the duration of the call by a detail::MpfiPrecisionScope,
+//! which holds the process-wide MPFI precision lock: concurrent calls from several threads are
+//! safe and serialized);
 //! Y is still a double matrix.  Returns the contracted box rounded outward to double intervals.
 //! Does not require a RoundingGuard.
 KrawczykResult krawczyk_test_mpfi(const CompiledSystem& system, const std::vector<double>& parameters,

@@ -138,8 +138,7 @@ std::optional<PlaneSection> plane_box_section(const Vec3& origin, const Orthonor
 
 Domain polygon_domain(const std::vector<std::array<double, 2>>& polygon) {
   if (polygon.size() < 3) {
-    throw InvalidInput("a polygon domain needs at least 3 vertices, got " +
-                       std::to_string(polygon.size()));
+    throw PreconditionViolation("a polygon domain needs at least 3 vertices, got " + std::to_string(polygon.size()));
   }
   std::array<double, 2> lo = polygon.front(), hi = polygon.front();
   for (const auto& w : polygon) {

@@ -54,7 +54,7 @@ std::optional<PlaneSection> plane_box_section(const Vec3& origin, const Orthonor
 
 //! The solver domain of a convex polygon given counter-clockwise in (u, v): the bounding box of
 //! the vertices and one half-space ⟨n_e, w⟩ ≤ ⟨n_e, w_e⟩ per edge e (n_e its outward normal).
-//! Throws InvalidInput if there are fewer than 3 vertices.
+//! Throws PreconditionViolation if there are fewer than 3 vertices.
 Domain polygon_domain(const std::vector<std::array<double, 2>>& polygon);
 
 //! The box as a solver Domain in (x, y, z).

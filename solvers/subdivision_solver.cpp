@@ -635,16 +635,16 @@ SolveResult solve_subdivision(const CompiledSystem& system, const std::vector<do
   domain.validate();
   const std::size_t n = system.n_unknowns(), m = system.n_equations();
   if (n != domain.dimension() || n < 2 || n > max_unknowns)
-    throw InvalidInput("solve_subdivision: the system has " + std::to_string(n) + " unknowns, the domain " +
-                       std::to_string(domain.dimension()) + " dimensions; both must be 2 or 3");
+    throw PreconditionViolation("solve_subdivision: the system has " + std::to_string(n) + " unknowns, the domain " +
+                                std::to_string(domain.dimension()) + " dimensions; both must be 2 or 3");
   if (parameters.size() != system.n_parameters())
-    throw InvalidInput("solve_subdivision: " + std::to_string(parameters.size()) + " parameters given, the system has " +
-                       std::to_string(system.n_parameters()));
+    throw PreconditionViolation("solve_subdivision: " + std::to_string(parameters.size()) +
+                                " parameters given, the system has " + std::to_string(system.n_parameters()));
   if (options.exclusion_mode ? (m < n || m > max_equations) : m != n)
-    throw InvalidInput("solve_subdivision: " + std::to_string(m) + " equations in " + std::to_string(n) +
-                       " unknowns (square systems, or m ≥ n in exclusion mode)");
+    throw PreconditionViolation("solve_subdivision: " + std::to_string(m) + " equations in " + std::to_string(n) +
+                                " unknowns (square systems, or m ≥ n in exclusion mode)");
   for (double p : parameters)
-    if (!std::isfinite(p)) throw InvalidInput("solve_subdivision: a parameter is not finite");
+    if (!std::isfinite(p)) throw PreconditionViolation("solve_subdivision: a parameter is not finite");
   RoundingGuard guard;
   Subdivision solver(system, parameters, domain, options);
   return solver.run();

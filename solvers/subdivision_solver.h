@@ -62,9 +62,10 @@ struct SubdivisionOptions {
 //! contains 0, else precision); status complete means "no solution in the domain" is proved.
 //! Precondition: system.n_unknowns() == domain.dimension() ∈ {2, 3};
 //! parameters.size() == system.n_parameters() (finite); m == n unless exclusion_mode (then
-//! n ≤ m ≤ 6).  Violations throw InvalidInput.  Creates its own RoundingGuard; its MPFI work runs
-//! inside detail::MpfiPrecisionScope (the process-wide MPFI precision lock), so concurrent solves
-//! from several threads are safe and their escalations serialized.
+//! n ≤ m ≤ 6); domain valid (Domain::validate).  Violations throw PreconditionViolation.
+//! Creates its own RoundingGuard; its MPFI work runs inside detail::MpfiPrecisionScope (the
+//! process-wide MPFI precision lock), so concurrent solves from several threads are safe and
+//! their escalations serialized.
 SolveResult solve_subdivision(const CompiledSystem& system, const std::vector<double>& parameters,
                               const Domain& domain, const SubdivisionOptions& options = {});
 

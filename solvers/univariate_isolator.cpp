@@ -756,20 +756,20 @@ SolveResult isolate_line_roots(const CompiledSystem& line, const LinePolynomial*
                                const std::array<double, 3>& p, const std::array<double, 3>& v, double t0,
                                double t1, const UnivariateOptions& options) {
   if (line.n_unknowns() != 1 || line.n_equations() != 1 || line.n_parameters() != 6)
-    throw InvalidInput("isolate_line_roots: expected the surface_line system (1 unknown t, 1 equation, "
-                       "6 parameters p, v); got " + std::to_string(line.n_unknowns()) + " unknowns, " +
-                       std::to_string(line.n_equations()) + " equations, " +
-                       std::to_string(line.n_parameters()) + " parameters");
+    throw PreconditionViolation("isolate_line_roots: expected the surface_line system (1 unknown t, 1 equation, "
+                                "6 parameters p, v); got " + std::to_string(line.n_unknowns()) + " unknowns, " +
+                                std::to_string(line.n_equations()) + " equations, " +
+                                std::to_string(line.n_parameters()) + " parameters");
   if (!std::isfinite(t0) || !std::isfinite(t1) || !(t0 < t1))
-    throw InvalidInput("isolate_line_roots: need finite t0 < t1");
+    throw PreconditionViolation("isolate_line_roots: need finite t0 < t1");
   bool finite = true, nonzero = false;
   for (int i = 0; i < 3; ++i) {
     finite = finite && std::isfinite(p[i]) && std::isfinite(v[i]);
     nonzero = nonzero || v[i] != 0;
   }
-  if (!finite || !nonzero) throw InvalidInput("isolate_line_roots: p and v must be finite and v non-zero");
+  if (!finite || !nonzero) throw PreconditionViolation("isolate_line_roots: p and v must be finite and v non-zero");
   if (!(options.time_limit_seconds >= 0) || !std::isfinite(options.time_limit_seconds))
-    throw InvalidInput("isolate_line_roots: time_limit_seconds must be finite and >= 0");
+    throw PreconditionViolation("isolate_line_roots: time_limit_seconds must be finite and >= 0");
   const auto start = std::chrono::steady_clock::now();
   RoundingGuard guard;
   Isolation isolation(line, p, v, t0, t1, options, start);

@@ -75,10 +75,10 @@ struct UnivariateOptions {
 //!  - budget: options.box_budget subintervals visited (status box_limit), or
 //!    options.time_limit_seconds passed (status time_limit).
 //! Adjacent undecided intervals with the same reason are merged.  Certified roots are sorted by t.
-//! Preconditions (else InvalidInput): `line` is a surface_line system (1 unknown, 1 equation,
-//! 6 parameters p, v); t0 < t1 finite; p, v finite, v ≠ 0; `polynomial`, when given, is the
-//! LinePolynomial of the same surface; options.time_limit_seconds finite and ≥ 0.  Creates its own
-//! RoundingGuard; its MPFI work runs inside detail::MpfiPrecisionScope, which holds the
+//! Preconditions (else PreconditionViolation): `line` is a surface_line system (1 unknown,
+//! 1 equation, 6 parameters p, v); t0 < t1 finite; p, v finite, v ≠ 0; `polynomial`, when
+//! given, is the LinePolynomial of the same surface; options.time_limit_seconds finite and ≥ 0.
+//! Creates its own RoundingGuard; its MPFI work runs inside detail::MpfiPrecisionScope, which holds the
 //! process-wide MPFI precision lock, so concurrent calls from several threads are safe (their
 //! escalations are serialized).
 SolveResult isolate_line_roots(const CompiledSystem& line, const LinePolynomial* polynomial,

@@ -17,7 +17,7 @@ class MonomialBasis {
   static constexpr std::size_t max_unknowns = 3;
   using Exponent = std::array<int, max_unknowns>;
 
-  //! Precondition: 1 ≤ n ≤ 3 and 0 ≤ degree ≤ 64 (else InvalidInput).
+  //! Precondition: 1 ≤ n ≤ 3 and 0 ≤ degree ≤ 64 (else PreconditionViolation).
   MonomialBasis(std::size_t n, int degree);
 
   std::size_t n_unknowns() const { return n_; }

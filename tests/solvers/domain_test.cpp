@@ -14,14 +14,14 @@ BOOST_AUTO_TEST_CASE(from_box_validates) {
   const Domain d = Domain::from_box({{0, 1}, {-2, 2}});
   BOOST_TEST(d.dimension() == 2u);
   BOOST_TEST(d.scale() == 4.0);
-  BOOST_CHECK_THROW(Domain::from_box({{1, 0}}), InvalidInput);
-  BOOST_CHECK_THROW(Domain::from_box({}), InvalidInput);
-  BOOST_CHECK_THROW(Domain::from_box({{0, std::numeric_limits<double>::infinity()}}), InvalidInput);
+  BOOST_CHECK_THROW(Domain::from_box({{1, 0}}), PreconditionViolation);
+  BOOST_CHECK_THROW(Domain::from_box({}), PreconditionViolation);
+  BOOST_CHECK_THROW(Domain::from_box({{0, std::numeric_limits<double>::infinity()}}), PreconditionViolation);
   Domain bad = Domain::from_box({{0, 1}, {0, 1}});
   bad.half_spaces.push_back({{1, 0, 0}, 0});
-  BOOST_CHECK_THROW(bad.validate(), InvalidInput);
+  BOOST_CHECK_THROW(bad.validate(), PreconditionViolation);
   bad.half_spaces.back() = {{0, 0}, 1};
-  BOOST_CHECK_THROW(bad.validate(), InvalidInput);
+  BOOST_CHECK_THROW(bad.validate(), PreconditionViolation);
 }
 
 BOOST_AUTO_TEST_CASE(classify_against_box_faces_and_half_spaces) {

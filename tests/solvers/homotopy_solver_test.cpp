@@ -124,7 +124,7 @@ BOOST_AUTO_TEST_CASE(start_solutions_are_the_bezout_many_roots_of_unity) {
     distinct.insert(key);
   }
   BOOST_TEST(distinct.size() == 24u);
-  BOOST_CHECK_THROW(bezout_number({}), InvalidInput);
+  BOOST_CHECK_THROW(bezout_number({}), PreconditionViolation);
   BOOST_CHECK_THROW(total_degree_start_solutions({2, 0}), InvalidInput);
 }
 
@@ -306,16 +306,17 @@ BOOST_AUTO_TEST_CASE(failed_paths_make_the_whole_domain_undecided) {
   BOOST_TEST(r.counters.paths == 2u);
 }
 
-BOOST_AUTO_TEST_CASE(invalid_input_throws) {
+BOOST_AUTO_TEST_CASE(invalid_arguments_throw) {
   const auto s = make_system({X() * X() + Y() * Y() - 1, Y() - X()}, {X(), Y()});
   const CompiledSystem compiled(s);
   const auto box2 = Domain::from_box({{{-2.0, 2.0}}, {{-2.0, 2.0}}});
-  BOOST_CHECK_THROW((void)solve_homotopy(compiled, {2}, {}, box2), InvalidInput);
-  BOOST_CHECK_THROW((void)solve_homotopy(compiled, {2, 0}, {}, box2), InvalidInput);
-  BOOST_CHECK_THROW((void)solve_homotopy(compiled, {2, 1}, {1.0}, box2), InvalidInput);
-  BOOST_CHECK_THROW((void)solve_homotopy(compiled, {2, 1}, {}, Domain::from_box({{{-2.0, 2.0}}})), InvalidInput);
+  BOOST_CHECK_THROW((void)solve_homotopy(compiled, {2}, {}, box2), PreconditionViolation);
+  BOOST_CHECK_THROW((void)solve_homotopy(compiled, {2, 0}, {}, box2), InvalidInput);  // a constant equation
+  BOOST_CHECK_THROW((void)solve_homotopy(compiled, {2, 1}, {1.0}, box2), PreconditionViolation);
+  BOOST_CHECK_THROW((void)solve_homotopy(compiled, {2, 1}, {}, Domain::from_box({{{-2.0, 2.0}}})),
+                    PreconditionViolation);
   const auto over = make_system({X() * X() + Y() * Y() - 1, Y() - X(), X()}, {X(), Y()});
-  BOOST_CHECK_THROW((void)solve_homotopy(CompiledSystem(over), {2, 1, 1}, {}, box2), InvalidInput);
+  BOOST_CHECK_THROW((void)solve_homotopy(CompiledSystem(over), {2, 1, 1}, {}, box2), PreconditionViolation);
 }
 
 BOOST_AUTO_TEST_CASE(cauchy_endgame_finds_a_triple_root_with_winding_number_three) {

@@ -116,17 +116,17 @@ BOOST_AUTO_TEST_CASE(scale_into_box_is_the_affine_substitution) {
   BOOST_TEST(scaled.equations[0].subs(x == 3).is_zero());
 }
 
-BOOST_AUTO_TEST_CASE(invalid_input_throws) {
-  BOOST_CHECK_THROW(kostlan_system({}, 1), InvalidInput);
-  BOOST_CHECK_THROW(kostlan_system({2, 0}, 1), InvalidInput);
+BOOST_AUTO_TEST_CASE(invalid_arguments_throw) {
+  BOOST_CHECK_THROW(kostlan_system({}, 1), PreconditionViolation);
+  BOOST_CHECK_THROW(kostlan_system({2, 0}, 1), InvalidInput);  // degree < 1
   KostlanRng rng(1);
-  BOOST_CHECK_THROW(kostlan_polynomial({}, 2, rng), InvalidInput);
+  BOOST_CHECK_THROW(kostlan_polynomial({}, 2, rng), PreconditionViolation);
   const auto f = kostlan_system({2, 2}, 1);
   SolverBox box;
   box.bounds = {{{0.0, 1.0}}};
-  BOOST_CHECK_THROW(scale_into_box(f, box), InvalidInput);
+  BOOST_CHECK_THROW(scale_into_box(f, box), PreconditionViolation);
   box.bounds = {{{0.0, 1.0}}, {{1.0, 1.0}}};
-  BOOST_CHECK_THROW(scale_into_box(f, box), InvalidInput);
+  BOOST_CHECK_THROW(scale_into_box(f, box), PreconditionViolation);
 }
 
 BOOST_AUTO_TEST_CASE(enum_prints) {

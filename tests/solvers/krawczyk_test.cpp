@@ -109,15 +109,15 @@ BOOST_AUTO_TEST_CASE(mpfi_decides_what_double_cancellation_cannot) {
   BOOST_TEST(high.contracted[0].sup() - high.contracted[0].inf() < 1e-3);  // one quadratic step from 0.02
 }
 
-BOOST_AUTO_TEST_CASE(invalid_input_throws) {
+BOOST_AUTO_TEST_CASE(misuse_throws_precondition_violation) {
   const CompiledSystem system = circle_and_diagonal();
   RoundingGuard guard;
-  BOOST_CHECK_THROW((void)krawczyk_test(system, {}, {Interval(0, 1)}), InvalidInput);
-  BOOST_CHECK_THROW((void)krawczyk_test(system, {1.0}, box2(0, 1, 0, 1)), InvalidInput);
+  BOOST_CHECK_THROW((void)krawczyk_test(system, {}, {Interval(0, 1)}), PreconditionViolation);
+  BOOST_CHECK_THROW((void)krawczyk_test(system, {1.0}, box2(0, 1, 0, 1)), PreconditionViolation);
   GiNaC::symbol x("x"), y("y");
   const CompiledSystem overdetermined({x, y, x + y}, {x, y}, {});
-  BOOST_CHECK_THROW((void)krawczyk_test(overdetermined, {}, box2(0, 1, 0, 1)), InvalidInput);
-  BOOST_CHECK_THROW((void)krawczyk_test_mpfi(system, {}, box2(0, 1, 0, 1), 20), InvalidInput);
+  BOOST_CHECK_THROW((void)krawczyk_test(overdetermined, {}, box2(0, 1, 0, 1)), PreconditionViolation);
+  BOOST_CHECK_THROW((void)krawczyk_test_mpfi(system, {}, box2(0, 1, 0, 1), 20), PreconditionViolation);
 }
 
 BOOST_AUTO_TEST_CASE(outcome_prints) {

@@ -121,7 +121,7 @@ BOOST_AUTO_TEST_CASE(polygon_domain_half_spaces_contain_exactly_the_polygon) {
   BOOST_TEST(inside(0, 0));
   BOOST_TEST(!inside(1.5, 0.5));  // in the bounding box, outside the triangle
   BOOST_TEST(!inside(-0.1, 0.5));
-  BOOST_CHECK_THROW(polygon_domain({{0, 0}, {1, 0}}), InvalidInput);
+  BOOST_CHECK_THROW(polygon_domain({{0, 0}, {1, 0}}), PreconditionViolation);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

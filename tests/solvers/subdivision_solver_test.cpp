@@ -497,14 +497,15 @@ BOOST_AUTO_TEST_CASE(taylor_forms_agree_with_compiled_expressions_on_catalog_cel
   BOOST_TEST_MESSAGE("Taylor vs compiled: " << compared << " solves compared, " << roots << " roots");
 }
 
-BOOST_AUTO_TEST_CASE(invalid_input_throws) {
+BOOST_AUTO_TEST_CASE(misuse_throws_precondition_violation) {
   const CompiledSystem system = two_circles();
-  BOOST_CHECK_THROW((void)solve_subdivision(system, {0, 1, 1}, Domain::from_box({{0, 1}, {0, 1}})), InvalidInput);
+  BOOST_CHECK_THROW((void)solve_subdivision(system, {0, 1, 1}, Domain::from_box({{0, 1}, {0, 1}})),
+                    PreconditionViolation);
   BOOST_CHECK_THROW((void)solve_subdivision(system, {0, 1, 1, 1}, Domain::from_box({{0, 1}, {0, 1}, {0, 1}})),
-                    InvalidInput);
+                    PreconditionViolation);
   const CompiledSystem contact(surface_plane_contact_system(catalog_entry("sphere").surface()));
   BOOST_CHECK_THROW((void)solve_subdivision(contact, std::vector<double>(9, 0.0), Domain::from_box({{0, 1}, {0, 1}})),
-                    InvalidInput);  // over-determined without exclusion_mode
+                    PreconditionViolation);  // over-determined without exclusion_mode
 }
 
 BOOST_AUTO_TEST_SUITE_END()

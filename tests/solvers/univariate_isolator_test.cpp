@@ -484,17 +484,17 @@ BOOST_AUTO_TEST_CASE(ill_conditioned_degree_10_line_agrees_with_newton) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(invalid_input_throws) {
+BOOST_AUTO_TEST_CASE(misuse_throws_precondition_violation) {
   const auto& S = sphere();
-  BOOST_CHECK_THROW((void)isolate_line_roots(S.line, &S.polynomial, {0, 0, 0}, {1, 0, 0}, 1, 0), InvalidInput);
-  BOOST_CHECK_THROW((void)isolate_line_roots(S.line, &S.polynomial, {0, 0, 0}, {0, 0, 0}, 0, 1), InvalidInput);
+  BOOST_CHECK_THROW((void)isolate_line_roots(S.line, &S.polynomial, {0, 0, 0}, {1, 0, 0}, 1, 0), PreconditionViolation);
+  BOOST_CHECK_THROW((void)isolate_line_roots(S.line, &S.polynomial, {0, 0, 0}, {0, 0, 0}, 0, 1), PreconditionViolation);
   const CompiledSystem critical(surface_critical_system(S.surface));
-  BOOST_CHECK_THROW((void)isolate_line_roots(critical, nullptr, {0, 0, 0}, {1, 0, 0}, 0, 1), InvalidInput);
+  BOOST_CHECK_THROW((void)isolate_line_roots(critical, nullptr, {0, 0, 0}, {1, 0, 0}, 0, 1), PreconditionViolation);
   for (double seconds : {-1.0, std::nan(""), HUGE_VAL}) {
     UnivariateOptions options;
     options.time_limit_seconds = seconds;
     BOOST_CHECK_THROW((void)isolate_line_roots(S.line, &S.polynomial, {0, 0, 0}, {1, 0, 0}, 0, 1, options),
-                      InvalidInput);
+                      PreconditionViolation);
   }
 }
 

@@ -62,10 +62,10 @@ BOOST_AUTO_TEST_CASE(fibres_partition_the_basis_along_each_axis) {
 }
 
 BOOST_AUTO_TEST_CASE(invalid_sizes_throw) {
-  BOOST_CHECK_THROW(MonomialBasis(0, 2), InvalidInput);
-  BOOST_CHECK_THROW(MonomialBasis(4, 2), InvalidInput);
-  BOOST_CHECK_THROW(MonomialBasis(2, -1), InvalidInput);
-  BOOST_CHECK_THROW(MonomialBasis(2, 65), InvalidInput);
+  BOOST_CHECK_THROW(MonomialBasis(0, 2), PreconditionViolation);
+  BOOST_CHECK_THROW(MonomialBasis(4, 2), PreconditionViolation);
+  BOOST_CHECK_THROW(MonomialBasis(2, -1), PreconditionViolation);
+  BOOST_CHECK_THROW(MonomialBasis(2, 65), PreconditionViolation);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

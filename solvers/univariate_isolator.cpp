@@ -224,6 +224,80 @@ bool escalatable(UndecidedReason reason) {
   return reason == UndecidedReason::precision || reason == UndecidedReason::boundary_root;
 }
 
+//! A node of the Bernstein work list: the range [sa, sb] ⊆ [0, 1] of s, t = t0 + s (t1 − t0).
+struct BernsteinNode {
+  double sa, sb;
+};
+
+//! The per-thread buffers of the Bernstein subdivision, kept between solves (no allocation per
+//! call; calls do not nest): the coefficients of E(p + t v), the work list (a stack) and the
+//! Bernstein coefficients of its nodes, nodes[k]'s at pool[k · block, (k + 1) · block), and the
+//! scratch space of de Casteljau's algorithm.
+struct BernsteinBuffers {
+  std::vector<Interval> c, pool, scratch, left, right;
+  std::vector<double> c_mid;
+  std::vector<BernsteinNode> nodes;
+};
+
+//! One Bernstein subdivision of a polynomial E of degree d on [t0, t1]: its evaluator, its
+//! buffers, and the map from s to t = t0 + s h, h = t1 − t0.
+struct BernsteinRun {
+  int d;
+  std::size_t block;  // d + 1 coefficients per node
+  BernsteinBuffers& buffers;
+  PolynomialEvaluator eval;
+  double t0, t1;
+  Interval h;
+  //! An enclosure of t(s) (s carries ≤ 1 ulp of representation error).
+  Interval t_of(double s) const {
+    const double e = 0x1p-52;
+    return Interval(t0) + h * Interval(s == 0 ? 0.0 : s - e, s == 1 ? 1.0 : s + e);
+  }
+  //! [lo, hi] ⊆ [t0, t1] containing t([sa, sb]); the ends of the segment are exact.
+  void t_outer(double sa, double sb, double& lo, double& hi) const {
+    lo = std::max(t0, t_of(sa).inf());
+    hi = std::min(t1, t_of(sb).sup());
+    if (sa == 0) lo = t0;
+    if (sb == 1) hi = t1;
+  }
+};
+
+//! The certain signs of Bernstein coefficients b_0..b_d: all positive, all negative, all certain,
+//! and the number of sign changes among the certain ones.
+struct BernsteinSigns {
+  bool all_positive = true, all_negative = true, all_certain = true;
+  int variations = 0;
+};
+
+BernsteinSigns bernstein_signs(int d, const Interval* b) {
+  BernsteinSigns signs;
+  int last = 0;
+  for (int i = 0; i <= d; ++i) {
+    const int s = certain_sign(b[i]);
+    signs.all_positive = signs.all_positive && s > 0;
+    signs.all_negative = signs.all_negative && s < 0;
+    if (s == 0) {
+      signs.all_certain = false;
+    } else {
+      if (last != 0 && s != last) ++signs.variations;
+      last = s;
+    }
+  }
+  return signs;
+}
+
+//! True when the Bernstein coefficients d (b_{i+1} − b_i) of the derivative have one certain
+//! sign (d ≥ 1): E is strictly monotone on the node.
+bool bernstein_monotone(int d, const Interval* b) {
+  bool increasing = d > 0, decreasing = d > 0;
+  for (int i = 0; i < d; ++i) {
+    const int s = certain_sign(b[i + 1] - b[i]);
+    increasing = increasing && s > 0;
+    decreasing = decreasing && s < 0;
+  }
+  return increasing || decreasing;
+}
+
 class Isolation {
  public:
   Isolation(const CompiledSystem& line, const std::array<double, 3>& p, const std::array<double, 3>& v, double t0,
@@ -255,147 +329,146 @@ class Isolation {
   }
 
   // ---- polynomial E: Bernstein subdivision ----
+  static BernsteinBuffers& bernstein_buffers() {
+    static thread_local BernsteinBuffers buffers;
+    return buffers;
+  }
+
+  //! Isolates the zeros of a polynomial E on [t0, t1] by subdividing its Bernstein coefficients:
+  //! start_bernstein() makes the first node, each node of the work list is examined by
+  //! bernstein_step() until the list is empty or the solve stops; nodes left then are undecided
+  //! (unexplored).
   void run_bernstein(const LinePolynomial& polynomial) {
-    const int d = polynomial.degree();
-    const std::size_t block = static_cast<std::size_t>(d) + 1;
-    static thread_local std::vector<Interval> c, pool, scratch, left, right;
-    static thread_local std::vector<double> c_mid;
-    c.resize(block), c_mid.resize(block), scratch.resize(block), left.resize(block), right.resize(block);
-    polynomial.coefficients(parameters_, c.data());
-    for (int k = 0; k <= d; ++k) c_mid[k] = midpoint(c[k]);
-    const PolynomialEvaluator eval{d, c.data(), c_mid.data()};
-    const Interval h = Interval(t1_) - Interval(t0_);
-    struct Node {
-      double sa, sb;
-    };
-    static thread_local std::vector<Node> nodes;
-    nodes.clear();
-    pool.resize(block * 64);
-    detail::bernstein_from_monomial(d, c.data(), t0_, h, pool.data(), scratch.data());
-    nodes.push_back({0.0, 1.0});
-    // t-enclosure of the point s (s carries ≤ 1 ulp of representation error).
-    auto t_of = [&](double s) {
-      const double e = 0x1p-52;
-      return Interval(t0_) + h * Interval(s == 0 ? 0.0 : s - e, s == 1 ? 1.0 : s + e);
-    };
-    auto t_outer = [&](double sa, double sb, double& lo, double& hi) {
-      lo = std::max(t0_, t_of(sa).inf());
-      hi = std::min(t1_, t_of(sb).sup());
-      if (sa == 0) lo = t0_;
-      if (sb == 1) hi = t1_;
-    };
+    const BernsteinRun run = start_bernstein(polynomial, bernstein_buffers());
+    std::vector<BernsteinNode>& nodes = run.buffers.nodes;
     while (!nodes.empty()) {
       if (progress_.stopped()) break;
-      const Node node = nodes.back();
+      const BernsteinNode node = nodes.back();
       const std::size_t top = nodes.size() - 1;
       if (deadline_.expired()) {
         progress_.stop(SolveStatus::time_limit);
         break;
       }
       nodes.pop_back();
-      const Interval* b = pool.data() + top * block;
       ++counters_.boxes;
       if (counters_.boxes > options_.box_budget) {
         nodes.push_back(node);
         progress_.stop(SolveStatus::box_limit);
         break;
       }
-      // Exclusion: all Bernstein coefficients of one certain sign.
-      bool all_pos = true, all_neg = true, all_certain = true;
-      int variations = 0, last = 0;
-      for (int i = 0; i <= d; ++i) {
-        const int s = certain_sign(b[i]);
-        all_pos = all_pos && s > 0;
-        all_neg = all_neg && s < 0;
-        if (s == 0) {
-          all_certain = false;
-        } else {
-          if (last != 0 && s != last) ++variations;
-          last = s;
-        }
-      }
-      if (all_pos || all_neg) {
-        ++counters_.exclusions;
-        continue;
-      }
-      const double w = node.sb - node.sa;
-      const int s_left = certain_sign(b[0]), s_right = certain_sign(b[d]);
-      if (all_certain && variations == 1) {
-        isolated(eval, node.sa, node.sb, t_of, t_outer, false);
-        continue;
-      }
-      // Monotone piece: the derivative's Bernstein coefficients d (b_{i+1} − b_i) of one sign.
-      bool inc = d > 0, dec = d > 0;
-      for (int i = 0; i < d; ++i) {
-        const int s = certain_sign(b[i + 1] - b[i]);
-        inc = inc && s > 0;
-        dec = dec && s < 0;
-      }
-      const bool monotone = inc || dec;
-      if (monotone && s_left != 0 && s_right != 0) {
-        if (s_left == s_right) {
-          ++counters_.exclusions;
-        } else {
-          isolated(eval, node.sa, node.sb, t_of, t_outer, true);
-        }
-        continue;
-      }
-      if (precision_limited(d, b)) {
-        // Subdividing the coefficients further cannot help.  The compiled expression is often far
-        // better conditioned than the expanded coefficients (a product of factors, say): isolate
-        // the node's range by interval Newton on it, which escalates to MPFI what it cannot
-        // decide either.
-        double lo, hi;
-        t_outer(node.sa, node.sb, lo, hi);
-        run_newton(lo, hi);
-        continue;
-      }
-      const bool boundary = (node.sa == 0 && s_left == 0) || (node.sb == 1 && s_right == 0);
-      if (is_leaf(w, monotone)) {
-        double lo, hi;
-        t_outer(node.sa, node.sb, lo, hi);
-        undecided_leaf(lo, hi, leaf_reason(boundary, monotone));
-        continue;
-      }
-      // Split, avoiding a split point at which the value is not certainly nonzero.
-      double lambda = split_ratios[0];
-      for (double candidate : split_ratios) {
-        lambda = candidate;
-        detail::de_casteljau(d, b, lambda, left.data(), right.data(), scratch.data());
-        if (certainly_nonzero(left[d])) break;
-      }
-      const double sm = node.sa + lambda * w;
-      if (pool.size() < (top + 2) * block) pool.resize(2 * (top + 2) * block);
-      std::copy(right.begin(), right.end(), pool.begin() + top * block);
-      std::copy(left.begin(), left.end(), pool.begin() + (top + 1) * block);
-      nodes.push_back({sm, node.sb});
-      nodes.push_back({node.sa, sm});
+      bernstein_step(run, node, top);
     }
-    for (const Node& node : nodes) {
+    for (const BernsteinNode& node : nodes) {
       double lo, hi;
-      t_outer(node.sa, node.sb, lo, hi);
+      run.t_outer(node.sa, node.sb, lo, hi);
       leaves_.push_back({lo, hi, progress_.unexplored_reason(), false});
     }
     nodes.clear();
   }
 
+  //! The coefficients c_k of E(p + t v) = Σ c_k t^k (enclosures and their midpoints) and the
+  //! Bernstein coefficients of E on [t0, t1], the work list's first node [0, 1].
+  BernsteinRun start_bernstein(const LinePolynomial& polynomial, BernsteinBuffers& buffers) const {
+    const int d = polynomial.degree();
+    const std::size_t block = static_cast<std::size_t>(d) + 1;
+    std::vector<Interval>& c = buffers.c;
+    c.resize(block), buffers.c_mid.resize(block), buffers.scratch.resize(block), buffers.left.resize(block),
+        buffers.right.resize(block);
+    polynomial.coefficients(parameters_, c.data());
+    for (int k = 0; k <= d; ++k) buffers.c_mid[k] = midpoint(c[k]);
+    const BernsteinRun run{d, block, buffers, {d, c.data(), buffers.c_mid.data()}, t0_, t1_,
+                           Interval(t1_) - Interval(t0_)};
+    buffers.nodes.clear();
+    buffers.pool.resize(block * 64);
+    detail::bernstein_from_monomial(d, c.data(), t0_, run.h, buffers.pool.data(), buffers.scratch.data());
+    buffers.nodes.push_back({0.0, 1.0});
+    return run;
+  }
+
+  //! One node of run_bernstein(), its Bernstein coefficients b at pool[top · block]: excluded (every
+  //! b_i of one certain sign, or E monotone with one certain sign at both ends), isolated (one
+  //! sign variation among b_i all of certain sign, or E monotone with a sign change), handed to
+  //! run_newton() when rounding limits the coefficients, undecided when it is a leaf (is_leaf()),
+  //! or split (split_bernstein_node()).
+  void bernstein_step(const BernsteinRun& run, const BernsteinNode& node, std::size_t top) {
+    const int d = run.d;
+    const Interval* b = run.buffers.pool.data() + top * run.block;
+    const BernsteinSigns signs = bernstein_signs(d, b);
+    if (signs.all_positive || signs.all_negative) {
+      ++counters_.exclusions;
+      return;
+    }
+    const double w = node.sb - node.sa;
+    const int s_left = certain_sign(b[0]), s_right = certain_sign(b[d]);
+    if (signs.all_certain && signs.variations == 1) {
+      isolated(run, node.sa, node.sb, false);
+      return;
+    }
+    const bool monotone = bernstein_monotone(d, b);
+    if (monotone && s_left != 0 && s_right != 0) {
+      if (s_left == s_right) {
+        ++counters_.exclusions;
+      } else {
+        isolated(run, node.sa, node.sb, true);
+      }
+      return;
+    }
+    if (precision_limited(d, b)) {
+      // Subdividing the coefficients further cannot help.  The compiled expression is often far
+      // better conditioned than the expanded coefficients (a product of factors, say): isolate
+      // the node's range by interval Newton on it, which escalates to MPFI what it cannot
+      // decide either.
+      double lo, hi;
+      run.t_outer(node.sa, node.sb, lo, hi);
+      run_newton(lo, hi);
+      return;
+    }
+    const bool boundary = (node.sa == 0 && s_left == 0) || (node.sb == 1 && s_right == 0);
+    if (is_leaf(w, monotone)) {
+      double lo, hi;
+      run.t_outer(node.sa, node.sb, lo, hi);
+      undecided_leaf(lo, hi, leaf_reason(boundary, monotone));
+      return;
+    }
+    split_bernstein_node(run, node, top);
+  }
+
+  //! Splits the node at sa + λ (sb − sa), λ the first of split_ratios at which the value is
+  //! certainly nonzero (else the last), and pushes the right half, then the left half.
+  static void split_bernstein_node(const BernsteinRun& run, const BernsteinNode& node, std::size_t top) {
+    const int d = run.d;
+    BernsteinBuffers& buffers = run.buffers;
+    const Interval* b = buffers.pool.data() + top * run.block;
+    double lambda = split_ratios[0];
+    for (double candidate : split_ratios) {
+      lambda = candidate;
+      detail::de_casteljau(d, b, lambda, buffers.left.data(), buffers.right.data(), buffers.scratch.data());
+      if (certainly_nonzero(buffers.left[d])) break;
+    }
+    const double sm = node.sa + lambda * (node.sb - node.sa);
+    std::vector<Interval>& pool = buffers.pool;
+    if (pool.size() < (top + 2) * run.block) pool.resize(2 * (top + 2) * run.block);
+    std::copy(buffers.right.begin(), buffers.right.end(), pool.begin() + top * run.block);
+    std::copy(buffers.left.begin(), buffers.left.end(), pool.begin() + (top + 1) * run.block);
+    buffers.nodes.push_back({sm, node.sb});
+    buffers.nodes.push_back({node.sa, sm});
+  }
+
   //! The node [sa, sb] holds exactly one zero; monotone: E is proved monotone on it.
-  template <class TOf, class TOuter>
-  void isolated(const PolynomialEvaluator& eval, double sa, double sb, const TOf& t_of, const TOuter& t_outer,
-                bool monotone) {
+  void isolated(const BernsteinRun& run, double sa, double sb, bool monotone) {
     // The unique root lies in (t(sa), t(sb)); [inner_lo, inner_hi] is inside that range.
-    const double inner_lo = sa == 0 ? t0_ : t_of(sa).sup();
-    const double inner_hi = sb == 1 ? t1_ : t_of(sb).inf();
+    const double inner_lo = sa == 0 ? t0_ : run.t_of(sa).sup();
+    const double inner_hi = sb == 1 ? t1_ : run.t_of(sb).inf();
     double lo, hi;
     if (inner_lo < inner_hi &&
-        refine_root(eval, inner_lo, inner_hi, midpoint(Interval(inner_lo, inner_hi)), scale_, lo, hi)) {
+        refine_root(run.eval, inner_lo, inner_hi, midpoint(Interval(inner_lo, inner_hi)), scale_, lo, hi)) {
       certified(lo, hi, monotone);
       return;
     }
     // Rigorous but not tight: keep the isolating interval as a certified box when its outer
     // enclosure still proves a single root (sign change and monotone), else report it undecided.
-    t_outer(sa, sb, lo, hi);
-    if (certify_interval(eval, lo, hi))  // proves E' ≠ 0 on [lo, hi]
+    run.t_outer(sa, sb, lo, hi);
+    if (certify_interval(run.eval, lo, hi))  // proves E' ≠ 0 on [lo, hi]
       certified(lo, hi, true);
     else
       undecided_leaf(lo, hi, UndecidedReason::precision);

@@ -59,11 +59,10 @@ Command add_mesh_command(CLI::App& parent);
 Command add_check_command(CLI::App& parent);
 
 //! Ranges of the numeric options (input limits, not tolerances).  A count (--max-points,
-//! --max-boxes) is at most max_count; a time limit at most max_time_limit_seconds (about 31
-//! years: the deadline now + limit must stay representable in nanoseconds); --threads at most
-//! max_threads (more than the hardware threads run as many as there are).
+//! --max-boxes) is at most max_count; a time limit at most max_time_limit_seconds
+//! (meshing/del_mesh.h); --threads at most max_threads (more than the hardware threads run as
+//! many as there are).
 inline constexpr unsigned long long max_count = 1000000000ULL;
-inline constexpr double max_time_limit_seconds = 1e9;
 inline constexpr unsigned long long max_threads = 1024;
 
 //! A CLI11 validator for an integer option: the whole text is a decimal integer (an optional

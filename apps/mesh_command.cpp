@@ -60,11 +60,34 @@ std::string to_text(const T& value) {
   return s.str();
 }
 
+//! The flag of an option with a range, and its value in `options` as the program prints it.
+std::pair<std::string, std::string> flag_and_value(MeshOption option, const DelMeshOptions& options) {
+  switch (option) {
+    case MeshOption::lambda: return {"--lambda", format_number(options.lambda)};
+    case MeshOption::size_bound:
+      return {"--size-bound", options.size_bound ? format_number(*options.size_bound) : "none"};
+    case MeshOption::max_points: return {"--max-points", std::to_string(options.max_points)};
+    case MeshOption::time_limit: return {"--time-limit", format_number(options.time_limit_seconds)};
+    case MeshOption::threads: return {"--threads", std::to_string(options.threads)};
+    case MeshOption::min_spacing: return {"--min-spacing", format_number(options.min_spacing)};
+  }
+  return {"--unknown-option", ""};
+}
+
+//! Throws InvalidInput naming the flag and its value if `option` of `options` is out of the range
+//! del_mesh checks (violated_range): a bad option is refused before the input is read.
+void require_in_range(MeshOption option, const DelMeshOptions& options) {
+  if (const auto range = violated_range(option, options)) {
+    const auto [flag, value] = flag_and_value(option, options);
+    throw InvalidInput(flag + " must " + *range + ", got " + value);
+  }
+}
+
 //! Throws InvalidInput unless 0 < λ < 1/3; returns whether Theorem 6.1 covers λ (λ ≤ 0.06).
 bool check_lambda(double lambda) {
-  if (!std::isfinite(lambda) || lambda <= 0 || lambda >= alpha_lambda_bound) {
-    throw InvalidInput("--lambda must satisfy 0 < lambda < 1/3, got " + format_number(lambda));
-  }
+  DelMeshOptions options;
+  options.lambda = lambda;
+  require_in_range(MeshOption::lambda, options);
   return lambda <= lambda0;
 }
 
@@ -99,25 +122,17 @@ DelMeshOptions common_options(const MeshRequest& r) {
 }
 
 void limit_options(const MeshRequest& r, DelMeshOptions& options) {
-  if (r.size_bound) {
-    if (!std::isfinite(*r.size_bound) || *r.size_bound <= 0) {
-      throw InvalidInput("--size-bound must be a positive length, got " + format_number(*r.size_bound));
-    }
-    options.size_bound = *r.size_bound;
-  }
-  if (r.max_points < 1) throw InvalidInput("--max-points must be at least 1");
-  if (!std::isfinite(r.time_limit) || r.time_limit < 0 || r.time_limit > max_time_limit_seconds) {
-    throw InvalidInput("--time-limit must be >= 0 and <= 1e9 seconds (0: none), got " + format_number(r.time_limit));
-  }
+  options.size_bound = r.size_bound;
   options.max_points = r.max_points;
   options.time_limit_seconds = r.time_limit;
   options.seed = r.seed;
-  if (r.threads < 0) throw InvalidInput("--threads must be >= 0 (0: every hardware thread), got " + std::to_string(r.threads));
   options.threads = r.threads;
-  if (r.min_spacing) {
-    if (!std::isfinite(*r.min_spacing) || *r.min_spacing < 0)
-      throw InvalidInput("--min-spacing must be a length >= 0 (0: no floor), got " + format_number(*r.min_spacing));
-    options.min_spacing = *r.min_spacing;
+  if (r.min_spacing) options.min_spacing = *r.min_spacing;
+  for (MeshOption option : all_mesh_options) {
+    if (option == MeshOption::lambda) continue;  // check_lambda(), before the input is read
+    // A default floor (from an input mesh's edges) is left to del_mesh: it is not the flag's value.
+    if (option == MeshOption::min_spacing && !r.min_spacing) continue;
+    require_in_range(option, options);
   }
 }
 

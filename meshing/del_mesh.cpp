@@ -85,14 +85,13 @@ nlohmann::json unsettled_json(const std::vector<Unsettled>& unsettled, const std
 }
 
 void check_options(const Box3& box, const DelMeshOptions& options) {
-  if (!(options.lambda > 0) || !(options.lambda < alpha_lambda_bound))
-    throw InvalidInput("lambda must satisfy 0 < lambda < 1/3 (Theorem 6.1 covers lambda <= 0.06)");
-  if (options.size_bound && !(*options.size_bound > 0)) throw InvalidInput("the size bound must be positive");
-  if (options.max_points < 1) throw InvalidInput("max_points must be at least 1");
-  if (options.time_limit_seconds < 0) throw InvalidInput("the time limit must be non-negative");
-  if (options.threads < 0) throw InvalidInput("the number of threads must be non-negative (0: all)");
-  if (!(options.min_spacing >= 0) || !std::isfinite(options.min_spacing))
-    throw InvalidInput("the minimum spacing must be a non-negative number");
+  for (MeshOption option : all_mesh_options) {
+    if (const auto range = violated_range(option, options)) {
+      std::ostringstream name;
+      name << option;
+      throw InvalidInput(name.str() + " must " + *range);
+    }
+  }
   for (int k = 0; k < 3; ++k)
     if (!(box.lo[k] < box.hi[k])) throw InvalidInput("the box is empty");
 }
@@ -230,6 +229,33 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
 }
 
 }  // namespace
+
+std::optional<std::string> violated_range(MeshOption option, const DelMeshOptions& options) {
+  switch (option) {
+    case MeshOption::lambda:
+      if (!(options.lambda > 0) || !(options.lambda < alpha_lambda_bound)) return "satisfy 0 < lambda < 1/3";
+      break;
+    case MeshOption::size_bound:
+      if (options.size_bound && !(std::isfinite(*options.size_bound) && *options.size_bound > 0))
+        return "be a positive length";
+      break;
+    case MeshOption::max_points:
+      if (options.max_points < 1) return "be at least 1";
+      break;
+    case MeshOption::time_limit:
+      static_assert(max_time_limit_seconds == 1e9, "the requirement below states the bound");
+      if (!(options.time_limit_seconds >= 0 && options.time_limit_seconds <= max_time_limit_seconds))
+        return "be >= 0 and <= 1e9 seconds (0: none)";
+      break;
+    case MeshOption::threads:
+      if (options.threads < 0) return "be >= 0 (0: every hardware thread)";
+      break;
+    case MeshOption::min_spacing:
+      if (!(std::isfinite(options.min_spacing) && options.min_spacing >= 0)) return "be a length >= 0 (0: no floor)";
+      break;
+  }
+  return std::nullopt;
+}
 
 DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOptions& options) {
   const auto start = std::chrono::steady_clock::now();

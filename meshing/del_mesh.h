@@ -71,8 +71,36 @@ struct [[nodiscard]] DelMeshResult {
   nlohmann::json statistics;     //!< the run's statistics (the JSON of `delmesh mesh --stats`, built in del_mesh.cpp)
 };
 
+//! The longest time limit of a run (about 31 years): the deadline, start + limit, must stay
+//! representable in the steady clock's nanoseconds.
+inline constexpr double max_time_limit_seconds = 1e9;
+
+//! The options of DelMeshOptions that have a range, in the order del_mesh checks them.
+enum class MeshOption { lambda, size_bound, max_points, time_limit, threads, min_spacing };
+constexpr auto enum_names(MeshOption) {
+  return name_table<MeshOption>("MeshOption", {{MeshOption::lambda, "lambda"},
+                                               {MeshOption::size_bound, "size_bound"},
+                                               {MeshOption::max_points, "max_points"},
+                                               {MeshOption::time_limit, "time_limit_seconds"},
+                                               {MeshOption::threads, "threads"},
+                                               {MeshOption::min_spacing, "min_spacing"}});
+}
+inline std::ostream& operator<<(std::ostream& out, MeshOption option) { return write_enum(out, option); }
+inline constexpr MeshOption all_mesh_options[] = {MeshOption::lambda,     MeshOption::size_bound,
+                                                  MeshOption::max_points, MeshOption::time_limit,
+                                                  MeshOption::threads,    MeshOption::min_spacing};
+
+//! The range of `option` that `options` violates, in words that follow "must" ("satisfy 0 <
+//! lambda < 1/3"), or nothing if the option lies in its range: 0 < lambda < 1/3 (Theorem 6.1
+//! covers lambda ≤ 0.06); size_bound, when set, a positive finite length; max_points ≥ 1;
+//! 0 ≤ time_limit_seconds ≤ max_time_limit_seconds; threads ≥ 0; min_spacing finite and ≥ 0.
+//! The one statement of these ranges: del_mesh checks them, and so do the programs, before
+//! their other work, to name their own flags.
+std::optional<std::string> violated_range(MeshOption option, const DelMeshOptions& options);
+
 //! Meshes Σ = {E = 0} ⊂ interior(box).  Throws InvalidInput if Σ is empty in the box, meets the
-//! box boundary, or is singular (∇E = 0 somewhere on Σ), or if options are out of range.
+//! box boundary, or is singular (∇E = 0 somewhere on Σ), if the box is empty, or if an option is
+//! out of its range (violated_range: "lambda must satisfy 0 < lambda < 1/3").
 DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOptions& options);
 
 class SurfaceOracle;

@@ -185,6 +185,39 @@ BOOST_AUTO_TEST_CASE(point_limit_stops_with_a_partial_mesh) {
   BOOST_TEST(result.statistics["triangles"].get<std::size_t>() == result.mesh.number_of_faces());
 }
 
+BOOST_AUTO_TEST_CASE(option_ranges) {
+  for (MeshOption option : all_mesh_options) BOOST_TEST(!violated_range(option, DelMeshOptions{}));
+  const auto violated = [](MeshOption option, const auto& set) {
+    DelMeshOptions options;
+    set(options);
+    return violated_range(option, options).has_value();
+  };
+  BOOST_TEST(violated(MeshOption::lambda, [](DelMeshOptions& o) { o.lambda = 1.0 / 3.0; }));
+  BOOST_TEST(violated(MeshOption::lambda, [](DelMeshOptions& o) { o.lambda = std::nan(""); }));
+  BOOST_TEST(violated(MeshOption::size_bound, [](DelMeshOptions& o) { o.size_bound = 0.0; }));
+  BOOST_TEST(violated(MeshOption::size_bound, [](DelMeshOptions& o) { o.size_bound = HUGE_VAL; }));
+  BOOST_TEST(!violated(MeshOption::size_bound, [](DelMeshOptions& o) { o.size_bound = 1e-3; }));
+  BOOST_TEST(violated(MeshOption::max_points, [](DelMeshOptions& o) { o.max_points = 0; }));
+  BOOST_TEST(violated(MeshOption::time_limit, [](DelMeshOptions& o) { o.time_limit_seconds = -1; }));
+  BOOST_TEST(violated(MeshOption::time_limit, [](DelMeshOptions& o) { o.time_limit_seconds = 2e9; }));
+  BOOST_TEST(violated(MeshOption::time_limit, [](DelMeshOptions& o) { o.time_limit_seconds = std::nan(""); }));
+  BOOST_TEST(
+      !violated(MeshOption::time_limit, [](DelMeshOptions& o) { o.time_limit_seconds = max_time_limit_seconds; }));
+  BOOST_TEST(violated(MeshOption::threads, [](DelMeshOptions& o) { o.threads = -1; }));
+  BOOST_TEST(violated(MeshOption::min_spacing, [](DelMeshOptions& o) { o.min_spacing = HUGE_VAL; }));
+  BOOST_TEST(violated(MeshOption::min_spacing, [](DelMeshOptions& o) { o.min_spacing = -0.5; }));
+  // del_mesh refuses an option out of range before any work, naming the option.
+  const auto& entry = catalog_entry("sphere");
+  DelMeshOptions options;
+  options.time_limit_seconds = 2e9;
+  try {
+    (void)del_mesh(entry.surface(), entry.box, options);
+    BOOST_FAIL("del_mesh accepted a time limit of 2e9 seconds");
+  } catch (const InvalidInput& e) {
+    BOOST_TEST(std::string(e.what()) == "time_limit_seconds must be >= 0 and <= 1e9 seconds (0: none)");
+  }
+}
+
 BOOST_AUTO_TEST_CASE(lambda_out_of_range_is_invalid) {
   const auto& entry = catalog_entry("sphere");
   DelMeshOptions options;

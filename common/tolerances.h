@@ -320,6 +320,11 @@ inline constexpr std::size_t validation_mpfi_box_budget = 4000;
 //! the input's vertices with every side pushed out by this fraction of its diagonal, so that the
 //! surface lies well inside it and the clipped Voronoi cells of the samples reach beyond it.
 inline constexpr double input_mesh_box_margin = 0.1;
+//! Remeshing a triangle mesh: the largest |coordinate| of a vertex accepted (the box, with its
+//! margin, then stays within about 1.4 times this).  The mesh oracle's orientation tests and the
+//! Voronoi constructions multiply three coordinate differences; below this their products stay far
+//! inside double precision (about 1e308).
+inline constexpr double input_mesh_max_coordinate = 1e100;
 //! Remeshing a triangle mesh: the default termination floor (delmesh mesh --min-spacing) is this
 //! fraction of the input's median edge length.  A triangle mesh is not C², so Lemma 5.1's spacing
 //! bound does not hold at its creases and cone vertices; below the floor a witness is recorded

@@ -59,7 +59,8 @@ std::string count_of(std::size_t n, const std::string& singular, const std::stri
 }
 
 //! Step 1: the soup is well formed (indices in range, at least three distinct vertices per face,
-//! finite referenced coordinates) and not empty.
+//! finite referenced coordinates of magnitude at most tolerances::input_mesh_max_coordinate) and
+//! not empty.
 void check_soup(const std::vector<Point3>& points, const std::vector<Polygon>& polygons, const Complaint& fail) {
   if (polygons.empty()) fail("the mesh is empty (it has no faces)");
   for (std::size_t f = 0; f < polygons.size(); ++f) {
@@ -77,6 +78,9 @@ void check_soup(const std::vector<Point3>& points, const std::vector<Polygon>& p
       const Point3& p = points[v];
       if (!(std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z())))
         fail("vertex " + std::to_string(v) + " has a non-finite coordinate");
+      if (std::max({std::abs(p.x()), std::abs(p.y()), std::abs(p.z())}) > tolerances::input_mesh_max_coordinate)
+        fail(fail.vertex(v) + " has a coordinate too large: above 1e100 in magnitude, products of three "
+             "coordinates would overflow double precision; rescale the mesh");
     }
   }
 }

@@ -111,6 +111,20 @@ BOOST_AUTO_TEST_CASE(empty_mesh_is_refused) {
   BOOST_CHECK_THROW((void)read_input_mesh(file), InvalidInput);
 }
 
+// Coordinates around 1e154 are finite, but the orientation tests' triple products overflow: the mesh
+// is refused with the vertex named, while 1e99 is accepted.
+BOOST_AUTO_TEST_CASE(huge_coordinates_are_refused) {
+  test::Soup huge = test::tetrahedron();
+  for (Point3& p : huge.points) p = Point3(p.x() * 1e154, p.y() * 1e154, p.z() * 1e154);
+  const std::string why = refusal(huge);
+  BOOST_TEST(contains(why, "input mesh 'm.off': vertex 0 ("), why);
+  BOOST_TEST(contains(why, "has a coordinate too large: above 1e100"), why);
+  test::Soup large = test::tetrahedron();
+  for (Point3& p : large.points) p = Point3(p.x() * 1e99 / 2, p.y() * 1e99 / 2, p.z() * 1e99 / 2);
+  BOOST_TEST(refusal(large).empty());
+  BOOST_TEST(tolerances::input_mesh_max_coordinate == 1e100);  // the message's figure
+}
+
 BOOST_AUTO_TEST_CASE(open_mesh_names_a_boundary_edge) {
   test::Soup open = test::octahedron();
   open.triangles.pop_back();

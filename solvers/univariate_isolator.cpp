@@ -328,6 +328,22 @@ class Isolation {
     return buffer;
   }
 
+  //! Whether the solve may take one more node off a work list, counting it as a box: not once the
+  //! solve has stopped, nor after the deadline (time_limit) or beyond the box budget (box_limit);
+  //! the node is then left on the list, unexplored.
+  bool may_take_node() {
+    if (progress_.stopped()) return false;
+    if (deadline_.expired()) {
+      progress_.stop(SolveStatus::time_limit);
+      return false;
+    }
+    if (++counters_.boxes > options_.box_budget) {
+      progress_.stop(SolveStatus::box_limit);
+      return false;
+    }
+    return true;
+  }
+
   // ---- polynomial E: Bernstein subdivision ----
   static BernsteinBuffers& bernstein_buffers() {
     static thread_local BernsteinBuffers buffers;
@@ -341,21 +357,10 @@ class Isolation {
   void run_bernstein(const LinePolynomial& polynomial) {
     const BernsteinRun run = start_bernstein(polynomial, bernstein_buffers());
     std::vector<BernsteinNode>& nodes = run.buffers.nodes;
-    while (!nodes.empty()) {
-      if (progress_.stopped()) break;
+    while (!nodes.empty() && may_take_node()) {
       const BernsteinNode node = nodes.back();
       const std::size_t top = nodes.size() - 1;
-      if (deadline_.expired()) {
-        progress_.stop(SolveStatus::time_limit);
-        break;
-      }
       nodes.pop_back();
-      ++counters_.boxes;
-      if (counters_.boxes > options_.box_budget) {
-        nodes.push_back(node);
-        progress_.stop(SolveStatus::box_limit);
-        break;
-      }
       bernstein_step(run, node, top);
     }
     for (const BernsteinNode& node : nodes) {
@@ -493,20 +498,9 @@ class Isolation {
     static thread_local std::vector<NewtonNode> nodes;
     nodes.clear();
     nodes.push_back({lo, hi, unknown_sign, unknown_sign});
-    while (!nodes.empty()) {
-      if (progress_.stopped()) break;
-      if (deadline_.expired()) {
-        progress_.stop(SolveStatus::time_limit);
-        break;
-      }
+    while (!nodes.empty() && may_take_node()) {
       NewtonNode node = nodes.back();
       nodes.pop_back();
-      ++counters_.boxes;
-      if (counters_.boxes > options_.box_budget) {
-        nodes.push_back(node);
-        progress_.stop(SolveStatus::box_limit);
-        break;
-      }
       if (!newton_step(eval, node, nodes)) break;
     }
     for (const NewtonNode& node : nodes) leaves_.push_back({node.a, node.b, progress_.unexplored_reason(), false});

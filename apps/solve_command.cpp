@@ -97,7 +97,7 @@ const std::vector<std::string>& solve_parameter_options() {
 }
 
 SolveOutcome solve_primitive(const SolveRequest& o) {
-  const QuerySolver solver = parse_enum<QuerySolver>(o.solver, "--solver");
+  const SolverBackend solver = parse_enum<SolverBackend>(o.solver, "--solver");
   if (o.max_boxes < 1) throw InvalidInput("--max-boxes must be at least 1");
   const TaylorForms taylor_forms = parse_enum<TaylorForms>(o.taylor_forms, "--taylor-forms");
   if (!std::isfinite(o.time_limit) || o.time_limit < 0 || o.time_limit > max_time_limit_seconds) {
@@ -107,7 +107,7 @@ SolveOutcome solve_primitive(const SolveRequest& o) {
   const SurfaceInput input = o.surface.resolve();
   const PrimitiveQuery query = row->make_query(given, input.box);
   const CompiledPrimitive primitive(row->build(input.surface));
-  if (solver == QuerySolver::homotopy && !primitive.system.is_square()) {
+  if (solver == SolverBackend::homotopy && !primitive.system.is_square()) {
     throw InvalidInput("--solver homotopy needs a square system; " + o.primitive +
                        " is over-determined (use --solver subdivision)");
   }
@@ -129,7 +129,7 @@ SolveOutcome solve_primitive(const SolveRequest& o) {
   for (const UndecidedBox& u : result.undecided) {
     undecided.push_back(world_box(primitive.compiled, query.parameters, u.box));
   }
-  const std::string solver_name = query.line && solver == QuerySolver::subdivision ? "univariate isolator" : o.solver;
+  const std::string solver_name = query.line && solver == SolverBackend::subdivision ? "univariate isolator" : o.solver;
   return SolveOutcome{input, query.description, solver_name, std::move(result), std::move(undecided), seconds};
 }
 

@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/enum_names.h"
-#include "meshing/solver_backend.h"
+#include "solvers/solver_backend.h"
 #include "meshing/surface_mesh.h"
 #include "meshing/theorem_bounds.h"
 #include "symbolic/surface.h"

@@ -37,7 +37,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "meshing/solver_backend.h"
+#include "solvers/solver_backend.h"
 #include "meshing/surface_oracle.h"
 #include "solvers/domain.h"
 #include "solvers/gradient_cone.h"

@@ -102,7 +102,7 @@ SolveResult solve_query(const CompiledPrimitive& primitive, const PrimitiveQuery
   SolveResult result;
   if (!query.domain) return result;  // the line or plane misses the box: no roots
   const PrimitiveSystem& system = primitive.system;
-  if (options.solver == QuerySolver::homotopy) {
+  if (options.solver == SolverBackend::homotopy) {
     if (!system.is_square()) {
       throw InvalidInput("the homotopy solver needs a square system; " + system.name +
                          " is over-determined (use the subdivision solver)");

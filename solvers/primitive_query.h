@@ -19,6 +19,7 @@
 #include "common/tolerances.h"
 #include "solvers/domain.h"
 #include "solvers/query_geometry.h"
+#include "solvers/solver_backend.h"
 #include "solvers/solve_result.h"
 #include "solvers/subdivision_solver.h"
 #include "symbolic/compiled_system.h"
@@ -116,20 +117,8 @@ struct CompiledPrimitive {
 std::size_t drop_spurious_roots(const CompiledPrimitive& primitive, const std::vector<double>& parameters,
                                 SolveResult& result);
 
-//! Which certified solver answers a query.
-enum class QuerySolver {
-  subdivision,  //!< solve_subdivision (exclusion mode for over-determined systems), or the
-                //!< univariate isolator for a LineQuery
-  homotopy      //!< solve_homotopy: square systems polynomial in their unknowns only
-};
-constexpr auto enum_names(QuerySolver) {
-  return name_table<QuerySolver>("QuerySolver", {{QuerySolver::subdivision, "subdivision"},
-                                                 {QuerySolver::homotopy, "homotopy"}});
-}
-inline std::ostream& operator<<(std::ostream& out, QuerySolver solver) { return write_enum(out, solver); }
-
 struct QuerySolveOptions {
-  QuerySolver solver = QuerySolver::subdivision;
+  SolverBackend solver = SolverBackend::subdivision;
   std::size_t box_budget = tolerances::default_box_budget;  //!< subdivision and the isolator
   double time_limit_seconds = 0;                            //!< 0: none (subdivision and homotopy)
   TaylorForms taylor_forms = TaylorForms::automatic;        //!< subdivision

@@ -27,7 +27,7 @@ QueryOptions point(const Vec3& c) {
   return o;
 }
 
-SolveResult solve(const CompiledPrimitive& primitive, const PrimitiveQuery& query, QuerySolver solver) {
+SolveResult solve(const CompiledPrimitive& primitive, const PrimitiveQuery& query, SolverBackend solver) {
   QuerySolveOptions options;
   options.solver = solver;
   return solve_query(primitive, query, options);
@@ -87,8 +87,8 @@ BOOST_AUTO_TEST_CASE(the_solvers_find_plus_minus_c_over_norm_c_on_the_sphere) {
       const double n = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
       const std::vector<Vec3> expected{{c[0] / n, c[1] / n, c[2] / n}, {-c[0] / n, -c[1] / n, -c[2] / n}};
       const PrimitiveQuery q = row().query(point(c), sphere.box);
-      require_roots(solve(primitive, q, QuerySolver::subdivision), expected);
-      require_roots(solve(primitive, q, QuerySolver::homotopy), expected);
+      require_roots(solve(primitive, q, SolverBackend::subdivision), expected);
+      require_roots(solve(primitive, q, SolverBackend::homotopy), expected);
     }
   }
 }
@@ -101,19 +101,19 @@ BOOST_AUTO_TEST_CASE(the_torus_answer_for_a_point_in_its_equatorial_plane) {
   const Vec3 c{0.5, 1.2, 0}, unit{5. / 13, 12. / 13, 0};
   std::vector<Vec3> expected;
   for (double rho : {-1.4, -0.6, 0.6, 1.4}) expected.push_back({rho * unit[0], rho * unit[1], 0});
-  require_roots(solve(primitive, row().query(point(c), torus.box), QuerySolver::subdivision), expected);
+  require_roots(solve(primitive, row().query(point(c), torus.box), SolverBackend::subdivision), expected);
 
   // With d = (1, −1, 0.5) the equations also vanish at four points with w ≠ 0 parallel to d (on
   // the plane through c normal to d, where ∇E ⟂ d); the side condition drops them.
   QueryOptions o = point(c);
   o.values[QueryOption::direction] = {1, -1, 0.5};
   const PrimitiveQuery q = row().query(o, torus.box);
-  const SolveResult filtered = solve(primitive, q, QuerySolver::subdivision);
+  const SolveResult filtered = solve(primitive, q, SolverBackend::subdivision);
   require_roots(filtered, expected);
   PrimitiveSystem unfiltered_system = row().build(torus.surface());
   unfiltered_system.side_conditions.clear();
   const CompiledPrimitive unfiltered(std::move(unfiltered_system));
-  SolveResult all = solve(unfiltered, q, QuerySolver::subdivision);
+  SolveResult all = solve(unfiltered, q, SolverBackend::subdivision);
   BOOST_TEST(all.status == SolveStatus::complete);
   BOOST_TEST(all.roots.size() == 2 * expected.size());
   const std::size_t before = all.roots.size();

@@ -31,7 +31,7 @@ void require_roots(const SolveResult& result, const std::vector<Vec3>& expected)
 }
 
 //! Solves the row's known-answer query with the given solver.
-SolveResult solve_example(const PrimitiveInfo& row, QuerySolver solver) {
+SolveResult solve_example(const PrimitiveInfo& row, SolverBackend solver) {
   const CatalogEntry& entry = catalog_entry(row.example.surface);
   const Surface surface = entry.surface();
   const CompiledPrimitive primitive(row.build(surface));
@@ -77,7 +77,7 @@ BOOST_AUTO_TEST_CASE(every_row_is_complete_and_its_name_unique) {
 BOOST_AUTO_TEST_CASE(every_known_answer_is_found_by_the_subdivision_solver) {
   for (const PrimitiveInfo& row : primitive_registry()) {
     BOOST_TEST_CONTEXT(row.name << " on " << row.example.surface) {
-      const SolveResult result = solve_example(row, QuerySolver::subdivision);
+      const SolveResult result = solve_example(row, SolverBackend::subdivision);
       BOOST_TEST(result.status == SolveStatus::complete);
       BOOST_TEST(result.undecided.empty());
       require_roots(result, row.example.roots);
@@ -90,7 +90,7 @@ BOOST_AUTO_TEST_CASE(every_square_known_answer_is_found_by_the_homotopy_solver) 
   for (const PrimitiveInfo& row : primitive_registry()) {
     if (!row.build(catalog_entry(row.example.surface).surface()).is_square()) continue;
     BOOST_TEST_CONTEXT(row.name << " on " << row.example.surface) {
-      const SolveResult result = solve_example(row, QuerySolver::homotopy);
+      const SolveResult result = solve_example(row, SolverBackend::homotopy);
       BOOST_TEST(result.status == SolveStatus::complete);
       require_roots(result, row.example.roots);
     }

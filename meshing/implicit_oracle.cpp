@@ -124,15 +124,13 @@ SolveResult ImplicitOracle::solve_square(std::size_t primitive, const std::vecto
     HomotopyOptions options;
     options.seed = seed_;
     options.deadline = deadline_;
-    HomotopyStatistics paths;
-    options.statistics = &paths;
-    auto result = solve_homotopy(sys, impl_->degrees[index], parameters, domain, options);
+    HomotopySolveResult result = solve_homotopy(sys, impl_->degrees[index], parameters, domain, options);
     const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
     auto& s = stats_[index];
     s.homotopy_paths += result.counters.paths;
-    s.homotopy_near_real += paths.near_real;
-    s.homotopy_diverging_near_domain += paths.diverging_near_domain;
-    return result;
+    s.homotopy_near_real += result.statistics.near_real;
+    s.homotopy_diverging_near_domain += result.statistics.diverging_near_domain;
+    return std::move(result);  // the SolveResult part
   }
   count_fallback(primitive);
   SubdivisionOptions options;

@@ -511,9 +511,9 @@ void place_roots(const std::vector<Certified>& distinct, const Domain& domain, c
 
 }  // namespace
 
-SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>& degrees,
-                           const std::vector<double>& parameters, const Domain& domain,
-                           const HomotopyOptions& options) {
+HomotopySolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>& degrees,
+                                   const std::vector<double>& parameters, const Domain& domain,
+                                   const HomotopyOptions& options) {
   validate(system, degrees, parameters, domain);
   const auto started = Clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - started).count(); };
@@ -537,8 +537,8 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
   settings.max_steps = options.max_steps_per_path;
   settings.deadline = deadline;
 
-  SolveResult result;
-  HomotopyStatistics statistics;
+  HomotopySolveResult result;
+  HomotopyStatistics& statistics = result.statistics;
   Paths paths(tracker, settings, total_degree_start_solutions(degrees), result, statistics);
   paths.track_all();
   paths.find_coincidences(true);
@@ -565,7 +565,6 @@ SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>&
     result.status = result.undecided.empty() ? SolveStatus::complete : SolveStatus::undecided;
   }
   result.counters.seconds = elapsed();
-  if (options.statistics) *options.statistics = statistics;
   return result;
 }
 

@@ -60,8 +60,11 @@ struct HomotopyOptions {
   //! Predictor–corrector steps one path may take before it is declared failed (a failed path
   //! makes the solve undecided: the whole domain box is returned as undecided).
   std::size_t max_steps_per_path = tolerances::homotopy_max_steps_per_path;
-  //! If set, receives the path statistics of the solve (overwritten).
-  HomotopyStatistics* statistics = nullptr;
+};
+
+//! What solve_homotopy() returns: its roots and undecided regions, and the statistics of its paths.
+struct HomotopySolveResult : SolveResult {
+  HomotopyStatistics statistics;
 };
 
 
@@ -115,6 +118,7 @@ std::vector<std::vector<Complex>> total_degree_start_solutions(const std::vector
 //!    certified roots whose box straddles a face are undecided (boundary_root), certified boxes
 //!    that meet without one unique root in their hull undecided (cluster);
 //!  - undecided: as in rules 1–6;
+//!  - statistics: how the paths ended (HomotopyStatistics);
 //!  - counters.paths (paths tracked, re-tracks included) and counters.seconds.
 //! Status complete iff nothing is undecided.  Fixed options.seed → identical output (unless the
 //! deadline cuts the solve).
@@ -126,8 +130,8 @@ std::vector<std::vector<Complex>> total_degree_start_solutions(const std::vector
 //! unknowns, degrees.size() == n, parameters.size() == system.n_parameters(), domain valid
 //! (Domain::validate).  Throws InvalidInput if some d_i < 1 (d_i is the total degree of equation
 //! i, equation_degrees()).
-SolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>& degrees,
-                           const std::vector<double>& parameters, const Domain& domain,
-                           const HomotopyOptions& options = {});
+HomotopySolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>& degrees,
+                                   const std::vector<double>& parameters, const Domain& domain,
+                                   const HomotopyOptions& options = {});
 
 }  // namespace delmesh

@@ -76,11 +76,10 @@ struct Row {
 void measure(Row& row, const CompiledSystem& compiled, const std::vector<int>& degrees,
              const std::vector<double>& parameters, const Domain& domain, std::uint64_t seed, int repeats) {
   std::vector<double> ts, th;
-  SolveResult sub, hom;
-  HomotopyStatistics statistics;
+  SolveResult sub;
+  HomotopySolveResult hom;
   HomotopyOptions options;
   options.seed = seed;
-  options.statistics = &statistics;
   for (int r = 0; r < repeats; ++r) {
     ts.push_back(seconds_of([&] { sub = solve_subdivision(compiled, parameters, domain); }));
     th.push_back(seconds_of([&] { hom = solve_homotopy(compiled, degrees, parameters, domain, options); }));
@@ -91,7 +90,7 @@ void measure(Row& row, const CompiledSystem& compiled, const std::vector<int>& d
   row.ratio.push_back(median(th) / median(ts));
   row.boxes.push_back(static_cast<double>(sub.counters.boxes));
   row.paths.push_back(static_cast<double>(hom.counters.paths));
-  row.steps_per_path.push_back(static_cast<double>(statistics.steps + statistics.rejections) /
+  row.steps_per_path.push_back(static_cast<double>(hom.statistics.steps + hom.statistics.rejections) /
                                static_cast<double>(std::max<std::size_t>(hom.counters.paths, 1)));
   row.roots_sub.push_back(static_cast<double>(sub.roots.size()));
   row.roots_hom.push_back(static_cast<double>(hom.roots.size()));

@@ -35,12 +35,11 @@ PrimitiveSystem make_system(std::vector<ex> equations, std::vector<symbol> unkno
   return s;
 }
 
-SolveResult solve(const PrimitiveSystem& system, const std::vector<double>& parameters, const Domain& domain,
-                  std::uint64_t seed = 1, HomotopyStatistics* statistics = nullptr) {
+HomotopySolveResult solve(const PrimitiveSystem& system, const std::vector<double>& parameters, const Domain& domain,
+                          std::uint64_t seed = 1) {
   const CompiledSystem compiled(system);
   HomotopyOptions options;
   options.seed = seed;
-  options.statistics = statistics;
   return solve_homotopy(compiled, equation_degrees(system), parameters, domain, options);
 }
 
@@ -341,8 +340,8 @@ BOOST_AUTO_TEST_CASE(cauchy_endgame_finds_a_triple_root_with_winding_number_thre
     }
   }
   // the solver: −2 certified, 1/2 undecided (singular_root), never certified
-  HomotopyStatistics statistics;
-  const auto r = solve(s, {}, Domain::from_box({{{-3.0, 3.0}}}), 1, &statistics);
+  const auto r = solve(s, {}, Domain::from_box({{{-3.0, 3.0}}}), 1);
+  const HomotopyStatistics& statistics = r.statistics;
   BOOST_TEST(r.status == SolveStatus::undecided);
   BOOST_REQUIRE(r.roots.size() == 1u);
   BOOST_TEST(has_root(r, {-2.0}));
@@ -455,8 +454,8 @@ BOOST_AUTO_TEST_CASE(three_paths_to_a_singular_point_at_infinity) {
   const auto ends = track_all(s);
   BOOST_TEST(count(ends, detail::PathOutcome::diverging) == 3u);
   BOOST_TEST(count(ends, detail::PathOutcome::finite) == 1u);
-  HomotopyStatistics statistics;
-  const auto r = solve(s, {}, Domain::from_box({{{-3.0, 3.0}}, {{-3.0, 3.0}}}), 1, &statistics);
+  const auto r = solve(s, {}, Domain::from_box({{{-3.0, 3.0}}, {{-3.0, 3.0}}}), 1);
+  const HomotopyStatistics& statistics = r.statistics;
   BOOST_TEST(r.status == SolveStatus::complete);
   BOOST_REQUIRE(r.roots.size() == 1u);
   BOOST_TEST(has_root(r, {1.0, 1.0}));
@@ -475,8 +474,8 @@ BOOST_AUTO_TEST_CASE(torus_critical_points_and_its_paths_to_infinity) {
   const auto frame = orthonormal_frame(unit_vector({3, -5, 8}));
   const std::vector<double> parameters{frame.a[0], frame.a[1], frame.a[2], frame.b[0], frame.b[1], frame.b[2]};
   for (std::uint64_t seed : {1, 2}) {
-    HomotopyStatistics statistics;
-    const auto r = solve(system, parameters, box_domain(catalog_entry("torus").box), seed, &statistics);
+    const auto r = solve(system, parameters, box_domain(catalog_entry("torus").box), seed);
+    const HomotopyStatistics& statistics = r.statistics;
     BOOST_TEST_MESSAGE("seed " << seed << ": finite " << statistics.finite << " singular " << statistics.singular
                                << " diverging " << statistics.diverging << " failed " << statistics.failed
                                << ", steps per path " << (statistics.steps + statistics.rejections) / 36.0
@@ -498,10 +497,9 @@ BOOST_AUTO_TEST_CASE(two_close_roots_are_not_merged_by_the_endgame) {
   const CompiledSystem compiled(kostlan_system({6, 5, 6}, 104));
   HomotopyOptions options;
   options.seed = 104;
-  HomotopyStatistics statistics;
-  options.statistics = &statistics;
   const auto r = solve_homotopy(compiled, {6, 5, 6}, {}, Domain::from_box({{{-1.0, 1.0}}, {{-1.0, 1.0}}, {{-1.0, 1.0}}}),
                                 options);
+  const HomotopyStatistics& statistics = r.statistics;
   BOOST_TEST(r.status == SolveStatus::complete);
   BOOST_TEST(statistics.singular == 0u);
   for (const std::vector<double>& root : {std::vector<double>{-0.402875, 0.186436, 0.832277},
@@ -525,8 +523,8 @@ BOOST_AUTO_TEST_CASE(near_real_endpoints_are_undecided_not_dropped) {
   const ex eps = GiNaC::numeric(1, 10);
   const auto s = make_system({X() * X() - 2 * X() * Y() + Y() * Y() + eps * eps, X() + Y() - 2000}, {X(), Y()});
   for (std::uint64_t seed : {1, 2, 3}) {
-    HomotopyStatistics statistics;
-    const auto r = solve(s, {}, Domain::from_box({{{999.0, 1001.0}}, {{999.0, 1001.0}}}), seed, &statistics);
+    const auto r = solve(s, {}, Domain::from_box({{{999.0, 1001.0}}, {{999.0, 1001.0}}}), seed);
+    const HomotopyStatistics& statistics = r.statistics;
     BOOST_TEST(statistics.finite == 2u);
     BOOST_TEST(statistics.near_real == 2u);
     BOOST_TEST(r.status == SolveStatus::undecided);
@@ -544,8 +542,8 @@ BOOST_AUTO_TEST_CASE(near_real_endpoints_are_undecided_not_dropped) {
 BOOST_AUTO_TEST_CASE(near_real_endpoints_proved_root_free_are_dropped) {
   // x² + 1e-10: endpoints ±1e-5 i, near-real; Krawczyk proves the box around 0 root-free.
   const auto s = make_system({X() * X() + GiNaC::numeric(1, 10000000000)}, {X()});
-  HomotopyStatistics statistics;
-  const auto r = solve(s, {}, Domain::from_box({{{-1.0, 1.0}}}), 1, &statistics);
+  const auto r = solve(s, {}, Domain::from_box({{{-1.0, 1.0}}}), 1);
+  const HomotopyStatistics& statistics = r.statistics;
   BOOST_TEST(statistics.near_real == 2u);
   BOOST_TEST(r.status == SolveStatus::complete);
   BOOST_TEST(r.roots.empty());
@@ -559,8 +557,8 @@ BOOST_AUTO_TEST_CASE(diverging_paths_near_the_domain_make_it_undecided) {
   // back undecided.  On [−0.5, 0.5]² (no root) the same paths end far from it: complete.
   const auto s = make_system({Y() - GiNaC::pow(X(), 4), Y() - GiNaC::pow(X(), 4) - X() + 1}, {X(), Y()});
   for (std::uint64_t seed : {1, 2}) {
-    HomotopyStatistics statistics;
-    const auto r = solve(s, {}, Domain::from_box({{{-10.0, 10.0}}, {{-10.0, 10.0}}}), seed, &statistics);
+    const auto r = solve(s, {}, Domain::from_box({{{-10.0, 10.0}}, {{-10.0, 10.0}}}), seed);
+    const HomotopyStatistics& statistics = r.statistics;
     BOOST_TEST(statistics.diverging == 15u);
     BOOST_TEST(statistics.diverging_near_domain >= 1u);
     BOOST_TEST(r.status == SolveStatus::undecided);
@@ -571,8 +569,8 @@ BOOST_AUTO_TEST_CASE(diverging_paths_near_the_domain_make_it_undecided) {
     BOOST_TEST(r.undecided[0].box.bounds[0][0] == -10.0);
     BOOST_TEST(r.undecided[0].box.bounds[1][1] == 10.0);
 
-    HomotopyStatistics far;
-    const auto small = solve(s, {}, Domain::from_box({{{-0.5, 0.5}}, {{-0.5, 0.5}}}), seed, &far);
+    const auto small = solve(s, {}, Domain::from_box({{{-0.5, 0.5}}, {{-0.5, 0.5}}}), seed);
+    const HomotopyStatistics& far = small.statistics;
     BOOST_TEST(far.diverging == 15u);
     BOOST_TEST(far.diverging_near_domain == 0u);
     BOOST_TEST(small.status == SolveStatus::complete);
@@ -585,9 +583,8 @@ BOOST_AUTO_TEST_CASE(a_deadline_in_the_past_stops_the_first_path) {
   const CompiledSystem compiled(s);
   HomotopyOptions options;
   options.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
-  HomotopyStatistics statistics;
-  options.statistics = &statistics;
   const auto r = solve_homotopy(compiled, {2, 1}, {}, Domain::from_box({{{-2.0, 2.0}}, {{-2.0, 2.0}}}), options);
+  const HomotopyStatistics& statistics = r.statistics;
   BOOST_TEST(r.status == SolveStatus::time_limit);
   BOOST_TEST(r.roots.empty());
   BOOST_REQUIRE(r.undecided.size() == 1u);

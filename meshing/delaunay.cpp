@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 
 #include <CGAL/Delaunay_triangulation_3.h>
@@ -33,8 +34,47 @@ using Cb = CGAL::Delaunay_triangulation_cell_base_3<Kernel>;
 using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
 using Dt = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
 
+//! The distinct edges of one insertion's cavity facets: an open-addressing set of edge keys that
+//! keeps its table between insertions, so that it allocates only while it grows.
+class CavityEdges {
+ public:
+  //! Empties the set for a cavity whose facets have at most `occurrences` edges in all.
+  void start(std::size_t occurrences) {
+    std::size_t capacity = 64;
+    while (capacity < 2 * occurrences) capacity *= 2;
+    if (capacity > slots_.size()) {
+      slots_.assign(capacity, empty);
+    } else {
+      for (std::size_t i : used_) slots_[i] = empty;
+    }
+    used_.clear();
+    mask_ = slots_.size() - 1;
+  }
+  //! Adds e; returns whether it was not in the set yet.
+  bool add(const EdgeKey& e) {
+    std::uint64_t h = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(e[0])) << 32) ^
+                      static_cast<std::uint32_t>(e[1]);
+    h *= 0x9E3779B97F4A7C15ULL;
+    for (std::size_t i = static_cast<std::size_t>(h >> 32) & mask_;; i = (i + 1) & mask_) {
+      if (slots_[i] == e) return false;
+      if (slots_[i][0] < 0) {
+        slots_[i] = e;
+        used_.push_back(i);
+        return true;
+      }
+    }
+  }
+
+ private:
+  static constexpr EdgeKey empty{-1, -1};
+  std::vector<EdgeKey> slots_;
+  std::vector<std::size_t> used_;
+  std::size_t mask_ = 0;
+};
+
 struct DelaunayImpl {
   Dt dt;
+  CavityEdges cavity_edges;  //!< scratch of insert_point()
   std::vector<Dt::Vertex_handle> handles;  // by id; null when removed
   std::vector<std::array<double, 3>> points;
   std::vector<char> seeds;
@@ -120,22 +160,23 @@ std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, b
       std::vector<detail::Dt::Cell_handle> cavity;
       dt.find_conflicts(point, cell, std::back_inserter(boundary), std::back_inserter(cavity),
                         std::back_inserter(internal));
-      std::vector<EdgeKey> internal_edges;
+      // An edge of the cavity shrinks if it lies on a boundary facet and is destroyed otherwise:
+      // the boundary facets' edges are taken first, each edge once.
+      detail::CavityEdges& seen = impl_->cavity_edges;
+      seen.start(3 * (boundary.size() + internal.size()));
       for (const auto& [facets, triangles, edges] :
            {std::tie(boundary, change->shrunk_triangles, change->shrunk_edges),
-            std::tie(internal, change->destroyed_triangles, internal_edges)})
+            std::tie(internal, change->destroyed_triangles, change->destroyed_edges)})
         for (const auto& f : facets)
           if (const auto t = facet_key(dt, f)) {
             triangles.push_back(*t);
-            edges.insert(edges.end(), {EdgeKey{(*t)[0], (*t)[1]}, EdgeKey{(*t)[0], (*t)[2]}, EdgeKey{(*t)[1], (*t)[2]}});
+            for (const EdgeKey& e : {EdgeKey{(*t)[0], (*t)[1]}, EdgeKey{(*t)[0], (*t)[2]}, EdgeKey{(*t)[1], (*t)[2]}})
+              if (seen.add(e)) edges.push_back(e);
           }
       sort_unique(change->shrunk_triangles);
       sort_unique(change->destroyed_triangles);
-      sort_unique(change->shrunk_edges);
-      sort_unique(internal_edges);
-      // An edge of the cavity is destroyed unless it lies on the cavity's boundary.
-      std::set_difference(internal_edges.begin(), internal_edges.end(), change->shrunk_edges.begin(),
-                          change->shrunk_edges.end(), std::back_inserter(change->destroyed_edges));
+      std::sort(change->shrunk_edges.begin(), change->shrunk_edges.end());
+      std::sort(change->destroyed_edges.begin(), change->destroyed_edges.end());
       change->local = true;
       v = dt.insert_in_hole(point, cavity.begin(), cavity.end(), boundary.front().first, boundary.front().second);
     } else {

@@ -196,8 +196,9 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
   oracle.set_run_controls(options.seed, limits.deadline);
   Refinement refinement(oracle, options.seed, limits, RecheckPolicy::new_faces, options.threads);
 
-  SeedReport seeds;
-  MeshStatus status = sample_topology(refinement, seeds);
+  const SampleTopologyResult sampled = sample_topology(refinement);
+  const SeedReport& seeds = sampled.seeds;
+  MeshStatus status = sampled.status;
   const TopologyPhase topology{refinement.delaunay().size(),
                                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                                refinement.insertions_json(), refinement.floor_json()};

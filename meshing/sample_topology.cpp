@@ -53,16 +53,20 @@ SeedReport insert_seeds(Refinement& refinement) {
   throw InvalidInput("cannot find a generic height direction: every direction tried gave non-isolated critical points");
 }
 
-MeshStatus sample_topology(Refinement& refinement, SeedReport& report) {
-  report = insert_seeds(refinement);
-  if (report.time_limited) return MeshStatus::time_limit;
-  if (const auto status = refinement.run(); status != MeshStatus::complete) return status;
+SampleTopologyResult sample_topology(Refinement& refinement) {
+  SampleTopologyResult result{insert_seeds(refinement)};
+  if (result.seeds.time_limited) {
+    result.status = MeshStatus::time_limit;
+    return result;
+  }
+  result.status = refinement.run();
   for (VertexId id : refinement.delaunay().vertices()) {
+    if (result.status != MeshStatus::complete) break;
     if (!refinement.delaunay().contains(id) || !refinement.delaunay().is_seed(id)) continue;
     refinement.remove(id);
-    if (const auto status = refinement.run(); status != MeshStatus::complete) return status;
+    result.status = refinement.run();
   }
-  return MeshStatus::complete;
+  return result;
 }
 
 }  // namespace delmesh

@@ -33,7 +33,14 @@ Vec3 generic_direction(std::uint64_t seed, int k);
 //! (SurfaceOracle::set_run_controls) stops the seed solve, inserts nothing and says so.
 SeedReport insert_seeds(Refinement& refinement);
 
-//! Steps 1–3.  Returns the status of the last Topology run (a limit stops it early).
-[[nodiscard]] MeshStatus sample_topology(Refinement& refinement, SeedReport& report);
+//! What sample_topology() did: its seeds, and the status of its last Topology run (a limit stops
+//! it early; time_limit also when the deadline stopped the seed solve).
+struct SampleTopologyResult {
+  SeedReport seeds;
+  MeshStatus status = MeshStatus::complete;
+};
+
+//! Steps 1–3.
+[[nodiscard]] SampleTopologyResult sample_topology(Refinement& refinement);
 
 }  // namespace delmesh

@@ -141,8 +141,7 @@ BOOST_AUTO_TEST_CASE(size_bound_holds_for_every_surface_delaunay_ball) {
   const double H = 0.25;
   ImplicitOracle oracle(entry.surface(), entry.box, SolverBackend::subdivision);
   Refinement refinement(oracle, 1, RefinementLimits{});
-  SeedReport seeds;
-  BOOST_TEST_REQUIRE(sample_topology(refinement, seeds) == MeshStatus::complete);
+  BOOST_TEST_REQUIRE(sample_topology(refinement).status == MeshStatus::complete);
   refinement.enable_geometry(0.06, H);
   BOOST_TEST_REQUIRE(refinement.run() == MeshStatus::complete);
   BOOST_TEST(refinement.insertions(CheckKind::size) > 0u);

@@ -22,9 +22,11 @@ struct TopologyRun {
   SeedReport seeds;
   MeshStatus status;
   TopologyRun(const CatalogEntry& entry, std::uint64_t seed, RecheckPolicy policy = RecheckPolicy::new_faces)
-      : oracle(entry.surface(), entry.box, SolverBackend::subdivision),
-        topology(oracle, seed, RefinementLimits{}, policy),
-        status(sample_topology(topology, seeds)) {}
+      : oracle(entry.surface(), entry.box, SolverBackend::subdivision), topology(oracle, seed, RefinementLimits{}, policy) {
+    const SampleTopologyResult run = sample_topology(topology);
+    seeds = run.seeds;
+    status = run.status;
+  }
 };
 
 MeshReport topology_report(const std::string& name, std::uint64_t seed) {
@@ -150,8 +152,7 @@ BOOST_AUTO_TEST_CASE(rejected_witnesses_leave_the_run_uncertified) {
   RefinementLimits limits;
   limits.duplicate_relative_distance = 0.15;
   Refinement refinement(oracle, 1, limits);
-  SeedReport seeds;
-  const MeshStatus status = sample_topology(refinement, seeds);
+  const MeshStatus status = sample_topology(refinement).status;
   BOOST_TEST_REQUIRE(status == MeshStatus::complete);
   BOOST_TEST_REQUIRE(refinement.rejected_witnesses() > 0u);
   // FacetCycle and Silhouette faces whose witnesses were all rejected were run again with other

@@ -134,9 +134,10 @@ std::optional<VertexId> Delaunay::insert(const std::array<double, 3>& p, bool is
   return insert_point(p, is_seed, nullptr, -1);
 }
 
-std::optional<VertexId> Delaunay::insert(const std::array<double, 3>& p, bool is_seed, InsertionChange& change,
-                                         VertexId hint) {
-  return insert_point(p, is_seed, &change, hint);
+Insertion Delaunay::insert_tracking(const std::array<double, 3>& p, bool is_seed, VertexId hint) {
+  Insertion insertion;
+  insertion.id = insert_point(p, is_seed, &insertion.change, hint);
+  return insertion;
 }
 
 std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, bool is_seed,

@@ -42,6 +42,13 @@ struct InsertionChange {
   std::vector<EdgeKey> destroyed_edges, shrunk_edges;
 };
 
+//! What Delaunay::insert_tracking() returns: the new vertex's id (nothing if the point coincides
+//! with a vertex; `change` is then empty) and what the insertion changed.
+struct Insertion {
+  std::optional<VertexId> id;
+  InsertionChange change;
+};
+
 namespace detail {
 struct DelaunayImpl;
 }
@@ -55,11 +62,10 @@ class Delaunay {
 
   //! Inserts p.  Returns the new vertex id, or nothing if p coincides with an existing vertex.
   std::optional<VertexId> insert(const std::array<double, 3>& p, bool is_seed);
-  //! The same, and describes in `change` what the insertion changed (see InsertionChange).
-  //! `hint`, if a current vertex near p, starts the point location there (the result does not
-  //! depend on it; the cost of the walk does).
-  std::optional<VertexId> insert(const std::array<double, 3>& p, bool is_seed, InsertionChange& change,
-                                 VertexId hint = -1);
+  //! The same, and what the insertion changed (see InsertionChange).  `hint`, if a current vertex
+  //! near p, starts the point location there (the result does not depend on it; the cost of the
+  //! walk does).
+  Insertion insert_tracking(const std::array<double, 3>& p, bool is_seed, VertexId hint = -1);
   //! Removes the vertex; its id is never reused.  Precondition: contains(id).
   void remove(VertexId id);
 

@@ -154,8 +154,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
       return std::nullopt;
     }
   }
-  InsertionChange change;
-  const auto id = del_.insert(w.point, w.kind == CheckKind::seed, change, record.nearest);
+  auto [id, change] = del_.insert_tracking(w.point, w.kind == CheckKind::seed, record.nearest);
   if (!id) {
     ++rejected_;
     return std::nullopt;

@@ -89,8 +89,7 @@ BOOST_AUTO_TEST_CASE(insertion_change_is_the_cavity) {
     const auto before_triangles = as_set(del.triangles());
     const auto before_edges = all_edges(del);
     const int dimension = del.dimension();
-    InsertionChange change;
-    const auto x = del.insert({s * r * std::cos(phi), s * r * std::sin(phi), s * z}, false, change, k > 0 ? 0 : -1);
+    const auto [x, change] = del.insert_tracking({s * r * std::cos(phi), s * r * std::sin(phi), s * z}, false, k > 0 ? 0 : -1);
     BOOST_TEST_REQUIRE(x.has_value());
     BOOST_TEST(change.local == (dimension == 3));
     if (!change.local) continue;

@@ -56,8 +56,7 @@ BOOST_AUTO_TEST_CASE(octahedron_is_its_own_restricted_triangulation) {
 BOOST_AUTO_TEST_CASE(shrunk_records_equal_solved_records) {
   CheckFixture f(test::unit_sphere, 1.5, {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
   (void)f.restricted.triangles();
-  InsertionChange change;
-  const auto x = f.del.insert({0.6, 0.6, 0.5291502622129181}, false, change);
+  const auto [x, change] = f.del.insert_tracking({0.6, 0.6, 0.5291502622129181}, false);
   BOOST_TEST_REQUIRE(x.has_value());
   BOOST_TEST_REQUIRE(change.local);
   BOOST_TEST_REQUIRE(!change.shrunk_triangles.empty());

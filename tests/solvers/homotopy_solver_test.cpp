@@ -64,6 +64,19 @@ std::size_t count(const std::vector<detail::PathEndpoint>& ends, detail::PathOut
       std::count_if(ends.begin(), ends.end(), [&](const auto& end) { return end.outcome == outcome; }));
 }
 
+//! An endgame that accepts a poor estimate: no direct finish, valuations taken as settled at once
+//! (the loops start at t = 0.35), `samples` samples per loop, any two successive estimates taken
+//! to agree.
+detail::TrackerSettings poor_endgame(int samples) {
+  auto settings = detail::TrackerSettings::defaults();
+  settings.endgame_direct_steps = 0;
+  settings.endgame_samples = samples;
+  settings.endgame_start = 0.3;
+  settings.endgame_valuation_stable = 1e300;
+  settings.endgame_tolerance = 1e300;
+  return settings;
+}
+
 double distance_to(const std::vector<Complex>& u, const std::vector<double>& expected) {
   double d = 0;
   for (std::size_t i = 0; i < expected.size(); ++i) d = std::max(d, std::abs(u[i] - expected[i]));
@@ -384,13 +397,7 @@ BOOST_AUTO_TEST_CASE(an_endpoint_estimate_that_is_not_a_zero_fails_the_path) {
     BOOST_TEST(end.outcome == detail::PathOutcome::finite);
     BOOST_TEST(std::abs(end.point[0] * end.point[0] - 2.0) <= 1e-12);
   }
-  auto settings = detail::TrackerSettings::defaults();
-  settings.endgame_direct_steps = 0;
-  settings.endgame_samples = 2;
-  settings.endgame_start = 0.3;
-  settings.endgame_valuation_stable = 1e300;
-  settings.endgame_tolerance = 1e300;
-  const auto ends = track_all(s, settings);
+  const auto ends = track_all(s, poor_endgame(2));
   BOOST_REQUIRE(ends.size() == 2u);
   for (const auto& end : ends) {
     BOOST_TEST_MESSAGE(end.outcome << " c = " << end.winding << " u = " << end.point[0]);
@@ -410,12 +417,7 @@ BOOST_AUTO_TEST_CASE(a_singular_estimate_must_pass_the_residual_test) {
   auto strict = detail::TrackerSettings::defaults();
   strict.singular_residual = 1e-9;
   BOOST_TEST(count(track_all(s, strict), detail::PathOutcome::singular) == 2u);
-  auto poor = detail::TrackerSettings::defaults();
-  poor.endgame_direct_steps = 0;
-  poor.endgame_samples = 1;
-  poor.endgame_start = 0.3;
-  poor.endgame_valuation_stable = 1e300;
-  poor.endgame_tolerance = 1e300;
+  auto poor = poor_endgame(1);
   const auto accepted = track_all(s, poor);
   BOOST_TEST(count(accepted, detail::PathOutcome::singular) == 2u);
   for (const auto& end : accepted)

@@ -42,6 +42,17 @@ inline constexpr double generic_direction_perturbation = 1e-3;
 //! Homotopy: first step in the path parameter s ∈ [0, 1], and the largest step allowed.
 inline constexpr double homotopy_initial_step = 1e-2;
 inline constexpr double homotopy_max_step = 1e-1;
+//! Homotopy step control: after this many accepted steps in a row the step doubles (up to the
+//! largest step); a rejected step halves it.
+inline constexpr int homotopy_step_growth_successes = 2;
+//! Homotopy: paths re-tracked because one may have jumped take steps (first and largest) and a
+//! corrector trust region this many times smaller, and homotopy_retrack_step_budget_factor times
+//! the step budget.
+inline constexpr double homotopy_retrack_step_divisor = 10;
+inline constexpr std::size_t homotopy_retrack_step_budget_factor = 4;
+//! Homotopy Newton iterations (on f at an endpoint, and the real polish): from this many steps on,
+//! a correction larger than the one before means the round-off level is reached, and they stop.
+inline constexpr int homotopy_newton_noise_after_steps = 3;
 
 //! Homotopy corrector: Newton corrections must fall below this (relative to 1 + ‖u‖∞) within
 //! homotopy_corrector_iterations iterations, else the step is rejected and halved.

@@ -144,7 +144,7 @@ class EndpointCertifier {
         scale = std::max(scale, std::abs(x[i]));
       }
       const double size = delta.cwiseAbs().maxCoeff();
-      if (size > last && k > 2) break;  // round-off level reached
+      if (size > last && k >= tol::homotopy_newton_noise_after_steps) break;  // round-off level reached
       last = size;
       if (size <= tol::homotopy_newton_converged_ulps * eps * (1 + scale)) break;
     }

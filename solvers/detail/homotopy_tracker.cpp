@@ -28,10 +28,10 @@ TrackerSettings TrackerSettings::defaults() {
 
 TrackerSettings TrackerSettings::stricter() const {
   TrackerSettings s = *this;
-  s.initial_step /= 10;
-  s.max_step /= 10;
-  s.corrector_trust /= 10;
-  s.max_steps *= 4;
+  s.initial_step /= tolerances::homotopy_retrack_step_divisor;
+  s.max_step /= tolerances::homotopy_retrack_step_divisor;
+  s.corrector_trust /= tolerances::homotopy_retrack_step_divisor;
+  s.max_steps *= tolerances::homotopy_retrack_step_budget_factor;
   return s;
 }
 
@@ -257,7 +257,7 @@ class PathTracker {
         X = next;
         tau = tau_new;
         ++end.steps;
-        if (++successes >= 2) {
+        if (++successes >= tolerances::homotopy_step_growth_successes) {
           h = std::min(2 * h, max_step);
           successes = 0;
         }
@@ -491,7 +491,7 @@ class PathTracker {
       const AffineVec delta = -lu.solve(fv);
       if (!finite(delta)) break;
       const double size = norm(delta);
-      if (size > last && k > 2) break;  // round-off level reached, or running away
+      if (size > last && k >= tolerances::homotopy_newton_noise_after_steps) break;  // round-off, or running away
       const AffineVec next = u + delta;
       if (norm(AffineVec(next - u0)) > max_travel * (1 + norm(u0))) break;
       u = next;

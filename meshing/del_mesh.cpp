@@ -86,11 +86,8 @@ nlohmann::json unsettled_json(const std::vector<Unsettled>& unsettled, const std
 
 void check_options(const Box3& box, const DelMeshOptions& options) {
   for (MeshOption option : all_mesh_options) {
-    if (const auto range = violated_range(option, options)) {
-      std::ostringstream name;
-      name << option;
-      throw InvalidInput(name.str() + " must " + *range);
-    }
+    if (const auto range = violated_range(option, options))
+      throw InvalidInput(std::string(enum_name(option)) + " must " + *range);
   }
   for (int k = 0; k < 3; ++k)
     if (!(box.lo[k] < box.hi[k])) throw InvalidInput("the box is empty");

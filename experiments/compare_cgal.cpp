@@ -10,6 +10,12 @@
 //!     settings that still gives the right topology;
 //!  3. demo: CGAL at coarse settings on thin_handle / two_blobs / near_sheets, where it loses a
 //!     handle or a component, against delmesh without size bound.
+//! CGAL's implicit oracles locate surface points by bisection, stopped when the segment is shorter
+//! than a relative error bound times the bounding sphere's diameter (--cgal-error-bound, default
+//! 1e-6).  CGAL's own default, 1e-3, is about 0.005 on the torus's sphere: no finer than the facet
+//! distance H/10 at H ≤ 0.05, so Mesh_3's distance criterion then refines on bisection error (at
+//! H = 0.02 it made 520 209 vertices where 1e-6 gives about 26 000, as many as Surface_mesher and
+//! delmesh).  delmesh's points are certified roots to full double precision.
 //! Every mesh is judged by the independent checker (meshing/mesh_checker.h) against the catalog's
 //! topology.  Output: <out-dir>/compare_cgal.csv (and the meshes under <out-dir>/meshes/).
 
@@ -47,9 +53,13 @@ namespace fs = std::filesystem;
 
 struct CgalSettings {
   double angle_deg = 30, radius = 0.05, distance = 0.005;
+  //! The bisection of CGAL's implicit oracles stops when the segment is shorter than this times
+  //! the bounding sphere's diameter (CGAL's default is 1e-3).
+  double relative_error_bound = 1e-6;
   std::string text() const {
     std::ostringstream out;
-    out << "angle=" << angle_deg << ";radius=" << radius << ";distance=" << distance;
+    out << "angle=" << angle_deg << ";radius=" << radius << ";distance=" << distance
+        << ";relative_error_bound=" << relative_error_bound;
     return out.str();
   }
 };
@@ -116,7 +126,8 @@ Run run_surface_mesher(const CompiledE& E, const std::array<double, 3>& centre, 
   SmTriangulation triangulation;
   SmComplex complex(triangulation);
   SmSurface surface([E](SmTraits::Point_3 p) { return E(p.x(), p.y(), p.z()); },
-                    SmTraits::Sphere_3(SmTraits::Point_3(centre[0], centre[1], centre[2]), squared_radius));
+                    SmTraits::Sphere_3(SmTraits::Point_3(centre[0], centre[1], centre[2]), squared_radius),
+                    s.relative_error_bound);
   CGAL::Surface_mesh_default_criteria_3<SmTriangulation> criteria(s.angle_deg, s.radius, s.distance);
   CGAL::make_surface_mesh(complex, surface, criteria, CGAL::Manifold_tag());
   run.soup = soup_of_facets(complex.facets_begin(), complex.facets_end(),
@@ -141,7 +152,8 @@ Run run_mesh_3(const CompiledE& E, const std::array<double, 3>& centre, double s
   namespace p = CGAL::parameters;
   MeshDomain domain = MeshDomain::create_implicit_mesh_domain(
       std::function<double(const Point3&)>([E](const Point3& q) { return E(q.x(), q.y(), q.z()); }),
-      Kernel::Sphere_3(Point3(centre[0], centre[1], centre[2]), squared_radius));
+      Kernel::Sphere_3(Point3(centre[0], centre[1], centre[2]), squared_radius),
+      p::relative_error_bound = s.relative_error_bound);
   M3Criteria criteria(p::facet_angle = s.angle_deg, p::facet_size = s.radius, p::facet_distance = s.distance);
   M3Complex complex = CGAL::make_mesh_3<M3Complex>(domain, criteria, p::no_perturb(), p::no_exude());
   const auto to_point = [](const M3Triangulation::Point& wp) {
@@ -253,6 +265,7 @@ int main(int argc, char** argv) {
   double lambda = lambda0;
   std::string cases = "torus:0.05,genus2:0.05,torus:0.02";
   double cgal_angle = 30;
+  double cgal_error_bound = CgalSettings{}.relative_error_bound;
   std::vector<double> coarse_radii{0.5, 1.0};
   std::vector<double> ladder{0.8, 0.4, 0.2, 0.1, 0.05};
   std::string out_dir = "out";
@@ -268,6 +281,11 @@ int main(int argc, char** argv) {
                  "facet size H and facet distance H/10")
       ->capture_default_str();
   app.add_option("--angle", cgal_angle, "CGAL facet angle bound (deg)")->capture_default_str();
+  app.add_option("--cgal-error-bound", cgal_error_bound,
+                 "relative error bound of CGAL's implicit-surface bisection (times the bounding sphere's diameter; "
+                 "CGAL's own default 1e-3 exceeds the facet distance H/10 on the catalog boxes for H <= 0.05)")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-15, 1e-1));
   app.add_option("--coarse-radii", coarse_radii, "CGAL radius bounds of the demo (distance = radius/10)")
       ->capture_default_str();
   app.add_option("--ladder", ladder, "CGAL radius bounds tried by 'coarsest' (distance = radius/10), coarse first")
@@ -293,6 +311,7 @@ int main(int argc, char** argv) {
                    {"benchmark_cases", cases},
                    {"threads", field(base.threads)},
                    {"cgal_angle", field(cgal_angle)},
+                   {"cgal_error_bound", field(cgal_error_bound)},
                    {"demo_radii", field_list(coarse_radii)},
                    {"ladder_radii", field_list(ladder)},
                    {"seed", field(static_cast<long long>(base.seed))},
@@ -330,7 +349,7 @@ int main(int argc, char** argv) {
         const double h = std::stod(item.substr(colon + 1));
         if (!(h > 0)) throw InvalidInput("--cases: H must be positive in '" + item + "'");
         const Prepared s = prepare(name);
-        const CgalSettings settings{cgal_angle, h, h / 10};
+        const CgalSettings settings{cgal_angle, h, h / 10, cgal_error_bound};
         Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, settings);
         record(context, "benchmark", *s.entry, sm, s.E);
         Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings);
@@ -361,7 +380,7 @@ int main(int argc, char** argv) {
         const Prepared s = prepare(name);
         std::optional<Run> coarsest_m3;
         for (double radius : ladder) {
-          const CgalSettings settings{cgal_angle, radius, radius / 10};
+          const CgalSettings settings{cgal_angle, radius, radius / 10, cgal_error_bound};
           Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, settings);
           record(context, "coarsest", *s.entry, sm, s.E);
           Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings);
@@ -385,7 +404,7 @@ int main(int argc, char** argv) {
       for (const std::string& name : split(demo_surfaces)) {
         const Prepared s = prepare(name);
         for (double radius : coarse_radii) {
-          const CgalSettings coarse{cgal_angle, radius, radius / 10};
+          const CgalSettings coarse{cgal_angle, radius, radius / 10, cgal_error_bound};
           Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, coarse);
           record(context, "demo", *s.entry, sm, s.E);
           Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, coarse);

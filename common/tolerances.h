@@ -282,6 +282,10 @@ inline constexpr double duplicate_sample_relative_distance = 1e-9;
 //! Silhouette's d′; CheckInfo::generic_choice) and all of whose witnesses were rejected is run
 //! again with another choice, up to this many choices in all, before its face is left unsettled.
 inline constexpr int generic_choice_attempts = 3;
+//! Boxes evaluated, at most, to prove that E keeps one sign on the bounding box of a Voronoi
+//! facet's vertices (RestrictedDelaunay::facet_misses_surface): the box, then halves of its widest
+//! side.  Each is one interval evaluation of E, far cheaper than building the facet.
+inline constexpr std::size_t facet_miss_box_budget = 8;
 //! Box budget of one gradient-cone certificate (solvers/gradient_cone.h) over a Voronoi facet or
 //! cell; the full solvers run when it does not suffice.  Small, because a certificate that needs
 //! many boxes rarely succeeds and the solve is then needed anyway.

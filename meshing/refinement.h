@@ -43,8 +43,8 @@
 //!     simplices containing x need their topology checks: VorEdge on the triangles xqr,
 //!     FacetContact and FacetCycle on the edges xq, Silhouette on V_x.  Of these, an edge xq
 //!     whose facet F is proved to miss Σ (RestrictedDelaunay::facet_misses_surface, from the
-//!     records of the triangles xqr) needs no FacetContact or FacetCycle: both look for points
-//!     of Σ ∩ F (rows marked silent_off_surface).
+//!     records and third vertices of the triangles xqr, and the box) needs no FacetContact or
+//!     FacetCycle: both look for points of Σ ∩ F (rows marked silent_off_surface).
 //!  4. TopoDisk(p) is a function of the restricted star of p (and, for its witness, of the
 //!     crossings of p's triangles): it is re-queued for x and for the vertices of every triangle
 //!     that entered or left Tri S|Σ (new, destroyed, or shrunk with a lost crossing).  Quality,
@@ -258,8 +258,8 @@ class Refinement {
   nlohmann::json per_step(const std::vector<T>& counts) const;
   std::optional<VertexId> insert_and_queue(const Witness& witness);
   //! Builds the facets of the edges xq of x's closed star and queues their checks, except for
-  //! facets proved to miss Σ from the records of the triangles xqr (`records`, prepare_star()'s
-  //! answer for `star`); returns the neighbours q, ascending.
+  //! facets proved to miss Σ from the records and third vertices of the triangles xqr
+  //! (`records`, prepare_star()'s answer for `star`); returns the neighbours q, ascending.
   std::vector<VertexId> prepare_new_edges(VertexId x, const std::vector<Delaunay::StarTriangle>& star,
                                           const std::vector<RestrictedDelaunay::StarRecord>& records);
   //! Whether t / e is in Del S now (a cached record or facet proves it: see restricted_delaunay.h).

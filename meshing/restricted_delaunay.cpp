@@ -7,6 +7,7 @@
 
 #include "common/tolerances.h"
 #include "meshing/detail/vec3.h"
+#include "solvers/query_geometry.h"
 #include "symbolic/scalar_types.h"
 
 namespace delmesh {
@@ -14,6 +15,36 @@ namespace delmesh {
 using namespace detail;
 
 namespace {
+
+//! Whether E is proved to keep one sign on the box [lo, hi] (interval arithmetic on it, then on
+//! halves of its widest side while at most `budget` boxes have been evaluated): each box that
+//! is not cleared is split, and the boxes cleared cover [lo, hi].
+bool sign_holds_on(const SurfaceOracle& oracle, const Vec3& lo, const Vec3& hi, std::size_t budget) {
+  std::vector<std::array<Vec3, 2>> stack{{lo, hi}};
+  int sign = 0;
+  for (std::size_t evaluated = 0; !stack.empty(); ++evaluated) {
+    if (evaluated == budget) return false;
+    const auto [a, b] = stack.back();
+    stack.pop_back();
+    const int s = oracle.value_sign(a, b);
+    if (s != 0 && (sign == 0 || s == sign)) {
+      sign = s;
+      continue;
+    }
+    if (s != 0) return false;  // both signs: Σ lies between the two boxes
+    int k = 0;
+    for (int i = 1; i < 3; ++i)
+      if (b[i] - a[i] > b[k] - a[k]) k = i;
+    const double mid = 0.5 * (a[k] + b[k]);
+    if (!(a[k] < mid && mid < b[k])) return false;
+    Vec3 left_hi = b, right_lo = a;
+    left_hi[k] = mid;
+    right_lo[k] = mid;
+    stack.push_back({right_lo, b});
+    stack.push_back({a, left_hi});
+  }
+  return true;
+}
 
 //! The record's (valid) edge meets Σ nowhere, and nothing on it is unsettled.
 bool misses_surface(const VoronoiEdgeRecord& r) {
@@ -156,17 +187,41 @@ void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std
   facets_built_ += edges.size();
 }
 
-bool RestrictedDelaunay::facet_misses_surface(const std::vector<const VoronoiEdgeRecord*>& boundary) {
+bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vector<VertexId>& thirds,
+                                              const std::vector<const VoronoiEdgeRecord*>& boundary) {
   if (boundary.empty()) return false;
+  // The vertices of F ∩ B of the first two kinds: the ends of the valid Voronoi edges of F.  An
+  // edge that meets Σ puts a point of Σ in F; a degenerate one proves nothing.
   BoundingBox ends;
+  bool inside_box = true;  // every Voronoi edge of F valid, with both ends at Voronoi vertices
   for (const VoronoiEdgeRecord* r : boundary) {
-    const VoronoiEdge& e = r->edge;
-    if (!e.valid || !e.at_vertex0 || !e.at_vertex1) return false;
-    ends.add(e.at(e.t0));
-    ends.add(e.at(e.t1));
+    if (!r->crossings.empty() || !r->candidates.empty() || !r->unresolved.empty() || r->edge.degenerate) return false;
+    const VoronoiEdge& edge = r->edge;
+    if (!edge.valid) {
+      inside_box = false;  // this edge of F lies outside B
+      continue;
+    }
+    inside_box = inside_box && edge.at_vertex0 && edge.at_vertex1;
+    ends.add(edge.at(edge.t0));
+    ends.add(edge.at(edge.t1));
   }
-  ends.enlarge(tolerances::face_membership_relative_tolerance * oracle_.diagonal());
-  if (oracle_.value_sign(ends.lo, ends.hi) == 0) return false;
+  const double margin = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
+  if (!inside_box) {
+    // The third kind: points y of Π ∩ (edges of B) in F, i.e. on p's side of the bisector of p
+    // and each r (up to the margin, so that rounding can only add points).
+    const Vec3& p = del_.point(e[0]);
+    const Vec3& q = del_.point(e[1]);
+    for (const Vec3& y : plane_box_edge_points(0.5 * (p + q), q - p, oracle_.box())) {
+      const bool in_facet = std::all_of(thirds.begin(), thirds.end(), [&](VertexId r) {
+        const Vec3 w = del_.point(r) - p;
+        return dot(w, y) - dot(w, 0.5 * (del_.point(r) + p)) <= margin * norm(w);
+      });
+      if (in_facet) ends.add(y);
+    }
+  }
+  if (ends.empty()) return false;
+  ends.enlarge(margin);
+  if (!sign_holds_on(oracle_, ends.lo, ends.hi, tolerances::facet_miss_box_budget)) return false;
   ++facets_missing_surface_;
   return true;
 }

@@ -48,7 +48,6 @@
 #include "meshing/delaunay.h"
 #include "meshing/detail/flat_table.h"
 #include "meshing/detail/parallel_for.h"
-#include "common/seeded_uniform.h"
 #include "meshing/surface_oracle.h"
 #include "meshing/voronoi_geometry.h"
 
@@ -109,14 +108,22 @@ class RestrictedDelaunay {
   //! section certificates, on `parallel`'s threads.
   void prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>>& edges,
                       const detail::ParallelFor& parallel);
-  //! Whether Σ misses the facet F of a Delaunay edge pq, proved from `boundary`, the current records
-  //! of all the triangles pqr: when each of their Voronoi edges is valid with both ends at Voronoi
-  //! vertices, those ends are the vertices of the convex polygon F, which therefore lies in their
-  //! bounding box; E keeping one sign (interval arithmetic) on that box, enlarged by
-  //! tolerances::face_membership_relative_tolerance·diag for the rounding of the constructed
-  //! vertices, proves F ∩ Σ = ∅.  False proves nothing (e.g. F reaches ∂B, or a Voronoi edge of F
-  //! is degenerate).  Counted (facets_missing_surface()).
-  bool facet_misses_surface(const std::vector<const VoronoiEdgeRecord*>& boundary);
+  //! Whether Σ misses the facet F of the Delaunay edge e = pq, proved from `boundary`, the current
+  //! records of all the triangles pqr, and `thirds`, their third vertices r.  F ∩ B is a convex
+  //! polygon (F = Π ∩ ⋂_r {|x − p| ≤ |x − r|}, Π the bisector plane of pq: each edge of F is the
+  //! Voronoi edge of one pqr), so it lies in the bounding box of its vertices, which are of three
+  //! kinds: (1) Voronoi vertices of F in B and (2) points where an edge of F leaves B — together
+  //! the ends of the valid Voronoi edges of F —, and, only when F reaches ∂B, (3) points where the
+  //! relative interior of F meets an edge of B: the points of Π ∩ (edges of B) on p's side of every
+  //! bisector of p and r, each taken if it violates none by more than the margin
+  //! tolerances::face_membership_relative_tolerance·diag (rounding can add points, never lose
+  //! one).  E keeping one sign on that box enlarged by the same margin (the rounding of the
+  //! constructed points), proved by interval arithmetic on at most
+  //! tolerances::facet_miss_box_budget sub-boxes, proves F ∩ Σ = ∅.  False proves nothing; it is
+  //! returned at once when a Voronoi edge of F meets Σ (crossings, candidates or unresolved
+  //! regions: then F ∩ Σ ≠ ∅ or undecided) or is degenerate.  Counted (facets_missing_surface()).
+  bool facet_misses_surface(const EdgeKey& e, const std::vector<VertexId>& thirds,
+                            const std::vector<const VoronoiEdgeRecord*>& boundary);
   //! Whether the facet of e is cached (then e is a current Delaunay edge).
   bool has_facet(const EdgeKey& e) const { return facets_.find(e) != nullptr; }
   //! The facet of a current Delaunay edge (computed on first use, then cached).  `ring`, if

@@ -71,29 +71,19 @@ std::optional<PlaneSection> plane_box_section(const Vec3& origin, const Vec3& no
   return plane_box_section(origin, orthonormal_frame(normal), box);
 }
 
-std::optional<PlaneSection> plane_box_section(const Vec3& origin, const OrthonormalFrame& frame,
-                                              const Box3& box) {
-  PlaneSection section;
-  section.origin = origin;
-  section.frame = frame;
-  const Vec3& n = section.frame.d;
-  const double offset = dot(n, origin);
-
+std::vector<Vec3> plane_box_edge_points(const Vec3& origin, const Vec3& normal, const Box3& box) {
+  const double offset = dot(normal, origin);
   // The 8 corners, indexed by bits (x, y, z) = (bit 0, bit 1, bit 2).
   std::array<Vec3, 8> corner;
   std::array<double, 8> side;
   for (int c = 0; c < 8; ++c) {
     for (int i = 0; i < 3; ++i) corner[c][i] = (c >> i) & 1 ? box.hi[i] : box.lo[i];
-    side[c] = dot(n, corner[c]) - offset;
+    side[c] = dot(normal, corner[c]) - offset;
   }
   // Points of the plane on the 12 edges (corner pairs differing in one bit).
-  std::vector<std::array<double, 2>> points;
-  auto add = [&](const Vec3& x) {
-    const Vec3 w{x[0] - origin[0], x[1] - origin[1], x[2] - origin[2]};
-    points.push_back({dot(w, section.frame.a), dot(w, section.frame.b)});
-  };
+  std::vector<Vec3> points;
   for (int c = 0; c < 8; ++c) {
-    if (side[c] == 0.0) add(corner[c]);
+    if (side[c] == 0.0) points.push_back(corner[c]);
     for (int i = 0; i < 3; ++i) {
       const int e = c | (1 << i);
       if (e == c) continue;
@@ -101,9 +91,22 @@ std::optional<PlaneSection> plane_box_section(const Vec3& origin, const Orthonor
         const double s = side[c] / (side[c] - side[e]);
         Vec3 x;
         for (int j = 0; j < 3; ++j) x[j] = corner[c][j] + s * (corner[e][j] - corner[c][j]);
-        add(x);
+        points.push_back(x);
       }
     }
+  }
+  return points;
+}
+
+std::optional<PlaneSection> plane_box_section(const Vec3& origin, const OrthonormalFrame& frame,
+                                              const Box3& box) {
+  PlaneSection section;
+  section.origin = origin;
+  section.frame = frame;
+  std::vector<std::array<double, 2>> points;
+  for (const Vec3& x : plane_box_edge_points(origin, section.frame.d, box)) {
+    const Vec3 w{x[0] - origin[0], x[1] - origin[1], x[2] - origin[2]};
+    points.push_back({dot(w, section.frame.a), dot(w, section.frame.b)});
   }
   if (points.size() < 3) return std::nullopt;
 

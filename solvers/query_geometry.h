@@ -43,6 +43,12 @@ struct PlaneSection {
   std::vector<std::array<double, 2>> polygon; //!< ≥ 3 vertices, counter-clockwise
 };
 
+//! The points where the plane {x : ⟨normal, x⟩ = ⟨normal, origin⟩} meets the 12 edges of the box:
+//! each corner on the plane (side exactly 0) once, and one point on each edge whose ends lie
+//! strictly on opposite sides, in floating point.  These are the vertices of plane ∩ box (with
+//! repeats where the plane passes through a corner); empty if the plane misses the box.
+std::vector<Vec3> plane_box_edge_points(const Vec3& origin, const Vec3& normal, const Box3& box);
+
 //! The section of the plane through `origin` with normal `normal` by the box, with the frame
 //! orthonormal_frame(normal).  Nothing if the plane misses the box or meets it in less than a
 //! polygon of positive area (an edge or a corner).  Throws InvalidInput if normal is zero.

@@ -36,6 +36,8 @@ struct BoundingBox {
       hi[k] = std::max(hi[k], x[k]);
     }
   }
+  //! Whether no point has been added.
+  bool empty() const { return !(lo[0] <= hi[0]); }
   //! Moves every side outward by `margin`.
   void enlarge(double margin) {
     for (int k = 0; k < 3; ++k) {

@@ -1,5 +1,6 @@
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "check_fixture.h"
@@ -126,7 +127,8 @@ BOOST_AUTO_TEST_CASE(crossing_next_to_a_vertex_is_not_collapsed_onto_it) {
 
 // facet_misses_surface() against the facets themselves: on points near the unit sphere, every
 // facet it clears has E of one sign at its polygon's vertices and on a grid inside it (a facet
-// with a sign change is never cleared), and it clears some facets (those deep inside the ball).
+// with a sign change is never cleared), and it clears some facets: those deep inside the ball,
+// and some that reach the box's boundary (their vertices on ∂B are points of Π ∩ ∂B).
 BOOST_AUTO_TEST_CASE(facet_missing_surface_is_claimed_only_off_the_surface) {
   std::vector<Vec3> points;
   const int n = 80;
@@ -136,13 +138,17 @@ BOOST_AUTO_TEST_CASE(facet_missing_surface_is_claimed_only_off_the_surface) {
     points.push_back({rho * r * std::cos(phi), rho * r * std::sin(phi), rho * z});
   }
   CheckFixture f(test::unit_sphere, 1.5, points);
-  int cleared = 0, kept = 0;
+  int cleared = 0, kept = 0, cleared_reaching_box = 0;
   for (VertexId p = 0; p < n; ++p)
     for (VertexId q : f.del.neighbours(p)) {
       if (q < p) continue;
       std::vector<const VoronoiEdgeRecord*> boundary;
       for (const auto& t : f.del.edge_triangles({p, q})) boundary.push_back(&f.restricted.voronoi_edge_record(t));
-      const bool misses = f.restricted.facet_misses_surface(boundary);
+      std::vector<VertexId> thirds;
+      for (const auto& t : f.del.edge_triangles({p, q}))
+        for (VertexId v : t)
+          if (v != p && v != q) thirds.push_back(v);
+      const bool misses = f.restricted.facet_misses_surface({p, q}, thirds, boundary);
       const VoronoiFacet facet = voronoi_facet(f.del, {p, q}, f.box, 0.0);
       if (misses) ++cleared;
       if (!facet.valid) continue;  // F ∩ B is empty (a facet of two hull points, outside B)
@@ -163,8 +169,14 @@ BOOST_AUTO_TEST_CASE(facet_missing_surface_is_claimed_only_off_the_surface) {
         BOOST_TEST((positive == 0 || negative == 0));
       else
         ++kept;
+      const bool reaches_box = std::any_of(poly.begin(), poly.end(), [&](const auto& w) {
+        const Vec3 x = facet.world(w[0], w[1]);
+        return std::any_of(x.begin(), x.end(), [](double c) { return std::abs(std::abs(c) - 1.5) < 1e-9; });
+      });
+      if (misses && reaches_box) ++cleared_reaching_box;
     }
   BOOST_TEST(cleared > 0);
+  BOOST_TEST(cleared_reaching_box > 0);
   BOOST_TEST(kept > 0);
   BOOST_TEST(f.restricted.facets_missing_surface() == static_cast<std::size_t>(cleared));
 }

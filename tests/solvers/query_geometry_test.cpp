@@ -1,5 +1,6 @@
 #include "solvers/query_geometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -101,6 +102,21 @@ BOOST_AUTO_TEST_CASE(plane_sections_of_a_cube) {
   BOOST_TEST(!plane_box_section(Vec3{0, 0, 2}, Vec3{0, 0, 1}, box));
   BOOST_TEST(!plane_box_section(Vec3{1, 1, 1}, Vec3{1, 1, 1}, box));
   BOOST_TEST(!plane_box_section(Vec3{1, 1, 0}, Vec3{1, 1, 0}, box));
+}
+
+// The plane x + y + z = 0 crosses 6 of the cube's 12 edges, at their midpoints (permutations of
+// (1, −1, 0)); z = 1 contains 4 corners and crosses no edge; z = 2 misses the cube.
+BOOST_AUTO_TEST_CASE(plane_meets_the_cube_edges_at_known_points) {
+  const Box3 box = unit_cube();
+  auto points = plane_box_edge_points(Vec3{0, 0, 0}, Vec3{1, 1, 1}, box);
+  BOOST_TEST(points.size() == 6u);
+  std::sort(points.begin(), points.end());
+  const std::vector<Vec3> expected{{-1, 0, 1}, {-1, 1, 0}, {0, -1, 1}, {0, 1, -1}, {1, -1, 0}, {1, 0, -1}};
+  BOOST_TEST((points == expected));
+  points = plane_box_edge_points(Vec3{0, 0, 1}, Vec3{0, 0, 1}, box);
+  BOOST_TEST(points.size() == 4u);
+  for (const Vec3& x : points) BOOST_TEST((std::abs(x[0]) == 1 && std::abs(x[1]) == 1 && x[2] == 1));
+  BOOST_TEST(plane_box_edge_points(Vec3{0, 0, 2}, Vec3{0, 0, 1}, box).empty());
 }
 
 BOOST_AUTO_TEST_CASE(polygon_domain_half_spaces_contain_exactly_the_polygon) {

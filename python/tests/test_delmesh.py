@@ -183,7 +183,8 @@ class ThreadsTest(unittest.TestCase):
         try:
             time.sleep(0.05)
             start = time.monotonic()
-            result = delmesh.mesh(surface="torus")
+            # A run of about a second (4368 vertices), long enough to count the ticks.
+            result = delmesh.mesh(surface="torus", size_bound=0.05)
             end = time.monotonic()
         finally:
             stop.set()

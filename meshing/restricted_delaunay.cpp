@@ -471,6 +471,15 @@ std::vector<std::pair<TriangleKey, Vec3>> RestrictedDelaunay::unresolved_regions
 
 std::vector<TriangleKey> RestrictedDelaunay::triangles() {
   std::vector<TriangleKey> out;
+  if (every_triangle_recorded_) {
+    // Every current triangle has its record: Tri S|Σ is the union of the restricted stars, each
+    // triangle taken from the star of its smallest vertex.
+    for (std::size_t v = 0; v < stars_.size(); ++v)
+      for (const auto& t : stars_[v])
+        if (static_cast<std::size_t>(t[0]) == v) out.push_back(t);
+    std::sort(out.begin(), out.end());
+    return out;
+  }
   for (const auto& t : del_.triangles())
     if (voronoi_edge_record(t).restricted) out.push_back(t);
   return out;

@@ -162,7 +162,9 @@ class RestrictedDelaunay {
   //! once).  star() then reads the restricted stars kept up to date with the records instead of
   //! walking Del S.
   void assume_every_triangle_recorded() { every_triangle_recorded_ = true; }
-  //! All of Tri S|Σ, ascending.
+  //! All of Tri S|Σ, ascending.  After assume_every_triangle_recorded(), read from the
+  //! restricted stars (precondition: every record up to date, i.e. no insertion since the last
+  //! prepare_star()); otherwise every Delaunay triangle's record is looked up or solved.
   std::vector<TriangleKey> triangles();
 
   const Delaunay& delaunay() const { return del_; }

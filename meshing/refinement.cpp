@@ -231,25 +231,23 @@ std::vector<VertexId> Refinement::prepare_new_edges(VertexId x, const std::vecto
   std::vector<VertexId> neighbours;
   std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>> new_edges;
   std::vector<const VoronoiEdgeRecord*> boundary;
-  std::vector<VertexId> cutters;
   for (std::size_t i = 0; i < ring.size();) {
     const VertexId q = ring[i].q;
     neighbours.push_back(q);
     std::vector<Delaunay::RingTriangle> thirds;
     boundary.clear();
-    cutters.clear();
     for (; i < ring.size() && ring[i].q == q; ++i) {
       thirds.push_back({ring[i].r, star[ring[i].index].apexes});
-      cutters.push_back(ring[i].r);
       boundary.push_back(records[ring[i].index].record);
     }
     // A facet proved to miss Σ is not built, and the rows silent off Σ (FacetContact,
     // FacetCycle) do not examine it; its geometry is built on demand if another check asks.
-    if (policy_ == RecheckPolicy::new_faces && restricted_.facet_misses_surface(make_edge_key(x, q), cutters, boundary)) {
-      queue_edge(make_edge_key(x, q), true);
+    const EdgeKey xq = make_edge_key(x, q);
+    if (policy_ == RecheckPolicy::new_faces && restricted_.facet_misses_surface(xq, thirds, boundary)) {
+      queue_edge(xq, true);
       continue;
     }
-    new_edges.push_back({make_edge_key(x, q), std::move(thirds)});
+    new_edges.push_back({xq, std::move(thirds)});
   }
   restricted_.prepare_facets(new_edges, parallel_);
   for (const auto& e : new_edges) queue_edge(e.first);

@@ -187,7 +187,7 @@ void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std
   facets_built_ += edges.size();
 }
 
-bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vector<VertexId>& thirds,
+bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>& ring,
                                               const std::vector<const VoronoiEdgeRecord*>& boundary) {
   if (boundary.empty()) return false;
   // The vertices of F ∩ B of the first two kinds: the ends of the valid Voronoi edges of F.  An
@@ -212,9 +212,10 @@ bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vecto
     const Vec3& p = del_.point(e[0]);
     const Vec3& q = del_.point(e[1]);
     for (const Vec3& y : plane_box_edge_points(0.5 * (p + q), q - p, oracle_.box())) {
-      const bool in_facet = std::all_of(thirds.begin(), thirds.end(), [&](VertexId r) {
-        const Vec3 w = del_.point(r) - p;
-        return dot(w, y) - dot(w, 0.5 * (del_.point(r) + p)) <= margin * norm(w);
+      const bool in_facet = std::all_of(ring.begin(), ring.end(), [&](const Delaunay::RingTriangle& t) {
+        const Vec3& r = del_.point(t.third);
+        const Vec3 w = r - p;
+        return dot(w, y) - dot(w, 0.5 * (r + p)) <= margin * norm(w);
       });
       if (in_facet) ends.add(y);
     }

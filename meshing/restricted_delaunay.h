@@ -109,9 +109,10 @@ class RestrictedDelaunay {
   void prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>>& edges,
                       const detail::ParallelFor& parallel);
   //! Whether Σ misses the facet F of the Delaunay edge e = pq, proved from `boundary`, the current
-  //! records of all the triangles pqr, and `thirds`, their third vertices r.  F ∩ B is a convex
-  //! polygon (F = Π ∩ ⋂_r {|x − p| ≤ |x − r|}, Π the bisector plane of pq: each edge of F is the
-  //! Voronoi edge of one pqr), so it lies in the bounding box of its vertices, which are of three
+  //! records of all the triangles pqr, and `ring`, those triangles (as Delaunay::edge_ring(e), in
+  //! any order; only their third vertices r are read).  F ∩ B is a convex polygon
+  //! (F = Π ∩ ⋂_r {|x − p| ≤ |x − r|}, Π the bisector plane of pq: each edge of F is the Voronoi
+  //! edge of one pqr), so it lies in the bounding box of its vertices, which are of three
   //! kinds: (1) Voronoi vertices of F in B and (2) points where an edge of F leaves B — together
   //! the ends of the valid Voronoi edges of F —, and, only when F reaches ∂B, (3) points where the
   //! relative interior of F meets an edge of B: the points of Π ∩ (edges of B) on p's side of every
@@ -122,7 +123,7 @@ class RestrictedDelaunay {
   //! tolerances::facet_miss_box_budget sub-boxes, proves F ∩ Σ = ∅.  False proves nothing; it is
   //! returned at once when a Voronoi edge of F meets Σ (crossings, candidates or unresolved
   //! regions: then F ∩ Σ ≠ ∅ or undecided) or is degenerate.  Counted (facets_missing_surface()).
-  bool facet_misses_surface(const EdgeKey& e, const std::vector<VertexId>& thirds,
+  bool facet_misses_surface(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>& ring,
                             const std::vector<const VoronoiEdgeRecord*>& boundary);
   //! Whether the facet of e is cached (then e is a current Delaunay edge).
   bool has_facet(const EdgeKey& e) const { return facets_.find(e) != nullptr; }

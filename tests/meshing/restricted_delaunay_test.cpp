@@ -144,11 +144,7 @@ BOOST_AUTO_TEST_CASE(facet_missing_surface_is_claimed_only_off_the_surface) {
       if (q < p) continue;
       std::vector<const VoronoiEdgeRecord*> boundary;
       for (const auto& t : f.del.edge_triangles({p, q})) boundary.push_back(&f.restricted.voronoi_edge_record(t));
-      std::vector<VertexId> thirds;
-      for (const auto& t : f.del.edge_triangles({p, q}))
-        for (VertexId v : t)
-          if (v != p && v != q) thirds.push_back(v);
-      const bool misses = f.restricted.facet_misses_surface({p, q}, thirds, boundary);
+      const bool misses = f.restricted.facet_misses_surface({p, q}, f.del.edge_ring({p, q}), boundary);
       const VoronoiFacet facet = voronoi_facet(f.del, {p, q}, f.box, 0.0);
       if (misses) ++cleared;
       if (!facet.valid) continue;  // F ∩ B is empty (a facet of two hull points, outside B)

@@ -16,22 +16,17 @@ using namespace detail;
 
 namespace {
 
-//! Whether E is proved to keep one sign on the box [lo, hi] (interval arithmetic on it, then on
-//! halves of its widest side while at most `budget` boxes have been evaluated): each box that
-//! is not cleared is split, and the boxes cleared cover [lo, hi].
-bool sign_holds_on(const SurfaceOracle& oracle, const Vec3& lo, const Vec3& hi, std::size_t budget) {
+//! Whether E ≠ 0 is proved on the box [lo, hi]: on a cover of it by boxes on each of which
+//! SurfaceOracle::value_sign proves a sign, found by halving the widest side of a box that is not
+//! proved, while at most `budget` boxes have been evaluated.  (The box is connected, so E then
+//! keeps one sign on it.)
+bool excludes_zero_on(const SurfaceOracle& oracle, const Vec3& lo, const Vec3& hi, std::size_t budget) {
   std::vector<std::array<Vec3, 2>> stack{{lo, hi}};
-  int sign = 0;
   for (std::size_t evaluated = 0; !stack.empty(); ++evaluated) {
     if (evaluated == budget) return false;
     const auto [a, b] = stack.back();
     stack.pop_back();
-    const int s = oracle.value_sign(a, b);
-    if (s != 0 && (sign == 0 || s == sign)) {
-      sign = s;
-      continue;
-    }
-    if (s != 0) return false;  // both signs: Σ lies between the two boxes
+    if (oracle.value_sign(a, b) != 0) continue;
     int k = 0;
     for (int i = 1; i < 3; ++i)
       if (b[i] - a[i] > b[k] - a[k]) k = i;
@@ -222,7 +217,7 @@ bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vecto
   }
   if (ends.empty()) return false;
   ends.enlarge(margin);
-  if (!sign_holds_on(oracle_, ends.lo, ends.hi, tolerances::facet_miss_box_budget)) return false;
+  if (!excludes_zero_on(oracle_, ends.lo, ends.hi, tolerances::facet_miss_box_budget)) return false;
   ++facets_missing_surface_;
   return true;
 }

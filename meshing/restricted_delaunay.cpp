@@ -193,7 +193,10 @@ bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vecto
     if (!r->crossings.empty() || !r->candidates.empty() || !r->unresolved.empty() || r->edge.degenerate) return false;
     const VoronoiEdge& edge = r->edge;
     if (!edge.valid) {
-      inside_box = false;  // this edge of F lies outside B
+      // An edge that is neither valid nor degenerate lies outside B, unless it has no line at all
+      // (a triangle with no normal), which proves nothing.
+      if (!(norm(edge.direction) > 0)) return false;
+      inside_box = false;
       continue;
     }
     inside_box = inside_box && edge.at_vertex0 && edge.at_vertex1;

@@ -260,8 +260,10 @@ inline constexpr int mesher_height_direction_retries = 6;
 inline constexpr int projection_iterations = 30;
 inline constexpr double projection_relative_tolerance = 1e-13;
 //! A candidate point is accepted as lying in a Voronoi face's polytope if it violates no
-//! half-space by more than this fraction of the box diagonal.
-inline constexpr double face_membership_relative_tolerance = 1e-7;
+//! half-space by more than this fraction of the box diagonal.  The computed faces are off by a
+//! few units in the last place of the box size (meshing/voronoi_geometry.h), so this leaves a
+//! wide margin, while staying far below the gaps one meshes (sheets 10⁻⁶ of the box apart).
+inline constexpr double face_membership_relative_tolerance = 1e-10;
 //! Clipping a Voronoi cell's polytope by a half-space (meshing/detail/convex_polytope.h): a vertex
 //! within this fraction of the largest vertex distance to the plane counts as on the plane, and
 //! cut points that close together are one vertex.  The distance is floored at

@@ -360,6 +360,14 @@ inline constexpr std::size_t floor_locations_listed = 10;
 //! fraction of it, so that their witnesses, which the floor would otherwise leave unsettled and
 //! Tri S|Σ wrong, are still inserted.
 inline constexpr double topology_floor_fraction = 0.01;
+//! Opposite-sheet partners (meshing/refinement.h).  After a witness w goes in at
+//! distance d from its nearest sample, Σ is searched on the normal line through w within
+//! opposite_sheet_reach·d of w; the nearest other point y found is inserted too if the normals at
+//! w and y make |cos| ≥ opposite_sheet_min_cosine and y is at least opposite_sheet_spacing·|w − y|
+//! from every sample.  The two numbers are what the termination argument there uses.
+inline constexpr double opposite_sheet_reach = 1.0;
+inline constexpr double opposite_sheet_min_cosine = 0.5;
+inline constexpr double opposite_sheet_spacing = 0.5;
 //! The mesh oracle (meshing/mesh_oracle.h): a point of a triangle mesh within this distance
 //! (relative to the box diagonal) of a vertex or an edge of its face gets that vertex's or edge's
 //! normal rather than the face's.

@@ -6,6 +6,7 @@
 
 #include "common/errors.h"
 #include "common/tolerances.h"
+#include "meshing/detail/vec3.h"
 #include "meshing/theorem_bounds.h"
 
 namespace delmesh {
@@ -132,11 +133,12 @@ std::optional<VertexId> Refinement::insert(const Witness& w) {
   return id;
 }
 
-std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
+std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId partner_of) {
   InsertionRecord record;
   record.point = w.point;
   record.kind = w.kind;
   record.from_undecided = w.from_undecided;
+  record.partner_of = partner_of;
   if (del_.size() > 0) {
     const auto [nearest, d] = del_.nearest(w.point, w.measured_from);
     record.nearest = nearest;
@@ -162,7 +164,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w) {
   const VertexId x = *id;
   record.id = x;
   log_.push_back(record);
-  ++insertions_[static_cast<int>(w.kind)];
+  ++(partner_of < 0 ? insertions_[static_cast<int>(w.kind)] : partners_);
   if (!change.local) {
     // Del S of dimension < 3 before or after: every face may have changed (a few points only).
     restricted_.shrink(change);
@@ -335,6 +337,7 @@ bool Refinement::settle(int step, const Simplex& item, CheckResult result) {
   for (const auto& w : result.witnesses)
     if (insert(w)) {
       inserted = true;
+      insert_partner(w);
       break;
     }
   if (!inserted && !result.witnesses.empty()) {
@@ -347,6 +350,40 @@ bool Refinement::settle(int step, const Simplex& item, CheckResult result) {
   else
     unsettled_[key] = {std::move(result.unsettled), changes()};
   return inserted;
+}
+
+void Refinement::insert_partner(const Witness& w) {
+  using detail::operator+;
+  using detail::operator*;
+  if (w.kind == CheckKind::seed) return;
+  const InsertionRecord& witness = log_.back();
+  const double reach = tolerances::opposite_sheet_reach * witness.nearest_distance;
+  const Vec3 n = oracle_.normal(w.point);
+  if (!(reach > 0) || !(detail::norm(n) > 0)) return;
+  // The nearest point of Σ on the normal line other than w itself, if the search settled it.
+  const SolveResult line = oracle_.surface_line(w.point, n, -reach, reach);
+  if (!line.undecided.empty()) return;
+  // A root this close is w's own (and a partner there would be rejected as a duplicate).
+  const double own = tolerances::duplicate_sample_relative_distance * oracle_.diagonal() / tolerances::opposite_sheet_spacing;
+  std::optional<double> nearest_t;
+  for (const auto& root : line.roots) {
+    const auto& b = root.box.bounds[0];
+    const double t = root.midpoint[0];
+    if ((b[0] <= 0 && 0 <= b[1]) || std::abs(t) <= own) continue;
+    if (!nearest_t || std::abs(t) < std::abs(*nearest_t)) nearest_t = t;
+  }
+  if (!nearest_t) return;
+  const Vec3 y = w.point + *nearest_t * n;
+  // The two conditions of the termination argument in refinement.h.
+  if (!(std::abs(detail::dot(oracle_.normal(y), n)) >= tolerances::opposite_sheet_min_cosine)) return;
+  if (!(del_.nearest(y, witness.id).second >= tolerances::opposite_sheet_spacing * std::abs(*nearest_t))) return;
+  Witness partner = w;
+  partner.point = y;
+  partner.measured_from = witness.id;
+  partner.from_undecided = false;
+  const auto start = std::chrono::steady_clock::now();
+  insert_and_queue(partner, witness.id);
+  seconds_insertion_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 bool Refinement::requeue_unsettled() {
@@ -396,6 +433,7 @@ nlohmann::json Refinement::insertions_json() const {
   j["seeds_deleted"] = seeds_deleted_;
   j["rejected_witnesses"] = rejected_;
   j["generic_choice_retries"] = retries_;
+  j["opposite_sheet"] = partners_;
   return j;
 }
 

@@ -82,6 +82,31 @@
 //! it stays clean as the face shrinks, for that choice).  When no choice gives a witness that can
 //! be inserted, the face is left unsettled (rejected_witness).
 //!
+//! **Opposite-sheet partners.**  Where two sheets of Σ (two components, or the two sides of a
+//! thin part) are closer than the sample spacing, the Voronoi cells of one sheet's samples reach
+//! the other sheet, and the witnesses of VorEdge and TopoDisk, one at a time, drive the spacing
+//! down to the local gap: about π/g points for two unit spheres a gap g apart (Quality's, which
+//! break the pairs, then do the same).  A sample whose
+//! partner on the other sheet lies across the gap, near its mirror image, keeps its cell on its
+//! own side whatever the spacing.  So after a witness w of any row is inserted at distance d
+//! from its nearest sample, SurfaceLine searches the normal line of Σ at w within
+//! tolerances::opposite_sheet_reach·d of w, and the nearest other point y of Σ found there (if
+//! the search left nothing undecided) is inserted as well, provided |⟨n(w), n(y)⟩| ≥
+//! c = tolerances::opposite_sheet_min_cosine and every sample is at least
+//! s·|w − y| from y, s = tolerances::opposite_sheet_spacing.  y is logged with partner_of = w
+//! and counted as `opposite_sheet`, not as a witness of the check.
+//!  - The guarantee does not change: y is a point of Σ (a certified root of SurfaceLine), and
+//!    the output theorem asks only that every check be clean on the final S, which the loop
+//!    establishes for whatever S it ends with.
+//!  - Termination does not change: lfs(y) ≤ |w − y|/(2c).  Proof: let ν be the unit normal at y
+//!    on the side of w, so ⟨w − y, ν⟩ = |w − y|·|cos φ| ≥ c|w − y| (w − y lies along n(w)).  The
+//!    ball tangent to Σ at y with centre y + rν holds w in its interior once
+//!    r > |w − y|²/(2⟨w − y, ν⟩), so the largest such ball with no point of Σ inside has
+//!    r ≤ |w − y|/(2c), and its centre is a point of the medial axis.  Hence y is at least
+//!    s·|w − y| ≥ 2cs·lfs(y) = lfs(y)/2 from every sample (with c = s = 1/2), and from the nearest
+//!    sample p at least lfs(p)/3 (lfs is 1-Lipschitz): the packing argument of Lemma 5.1 bounds
+//!    these insertions as it bounds the witnesses'.
+//!
 //! Unsettled faces.  A check that leaves something unsettled (witness.h: UnsettledReason) keeps
 //! its face on a list.  When every queue is empty, each face on the list that is still in Del S
 //! is checked again if S has changed since its check; the run ends when no such face remains.
@@ -118,6 +143,8 @@ struct InsertionRecord {
   VertexId nearest = -1;           //!< nearest sample at insertion time (−1 for the first point)
   double nearest_distance = 0;     //!< |point − nearest|
   bool from_undecided = false;
+  //! An opposite-sheet partner (see above): the id of the witness it pairs; −1 otherwise.
+  VertexId partner_of = -1;
 };
 
 struct RefinementLimits {
@@ -200,6 +227,8 @@ class Refinement {
   std::size_t rejected_witnesses() const { return rejected_; }
   //! Checks run again with another generic choice after every witness was rejected.
   std::size_t generic_choice_retries() const { return retries_; }
+  //! Opposite-sheet partners inserted (see above; not counted in insertions()).
+  std::size_t opposite_sheet_partners() const { return partners_; }
   //! Seconds spent in each check, and the number of items each step examined.
   double seconds(CheckKind kind) const { return seconds_[static_cast<int>(kind)]; }
   std::size_t checks(CheckKind kind) const { return checks_[static_cast<int>(kind)]; }
@@ -207,7 +236,7 @@ class Refinement {
   double seconds_insertion() const { return seconds_insertion_; }
 
   //! {seeds, vor_edge, …, size, (registered checks), seeds_deleted, rejected_witnesses,
-  //! generic_choice_retries}
+  //! generic_choice_retries, opposite_sheet}
   nlohmann::json insertions_json() const;
   //! The termination floor: {value, topology_value, reached, witnesses_below (count), locations
   //! (the first tolerances::floor_locations_listed distinct ones)}.
@@ -256,7 +285,7 @@ class Refinement {
   //! {row name: counts[row kind]} for the steps of the table.
   template <class T>
   nlohmann::json per_step(const std::vector<T>& counts) const;
-  std::optional<VertexId> insert_and_queue(const Witness& witness);
+  std::optional<VertexId> insert_and_queue(const Witness& witness, VertexId partner_of = -1);
   //! Builds the facets of the edges xq of x's closed star and queues their checks, except for
   //! facets proved to miss Σ from the records and third vertices of the triangles xqr
   //! (`records`, prepare_star()'s answer for `star`); returns the neighbours q, ascending.
@@ -270,6 +299,9 @@ class Refinement {
   //! Inserts the first witness of `result` that is not rejected, and keeps the face's unsettled
   //! findings (a rejection of every witness included).  Returns whether a witness went in.
   bool settle(int step, const Simplex& item, CheckResult result);
+  //! Inserts the opposite-sheet partner of the witness w just inserted (the last log entry), if
+  //! it has one (see above).
+  void insert_partner(const Witness& w);
   //! Queues again the unsettled faces still in Del S whose check predates the last change of S.
   //! Returns whether it queued any.
   bool requeue_unsettled();
@@ -308,7 +340,7 @@ class Refinement {
   std::vector<std::size_t> insertions_, checks_;
   std::vector<double> seconds_;
   double seconds_insertion_ = 0;
-  std::size_t seeds_deleted_ = 0, rejected_ = 0, retries_ = 0;
+  std::size_t seeds_deleted_ = 0, rejected_ = 0, retries_ = 0, partners_ = 0;
   //! Insertions and deletions so far: a face checked at this count has seen the current S.
   std::size_t changes() const { return log_.size() + seeds_deleted_; }
   struct UnsettledFace {

@@ -129,11 +129,12 @@ BOOST_AUTO_TEST_CASE(open_non_manifold_and_non_orientable_meshes_are_reported) {
   BOOST_TEST(f.at("genus_per_component").at(0).get<int>() == 0);
 }
 
-// The partial mesh of a run stopped at 8 points (7 triangles pinched at a vertex) is checkable.
+// The partial mesh of a run stopped at 9 points (a closed component and an open one) is
+// checkable: the open component has no genus.
 BOOST_AUTO_TEST_CASE(partial_mesh_of_a_point_limited_run_is_checkable) {
   TempDir dir;
   const RunResult m = run_delmesh(
-      {"mesh", "--surface", "torus", "--max-points", "8", "--out", "t.off", "--stats", "t.json", "--quiet"}, dir.path);
+      {"mesh", "--surface", "torus", "--max-points", "9", "--out", "t.off", "--stats", "t.json", "--quiet"}, dir.path);
   BOOST_TEST(m.exit_code == 3, m.err);
   const RunResult r = run_delmesh({"check", "t.off", "--json"}, dir.path);
   BOOST_TEST(r.exit_code == 0, r.err);
@@ -143,7 +144,9 @@ BOOST_AUTO_TEST_CASE(partial_mesh_of_a_point_limited_run_is_checkable) {
   BOOST_TEST(j.at("triangles") == stats.at("triangles"));
   BOOST_TEST(!j.at("closed").get<bool>());
   BOOST_TEST(j.at("boundary_loops").get<std::size_t>() >= 1u);
-  for (const auto& g : j.at("genus_per_component")) BOOST_TEST(g.is_null());
+  std::size_t undefined = 0;
+  for (const auto& g : j.at("genus_per_component")) undefined += g.is_null() ? 1 : 0;
+  BOOST_TEST(undefined >= 1u);
 }
 
 // The certificate of delmesh's own output: certified, and the mesh is Tri S|Σ of its vertices.

@@ -3,6 +3,10 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <string>
 
 #include "meshing/del_mesh.h"
 #include "meshing/detail/vec3.h"
@@ -10,6 +14,7 @@
 #include "meshing/mesh_checker.h"
 #include "meshing/sample_topology.h"
 #include "meshing/refinement.h"
+#include "meshing/theorem_bounds.h"
 #include "symbolic/catalog.h"
 
 using namespace delmesh;
@@ -194,6 +199,64 @@ BOOST_AUTO_TEST_CASE(degenerate_voronoi_edge_off_the_surface_is_settled) {
   for (const Vec3& x : std::vector<Vec3>{{1, 0, 0}, {0, 0, 0}, {0.5, 0.5, 0}, {0.5, -0.5, 0}, {0.5, 0, 0.5}, {0.5, 0, -0.5}})
     BOOST_TEST_REQUIRE(refinement.insert(Witness{x, CheckKind::seed, -1, false}).has_value());
   BOOST_TEST(refinement.certify(MeshStatus::complete, false).unresolved_edge_regions == 0u);
+}
+
+// Two unit spheres a gap g apart: ((x − 1 − g/2)² + y² + z² − 1)((x + 1 + g/2)² + y² + z² − 1).
+Surface spheres_apart(double gap) {
+  std::ostringstream c;
+  c << std::setprecision(17) << 1 + gap / 2;
+  return Surface::parse("((x-" + c.str() + ")^2+y^2+z^2-1)*((x+" + c.str() + ")^2+y^2+z^2-1)");
+}
+const Box3 spheres_box{{-2.5, -1.5, -1.5}, {2.5, 1.5, 1.5}};
+
+// Opposite-sheet partners (refinement.h): each lies on Σ, on the normal line of the witness it
+// pairs, within the witness's nearest-sample distance, with normals |cos| ≥ 1/2, and at least
+// half its distance to the witness from every earlier sample (the termination argument's two
+// conditions).  Without them the spheres 1e-4 apart need about 38 000 points; with them a few
+// hundred.
+BOOST_AUTO_TEST_CASE(opposite_sheet_partners_pair_nearly_touching_spheres) {
+  ImplicitOracle oracle(spheres_apart(1e-4), spheres_box, SolverBackend::subdivision);
+  RefinementLimits limits;
+  limits.max_points = 3000;
+  Refinement refinement(oracle, 1, limits);
+  BOOST_TEST_REQUIRE(sample_topology(refinement).status == MeshStatus::complete);
+  BOOST_TEST_REQUIRE(refinement.opposite_sheet_partners() > 0u);
+  BOOST_TEST(refinement.insertions_json().at("opposite_sheet") == refinement.opposite_sheet_partners());
+  std::map<VertexId, const InsertionRecord*> by_id;
+  for (const auto& rec : refinement.insertion_log()) by_id[rec.id] = &rec;
+  std::size_t partners = 0;
+  for (const auto& rec : refinement.insertion_log()) {
+    if (rec.partner_of < 0) continue;
+    ++partners;
+    const InsertionRecord& w = *by_id.at(rec.partner_of);
+    const double gap = detail::distance(rec.point, w.point);
+    BOOST_TEST(std::abs(oracle.E(rec.point)) < 1e-12);
+    BOOST_TEST(gap <= w.nearest_distance * (1 + 1e-12));
+    const Vec3 n = oracle.normal(w.point);
+    const Vec3 off = detail::operator-(rec.point, w.point);
+    BOOST_TEST(detail::norm(detail::cross(off, n)) <= 1e-9 * gap);  // on w's normal line
+    BOOST_TEST(std::abs(detail::dot(oracle.normal(rec.point), n)) >= 0.5);
+    BOOST_TEST(rec.nearest_distance >= 0.5 * gap * (1 - 1e-12));
+  }
+  BOOST_TEST(partners == refinement.opposite_sheet_partners());
+}
+
+// The whole of DelMesh on spheres 1e-5 apart: the right topology and Theorem 6.1's bounds with a
+// few hundred points (the spacing the gap would force is about 1e-5: some 400 000 points).
+BOOST_AUTO_TEST_CASE(nearly_touching_spheres_mesh_with_few_points) {
+  DelMeshOptions options;
+  options.max_points = 5000;
+  options.threads = 1;
+  const auto result = del_mesh(spheres_apart(1e-5), spheres_box, options);
+  BOOST_TEST_REQUIRE(result.status == MeshStatus::complete);
+  const MeshReport r = check_mesh(result.mesh);
+  BOOST_TEST(r.closed);
+  BOOST_TEST(r.manifold);
+  BOOST_TEST(r.components == 2);
+  BOOST_TEST(r.genus_per_component == std::vector<int>({0, 0}), boost::test_tools::per_element());
+  const TheoremBounds bounds = theorem_bounds(options.lambda);
+  BOOST_TEST(r.min_angle_deg >= bounds.min_angle_deg - 1e-9);
+  BOOST_TEST(r.max_radius_edge_ratio <= bounds.max_radius_edge_ratio + 1e-9);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -346,6 +346,11 @@ ExitCode run_mesh(const MeshOptions& o) {
     statistics["mesh_file"] = out;
   }
   const bool certificate_interrupted = o.certify && certify_result(o, *run.plan, result, statistics);
+  if (certificate_interrupted) {
+    // The run stopped at the signal like any limit; how the mesh itself ended stays on record.
+    statistics["run_status"] = statistics["status"];
+    statistics["status"] = to_text(MeshStatus::interrupted);
+  }
 
   try {
     write_mesh(result.mesh, out);

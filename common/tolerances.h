@@ -212,6 +212,13 @@ inline constexpr double trig_extremum_margin = 1e-10;
 //! boxes instead of millions; two simple roots closer than this are reported undecided, never
 //! certified as one.
 inline constexpr double singular_box_relative_width = 1e-6;
+//! The same width for a solve in exclusion mode (an over-determined system, whose zeros are
+//! isolated points where there are any: SurfacePlaneContact).  Its undecided regions become
+//! candidate witnesses, so a wide stop turns every thin region where the system is small without
+//! a zero into witnesses: two sheets 10⁻⁶ of a facet's size apart stop at
+//! singular_box_relative_width on both sheets all along the gap.  Bisecting on to this width
+//! costs a few boxes per level at an isolated zero.
+inline constexpr double exclusion_singular_box_relative_width = 1e-9;
 
 //! When more than this many boxes of one solve end undecided at singular_box_relative_width, the
 //! solutions are taken to form a curve (non-isolated, e.g. the critical circle of a torus whose

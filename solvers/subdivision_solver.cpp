@@ -85,7 +85,8 @@ class Subdivision {
       inflated_powers_ = detail::radius_powers(1 + 2 * tolerances::krawczyk_inflation, degree);
     }
     const double scale = domain.scale();
-    singular_width_ = tolerances::singular_box_relative_width * scale;
+    singular_width_ = (exclusion_ ? tolerances::exclusion_singular_box_relative_width
+                                  : tolerances::singular_box_relative_width) * scale;
     min_width_ = tolerances::min_box_relative_width * scale;
   }
 

@@ -126,9 +126,11 @@ void Refinement::queue_everything_within(const std::vector<VertexId>& vs) {
   }
 }
 
-std::optional<VertexId> Refinement::insert(const Witness& w) {
+std::optional<VertexId> Refinement::insert(const Witness& w) { return timed_insert(w, -1); }
+
+std::optional<VertexId> Refinement::timed_insert(const Witness& w, VertexId partner_of) {
   const auto start = std::chrono::steady_clock::now();
-  const auto id = insert_and_queue(w);
+  const auto id = insert_and_queue(w, partner_of);
   seconds_insertion_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return id;
 }
@@ -381,9 +383,7 @@ void Refinement::insert_partner(const Witness& w) {
   partner.point = y;
   partner.measured_from = witness.id;
   partner.from_undecided = false;
-  const auto start = std::chrono::steady_clock::now();
-  insert_and_queue(partner, witness.id);
-  seconds_insertion_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  timed_insert(partner, witness.id);
 }
 
 bool Refinement::requeue_unsettled() {

@@ -86,9 +86,8 @@
 //! thin part) are closer than the sample spacing, the Voronoi cells of one sheet's samples reach
 //! the other sheet, and the witnesses of VorEdge and TopoDisk, one at a time, drive the spacing
 //! down to the local gap: about π/g points for two unit spheres a gap g apart (Quality's, which
-//! break the pairs, then do the same).  A sample whose
-//! partner on the other sheet lies across the gap, near its mirror image, keeps its cell on its
-//! own side whatever the spacing.  So after a witness w of any row is inserted at distance d
+//! break the pairs, then do the same).  A sample whose partner on the other sheet lies across the
+//! gap, near its mirror image, keeps its cell on its own side whatever the spacing.  So after a witness w of any row is inserted at distance d
 //! from its nearest sample, SurfaceLine searches the normal line of Σ at w within
 //! tolerances::opposite_sheet_reach·d of w, and the nearest other point y of Σ found there (if
 //! the search left nothing undecided) is inserted as well, provided |⟨n(w), n(y)⟩| ≥
@@ -285,7 +284,10 @@ class Refinement {
   //! {row name: counts[row kind]} for the steps of the table.
   template <class T>
   nlohmann::json per_step(const std::vector<T>& counts) const;
-  std::optional<VertexId> insert_and_queue(const Witness& witness, VertexId partner_of = -1);
+  //! insert() for a witness or, with partner_of ≥ 0, for the opposite-sheet partner of that
+  //! sample; the time goes to seconds_insertion().
+  std::optional<VertexId> timed_insert(const Witness& witness, VertexId partner_of);
+  std::optional<VertexId> insert_and_queue(const Witness& witness, VertexId partner_of);
   //! Builds the facets of the edges xq of x's closed star and queues their checks, except for
   //! facets proved to miss Σ from the records and third vertices of the triangles xqr
   //! (`records`, prepare_star()'s answer for `star`); returns the neighbours q, ascending.

@@ -96,9 +96,9 @@ BOOST_AUTO_TEST_CASE(sigterm_stops_the_run_with_its_partial_mesh) { check_interr
 // A signal during the certificate of `mesh --certify` (sent once the program says it certifies):
 // exit code 3; the finished mesh is written whole and matches the statistics, whose status is
 // interrupted (with run_status complete: the mesh itself finished) and whose certificate is
-// interrupted (status undecided).  Then the same mesh is
-// given to `check --certify` and interrupted: exit code 3, the report on stdout with the
-// certificate interrupted, one warning on stderr.
+// interrupted (status undecided).  Then the same mesh is given to `check --certify` and
+// interrupted: exit code 3, the report on stdout with the certificate interrupted, one warning
+// on stderr.
 BOOST_AUTO_TEST_CASE(a_signal_stops_a_certificate_with_nothing_lost) {
   TempDir scratch;
   write_text(scratch / "torus.off", "previous contents\n");

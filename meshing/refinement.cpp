@@ -376,9 +376,11 @@ void Refinement::insert_partner(const Witness& w) {
   }
   if (!nearest_t) return;
   const Vec3 y = w.point + *nearest_t * n;
-  // The two conditions of the termination argument in refinement.h.
+  // The two conditions of the termination argument in refinement.h.  A partner below the
+  // termination floor is not tried: it is optional, so it is no witness the floor held back.
   if (!(std::abs(detail::dot(oracle_.normal(y), n)) >= tolerances::opposite_sheet_min_cosine)) return;
-  if (!(del_.nearest(y, witness.id).second >= tolerances::opposite_sheet_spacing * std::abs(*nearest_t))) return;
+  const double spacing = del_.nearest(y, witness.id).second;
+  if (!(spacing >= tolerances::opposite_sheet_spacing * std::abs(*nearest_t)) || spacing < floor_for(w.kind)) return;
   Witness partner = w;
   partner.point = y;
   partner.measured_from = witness.id;

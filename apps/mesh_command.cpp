@@ -182,6 +182,8 @@ DelMeshResult remesh(const MeshInputPlan& plan, const DelMeshOptions& options) {
   DelMeshResult result = del_mesh(oracle, options);
   const InputMesh& m = plan.mesh;
   result.statistics["input_mesh"] = {{"file", plan.path},
+                                     {"faces_read", m.faces_read},
+                                     {"polygons_triangulated", m.polygons_triangulated},
                                      {"vertices", m.report.vertices},
                                      {"triangles", m.report.triangles},
                                      {"components", m.report.components},

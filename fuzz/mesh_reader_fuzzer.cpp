@@ -1,8 +1,8 @@
 //! \file mesh_reader_fuzzer.cpp
 //! libFuzzer targets fuzz_read_off, fuzz_read_ply, fuzz_read_obj (DELMESH_FUZZ_EXTENSION): the
-//! input is written to a scratch file with that extension, then read as `delmesh check` and
-//! `delmesh mesh --input-mesh` do: read_triangle_soup, check_mesh on the soup, read_mesh and
-//! check_mesh on the mesh.  Each either succeeds or throws InvalidInput; anything else is a finding.
+//! input is written to a scratch file with that extension, then read as `delmesh check` does:
+//! read_triangle_soup (which parses the file as a polygon soup, as `delmesh mesh --input-mesh`
+//! does, then requires triangles), check_mesh on the soup, read_mesh and check_mesh on the mesh.  Each either succeeds or throws InvalidInput; anything else is a finding.
 
 #include <unistd.h>
 

@@ -243,11 +243,8 @@ InputMesh validate_input_mesh(const std::vector<Point3>& points, const std::vect
 }
 
 InputMesh read_input_mesh(const std::string& path) {
-  const TriangleSoup soup = read_triangle_soup(path);
-  std::vector<Polygon> polygons;
-  polygons.reserve(soup.triangles.size());
-  for (const Triangle& t : soup.triangles) polygons.push_back({t[0], t[1], t[2]});
-  return validate_input_mesh(soup.points, polygons, path);
+  const PolygonSoup soup = read_polygon_soup(path);
+  return validate_input_mesh(soup.points, soup.polygons(), path);
 }
 
 }  // namespace delmesh

@@ -20,8 +20,8 @@
 //! Checks 2–5 are made on the faces as given, each polygon split into a fan (which adds only
 //! diagonals inside the polygon, each in two of its triangles, so the edges between faces and the
 //! fans around vertices are the polygons'), with the independent checker's counts and first
-//! locations (mesh_checker.h); checks 6 and 7 on the final triangles.  The file readers
-//! (mesh_io.h) accept triangle faces only; polygons reach validate_input_mesh from other callers.
+//! locations (mesh_checker.h); checks 6 and 7 on the final triangles.  read_input_mesh takes the
+//! file's polygons as they are (read_polygon_soup, mesh_io.h).
 //!
 //! Faces with more than three vertices are triangulated by PMP::triangulate_faces (a constrained
 //! Delaunay triangulation of each face in its best-fitting plane), which needs no convexity.

@@ -98,9 +98,8 @@ std::string diagnose_obj(const std::string& path) {
   return "";
 }
 
-//! An OBJ file read by CGAL's reader (which bounds its allocations by the lines it reads), its
-//! polygons checked to be triangles.
-TriangleSoup read_obj(const std::string& path) {
+//! An OBJ file read by CGAL's reader (which bounds its allocations by the lines it reads).
+PolygonSoup read_obj(const std::string& path) {
   std::vector<Point3> points;
   std::vector<std::vector<std::size_t>> polygons;
   bool ok = false;
@@ -115,13 +114,14 @@ TriangleSoup read_obj(const std::string& path) {
     const std::string reason = diagnose_obj(path);
     corrupt(path, reason.empty() ? std::string("cannot be parsed (truncated or corrupt)") : reason);
   }
-  TriangleSoup soup;
+  PolygonSoup soup;
   soup.points = std::move(points);
-  soup.triangles.reserve(polygons.size());
+  soup.offsets.reserve(polygons.size() + 1);
   for (std::size_t f = 0; f < polygons.size(); ++f) {
     const auto& polygon = polygons[f];
-    if (polygon.size() != 3) detail::not_a_triangle(path, f, std::to_string(polygon.size()));
-    soup.triangles.push_back({polygon[0], polygon[1], polygon[2]});
+    if (polygon.size() < 3) detail::too_few_corners(path, f, std::to_string(polygon.size()));
+    soup.corners.insert(soup.corners.end(), polygon.begin(), polygon.end());
+    soup.offsets.push_back(soup.corners.size());
   }
   return soup;
 }
@@ -179,7 +179,16 @@ void write_mesh(const SurfaceMesh& mesh, const std::string& path) {
   write_triangle_soup(soup, path);
 }
 
-TriangleSoup read_triangle_soup(const std::string& path) {
+std::vector<std::vector<std::size_t>> PolygonSoup::polygons() const {
+  std::vector<std::vector<std::size_t>> out;
+  out.reserve(faces());
+  for (std::size_t f = 0; f < faces(); ++f)
+    out.emplace_back(corners.begin() + static_cast<std::ptrdiff_t>(offsets[f]),
+                     corners.begin() + static_cast<std::ptrdiff_t>(offsets[f + 1]));
+  return out;
+}
+
+PolygonSoup read_polygon_soup(const std::string& path) {
   const Format format = format_of(path);
   std::error_code error;
   if (fs::is_directory(path, error)) corrupt(path, "is a directory, not a mesh file");
@@ -188,7 +197,7 @@ TriangleSoup read_triangle_soup(const std::string& path) {
   const std::uintmax_t bytes = fs::file_size(path, error);
   if (error) corrupt(path, "cannot read its size: " + error.message());
   if (bytes == 0) corrupt(path, "is empty");
-  TriangleSoup soup;
+  PolygonSoup soup;
   if (format == Format::obj) {
     soup = read_obj(path);
   } else {
@@ -199,10 +208,13 @@ TriangleSoup read_triangle_soup(const std::string& path) {
     if (!in.read(contents.data(), static_cast<std::streamsize>(bytes))) corrupt(path, "cannot be read");
     soup = format == Format::off ? detail::read_off(path, contents) : detail::read_ply(path, contents);
   }
-  if (soup.triangles.empty()) corrupt(path, "has no faces");
-  for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
-    const auto& triangle = soup.triangles[f];
-    for (std::size_t v : triangle) {
+  if (soup.faces() == 0) corrupt(path, "has no faces");
+  std::vector<std::size_t> sorted;
+  for (std::size_t f = 0; f < soup.faces(); ++f) {
+    const auto first = soup.corners.begin() + static_cast<std::ptrdiff_t>(soup.offsets[f]);
+    const auto last = soup.corners.begin() + static_cast<std::ptrdiff_t>(soup.offsets[f + 1]);
+    for (auto it = first; it != last; ++it) {
+      const std::size_t v = *it;
       if (v >= soup.points.size()) {
         // The readers store a negative index of the file as its wrapped-around unsigned value.
         const std::string index = v > std::numeric_limits<std::size_t>::max() / 2
@@ -212,9 +224,10 @@ TriangleSoup read_triangle_soup(const std::string& path) {
                           vertex_range(soup.points.size(), format == Format::obj ? 1 : 0));
       }
     }
-    if (triangle[0] == triangle[1] || triangle[1] == triangle[2] || triangle[0] == triangle[2]) {
+    sorted.assign(first, last);
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
       corrupt(path, "face " + std::to_string(f) + " repeats a vertex");
-    }
   }
   for (std::size_t i = 0; i < soup.points.size(); ++i) {
     const Point3& p = soup.points[i];
@@ -222,6 +235,19 @@ TriangleSoup read_triangle_soup(const std::string& path) {
       corrupt(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
     }
   }
+  return soup;
+}
+
+TriangleSoup read_triangle_soup(const std::string& path) {
+  PolygonSoup polygons = read_polygon_soup(path);
+  TriangleSoup soup;
+  soup.triangles.reserve(polygons.faces());
+  for (std::size_t f = 0; f < polygons.faces(); ++f) {
+    if (polygons.face_size(f) != 3) detail::not_a_triangle(path, f, std::to_string(polygons.face_size(f)));
+    const std::size_t* c = polygons.corners.data() + polygons.offsets[f];
+    soup.triangles.push_back({c[0], c[1], c[2]});
+  }
+  soup.points = std::move(polygons.points);
   return soup;
 }
 

@@ -19,6 +19,19 @@ struct TriangleSoup {
   std::vector<std::array<std::size_t, 3>> triangles;
 };
 
+//! A polygon soup as read from a file, nothing merged or reordered: face f has the vertex indices
+//! corners[offsets[f]], …, corners[offsets[f + 1] − 1], at least three of them (offsets holds
+//! faces() + 1 entries, the first 0).  Flat, so that its memory is a small multiple of the file's.
+struct PolygonSoup {
+  std::vector<Point3> points;
+  std::vector<std::size_t> corners;
+  std::vector<std::size_t> offsets{0};
+  std::size_t faces() const { return offsets.size() - 1; }
+  std::size_t face_size(std::size_t f) const { return offsets[f + 1] - offsets[f]; }
+  //! The faces as index lists (what CGAL's polygon-soup functions take).
+  std::vector<std::vector<std::size_t>> polygons() const;
+};
+
 //! Writes mesh to path (.off, .ply or .obj; the live vertices in index order, then the faces).
 //! Throws InvalidInput for another extension or a non-triangle face, and std::runtime_error if the
 //! file cannot be written.  Writes to a temporary file in the same directory and renames it, so an
@@ -28,11 +41,16 @@ void write_mesh(const SurfaceMesh& mesh, const std::string& path);
 //! soup.points.size() (else PreconditionViolation).
 void write_triangle_soup(const TriangleSoup& soup, const std::string& path);
 
-//! Reads a triangle soup from path (OFF, ASCII or binary PLY, OBJ).  Throws InvalidInput, with
+//! Reads a polygon soup from path (OFF, ASCII or binary PLY, OBJ).  Throws InvalidInput, with
 //! the path and the reason, if the file is missing, unreadable, truncated or corrupt, has no
-//! triangles, has a face that is not a triangle or repeats a vertex, has an index out of range or
-//! a non-finite coordinate, or has an unknown extension.  Works for any soup (non-manifold too),
-//! so that the checker can report on bad meshes.
+//! faces, has a face with fewer than three vertices or one that repeats a vertex, has an index
+//! out of range or a non-finite coordinate, or has an unknown extension.  Works for any soup
+//! (non-manifold too).
+PolygonSoup read_polygon_soup(const std::string& path);
+
+//! Reads a triangle soup from path: read_polygon_soup, and throws InvalidInput also for a face
+//! that is not a triangle.  Works for any soup (non-manifold too), so that the checker can report
+//! on bad meshes.
 TriangleSoup read_triangle_soup(const std::string& path);
 
 //! Reads a triangle mesh from path: read_triangle_soup, then builds the Surface_mesh.  Throws

@@ -196,7 +196,7 @@ bool parse_off_keyword(std::string_view word, OffLayout& layout) {
 }
 
 //! Stores a vertex read in homogeneous or plain coordinates.
-void add_vertex(const std::string& path, TriangleSoup& soup, const double* c, bool homogeneous) {
+void add_vertex(const std::string& path, PolygonSoup& soup, const double* c, bool homogeneous) {
   if (homogeneous) {
     if (c[3] == 0) mesh_file_error(path, "vertex " + std::to_string(soup.points.size()) + " has the homogeneous coordinate 0");
     soup.points.emplace_back(c[0] / c[3], c[1] / c[3], c[2] / c[3]);
@@ -205,13 +205,20 @@ void add_vertex(const std::string& path, TriangleSoup& soup, const double* c, bo
   }
 }
 
-void reserve(const std::string& contents, TriangleSoup& soup, std::uintmax_t vertices, std::uintmax_t faces) {
+void reserve(const std::string& contents, PolygonSoup& soup, std::uintmax_t vertices, std::uintmax_t faces) {
   // Counts were checked against the file size; a vertex or face takes at least 3 bytes.
   soup.points.reserve(static_cast<std::size_t>(std::min<std::uintmax_t>(vertices, contents.size() / 3)));
-  soup.triangles.reserve(static_cast<std::size_t>(std::min<std::uintmax_t>(faces, contents.size() / 3)));
+  const auto face_count = static_cast<std::size_t>(std::min<std::uintmax_t>(faces, contents.size() / 3));
+  soup.offsets.reserve(face_count + 1);
+  soup.corners.reserve(3 * face_count);
 }
 
-TriangleSoup read_binary_off(const std::string& path, const std::string& contents, std::size_t start,
+//! Refuses a face of fewer than three vertices before its indices are read.
+void check_face_size(const std::string& path, std::uintmax_t face, long long size) {
+  if (size < 3) too_few_corners(path, static_cast<std::size_t>(face), std::to_string(size));
+}
+
+PolygonSoup read_binary_off(const std::string& path, const std::string& contents, std::size_t start,
                              const OffLayout& layout) {
   ByteCursor in(contents, start, /*big_endian=*/true);
   std::int32_t dimension = 3, nv = 0, nf = 0, ne = 0;
@@ -224,7 +231,7 @@ TriangleSoup read_binary_off(const std::string& path, const std::string& content
   if (nf < 0) mesh_file_error(path, "the header declares a negative face count (" + std::to_string(nf) + ")");
   check_count_fits(path, static_cast<std::uintmax_t>(nv), contents.size());
   check_count_fits(path, static_cast<std::uintmax_t>(nf), contents.size());
-  TriangleSoup soup;
+  PolygonSoup soup;
   reserve(contents, soup, static_cast<std::uintmax_t>(nv), static_cast<std::uintmax_t>(nf));
   const int coordinates = layout.homogeneous ? 4 : 3;
   // Geomview's binary vertex: coordinates, normal (3), colour (4), texture (2), all float32.
@@ -243,18 +250,18 @@ TriangleSoup read_binary_off(const std::string& path, const std::string& content
     const auto face = static_cast<std::size_t>(f);
     std::int32_t size = 0;
     if (!in.read(size)) truncated_in(path, "face", face, static_cast<std::uintmax_t>(nf));
-    if (size != 3) not_a_triangle(path, face, std::to_string(size));
-    std::array<std::size_t, 3> t{};
-    for (std::size_t& index : t) {
+    check_face_size(path, face, size);
+    // Each index is read before it is stored: a false size ends at the end of the file.
+    for (std::int32_t k = 0; k < size; ++k) {
       std::int32_t i = 0;
       if (!in.read(i)) truncated_in(path, "face", face, static_cast<std::uintmax_t>(nf));
-      index = static_cast<std::size_t>(static_cast<long long>(i));
+      soup.corners.push_back(static_cast<std::size_t>(static_cast<long long>(i)));
     }
     std::int32_t colours = 0;
     if (!in.read(colours)) truncated_in(path, "face", face, static_cast<std::uintmax_t>(nf));
     if (colours < 0 || colours > 4) mesh_file_error(path, "face " + std::to_string(face) + " has " + std::to_string(colours) + " colour components (at most 4)");
     if (!in.skip(4u * static_cast<unsigned>(colours))) truncated_in(path, "face", face, static_cast<std::uintmax_t>(nf));
-    soup.triangles.push_back(t);
+    soup.offsets.push_back(soup.corners.size());
   }
   return soup;
 }
@@ -393,6 +400,10 @@ void not_a_triangle(const std::string& path, std::size_t face, const std::string
   mesh_file_error(path, "face " + std::to_string(face) + " has " + size + " vertices; only triangle meshes are supported");
 }
 
+void too_few_corners(const std::string& path, std::size_t face, const std::string& size) {
+  mesh_file_error(path, "face " + std::to_string(face) + " has " + size + " vertices (a face needs at least three)");
+}
+
 std::string printable(const std::string& word) {
   std::string out;
   for (std::size_t i = 0; i < word.size() && i < 32; ++i) {
@@ -409,7 +420,7 @@ std::string vertex_range(std::uintmax_t n, std::uintmax_t first) {
          std::to_string(first + n - 1) + ")";
 }
 
-TriangleSoup read_off(const std::string& path, const std::string& contents) {
+PolygonSoup read_off(const std::string& path, const std::string& contents) {
   TextCursor in(contents, 0, /*comments=*/true);
   // 1. The keyword, if any, and its prefixes; BINARY switches to the binary layout after its line.
   OffLayout layout;
@@ -444,7 +455,7 @@ TriangleSoup read_off(const std::string& path, const std::string& contents) {
   check_count_fits(path, nv, contents.size());
   check_count_fits(path, nf, contents.size());
   in.finish_line();
-  TriangleSoup soup;
+  PolygonSoup soup;
   reserve(contents, soup, nv, nf);
   // 3. Vertices: the coordinates word by word; normal, colour and texture (whose number of fields
   // varies) are the rest of the vertex's line.
@@ -470,23 +481,23 @@ TriangleSoup read_off(const std::string& path, const std::string& contents) {
     word = in.word_in_line();
     long long size = 0;
     if (!parse_whole(word, size) || size < 1) mesh_file_error(path, where + ": '" + printable(std::string(word)) + "' is not a vertex count");
-    if (size != 3) not_a_triangle(path, f, std::to_string(size));
-    std::array<std::size_t, 3> t{};
-    for (std::size_t& index : t) {
+    check_face_size(path, f, size);
+    for (long long k = 0; k < size; ++k) {
       word = in.word_in_line();
       if (word.empty())
-        mesh_file_error(path, where + " lists fewer vertices than its count 3" + (f + 1 == nf ? " (truncated?)" : ""));
+        mesh_file_error(path, where + " lists fewer vertices than its count " + std::to_string(size) +
+                                  (f + 1 == nf ? " (truncated?)" : ""));
       long long i = 0;
       if (!parse_whole(word, i)) mesh_file_error(path, where + ": '" + printable(std::string(word)) + "' is not a vertex index");
-      index = static_cast<std::size_t>(i);
+      soup.corners.push_back(static_cast<std::size_t>(i));
     }
-    soup.triangles.push_back(t);
+    soup.offsets.push_back(soup.corners.size());
     in.finish_line();
   }
   return soup;
 }
 
-TriangleSoup read_ply(const std::string& path, const std::string& contents) {
+PolygonSoup read_ply(const std::string& path, const std::string& contents) {
   // 1. The header, line by line, up to end_header.
   std::size_t at = 0;
   std::vector<PlyElement> elements;
@@ -570,7 +581,7 @@ TriangleSoup read_ply(const std::string& path, const std::string& contents) {
   }
 
   // 3. The body, element after element.
-  TriangleSoup soup;
+  PolygonSoup soup;
   PlyBody in(contents, body, format);
   for (const PlyElement& e : elements) {
     if (e.properties.empty()) continue;  // takes no bytes
@@ -581,7 +592,6 @@ TriangleSoup read_ply(const std::string& path, const std::string& contents) {
     for (std::uintmax_t i = 0; i < e.count; ++i) {
       const std::string where = what + " " + std::to_string(i);
       double c[3] = {0, 0, 0};
-      std::array<std::size_t, 3> t{};
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const PlyProperty& p = e.properties[k];
         PlyValue value;
@@ -599,14 +609,14 @@ TriangleSoup read_ply(const std::string& path, const std::string& contents) {
           if (!in.skip(path, p.type, size, where)) truncated_in(path, what, i, e.count);
           continue;
         }
-        if (size != 3) not_a_triangle(path, static_cast<std::size_t>(i), std::to_string(size));
-        for (std::size_t& index : t) {
+        check_face_size(path, i, static_cast<long long>(std::min<std::uintmax_t>(size, 3)));
+        for (std::uintmax_t j = 0; j < size; ++j) {
           if (!in.read(path, p.type, where, value)) truncated_in(path, what, i, e.count);
-          index = static_cast<std::size_t>(value.whole);
+          soup.corners.push_back(static_cast<std::size_t>(value.whole));
         }
       }
       if (vertex) soup.points.emplace_back(c[0], c[1], c[2]);
-      if (face) soup.triangles.push_back(t);
+      if (face) soup.offsets.push_back(soup.corners.size());
     }
   }
   return soup;

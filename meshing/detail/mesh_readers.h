@@ -1,6 +1,6 @@
 #pragma once
 //! \file mesh_readers.h
-//! The OFF and PLY readers behind read_triangle_soup (meshing/mesh_io.h).  They parse the whole
+//! The OFF and PLY readers behind read_polygon_soup (meshing/mesh_io.h).  They parse the whole
 //! file themselves, so that no declared count, list size, colour or index reaches an allocation or
 //! a conversion before it has been checked against the file: memory stays proportional to the
 //! file's size and every corrupt file ends as one InvalidInput that says what is wrong and where.
@@ -31,6 +31,9 @@ namespace delmesh::detail {
 //! supported".
 [[noreturn]] void not_a_triangle(const std::string& path, std::size_t face, const std::string& size);
 
+//! Throws InvalidInput "mesh file 'PATH': face FACE has SIZE vertices (a face needs at least three)".
+[[noreturn]] void too_few_corners(const std::string& path, std::size_t face, const std::string& size);
+
 //! A word of a file as it may appear in a message: at most 32 characters, bytes that are not
 //! printable ASCII shown as '?'.
 std::string printable(const std::string& word);
@@ -38,14 +41,15 @@ std::string printable(const std::string& word);
 //! "the file has N vertices (numbered FIRST to FIRST+N-1)", or "the file has no vertices".
 std::string vertex_range(std::uintmax_t n, std::uintmax_t first);
 
-//! Reads an OFF file (ASCII or binary) of the given contents.  Every face is a triangle (a face of
-//! another size is refused); the soup's indices are as in the file, a negative one stored as its
-//! two's complement (the caller reports it as negative).  Index range, repeated vertices,
-//! finiteness and the presence of faces are left to the caller.  Throws InvalidInput naming path.
-TriangleSoup read_off(const std::string& path, const std::string& contents);
+//! Reads an OFF file (ASCII or binary) of the given contents.  Every face has at least three
+//! vertices (a smaller one is refused); the soup's indices are as in the file, a negative one
+//! stored as its two's complement (the caller reports it as negative).  Index range, repeated
+//! vertices, finiteness and the presence of faces are left to the caller.  Throws InvalidInput
+//! naming path.
+PolygonSoup read_off(const std::string& path, const std::string& contents);
 
 //! Reads a PLY file (ASCII or binary) of the given contents, with the same guarantees as read_off.
 //! Throws InvalidInput naming path.
-TriangleSoup read_ply(const std::string& path, const std::string& contents);
+PolygonSoup read_ply(const std::string& path, const std::string& contents);
 
 }  // namespace delmesh::detail

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>
@@ -112,6 +113,37 @@ BOOST_AUTO_TEST_CASE(input_mesh_is_validated_then_remeshed) {
   delmesh::TriangleSoup soup;
   const auto report = read_and_check(dir / "octahedron_remeshed.off", soup);
   BOOST_TEST(report.vertices == stats["vertices"].get<std::size_t>());
+}
+
+// A torus of 48 × 12 quadrilaterals (OFF faces of four vertices): the polygons are triangulated,
+// and its creases are flat enough (15° and 30° between neighbouring quads) for DelMesh to finish
+// above the floor with the torus's topology.
+BOOST_AUTO_TEST_CASE(polygon_input_mesh_is_remeshed) {
+  TempDir dir;
+  const int n = 48, m = 12;
+  std::ostringstream off;
+  off.precision(17);
+  off << "OFF\n" << n * m << ' ' << n * m << " 0\n";
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      const double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m, rho = 1 + 0.4 * std::cos(v);
+      off << rho * std::cos(u) << ' ' << rho * std::sin(u) << ' ' << 0.4 * std::sin(v) << '\n';
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j)
+      off << "4 " << i * m + j << ' ' << (i + 1) % n * m + j << ' ' << (i + 1) % n * m + (j + 1) % m << ' '
+          << i * m + (j + 1) % m << '\n';
+  write_text(dir / "quads.off", off.str());
+  const RunResult r = run_delmesh({"mesh", "--input-mesh", "quads.off", "--quiet"}, dir.path);
+  BOOST_TEST(r.exit_code == 0, r.err);
+  const nlohmann::json stats = nlohmann::json::parse(read_text(dir / "quads_remeshed.json"));
+  BOOST_TEST(stats["status"] == "complete");
+  BOOST_TEST(stats["input_mesh"]["genus_per_component"] == nlohmann::json::array({1}));
+  BOOST_TEST(stats["input_mesh"]["polygons_triangulated"] == n * m);
+  BOOST_TEST(stats["input_mesh"]["triangles"] == 2 * n * m);
+  BOOST_TEST(stats["genus_per_component"] == nlohmann::json::array({1}));
+  delmesh::TriangleSoup soup;
+  BOOST_TEST(read_and_check(dir / "quads_remeshed.off", soup).has_topology({1}));
 }
 
 BOOST_AUTO_TEST_CASE(a_failing_run_leaves_existing_outputs_untouched) {

@@ -225,6 +225,19 @@ BOOST_AUTO_TEST_CASE(polygons_are_triangulated) {
   BOOST_TEST(prism.report.signed_volume == 3.0, boost::test_tools::tolerance(1e-14));
 }
 
+BOOST_AUTO_TEST_CASE(polygon_files_are_triangulated) {
+  // The cube of six quadrilaterals as a file: read_input_mesh takes the polygons as they are.
+  TempDir dir;
+  const std::string path = dir.write("cube.off", "OFF\n8 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                                                 "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n");
+  const InputMesh cube = read_input_mesh(path);
+  BOOST_TEST(cube.faces_read == 6u);
+  BOOST_TEST(cube.polygons_triangulated == 6u);
+  BOOST_TEST(cube.report.triangles == 12u);
+  BOOST_TEST(cube.report.genus_per_component == std::vector<int>{0}, boost::test_tools::per_element());
+  BOOST_TEST(cube.report.signed_volume == 1.0, boost::test_tools::tolerance(1e-14));
+}
+
 BOOST_AUTO_TEST_CASE(unreferenced_points_are_dropped) {
   test::Soup soup = test::tetrahedron();
   soup.points.insert(soup.points.begin(), Point3(100, 100, 100));

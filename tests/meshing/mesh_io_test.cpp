@@ -239,6 +239,82 @@ BOOST_AUTO_TEST_CASE(off_variants_are_read) {
   BOOST_TEST((soup.points[2] == Point3(0, 1, 0.25)));
 }
 
+// Polygons of any size are read as they are, in all three formats and both encodings: a square
+// pyramid has one quadrilateral and four triangles.  read_triangle_soup refuses the quadrilateral.
+BOOST_AUTO_TEST_CASE(polygon_faces_are_read_as_polygons) {
+  TempDir dir;
+  const std::string points = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0.5 1\n";
+  const std::string faces = "4 0 3 2 1\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n";
+  std::string binary_ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 5\nproperty list uchar int vertex_indices\nend_header\n";
+  const float v[5][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5f, 0.5f, 1}};
+  binary_ply.append(reinterpret_cast<const char*>(v), sizeof v);
+  const std::vector<std::vector<int>> lists = {{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  for (const auto& list : lists) {
+    binary_ply += static_cast<char>(list.size());
+    binary_ply.append(reinterpret_cast<const char*>(list.data()), list.size() * sizeof(int));
+  }
+  std::string binary_off = "OFF BINARY\n";
+  const auto put32 = [&](std::uint32_t word) {
+    for (int shift = 24; shift >= 0; shift -= 8) binary_off += static_cast<char>((word >> shift) & 0xff);
+  };
+  for (std::uint32_t count : {5u, 5u, 0u}) put32(count);
+  for (const auto& p : v)
+    for (float c : p) {
+      std::uint32_t word;
+      std::memcpy(&word, &c, 4);
+      put32(word);
+    }
+  for (const auto& list : lists) {
+    put32(static_cast<std::uint32_t>(list.size()));
+    for (int i : list) put32(static_cast<std::uint32_t>(i));
+    put32(0);  // no colour
+  }
+  const std::pair<const char*, std::string> files[] = {
+      {"pyramid.off", "OFF\n5 5 0\n" + points + faces},
+      {"pyramid.ply", "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+                      "property float z\nelement face 5\nproperty list uchar int vertex_indices\nend_header\n" +
+                          points + faces},
+      {"pyramid.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 1\nf 1 4 3 2\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n"},
+      {"binary.ply", binary_ply},
+      {"binary.off", binary_off},
+  };
+  for (const auto& [name, content] : files) {
+    BOOST_TEST_CONTEXT(name) {
+      const std::string path = dir.write(name, content);
+      const PolygonSoup soup = read_polygon_soup(path);
+      BOOST_TEST(soup.points.size() == 5u);
+      BOOST_TEST(soup.polygons() == (std::vector<std::vector<std::size_t>>{{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4},
+                                                                           {2, 3, 4}, {3, 0, 4}}));
+      BOOST_TEST((soup.points[4] == Point3(0.5, 0.5, 1)));
+      try {
+        (void)read_triangle_soup(path);
+        BOOST_ERROR("read_triangle_soup read a quadrilateral");
+      } catch (const InvalidInput& e) {
+        BOOST_TEST(std::string(e.what()).find("face 0 has 4 vertices; only triangle meshes are supported") !=
+                   std::string::npos);
+      }
+    }
+  }
+  // Faces of fewer than three vertices, and a polygon that repeats a vertex, are refused.
+  const std::pair<const char*, std::string> bad[] = {
+      {"edge.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n"},
+      {"edge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n"},
+      {"repeat.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 1\n"},
+  };
+  const char* why[] = {"face 0 has 2 vertices (a face needs at least three)", "a face needs at least three",
+                       "face 0 repeats a vertex"};
+  for (std::size_t i = 0; i < std::size(bad); ++i) {
+    try {
+      (void)read_polygon_soup(dir.write(bad[i].first, bad[i].second));
+      BOOST_ERROR("no exception for " << bad[i].first);
+    } catch (const InvalidInput& e) {
+      BOOST_TEST(std::string(e.what()).find(why[i]) != std::string::npos, bad[i].first << ": " << e.what());
+    }
+  }
+}
+
 // The PLY variants the reader accepts: other properties and elements before, between and after
 // the ones it reads, every type name, big-endian binary.
 BOOST_AUTO_TEST_CASE(ply_variants_are_read) {
@@ -294,11 +370,11 @@ BOOST_AUTO_TEST_CASE(inputs_that_crashed_the_former_readers) {
   const char* expected[] = {
       nullptr,  // read: the colour is skipped
       "face 0: '-3' is not a vertex count",
-      "face 0 has 42949672950 vertices; only triangle meshes are supported",
+      "face 0 lists fewer vertices than its count 42949672950 (truncated?)",
       "face 0: '1e308' is not a vertex count",
       "face 0 refers to vertex -4, but the file has 3 vertices (numbered 0 to 2)",
       "header line 3: a property line comes before any element line",
-      "face 0 has 255 vertices; only triangle meshes are supported",
+      "truncated: the file ends in face 0 of the 1 declared",
       "truncated: the file ends in element 'edge' 0 of the 1 declared",
       "face 0: '4294967296' is not an integer of the declared type",
   };

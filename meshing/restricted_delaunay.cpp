@@ -115,7 +115,6 @@ const VoronoiEdgeRecord& RestrictedDelaunay::voronoi_edge_record(const TriangleK
 
 std::vector<TriangleKey> RestrictedDelaunay::forget_destroyed(const InsertionChange& change) {
   std::vector<TriangleKey> left;
-  for (const auto& t : change.destroyed_triangles) edges_.prefetch(t);
   for (const auto& t : change.destroyed_triangles) {
     const VoronoiEdgeRecord* r = edges_.take(t);
     if (!r || r->restricted || r->shrunk) left.push_back(t);
@@ -133,9 +132,6 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
   // table survive later insertions into it.)
   std::vector<StarRecord> out(star.size());
   std::vector<std::size_t> to_solve;
-  // Every triangle is looked up below (found, or installed once solved): the probes' cache lines
-  // are requested together first.
-  for (const auto& s : star) edges_.prefetch(s.key);
   for (std::size_t i = 0; i < star.size(); ++i) {
     const auto& s = star[i];
     // A triangle containing the new vertex is new: it has no record.
@@ -435,8 +431,6 @@ void RestrictedDelaunay::invalidate(const std::vector<VertexId>& vertices) {
 }
 
 void RestrictedDelaunay::forget(const std::vector<TriangleKey>& triangles, const std::vector<EdgeKey>& edges) {
-  for (const auto& t : triangles) edges_.prefetch(t);
-  for (const auto& e : edges) facets_.prefetch(e);
   for (const auto& t : triangles) erase_record(t);
   for (const auto& e : edges) facets_.erase(e);
 }

@@ -39,13 +39,6 @@ class FlatTable {
   }
   const Value* find(const Key& key) const { return const_cast<FlatTable*>(this)->find(key); }
 
-  //! A hint, with no effect on the contents: starts loading the cache line where the probe for
-  //! key begins.  A caller about to look up many keys (an insertion's star) prefetches them all
-  //! first, so that their cache misses overlap instead of coming one after another.
-  void prefetch(const Key& key) const {
-    if (size_ != 0) __builtin_prefetch(&entries_[home(key)]);
-  }
-
   //! The value of key and true if it was added (then its contents are unspecified), or the
   //! existing value and false.
   std::pair<Value*, bool> try_emplace(const Key& key) {

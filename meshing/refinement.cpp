@@ -238,9 +238,12 @@ std::vector<VertexId> Refinement::prepare_new_edges(VertexId x, const std::vecto
   for (std::size_t i = 0; i < ring.size();) {
     const VertexId q = ring[i].q;
     neighbours.push_back(q);
+    std::size_t end = i;
+    while (end < ring.size() && ring[end].q == q) ++end;
     std::vector<Delaunay::RingTriangle> thirds;
+    thirds.reserve(end - i);
     boundary.clear();
-    for (; i < ring.size() && ring[i].q == q; ++i) {
+    for (; i < end; ++i) {
       thirds.push_back({ring[i].r, star[ring[i].index].apexes});
       boundary.push_back(records[ring[i].index].record);
     }

@@ -1,6 +1,10 @@
 #include "meshing/topo_disk.h"
 
-#include <map>
+#include <algorithm>
+#include <array>
+#include <iterator>
+#include <limits>
+#include <utility>
 
 #include "meshing/detail/candidates.h"
 
@@ -8,29 +12,42 @@ namespace delmesh {
 
 bool is_topological_disk(const std::vector<TriangleKey>& star, VertexId p) {
   if (star.empty()) return false;
-  std::map<VertexId, std::vector<VertexId>> link;
+  // The link as directed half-edges (q, r) and (r, q) of each triangle pqr, sorted by q: every
+  // link vertex must have exactly two entries, which are then its two link neighbours.
+  std::vector<std::pair<VertexId, VertexId>> link;
+  link.reserve(2 * star.size());
   for (const auto& t : star) {
-    std::vector<VertexId> others;
+    std::array<VertexId, 2> others{};
+    std::size_t count = 0;
     for (VertexId v : t)
-      if (v != p) others.push_back(v);
-    if (others.size() != 2) return false;
-    link[others[0]].push_back(others[1]);
-    link[others[1]].push_back(others[0]);
+      if (v != p && count++ < 2) others[count - 1] = v;
+    if (count != 2) return false;
+    link.emplace_back(others[0], others[1]);
+    link.emplace_back(others[1], others[0]);
   }
-  for (const auto& [v, adj] : link)
-    if (adj.size() != 2) return false;
-  // One cycle: walk from the first link vertex.
-  const VertexId start = link.begin()->first;
+  std::sort(link.begin(), link.end());
+  for (std::size_t i = 0; i < link.size(); i += 2) {
+    const bool twice = link[i + 1].first == link[i].first;
+    const bool thrice = i + 2 < link.size() && link[i + 2].first == link[i].first;
+    if (!twice || thrice) return false;
+  }
+  const std::size_t vertices = link.size() / 2;
+  // One cycle: walk from the smallest link vertex.
+  auto neighbours_of = [&](VertexId v) {
+    const auto it = std::lower_bound(link.begin(), link.end(), std::make_pair(v, std::numeric_limits<VertexId>::min()));
+    return std::make_pair(it->second, std::next(it)->second);
+  };
+  const VertexId start = link.front().first;
   VertexId previous = -1, current = start;
   std::size_t steps = 0;
   do {
-    const auto& adj = link[current];
-    const VertexId next = adj[0] != previous ? adj[0] : adj[1];
+    const auto [a, b] = neighbours_of(current);
+    const VertexId next = a != previous ? a : b;
     previous = current;
     current = next;
     ++steps;
-  } while (current != start && steps <= link.size());
-  return current == start && steps == link.size();
+  } while (current != start && steps <= vertices);
+  return current == start && steps == vertices;
 }
 
 CheckResult topo_disk_witness(RestrictedDelaunay& restricted, VertexId p) {

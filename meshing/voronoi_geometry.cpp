@@ -328,9 +328,11 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
   // cells (projected into Π), the ends of that Voronoi edge.
   const std::vector<Delaunay::RingTriangle> cutting = facet_cutters(del, edge, ring);
   std::vector<HalfSpace> cuts;
+  cuts.reserve(cutting.size());
   // The Voronoi vertices of F projected into Π, by the pair {r, apex} of their cell pqr·apex (each
   // is met twice, from the two triangles of that cell around pq).
   std::vector<std::pair<std::array<VertexId, 2>, P2>> corners;
+  corners.reserve(cutting.size());
   auto corner = [&](VertexId r, VertexId apex) {
     const std::array<VertexId, 2> key{std::min(r, apex), std::max(r, apex)};
     for (const auto& [k, w] : corners)

@@ -24,9 +24,15 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
 
   RoundingGuard guard;
   GradientConeResult result;
-  using Box = std::array<Interval, 3>;
+  // A box with whether it is known to lie inside P (then so do its halves: classify() is not
+  // asked again).
+  struct Box {
+    std::array<Interval, 3> u;
+    bool inside = false;
+  };
   std::vector<Box> stack(1);
-  for (std::size_t j = 0; j < n; ++j) stack[0][j] = Interval(domain.box.bounds[j][0], domain.box.bounds[j][1]);
+  stack.reserve(64);
+  for (std::size_t j = 0; j < n; ++j) stack[0].u[j] = Interval(domain.box.bounds[j][0], domain.box.bounds[j][1]);
   // The world enclosure of chart points: origin + Σ_j u_j c_j, with u_j an interval or a point.
   auto to_world = [&](const Interval* u, Interval* x) {
     for (int k = 0; k < 3; ++k) {
@@ -35,11 +41,13 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     }
   };
   while (!stack.empty()) {
-    const Box u = stack.back();
+    const Box box = stack.back();
     stack.pop_back();
     if (result.boxes >= box_budget) return result;
     ++result.boxes;
-    if (classify(domain, u.data()) == DomainSide::outside) continue;  // (i)
+    const auto& u = box.u;
+    const DomainSide side = box.inside ? DomainSide::inside : classify(domain, u.data());
+    if (side == DomainSide::outside) continue;  // (i)
     Interval x[3], value, gradient[3];
     to_world(u.data(), x);
     E.values_and_jacobian<Interval>(x, nullptr, &value, gradient);
@@ -64,9 +72,9 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
           if (u[j].sup() - u[j].inf() > u[widest].sup() - u[widest].inf()) widest = j;
         const double lo = u[widest].inf(), hi = u[widest].sup(), mid = 0.5 * (lo + hi);
         if (!(lo < mid && mid < hi)) return result;
-        Box left = u, right = u;
-        left[widest] = Interval(lo, mid);
-        right[widest] = Interval(mid, hi);
+        Box left{u, side == DomainSide::inside}, right = left;
+        left.u[widest] = Interval(lo, mid);
+        right.u[widest] = Interval(mid, hi);
         stack.push_back(right);
         stack.push_back(left);
       }

@@ -82,6 +82,7 @@ std::vector<Vec3> plane_box_edge_points(const Vec3& origin, const Vec3& normal, 
   }
   // Points of the plane on the 12 edges (corner pairs differing in one bit).
   std::vector<Vec3> points;
+  points.reserve(12);  // at most one point per edge, or a corner instead of its three edges
   for (int c = 0; c < 8; ++c) {
     if (side[c] == 0.0) points.push_back(corner[c]);
     for (int i = 0; i < 3; ++i) {

@@ -42,10 +42,22 @@ inline Interval inflate(const Interval& a, double r) { return Interval(-(r - a.i
 //! An enclosure of ⟨normal, x⟩ − offset over the box x of n intervals (normal: n doubles), the
 //! signed excess of a half-space ⟨normal, u⟩ ≤ offset: inf > 0 proves the box outside it,
 //! sup < 0 strictly inside.
+//! Computed bound by bound with the guard's upward rounding: the upper bound sums a_i·x_i.sup
+//! (a_i ≥ 0) or a_i·x_i.inf (a_i < 0), rounded up; the lower bound is the negation of the same
+//! upper sum for −⟨normal, x⟩ + offset.  A zero coefficient contributes nothing (not 0·∞).
 inline Interval half_space_excess(const double* normal, double offset, const Interval* x, std::size_t n) {
-  Interval s(-offset);
-  for (std::size_t i = 0; i < n; ++i) s += Interval(normal[i]) * x[i];
-  return s;
+  double upper = -offset, negated_lower = offset;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double a = normal[i];
+    if (a > 0) {
+      upper += a * x[i].sup();
+      negated_lower += (-a) * x[i].inf();
+    } else if (a < 0) {
+      upper += a * x[i].inf();
+      negated_lower += (-a) * x[i].sup();
+    }
+  }
+  return Interval(-negated_lower, upper);
 }
 
 //! The widest side of a box of n intervals, and its index.

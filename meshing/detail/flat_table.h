@@ -34,7 +34,7 @@ class FlatTable {
     for (std::size_t i = home(key);; i = (i + 1) & mask_) {
       const Entry& e = entries_[i];
       if (e.key[0] < 0) return nullptr;
-      if (e.key == key) return &pool_[e.index];
+      if (same(e.key, key)) return &pool_[e.index];
     }
   }
   const Value* find(const Key& key) const { return const_cast<FlatTable*>(this)->find(key); }
@@ -47,7 +47,7 @@ class FlatTable {
     for (;; i = (i + 1) & mask_) {
       Entry& e = entries_[i];
       if (e.key[0] < 0) break;
-      if (e.key == key) return {&pool_[e.index], false};
+      if (same(e.key, key)) return {&pool_[e.index], false};
     }
     std::uint32_t index;
     if (!free_.empty()) {
@@ -72,7 +72,7 @@ class FlatTable {
     std::size_t i = home(key);
     for (;; i = (i + 1) & mask_) {
       if (entries_[i].key[0] < 0) return nullptr;
-      if (entries_[i].key == key) break;
+      if (same(entries_[i].key, key)) break;
     }
     Value* value = &pool_[entries_[i].index];
     free_.push_back(entries_[i].index);
@@ -112,6 +112,13 @@ class FlatTable {
     Key key;
     std::uint32_t index;
   };
+
+  //! Key equality, component by component (std::array's == becomes a memcmp call).
+  static bool same(const Key& a, const Key& b) {
+    for (std::size_t k = 0; k < N; ++k)
+      if (a[k] != b[k]) return false;
+    return true;
+  }
 
   std::size_t home(const Key& key) const {
     std::uint64_t h = 0x9E3779B97F4A7C15ULL;

@@ -44,11 +44,22 @@ double widen_up(double x) {
   return x;
 }
 
-//! Enclosure of vⁿ for a point v ≥ 0 and n ≥ 1: CGAL products of nonnegative point intervals.
+//! Enclosure of vⁿ for a point v ≥ 0 and n ≥ 1, by binary powering of its two bounds under the
+//! guard's upward rounding: the upper bound by plain products (rounded up), the lower one by
+//! negated products −((−a)·b) (the product a·b rounded down, a, b ≥ 0).  These are the products
+//! CGAL's interval arithmetic makes for nonnegative point intervals, without its case analysis.
 Interval nonnegative_point_power(double v, unsigned long n) {
-  Interval r;
-  detail::power_by_squaring<ScalarTraits<Interval>>(r, Interval(v), n);
-  return r;
+  double base_lo = v, base_hi = v, lo = 1, hi = 1;
+  while (true) {
+    if (n & 1UL) {
+      lo = -((-lo) * base_lo);
+      hi = hi * base_hi;
+    }
+    n >>= 1;
+    if (n == 0) return Interval(lo, hi);
+    base_lo = -((-base_lo) * base_lo);
+    base_hi = base_hi * base_hi;
+  }
 }
 //! Enclosure of vⁿ for any point v and n ≥ 1.
 Interval point_power(double v, unsigned long n) {
@@ -130,7 +141,9 @@ void ScalarTraits<Interval>::pow(Interval& out, const Interval& a, int n) {
   const unsigned long m = n < 0 ? -static_cast<long>(n) : n;
   const double lo = a.inf(), hi = a.sup();
   Interval r;
-  if (m % 2 == 1) {
+  if (m == 2) {
+    r = CGAL::square(a);  // the exact range of x², rounded outward
+  } else if (m % 2 == 1) {
     r = Interval(point_power(lo, m).inf(), point_power(hi, m).sup());
   } else {
     double mig, mag;

@@ -26,6 +26,7 @@
 #include <cstdlib>
 #include <deque>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <optional>
@@ -157,8 +158,10 @@ struct MeshResult {
   std::string status;
 };
 
-//! del_mesh on a worker thread; the caller keeps serving progress and signals (file comment).
-DelMeshResult run_del_mesh(const MeshPlan& plan, const py::object& progress) {
+//! run(options) (del_mesh or remesh) on a worker thread, with `base` plus an interrupt flag and
+//! the progress lines; the caller keeps serving progress and signals (file comment).
+DelMeshResult run_on_worker(const DelMeshOptions& base, const std::function<DelMeshResult(const DelMeshOptions&)>& run,
+                            const py::object& progress) {
   std::atomic<bool> interrupt{false};
   std::mutex m;
   std::condition_variable changed;
@@ -167,7 +170,7 @@ DelMeshResult run_del_mesh(const MeshPlan& plan, const py::object& progress) {
   std::optional<DelMeshResult> result;
   std::exception_ptr failure;
 
-  DelMeshOptions options = plan.options;
+  DelMeshOptions options = base;
   options.interrupt = &interrupt;
   if (!progress.is_none()) {
     options.progress = [&](const std::string& line) {
@@ -188,7 +191,7 @@ DelMeshResult run_del_mesh(const MeshPlan& plan, const py::object& progress) {
     }
   } worker{interrupt, std::thread([&] {
     try {
-      DelMeshResult r = del_mesh(plan.input.surface, plan.input.box, options);
+      DelMeshResult r = run(options);
       std::lock_guard<std::mutex> lock(m);
       result.emplace(std::move(r));
     } catch (...) {
@@ -253,16 +256,32 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
   std::string statistics, status;
   {
     LibraryCall call;
-    const MeshPlan plan = plan_mesh(request);
-    {
-      py::gil_scoped_acquire gil;
-      warn_all(plan.warnings);
+    std::optional<DelMeshResult> result;
+    if (request.input_mesh) {
+      // A triangle mesh, remeshed through its MeshOracle as `delmesh mesh --input-mesh` does.
+      const MeshInputPlan plan = plan_mesh_input(request);
+      {
+        py::gil_scoped_acquire gil;
+        warn_all(plan.warnings);
+      }
+      result = run_on_worker(plan.options, [&](const DelMeshOptions& o) { return remesh(plan, o); }, progress);
+      nlohmann::json stats = result->statistics;
+      stats["seed"] = request.seed;
+      statistics = stats.dump();
+    } else {
+      const MeshPlan plan = plan_mesh(request);
+      {
+        py::gil_scoped_acquire gil;
+        warn_all(plan.warnings);
+      }
+      result = run_on_worker(
+          plan.options, [&](const DelMeshOptions& o) { return del_mesh(plan.input.surface, plan.input.box, o); },
+          progress);
+      statistics = mesh_statistics(*result, plan.input, request.seed, std::nullopt).dump();
     }
-    const DelMeshResult result = run_del_mesh(plan, progress);
-    mesh_to_soup(result.mesh, points, faces);
-    statistics = mesh_statistics(result, plan.input, request.seed, std::nullopt).dump();
+    mesh_to_soup(result->mesh, points, faces);
     std::ostringstream s;
-    s << result.status;
+    s << result->status;
     status = s.str();
   }
 
@@ -471,9 +490,10 @@ PYBIND11_MODULE(delmesh, m) {
         R"doc(Mesh a surface with DelMesh, as `delmesh mesh` does; returns a MeshResult.
 
 Give exactly one of expr (E(x,y,z) as text, the surface is E = 0) with box, surface (a catalog
-name, see surfaces(); a box replaces the catalog's) or input_mesh (a file path; it is read and
-validated as by the program, then refused: remeshing a triangle mesh is done by the program,
-`delmesh mesh --input-mesh FILE`, not yet by this module).
+name, see surfaces(); a box replaces the catalog's) or input_mesh (the path of a closed mesh,
+OFF/PLY/OBJ, polygons triangulated: it is read, validated and remeshed as by
+`delmesh mesh --input-mesh FILE`, with the same default termination floor, and the statistics
+carry "input_mesh").
 
 box: "x0,x1,y0,y1,z0,z1" or six numbers; the surface must lie strictly inside.
 lam: lambda in (0, 1/3); Theorem 6.1 covers (0, 0.06] (guaranteed topology, radius-edge ratio

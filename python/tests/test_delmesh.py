@@ -128,6 +128,36 @@ class MeshTest(unittest.TestCase):
                     np.testing.assert_array_equal(result.triangles, triangles)
                     self.assertEqual(without_timings(result.stats), without_timings(cli_stats))
 
+    def test_input_mesh_is_remeshed_as_by_the_program(self):
+        # A torus of 48 x 12 quadrilaterals: triangulated, then remeshed above the default floor.
+        n, m = 48, 12
+        lines = ["OFF", f"{n * m} {n * m} 0"]
+        for i in range(n):
+            for j in range(m):
+                u, v = 2 * np.pi * i / n, 2 * np.pi * j / m
+                rho = 1 + 0.4 * np.cos(v)
+                lines.append(f"{rho * np.cos(u)!r} {rho * np.sin(u)!r} {0.4 * np.sin(v)!r}")
+        for i in range(n):
+            for j in range(m):
+                a, b = i * m + j, (i + 1) % n * m + j
+                lines.append(f"4 {a} {b} {(i + 1) % n * m + (j + 1) % m} {i * m + (j + 1) % m}")
+        with tempfile.TemporaryDirectory() as d:
+            quads, off, stats = (os.path.join(d, name) for name in ("quads.off", "m.off", "m.json"))
+            with open(quads, "w") as f:
+                f.write("\n".join(lines) + "\n")
+            code, _, err = run_cli("mesh", "--input-mesh", quads, "--out", off, "--stats", stats, "--quiet")
+            self.assertEqual(code, 0, err)
+            vertices, triangles = read_off(off)
+            with open(stats) as f:
+                cli_stats = json.load(f)
+            result = delmesh.mesh(input_mesh=quads)
+        self.assertEqual(result.status, "complete")
+        self.assertEqual(result.stats["input_mesh"]["polygons_triangulated"], n * m)
+        self.assertEqual(delmesh.check(result.vertices, result.triangles)["genus_per_component"], [1])
+        np.testing.assert_array_equal(result.vertices, vertices)
+        np.testing.assert_array_equal(result.triangles, triangles)
+        self.assertEqual(without_timings(result.stats), without_timings(cli_stats))
+
     def test_point_limit_returns_the_partial_mesh_with_its_status(self):
         result = delmesh.mesh(surface="torus", max_points=20)
         self.assertEqual(result.status, "point_limit")

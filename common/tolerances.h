@@ -219,6 +219,12 @@ inline constexpr double singular_box_relative_width = 1e-6;
 //! singular_box_relative_width on both sheets all along the gap.  Bisecting on to this width
 //! costs a few boxes per level at an isolated zero.
 inline constexpr double exclusion_singular_box_relative_width = 1e-9;
+//! The second look at a square solve's singular regions (refine_singular_regions in
+//! solvers/subdivision_solver.h): each region is bisected on down to this width (relative to the
+//! whole domain), within singular_refinement_box_budget boxes.  Two sheets of Σ 10⁻⁶ of a cell
+//! apart are separated there; a true singular root costs the budget and stays undecided.
+inline constexpr double refined_singular_box_relative_width = 1e-9;
+inline constexpr std::size_t singular_refinement_box_budget = 4096;
 
 //! When more than this many boxes of one solve end undecided at singular_box_relative_width, the
 //! solutions are taken to form a curve (non-isolated, e.g. the critical circle of a torus whose

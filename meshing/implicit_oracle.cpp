@@ -136,7 +136,9 @@ SolveResult ImplicitOracle::solve_square(std::size_t primitive, const std::vecto
   SubdivisionOptions options;
   options.box_budget = box_budget;
   options.time_limit_seconds = seconds_left();
-  return solve_subdivision(sys, parameters, domain, options);
+  SolveResult result = solve_subdivision(sys, parameters, domain, options);
+  refine_singular_regions(sys, parameters, domain, result, options);
+  return result;
 }
 
 SolveResult ImplicitOracle::solve_over_determined(std::size_t primitive, const std::vector<double>& parameters,

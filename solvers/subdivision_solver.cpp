@@ -85,8 +85,10 @@ class Subdivision {
       inflated_powers_ = detail::radius_powers(1 + 2 * tolerances::krawczyk_inflation, degree);
     }
     const double scale = domain.scale();
-    singular_width_ = (exclusion_ ? tolerances::exclusion_singular_box_relative_width
-                                  : tolerances::singular_box_relative_width) * scale;
+    const double relative = options.singular_relative_width > 0 ? options.singular_relative_width
+                            : exclusion_                       ? tolerances::exclusion_singular_box_relative_width
+                                                               : tolerances::singular_box_relative_width;
+    singular_width_ = relative * scale;
     min_width_ = tolerances::min_box_relative_width * scale;
   }
 
@@ -649,6 +651,54 @@ SolveResult solve_subdivision(const CompiledSystem& system, const std::vector<do
   RoundingGuard guard;
   Subdivision solver(system, parameters, domain, options);
   return solver.run();
+}
+
+void refine_singular_regions(const CompiledSystem& system, const std::vector<double>& parameters,
+                             const Domain& domain, SolveResult& result, SubdivisionOptions options) {
+  const bool open = result.status == SolveStatus::undecided || result.status == SolveStatus::non_isolated;
+  if (!open || options.exclusion_mode) return;
+  const double width = tolerances::refined_singular_box_relative_width * domain.scale();
+  options.box_budget = tolerances::singular_refinement_box_budget;
+  // A root is already in the result when its box and the box of a root there nest: each box
+  // holds exactly one root, so the inner box's root is the outer box's.
+  auto contains = [](const SolverBox& outer, const SolverBox& inner) {
+    for (std::size_t i = 0; i < outer.bounds.size(); ++i)
+      if (!(outer.bounds[i][0] <= inner.bounds[i][0] && inner.bounds[i][1] <= outer.bounds[i][1])) return false;
+    return true;
+  };
+  auto known = [&](const CertifiedRoot& r) {
+    for (const CertifiedRoot& k : result.roots)
+      if (contains(k.box, r.box) || contains(r.box, k.box)) return true;
+    return false;
+  };
+  std::vector<UndecidedBox> kept;
+  std::vector<CertifiedRoot> found;
+  // Once one region stays undecided, the solve holds a true singular root or a curve of
+  // solutions, whose other regions would cost the budget each and stay undecided too: they are
+  // kept as they are.
+  bool gave_up = false;
+  for (UndecidedBox& region : result.undecided) {
+    const bool singular = region.reason == UndecidedReason::singular_root || region.reason == UndecidedReason::non_isolated;
+    if (!singular || gave_up) {
+      kept.push_back(std::move(region));
+      continue;
+    }
+    Domain part{region.box, domain.half_spaces};
+    options.singular_relative_width = width / part.scale();
+    SolveResult again = solve_subdivision(system, parameters, part, options);
+    result.counters += again.counters;
+    if (again.status != SolveStatus::complete) {
+      kept.push_back(std::move(region));
+      gave_up = true;
+      continue;
+    }
+    for (CertifiedRoot& r : again.roots)
+      if (!known(r)) found.push_back(std::move(r));
+  }
+  result.undecided = std::move(kept);
+  for (CertifiedRoot& r : found)
+    if (!known(r)) result.roots.push_back(std::move(r));
+  if (result.undecided.empty()) result.status = SolveStatus::complete;
 }
 
 }  // namespace delmesh

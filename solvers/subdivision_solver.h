@@ -40,6 +40,9 @@ struct SubdivisionOptions {
   //! return as undecided the boxes that could not be excluded.  Never certifies roots.
   bool exclusion_mode = false;
   TaylorForms taylor_forms = TaylorForms::automatic;
+  //! The singular width relative to the domain's scale (Domain::scale); 0: the tolerance of the
+  //! mode (singular_box_relative_width, or exclusion_singular_box_relative_width).
+  double singular_relative_width = 0;
 };
 
 //! Solves f(u; parameters) = 0 for u in the polytope `domain` (box ∩ half-spaces), certified in
@@ -68,5 +71,26 @@ struct SubdivisionOptions {
 //! their escalations serialized.
 SolveResult solve_subdivision(const CompiledSystem& system, const std::vector<double>& parameters,
                               const Domain& domain, const SubdivisionOptions& options = {});
+
+//! A second look at the singular regions of a square solve.  A region left undecided as
+//! singular_root at singular_box_relative_width may hold a singular root, or only a place where
+//! the system is small without a zero (two sheets of Σ closer than the width, where every
+//! equation's enclosure keeps 0 until the boxes separate the sheets); enough of those make the
+//! solve stop as non_isolated.  So for `result`, a solve_subdivision() of `system` over `domain`
+//! with status undecided or non_isolated, each region of reason singular_root or non_isolated is
+//! solved again on its own: the domain's half-spaces over the region's box, bisected down to
+//! tolerances::refined_singular_box_relative_width of the domain's scale, within
+//! tolerances::singular_refinement_box_budget boxes.  If that solve ends complete, the region is
+//! replaced by the roots it certified (a root whose box and the box of a root already in
+//! `result` nest is that root, since each box holds exactly one, and is not added again; a root
+//! on the region's edge may otherwise be listed twice, never lost); otherwise the region stays as
+//! it was, and so do all the regions after it (a true singular root or a curve of solutions,
+//! whose other regions would each cost the budget and stay undecided too).  Nothing is dropped
+//! that is not proved: an excluded box has no zero, and the new roots are Krawczyk-certified.
+//! The status becomes complete when no region is left.  Other statuses (limits) and exclusion
+//! mode are left untouched.  The work is added to result.counters.  Same preconditions as
+//! solve_subdivision().
+void refine_singular_regions(const CompiledSystem& system, const std::vector<double>& parameters,
+                             const Domain& domain, SolveResult& result, SubdivisionOptions options = {});
 
 }  // namespace delmesh

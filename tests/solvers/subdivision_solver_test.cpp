@@ -1,5 +1,6 @@
 #include "solvers/subdivision_solver.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -495,6 +496,45 @@ BOOST_AUTO_TEST_CASE(taylor_forms_agree_with_compiled_expressions_on_catalog_cel
   BOOST_TEST(compared >= 150);
   BOOST_TEST(roots >= 20);
   BOOST_TEST_MESSAGE("Taylor vs compiled: " << compared << " solves compared, " << roots << " roots");
+}
+
+// refine_singular_regions on three systems in (u, v) whose feature at u = 0 is narrower than
+// singular_box_relative_width: f = (u − a)(u + a) + c with a = 1e-8 (compiled expressions only: a
+// Taylor form would see u² − a² + c at once).  c = 2a²: no zero, but every box wider than about a
+// keeps 0 in f's enclosure; c = 0: the simple roots ±a; and f = u²: a true double root.
+BOOST_AUTO_TEST_CASE(singular_regions_are_refined_and_never_dropped) {
+  GiNaC::symbol u("u"), v("v"), a("a"), c("c");
+  const CompiledSystem near({(u - a) * (u + a) + c, v - u / 3}, {u, v}, {a, c});
+  const Domain domain = Domain::from_box({{-1, 1.1}, {-1, 0.9}});
+  auto first_look = [&](const CompiledSystem& system, const std::vector<double>& parameters) {
+    SolveResult r = solve(TaylorForms::never, system, parameters, domain);
+    BOOST_TEST(r.status == SolveStatus::undecided);
+    BOOST_TEST(!r.undecided.empty());
+    BOOST_TEST(r.roots.empty());
+    return r;
+  };
+  SubdivisionOptions never;
+  never.taylor_forms = TaylorForms::never;
+  const double e = 1e-8;
+  // No zero: every region is excluded.
+  SolveResult gap = first_look(near, {e, 2 * e * e});
+  refine_singular_regions(near, {e, 2 * e * e}, domain, gap, never);
+  BOOST_TEST(gap.status == SolveStatus::complete);
+  BOOST_TEST(gap.undecided.empty());
+  BOOST_TEST(gap.roots.empty());
+  // Two simple roots 2e-8 apart: both certified.
+  SolveResult pair = first_look(near, {e, 0.0});
+  refine_singular_regions(near, {e, 0.0}, domain, pair, never);
+  BOOST_TEST(pair.status == SolveStatus::complete);
+  check_roots(pair, {{e, e / 3}, {-e, -e / 3}}, 1e-12);
+  // A double root stays undecided, with a region that holds it.
+  const CompiledSystem double_root({u * u, v - u / 3}, {u, v}, {});
+  SolveResult twice = first_look(double_root, {});
+  refine_singular_regions(double_root, {}, domain, twice, never);
+  BOOST_TEST(twice.status == SolveStatus::undecided);
+  BOOST_TEST(twice.roots.empty());
+  BOOST_TEST(std::any_of(twice.undecided.begin(), twice.undecided.end(),
+                         [](const UndecidedBox& b) { return contains(b.box, {0.0, 0.0}); }));
 }
 
 BOOST_AUTO_TEST_CASE(misuse_throws_precondition_violation) {

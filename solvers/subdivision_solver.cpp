@@ -671,6 +671,20 @@ void refine_singular_regions(const CompiledSystem& system, const std::vector<dou
       if (contains(k.box, r.box) || contains(r.box, k.box)) return true;
     return false;
   };
+  // The solves share what is left of the caller's time limit.
+  const auto start = std::chrono::steady_clock::now();
+  const double time_limit = options.time_limit_seconds;
+  auto out_of_time = [&] {
+    if (time_limit <= 0) return false;
+    const double left = time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    options.time_limit_seconds = left;
+    return !(left > 0);
+  };
+  auto proper = [](const SolverBox& box) {
+    return std::all_of(box.bounds.begin(), box.bounds.end(), [](const std::array<double, 2>& side) {
+      return std::isfinite(side[0]) && std::isfinite(side[1]) && side[0] < side[1];
+    });
+  };
   std::vector<UndecidedBox> kept;
   std::vector<CertifiedRoot> found;
   // Once one region stays undecided, the solve holds a true singular root or a curve of
@@ -679,7 +693,7 @@ void refine_singular_regions(const CompiledSystem& system, const std::vector<dou
   bool gave_up = false;
   for (UndecidedBox& region : result.undecided) {
     const bool singular = region.reason == UndecidedReason::singular_root || region.reason == UndecidedReason::non_isolated;
-    if (!singular || gave_up) {
+    if (!singular || gave_up || !proper(region.box) || out_of_time()) {
       kept.push_back(std::move(region));
       continue;
     }

@@ -88,7 +88,9 @@ SolveResult solve_subdivision(const CompiledSystem& system, const std::vector<do
 //! whose other regions would each cost the budget and stay undecided too).  Nothing is dropped
 //! that is not proved: an excluded box has no zero, and the new roots are Krawczyk-certified.
 //! The status becomes complete when no region is left.  Other statuses (limits) and exclusion
-//! mode are left untouched.  The work is added to result.counters.  Same preconditions as
+//! mode are left untouched; the solves share what is left of options.time_limit_seconds (a
+//! region not reached in time stays), and a region whose box has a side that is not a proper
+//! interval stays.  The work is added to result.counters.  Same preconditions as
 //! solve_subdivision().
 void refine_singular_regions(const CompiledSystem& system, const std::vector<double>& parameters,
                              const Domain& domain, SolveResult& result, SubdivisionOptions options = {});

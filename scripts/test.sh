@@ -26,16 +26,16 @@ if [ "${1:-}" = "--sanitize" ]; then
   export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1}
   export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
   export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan.supp:print_suppressions=0}
-  ctest --test-dir "$build" --output-on-failure -LE slow
+  ctest --test-dir "$build" --output-on-failure -j "$(nproc)" -LE slow
   exit
 fi
 build=${DELMESH_BUILD_DIR:-build}
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -G Ninja
 cmake --build "$build" -j "$(nproc)"
 if [ "${1:-}" = "--fast" ]; then
-  ctest --test-dir "$build" --output-on-failure -LE slow
+  ctest --test-dir "$build" --output-on-failure -j "$(nproc)" -LE slow
 else
-  ctest --test-dir "$build" --output-on-failure
+  ctest --test-dir "$build" --output-on-failure -j "$(nproc)"
 fi
 command -v snakemake >/dev/null || { echo "test.sh: snakemake is missing (scripts/install-deps.sh)" >&2; exit 1; }
 mkdir -p "$build/snakemake-dry-run"

@@ -83,8 +83,12 @@ MeshInputPlan plan_mesh_input(const MeshRequest& request);
 //! median_edge_length, components_reversed}.
 DelMeshResult remesh(const MeshInputPlan& plan, const DelMeshOptions& options);
 
-//! The statistics record of a run as `delmesh mesh` writes it: del_mesh's statistics with the
-//! status, the surface (name, equation, box) and the seed, and "mesh_file" if a file is named.
+//! The statistics record of a run as `delmesh mesh --input-mesh` writes it: del_mesh's (or
+//! remesh()'s) statistics with the status and the seed, and "mesh_file" if a file is named.
+nlohmann::json run_statistics(const DelMeshResult& result, std::uint64_t seed, const std::optional<std::string>& mesh_file);
+
+//! The statistics record of a run as `delmesh mesh` writes it: run_statistics() and the surface
+//! (name, equation, box).
 nlohmann::json mesh_statistics(const DelMeshResult& result, const SurfaceInput& input, std::uint64_t seed,
                                const std::optional<std::string>& mesh_file);
 

@@ -196,19 +196,24 @@ DelMeshResult remesh(const MeshInputPlan& plan, const DelMeshOptions& options) {
   return result;
 }
 
-nlohmann::json mesh_statistics(const DelMeshResult& result, const SurfaceInput& input, std::uint64_t seed,
-                               const std::optional<std::string>& mesh_file) {
+nlohmann::json run_statistics(const DelMeshResult& result, std::uint64_t seed, const std::optional<std::string>& mesh_file) {
   nlohmann::json statistics = result.statistics;
   if (!statistics.is_object()) statistics = nlohmann::json::object();
   if (!statistics.contains("status")) statistics["status"] = to_text(result.status);
+  if (!statistics.contains("seed")) statistics["seed"] = seed;
+  if (mesh_file && !statistics.contains("mesh_file")) statistics["mesh_file"] = *mesh_file;
+  return statistics;
+}
+
+nlohmann::json mesh_statistics(const DelMeshResult& result, const SurfaceInput& input, std::uint64_t seed,
+                               const std::optional<std::string>& mesh_file) {
+  nlohmann::json statistics = run_statistics(result, seed, mesh_file);
   if (!statistics.contains("surface")) {
     statistics["surface"] = {{"name", input.name},
                              {"equation", input.surface.text()},
                              {"box", {input.box.lo[0], input.box.hi[0], input.box.lo[1], input.box.hi[1],
                                       input.box.lo[2], input.box.hi[2]}}};
   }
-  if (!statistics.contains("seed")) statistics["seed"] = seed;
-  if (mesh_file && !statistics.contains("mesh_file")) statistics["mesh_file"] = *mesh_file;
   return statistics;
 }
 
@@ -340,13 +345,8 @@ ExitCode run_mesh(const MeshOptions& o) {
   DelMeshResult result =
       run.plan ? del_mesh(run.plan->input.surface, run.plan->input.box, options) : remesh(*run.mesh_plan, options);
 
-  nlohmann::json statistics = result.statistics;
-  if (run.plan) {
-    statistics = mesh_statistics(result, run.plan->input, o.seed, out);
-  } else {
-    statistics["seed"] = o.seed;
-    statistics["mesh_file"] = out;
-  }
+  nlohmann::json statistics =
+      run.plan ? mesh_statistics(result, run.plan->input, o.seed, out) : run_statistics(result, o.seed, out);
   const bool certificate_interrupted = o.certify && certify_result(o, *run.plan, result, statistics);
   if (certificate_interrupted) {
     // The run stopped at the signal like any limit; how the mesh itself ended stays on record.

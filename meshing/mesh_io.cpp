@@ -182,9 +182,7 @@ void write_mesh(const SurfaceMesh& mesh, const std::string& path) {
 std::vector<std::vector<std::size_t>> PolygonSoup::polygons() const {
   std::vector<std::vector<std::size_t>> out;
   out.reserve(faces());
-  for (std::size_t f = 0; f < faces(); ++f)
-    out.emplace_back(corners.begin() + static_cast<std::ptrdiff_t>(offsets[f]),
-                     corners.begin() + static_cast<std::ptrdiff_t>(offsets[f + 1]));
+  for (std::size_t f = 0; f < faces(); ++f) out.emplace_back(face(f), face(f) + face_size(f));
   return out;
 }
 
@@ -211,9 +209,9 @@ PolygonSoup read_polygon_soup(const std::string& path) {
   if (soup.faces() == 0) corrupt(path, "has no faces");
   std::vector<std::size_t> sorted;
   for (std::size_t f = 0; f < soup.faces(); ++f) {
-    const auto first = soup.corners.begin() + static_cast<std::ptrdiff_t>(soup.offsets[f]);
-    const auto last = soup.corners.begin() + static_cast<std::ptrdiff_t>(soup.offsets[f + 1]);
-    for (auto it = first; it != last; ++it) {
+    const std::size_t* first = soup.face(f);
+    const std::size_t* last = first + soup.face_size(f);
+    for (const std::size_t* it = first; it != last; ++it) {
       const std::size_t v = *it;
       if (v >= soup.points.size()) {
         // The readers store a negative index of the file as its wrapped-around unsigned value.
@@ -244,7 +242,7 @@ TriangleSoup read_triangle_soup(const std::string& path) {
   soup.triangles.reserve(polygons.faces());
   for (std::size_t f = 0; f < polygons.faces(); ++f) {
     if (polygons.face_size(f) != 3) detail::not_a_triangle(path, f, std::to_string(polygons.face_size(f)));
-    const std::size_t* c = polygons.corners.data() + polygons.offsets[f];
+    const std::size_t* c = polygons.face(f);
     soup.triangles.push_back({c[0], c[1], c[2]});
   }
   soup.points = std::move(polygons.points);

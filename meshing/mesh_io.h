@@ -28,6 +28,8 @@ struct PolygonSoup {
   std::vector<std::size_t> offsets{0};
   std::size_t faces() const { return offsets.size() - 1; }
   std::size_t face_size(std::size_t f) const { return offsets[f + 1] - offsets[f]; }
+  //! The first of face f's face_size(f) vertex indices.
+  const std::size_t* face(std::size_t f) const { return corners.data() + offsets[f]; }
   //! The faces as index lists (what CGAL's polygon-soup functions take).
   std::vector<std::vector<std::size_t>> polygons() const;
 };

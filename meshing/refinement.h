@@ -87,10 +87,11 @@
 //! the other sheet, and the witnesses of VorEdge and TopoDisk, one at a time, drive the spacing
 //! down to the local gap: about π/g points for two unit spheres a gap g apart (Quality's, which
 //! break the pairs, then do the same).  A sample whose partner on the other sheet lies across the
-//! gap, near its mirror image, keeps its cell on its own side whatever the spacing.  So after a witness w of any row is inserted at distance d
-//! from its nearest sample, SurfaceLine searches the normal line of Σ at w within
-//! tolerances::opposite_sheet_reach·d of w, and the nearest other point y of Σ found there (if
-//! the search left nothing undecided) is inserted as well, provided |⟨n(w), n(y)⟩| ≥
+//! gap, near its mirror image, keeps its cell on its own side whatever the spacing.  So after a
+//! witness w of any row is inserted at distance d from its nearest sample, SurfaceLine searches
+//! the normal line of Σ at w within tolerances::opposite_sheet_reach·d of w, and the nearest
+//! other point y of Σ found there (if the search left nothing undecided) is inserted as well,
+//! provided |⟨n(w), n(y)⟩| ≥
 //! c = tolerances::opposite_sheet_min_cosine and every sample is at least
 //! s·|w − y| from y, s = tolerances::opposite_sheet_spacing.  y is logged with partner_of = w
 //! and counted as `opposite_sheet`, not as a witness of the check.

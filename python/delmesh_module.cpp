@@ -265,9 +265,7 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
         warn_all(plan.warnings);
       }
       result = run_on_worker(plan.options, [&](const DelMeshOptions& o) { return remesh(plan, o); }, progress);
-      nlohmann::json stats = result->statistics;
-      stats["seed"] = request.seed;
-      statistics = stats.dump();
+      statistics = run_statistics(*result, request.seed, std::nullopt).dump();
     } else {
       const MeshPlan plan = plan_mesh(request);
       {

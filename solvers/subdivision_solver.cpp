@@ -686,7 +686,6 @@ void refine_singular_regions(const CompiledSystem& system, const std::vector<dou
     });
   };
   std::vector<UndecidedBox> kept;
-  std::vector<CertifiedRoot> found;
   // Once one region stays undecided, the solve holds a true singular root or a curve of
   // solutions, whose other regions would cost the budget each and stay undecided too: they are
   // kept as they are.
@@ -707,11 +706,9 @@ void refine_singular_regions(const CompiledSystem& system, const std::vector<dou
       continue;
     }
     for (CertifiedRoot& r : again.roots)
-      if (!known(r)) found.push_back(std::move(r));
+      if (!known(r)) result.roots.push_back(std::move(r));
   }
   result.undecided = std::move(kept);
-  for (CertifiedRoot& r : found)
-    if (!known(r)) result.roots.push_back(std::move(r));
   if (result.undecided.empty()) result.status = SolveStatus::complete;
 }
 

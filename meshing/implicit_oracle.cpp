@@ -50,7 +50,8 @@ struct ImplicitOracle::Impl {
   // are computed only for the homotopy backend, the one that reads them.
   Impl(const Surface& s, bool with_degrees) : surface(s) {
     for (const PrimitiveInfo& row : primitive_registry()) {
-      primitives.emplace_back(row.build(s));
+      // The mesher's solves use TaylorForms::automatic: a form they would not use is not built.
+      primitives.emplace_back(row.build(s), PolynomialFormBuild::if_it_pays);
       const PrimitiveSystem& sys = primitives.back().system;
       std::vector<int> deg;
       if (with_degrees && s.is_polynomial() && sys.is_square()) {
@@ -64,8 +65,8 @@ struct ImplicitOracle::Impl {
     }
     if (s.is_polynomial()) line_polynomial = std::make_unique<LinePolynomial>(s);
     const std::vector<GiNaC::symbol> xyz{coordinate_x(), coordinate_y(), coordinate_z()};
-    gradient = std::make_unique<CompiledSystem>(std::vector<GiNaC::ex>{s.E()}, xyz,
-                                                std::vector<GiNaC::symbol>{});
+    gradient = std::make_unique<CompiledSystem>(std::vector<GiNaC::ex>{s.E()}, xyz, std::vector<GiNaC::symbol>{},
+                                                false, PolynomialFormBuild::never);
   }
 };
 

@@ -33,7 +33,8 @@ const std::vector<GiNaC::symbol>& unknowns() {
 // {E, ∂xE, ∂yE, ∂zE}: its values are E and ∇E, rows 1–3 of its Jacobian the Hessian of E.
 CompiledSystem gradient_system(const Surface& surface) {
   const auto& g = surface.gradient();
-  return CompiledSystem(std::vector<GiNaC::ex>{surface.E(), g[0], g[1], g[2]}, unknowns(), {});
+  return CompiledSystem(std::vector<GiNaC::ex>{surface.E(), g[0], g[1], g[2]}, unknowns(), {}, false,
+                        PolynomialFormBuild::never);
 }
 
 bool finite(const Interval& a) { return std::isfinite(a.inf()) && std::isfinite(a.sup()); }

@@ -71,9 +71,11 @@ PrimitiveQuery plane_query(const Box3& box, const Vec3& origin, const Orthonorma
   return q;
 }
 
-CompiledPrimitive::CompiledPrimitive(PrimitiveSystem s) : system(std::move(s)), compiled(system) {
+CompiledPrimitive::CompiledPrimitive(PrimitiveSystem s, PolynomialFormBuild forms)
+    : system(std::move(s)), compiled(system, false, forms) {
   if (!system.side_conditions.empty()) {
-    side_conditions = std::make_unique<CompiledSystem>(system.side_conditions, system.unknowns, system.parameters);
+    side_conditions = std::make_unique<CompiledSystem>(system.side_conditions, system.unknowns, system.parameters,
+                                                       false, PolynomialFormBuild::never);
   }
 }
 

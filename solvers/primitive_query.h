@@ -104,9 +104,9 @@ struct CompiledPrimitive {
   //! The side conditions compiled in the same unknowns and parameters; null if there are none.
   std::unique_ptr<CompiledSystem> side_conditions;
 
-  //! Compiles `system` (its Jacobian derived, as PrimitiveInfo::build returns it) and its side
-  //! conditions.
-  explicit CompiledPrimitive(PrimitiveSystem system);
+  //! Compiles `system` (its Jacobian derived, as PrimitiveInfo::build returns it), with its
+  //! monomial form as `forms` says, and its side conditions (only evaluated: no monomial form).
+  explicit CompiledPrimitive(PrimitiveSystem system, PolynomialFormBuild forms = PolynomialFormBuild::always);
 };
 
 //! Removes from result.roots every root on whose box (the certified box, in the unknowns) some

@@ -55,12 +55,8 @@ Interval determinant(std::size_t n, const Interval* a) {
 }
 
 bool use_taylor_forms(const CompiledSystem& system, TaylorForms choice) {
-  const PolynomialForm* form = system.polynomial_form();
-  if (!form || choice == TaylorForms::never) return false;
-  const double instructions = static_cast<double>(system.instruction_count());
-  return choice == TaylorForms::always ||
-         (instructions >= tolerances::taylor_form_instruction_ratio * static_cast<double>(form->n_coefficients()) &&
-          static_cast<double>(form->instruction_count()) <= instructions);
+  if (!system.polynomial_form() || choice == TaylorForms::never) return false;
+  return choice == TaylorForms::always || system.taylor_forms_pay();
 }
 
 class Subdivision {

@@ -49,7 +49,7 @@ GiNaC::matrix derive_jacobian(const std::vector<GiNaC::ex>& equations, const std
 
 }  // namespace
 
-CompiledSystem::CompiledSystem(const PrimitiveSystem& system, bool with_hessians)
+CompiledSystem::CompiledSystem(const PrimitiveSystem& system, bool with_hessians, PolynomialFormBuild forms)
     : n_unknowns_(system.n_unknowns()), n_parameters_(system.n_parameters()), n_equations_(system.n_equations()) {
   if (n_equations_ > 0 && n_unknowns_ > 0 &&
       (system.jacobian.rows() != n_equations_ || system.jacobian.cols() != n_unknowns_))
@@ -66,12 +66,12 @@ CompiledSystem::CompiledSystem(const PrimitiveSystem& system, bool with_hessians
         hessian_outputs(system.jacobian, system.unknowns, n_equations_), inputs);
   world_point_ = std::make_unique<detail::StraightLineProgram>(
       std::vector<GiNaC::ex>(system.world_point.begin(), system.world_point.end()), inputs);
-  polynomial_form_ = PolynomialForm::try_build(system.equations, system.unknowns, system.parameters,
-                                               tolerances::polynomial_form_max_terms);
+  build_polynomial_form(system.equations, system.unknowns, system.parameters, forms);
 }
 
 CompiledSystem::CompiledSystem(const std::vector<GiNaC::ex>& equations, const std::vector<GiNaC::symbol>& unknowns,
-                               const std::vector<GiNaC::symbol>& parameters, bool with_hessians)
+                               const std::vector<GiNaC::symbol>& parameters, bool with_hessians,
+                               PolynomialFormBuild forms)
     : n_unknowns_(unknowns.size()), n_parameters_(parameters.size()), n_equations_(equations.size()) {
   const std::vector<GiNaC::symbol> inputs = concatenate(unknowns, parameters);
   const GiNaC::matrix jacobian = derive_jacobian(equations, unknowns);
@@ -84,7 +84,26 @@ CompiledSystem::CompiledSystem(const std::vector<GiNaC::ex>& equations, const st
   if (n_unknowns_ >= 3)
     world_point_ = std::make_unique<detail::StraightLineProgram>(
         std::vector<GiNaC::ex>{unknowns[0], unknowns[1], unknowns[2]}, inputs);
+  build_polynomial_form(equations, unknowns, parameters, forms);
+}
+
+void CompiledSystem::build_polynomial_form(const std::vector<GiNaC::ex>& equations,
+                                           const std::vector<GiNaC::symbol>& unknowns,
+                                           const std::vector<GiNaC::symbol>& parameters, PolynomialFormBuild forms) {
+  if (forms == PolynomialFormBuild::never) return;
+  // instructions < ratio · (a lower bound on the coefficients) ≤ ratio · n_coefficients: the rule
+  // of taylor_forms_pay() fails whatever the form, so it need not be built.
+  const double instructions = static_cast<double>(instruction_count());
+  if (forms == PolynomialFormBuild::if_it_pays &&
+      instructions < tolerances::taylor_form_instruction_ratio *
+                         static_cast<double>(PolynomialForm::coefficient_lower_bound(equations, unknowns, parameters)))
+    return;
   polynomial_form_ = PolynomialForm::try_build(equations, unknowns, parameters, tolerances::polynomial_form_max_terms);
+  taylor_forms_pay_ =
+      polynomial_form_ &&
+      instructions >= tolerances::taylor_form_instruction_ratio * static_cast<double>(polynomial_form_->n_coefficients()) &&
+      static_cast<double>(polynomial_form_->instruction_count()) <= instructions;
+  if (forms == PolynomialFormBuild::if_it_pays && !taylor_forms_pay_) polynomial_form_.reset();
 }
 
 CompiledSystem::~CompiledSystem() = default;

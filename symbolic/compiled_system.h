@@ -37,11 +37,21 @@ class StraightLineProgram;
 }
 class PolynomialForm;
 
+//! Whether a CompiledSystem builds the monomial form of its equations (polynomial_form()).  The
+//! form costs a symbolic expansion of every equation, so systems that are only evaluated, or whose
+//! solves will not use Taylor forms, can go without it.
+enum class PolynomialFormBuild {
+  always,      //!< whenever the equations admit one (so that TaylorForms::always can use it)
+  if_it_pays,  //!< only when taylor_forms_pay() holds, i.e. when TaylorForms::automatic uses it
+  never        //!< never (a system that is evaluated, never solved)
+};
+
 class CompiledSystem {
  public:
   //! Compiles the equations, the Jacobian (and, if with_hessians, the Hessians of every equation
   //! with respect to the unknowns) and the world point of a primitive system.
-  explicit CompiledSystem(const PrimitiveSystem& system, bool with_hessians = false);
+  explicit CompiledSystem(const PrimitiveSystem& system, bool with_hessians = false,
+                          PolynomialFormBuild forms = PolynomialFormBuild::always);
 
   //! Compiles arbitrary expressions `equations` in `unknowns` and `parameters`; the Jacobian is
   //! derived here.  world_point() is then the identity on the first three unknowns when n ≥ 3
@@ -52,7 +62,8 @@ class CompiledSystem {
   //! an exponent is not an integer or half an odd integer, or a function other than exp, log,
   //! sin, cos (and sqrt, which GiNaC writes as a power) occurs.
   CompiledSystem(const std::vector<GiNaC::ex>& equations, const std::vector<GiNaC::symbol>& unknowns,
-                 const std::vector<GiNaC::symbol>& parameters, bool with_hessians = false);
+                 const std::vector<GiNaC::symbol>& parameters, bool with_hessians = false,
+                 PolynomialFormBuild forms = PolynomialFormBuild::always);
 
   ~CompiledSystem();
   CompiledSystem(CompiledSystem&&) noexcept;
@@ -65,9 +76,16 @@ class CompiledSystem {
   //! True iff world_point() is available (a primitive system, or n ≥ 3 unknowns).
   bool has_world_point() const { return static_cast<bool>(world_point_); }
   //! The monomial form of the equations (polynomial_form.h) when they are polynomial in n ≤ 3
-  //! unknowns and small enough (tolerances::polynomial_form_max_terms), else null.  Built by both
-  //! constructors; the subdivision solver uses it for Taylor forms.
+  //! unknowns and small enough (tolerances::polynomial_form_max_terms) and the constructor's
+  //! PolynomialFormBuild asked for it, else null.  The subdivision solver uses it for Taylor forms.
   const PolynomialForm* polynomial_form() const { return polynomial_form_.get(); }
+  //! True iff Taylor forms are expected to pay on this system, the rule of TaylorForms::automatic:
+  //! the form exists, the values+Jacobian program has at least tolerances::taylor_form_instruction_ratio
+  //! instructions per Taylor coefficient, and the coefficient program is no longer than it.
+  //! With PolynomialFormBuild::if_it_pays the form is skipped without being built when
+  //! PolynomialForm::coefficient_lower_bound() already shows the ratio too small, so the answer
+  //! is the same as with PolynomialFormBuild::always.
+  bool taylor_forms_pay() const { return taylor_forms_pay_; }
   //! Number of arithmetic instructions of the values+Jacobian program (a size measure for reports).
   std::size_t instruction_count() const;
 
@@ -92,6 +110,10 @@ class CompiledSystem {
   std::unique_ptr<detail::StraightLineProgram> hessians_;
   std::unique_ptr<detail::StraightLineProgram> world_point_;
   std::unique_ptr<PolynomialForm> polynomial_form_;
+  bool taylor_forms_pay_ = false;
+
+  void build_polynomial_form(const std::vector<GiNaC::ex>& equations, const std::vector<GiNaC::symbol>& unknowns,
+                             const std::vector<GiNaC::symbol>& parameters, PolynomialFormBuild forms);
 };
 
 // Explicitly instantiated in compiled_system.cpp for double, Interval, MpfrReal, MpfiInterval, Complex.

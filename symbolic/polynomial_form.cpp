@@ -8,6 +8,13 @@ std::size_t term_count(const GiNaC::ex& expanded) {
   return GiNaC::is_a<GiNaC::add>(expanded) ? expanded.nops() : 1;
 }
 
+//! The parameters q_k ↦ k + 2 (any numbers would do).
+GiNaC::exmap parameter_numbers(const std::vector<GiNaC::symbol>& parameters, std::size_t first) {
+  GiNaC::exmap numbers;
+  for (std::size_t i = first; i < parameters.size(); ++i) numbers[parameters[i]] = GiNaC::numeric(static_cast<long>(i + 2));
+  return numbers;
+}
+
 // True iff the expansion of the equations has more than max_terms terms in all, proved from a
 // cheaper expansion: with the parameters q_k, q_{k+1}, ... replaced by numbers (any will do; we
 // take 2, 3, 4, ...), every term of the full expansion (a constant times a monomial in the
@@ -19,9 +26,7 @@ std::size_t term_count(const GiNaC::ex& expanded) {
 bool specialisation_exceeds(const std::vector<GiNaC::ex>& equations, const std::vector<GiNaC::symbol>& parameters,
                             std::size_t max_terms) {
   for (std::size_t k = 1; k < parameters.size(); k *= 2) {
-    GiNaC::exmap numbers;
-    for (std::size_t i = k; i < parameters.size(); ++i)
-      numbers[parameters[i]] = GiNaC::numeric(static_cast<long>(i + 2));
+    const GiNaC::exmap numbers = parameter_numbers(parameters, k);
     std::size_t terms = 0;
     for (const GiNaC::ex& e : equations) {
       terms += term_count(e.subs(numbers).expand());
@@ -32,6 +37,36 @@ bool specialisation_exceeds(const std::vector<GiNaC::ex>& equations, const std::
 }
 
 }  // namespace
+
+std::size_t PolynomialForm::coefficient_lower_bound(const std::vector<GiNaC::ex>& equations,
+                                                    const std::vector<GiNaC::symbol>& unknowns,
+                                                    const std::vector<GiNaC::symbol>& parameters) {
+  const std::size_t n = unknowns.size();
+  if (n < 1 || n > MonomialBasis::max_unknowns) return 0;
+  GiNaC::lst unknown_list;
+  for (const auto& u : unknowns) unknown_list.append(u);
+  const GiNaC::exmap numbers = parameter_numbers(parameters, 0);
+  std::size_t bound = 0;
+  try {
+    for (const GiNaC::ex& e : equations) {
+      if (!e.is_polynomial(unknown_list)) return 0;
+      const GiNaC::ex special = e.subs(numbers).expand();
+      int degree = 0;
+      const std::size_t count = term_count(special);
+      for (std::size_t t = 0; t < count; ++t) {
+        const GiNaC::ex term = GiNaC::is_a<GiNaC::add>(special) ? special.op(t) : special;
+        int total = 0;
+        for (const auto& u : unknowns) total += term.degree(u);
+        degree = std::max(degree, total);
+      }
+      if (degree > 64) return 0;
+      bound += MonomialBasis(n, degree).size();
+    }
+  } catch (const std::exception&) {
+    return 0;  // e.g. GiNaC's division by zero
+  }
+  return bound;
+}
 
 std::unique_ptr<PolynomialForm> PolynomialForm::try_build(const std::vector<GiNaC::ex>& equations,
                                                           const std::vector<GiNaC::symbol>& unknowns,
@@ -90,7 +125,7 @@ PolynomialForm::PolynomialForm(std::size_t n, std::size_t n_parameters, std::vec
       n_parameters_(n_parameters),
       bases_(std::move(bases)),
       expressions_(std::move(expressions)),
-      program_(expressions_, {}, parameters) {
+      program_(expressions_, {}, parameters, false, PolynomialFormBuild::never) {
   offsets_.push_back(0);
   for (const MonomialBasis& b : bases_) offsets_.push_back(offsets_.back() + b.size());
 }

@@ -29,6 +29,18 @@ class PolynomialForm {
                                                    const std::vector<GiNaC::symbol>& parameters,
                                                    std::size_t max_terms);
 
+  //! A lower bound on n_coefficients() of try_build(equations, unknowns, parameters, ·) when that
+  //! form exists, found without the full expansion: with the parameters q_k replaced by numbers
+  //! (2, 3, 4, ...), each equation is expanded in the unknowns alone and its total degree d′_i
+  //! read off; the bound is Σ_i C(n + d′_i, n).  Proof: the expansion of a specialisation is the
+  //! specialisation of the full expansion, whose coefficients c_{i,α}(q) can only vanish there, so
+  //! d′_i ≤ d_i, and C(n + d, n), the size of the basis of degree d, grows with d.  Returns 0 when
+  //! the specialisation cannot be evaluated (a division by zero at these numbers) or an equation is
+  //! not polynomial in the unknowns (no form exists then anyway).
+  static std::size_t coefficient_lower_bound(const std::vector<GiNaC::ex>& equations,
+                                             const std::vector<GiNaC::symbol>& unknowns,
+                                             const std::vector<GiNaC::symbol>& parameters);
+
   std::size_t n_unknowns() const { return n_; }
   std::size_t n_equations() const { return bases_.size(); }
   std::size_t n_parameters() const { return n_parameters_; }

@@ -100,6 +100,47 @@ BOOST_AUTO_TEST_CASE(early_rejection_agrees_with_the_full_term_count) {
   BOOST_TEST(rejected >= 12);
 }
 
+// The bound from a specialised expansion never exceeds the form's coefficient count, and it is
+// exact where no coefficient vanishes at the numbers (every catalog primitive here).  With
+// PolynomialFormBuild::if_it_pays a system keeps a form exactly when taylor_forms_pay() holds, and
+// that answer is the one PolynomialFormBuild::always gives (a Kostlan system, where Taylor forms
+// pay, is among them).
+BOOST_AUTO_TEST_CASE(coefficient_lower_bound_and_the_forms_built_only_if_they_pay) {
+  int exact_bounds = 0, paying = 0, skipped = 0;
+  std::vector<Surface> surfaces;
+  for (const std::string name : {"torus", "genus2", "tanglecube", "thin_handle", "metaball"})
+    surfaces.push_back(catalog_entry(name).surface());
+  surfaces.push_back(Surface::parse("x^4+y^4+z^4+2*x^2*y^2*z^2-3*x*y*z+x^3-y^3+z^2*x-1"));
+  for (const Surface& surface : surfaces) {
+    for (const PrimitiveInfo& info : primitive_registry()) {
+      const PrimitiveSystem system = info.build(surface);
+      const std::size_t bound = PolynomialForm::coefficient_lower_bound(system.equations, system.unknowns,
+                                                                        system.parameters);
+      const CompiledSystem always(system, false, PolynomialFormBuild::always);
+      const CompiledSystem if_it_pays(system, false, PolynomialFormBuild::if_it_pays);
+      const CompiledSystem never(system, false, PolynomialFormBuild::never);
+      if (const PolynomialForm* form = always.polynomial_form()) {
+        BOOST_TEST(bound <= form->n_coefficients(), surface.text() << " " << info.name);
+        exact_bounds += bound == form->n_coefficients() ? 1 : 0;
+      }
+      BOOST_TEST(if_it_pays.taylor_forms_pay() == always.taylor_forms_pay(), surface.text() << " " << info.name);
+      BOOST_TEST(static_cast<bool>(if_it_pays.polynomial_form()) == always.taylor_forms_pay());
+      BOOST_TEST(!never.polynomial_form());
+      BOOST_TEST(!never.taylor_forms_pay());
+      paying += always.taylor_forms_pay() ? 1 : 0;
+      skipped += always.polynomial_form() && !if_it_pays.polynomial_form() ? 1 : 0;
+    }
+  }
+  BOOST_TEST(exact_bounds >= 20);
+  BOOST_TEST(paying >= 1);
+  BOOST_TEST(skipped >= 12);
+  // A coefficient that vanishes at the numbers: q·u² with q ↦ 2 keeps degree 2, (q − 2)·u² drops it.
+  GiNaC::symbol u("u"), q("q");
+  BOOST_TEST(PolynomialForm::coefficient_lower_bound({q * u * u + 1}, {u}, {q}) == 3u);
+  BOOST_TEST(PolynomialForm::coefficient_lower_bound({(q - 2) * u * u + u}, {u}, {q}) == 2u);
+  BOOST_TEST(PolynomialForm::coefficient_lower_bound({u / (q - 2)}, {u}, {q}) == 0u);  // division by zero
+}
+
 BOOST_AUTO_TEST_CASE(interval_coefficients_enclose_the_exact_ones) {
   const PrimitiveSystem system = silhouette_critical_system(catalog_entry("genus2").surface());
   const CompiledSystem compiled(system);

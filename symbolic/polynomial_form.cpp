@@ -8,6 +8,11 @@ std::size_t term_count(const GiNaC::ex& expanded) {
   return GiNaC::is_a<GiNaC::add>(expanded) ? expanded.nops() : 1;
 }
 
+//! Term t < term_count(expanded) of an expanded expression.
+GiNaC::ex term_at(const GiNaC::ex& expanded, std::size_t t) {
+  return GiNaC::is_a<GiNaC::add>(expanded) ? expanded.op(t) : expanded;
+}
+
 //! The parameters q_k ↦ k + 2 (any numbers would do).
 GiNaC::exmap parameter_numbers(const std::vector<GiNaC::symbol>& parameters, std::size_t first) {
   GiNaC::exmap numbers;
@@ -52,9 +57,8 @@ std::size_t PolynomialForm::coefficient_lower_bound(const std::vector<GiNaC::ex>
       if (!e.is_polynomial(unknown_list)) return 0;
       const GiNaC::ex special = e.subs(numbers).expand();
       int degree = 0;
-      const std::size_t count = term_count(special);
-      for (std::size_t t = 0; t < count; ++t) {
-        const GiNaC::ex term = GiNaC::is_a<GiNaC::add>(special) ? special.op(t) : special;
+      for (std::size_t t = 0; t < term_count(special); ++t) {
+        const GiNaC::ex term = term_at(special, t);
         int total = 0;
         for (const auto& u : unknowns) total += term.degree(u);
         degree = std::max(degree, total);
@@ -95,9 +99,8 @@ std::unique_ptr<PolynomialForm> PolynomialForm::try_build(const std::vector<GiNa
   for (const GiNaC::ex& e : expanded) {
     int degree = 0;
     std::vector<std::pair<MonomialBasis::Exponent, GiNaC::ex>> monomials;
-    const std::size_t count = GiNaC::is_a<GiNaC::add>(e) ? e.nops() : 1;
-    for (std::size_t t = 0; t < count; ++t) {
-      const GiNaC::ex term = GiNaC::is_a<GiNaC::add>(e) ? e.op(t) : e;
+    for (std::size_t t = 0; t < term_count(e); ++t) {
+      const GiNaC::ex term = term_at(e, t);
       MonomialBasis::Exponent alpha{};
       GiNaC::ex coefficient = term;
       int total = 0;

@@ -9,8 +9,9 @@ CheckResult facet_contact_witness(RestrictedDelaunay& restricted, const EdgeKey&
   auto& oracle = restricted.oracle();
   detail::WitnessCollector collector(CheckKind::facet_contact, pq[0], restricted.delaunay().point(pq[0]));
   if (!f.valid) {
-    // The facet checks of a degenerate facet are reported here, once.
-    collector.add_degenerate_facet(oracle, f);
+    // The facet checks of a degenerate facet are reported here, once; the gradient cone over
+    // the hull of its points settles both when it proves.
+    if (!(f.degenerate && restricted.facet_section_certified(pq))) collector.add_degenerate_facet(oracle, f);
     return collector.take();
   }
   if (restricted.facet_section_certified(pq)) return {};

@@ -15,8 +15,9 @@ namespace delmesh {
 //! if it lies in F (the one furthest from p = the smaller id, then the others as fall-backs).
 //! Nothing if every region of F is excluded.  A region whose projection fails or leaves F is
 //! unsettled (meshing/detail/candidates.h).  The facet frame is RestrictedDelaunay::facet(pq).
-//! A degenerate facet (numerically without area) is unsettled unless Σ is proved to miss it; it
-//! is reported here for both facet checks (FacetCycle skips it).
+//! A degenerate facet (numerically without area) is unsettled unless Σ is proved to miss it or
+//! the gradient cone proves it clean for both facet checks over the hull of its points
+//! (RestrictedDelaunay::facet_section_certified); it is reported here for both (FacetCycle skips it).
 CheckResult facet_contact_witness(RestrictedDelaunay& restricted, const EdgeKey& pq);
 
 }  // namespace delmesh

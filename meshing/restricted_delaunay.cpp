@@ -285,7 +285,7 @@ bool RestrictedDelaunay::facet_section_certified(const EdgeKey& e) {
 }
 
 bool RestrictedDelaunay::certify_section(const EdgeKey& e, const VoronoiFacet& f) const {
-  if (!f.valid) return false;
+  if (!f.valid && !f.degenerate) return false;
   // The in-plane part of ∇E at the midpoint of pq (the plane's origin before clipping): it
   // depends on p and q only, so a facet that shrinks keeps its direction (refinement.h).
   const Vec3 midpoint = 0.5 * (del_.point(e[0]) + del_.point(e[1]));
@@ -293,7 +293,12 @@ bool RestrictedDelaunay::certify_section(const EdgeKey& e, const VoronoiFacet& f
   const Vec3 m = normalized(f.normal);
   Vec3 w = g - dot(g, m) * m;
   if (!(norm(w) > 0)) w = f.a;
-  return oracle_.prove_gradient_cone(f.chart(), f.domain, normalized(w));
+  if (f.valid) return oracle_.prove_gradient_cone(f.chart(), f.domain, normalized(w));
+  // A degenerate facet lies in the bounding box of its polygon's points (VoronoiFacet), widened
+  // by the membership tolerance as its world box is (WitnessCollector::add_degenerate_facet).
+  const double margin = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
+  if (f.polygon.empty() || !(margin > 0)) return false;
+  return oracle_.prove_gradient_cone(f.chart(), f.polygon_hull(margin), normalized(w));
 }
 
 namespace {

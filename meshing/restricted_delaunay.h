@@ -132,7 +132,9 @@ class RestrictedDelaunay {
   const VoronoiFacet& facet(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>* ring = nullptr);
   //! Whether Σ ∩ F is proved to be a regular curve with no critical point in some in-plane
   //! direction (solvers/gradient_cone.h, with w the in-plane part of ∇E at the midpoint of pq): then
-  //! FacetContact and FacetCycle have no witness in F.  Computed once per facet.
+  //! FacetContact and FacetCycle have no witness in F.  For a degenerate facet (no area in
+  //! doubles) the cone is tried on VoronoiFacet::polygon_hull() widened by
+  //! face_membership_relative_tolerance · diag, which holds F.  Computed once per facet.
   bool facet_section_certified(const EdgeKey& e);
   //! The seeded rotation of the frame of facet e (generic in-plane direction d = a); attempt k > 0
   //! gives the k-th alternative rotation (attempt_seed()).

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/errors.h"
 #include "common/tolerances.h"
 #include "meshing/detail/convex_polytope.h"
 #include "meshing/detail/line_clip.h"
@@ -157,6 +158,18 @@ Vec3 VoronoiFacet::world(double u, double v) const { return origin + u * a + v *
 
 std::array<double, 2> VoronoiFacet::plane_coordinates(const Vec3& x) const {
   return {dot(x - origin, a), dot(x - origin, b)};
+}
+
+Domain VoronoiFacet::polygon_hull(double margin) const {
+  if (polygon.empty()) throw PreconditionViolation("VoronoiFacet::polygon_hull: the facet has no points");
+  std::vector<std::array<double, 2>> bounds(2, {std::numeric_limits<double>::infinity(),
+                                                -std::numeric_limits<double>::infinity()});
+  for (const auto& w : polygon)
+    for (int j = 0; j < 2; ++j) {
+      bounds[j][0] = std::min(bounds[j][0], w[j] - margin);
+      bounds[j][1] = std::max(bounds[j][1], w[j] + margin);
+    }
+  return Domain::from_box(std::move(bounds));
 }
 
 bool VoronoiFacet::contains(double u, double v, double tolerance) const {

@@ -85,6 +85,10 @@ struct VoronoiFacet {
   AffineChart chart() const { return AffineChart{origin, {a, b}}; }
   //! (u, v) of the orthogonal projection of x onto Π.
   std::array<double, 2> plane_coordinates(const Vec3& x) const;
+  //! The bounding box in (u, v) of `polygon`, widened by `margin` on every side, without
+  //! half-planes: for a degenerate facet, a domain that holds F (up to the rounding the margin
+  //! covers).  Throws PreconditionViolation if the polygon is empty.
+  Domain polygon_hull(double margin) const;
   //! Whether (u, v) lies in F up to `tolerance` (absolute, world units).
   bool contains(double u, double v, double tolerance) const;
 };

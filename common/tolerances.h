@@ -301,12 +301,18 @@ inline constexpr int generic_choice_attempts = 3;
 //! facet's vertices (RestrictedDelaunay::facet_misses_surface): the box, then halves of its widest
 //! side.  Each is one interval evaluation of E, far cheaper than building the facet.
 inline constexpr std::size_t facet_miss_box_budget = 8;
-//! Box budget of one gradient-cone certificate (solvers/gradient_cone.h) over a Voronoi facet or
-//! cell; the full solvers run when it does not suffice.  A failed certificate costs the whole
-//! budget, a solve it spares costs more: on genus2 at size bound 0.05, raising the budget from 48
-//! to 192 cuts the SilhouetteCritical solves from 857 to 339 and the time of the run by about a
-//! fifth (torus: 1175 to 101 solves, about a tenth), with the same meshes.
+//! Box budget of one gradient-cone certificate (solvers/gradient_cone.h) over a Voronoi facet;
+//! the full solvers run when it does not suffice.  A failed certificate costs the whole budget,
+//! a solve it spares costs more: on genus2 at size bound 0.05, raising the budget from 48 to 192
+//! cuts the SilhouetteCritical solves from 857 to 339 and the time of the run by about a fifth
+//! (torus: 1175 to 101 solves, about a tenth), with the same meshes.
 inline constexpr std::size_t gradient_cone_box_budget = 192;
+//! The same over a Voronoi cell (Silhouette).  The cells of the topology phase are large, and the
+//! SilhouetteCritical solve a failed certificate leads to costs about five times as much per box
+//! (three equations, second derivatives) as the certificate: on genus2 at size bound 0.05, 1024
+//! instead of 192 cuts those solves from 335 to 74 and the run's instructions by 18 %, with the
+//! same mesh (torus at 0.05: 102 to 22 solves, the same mesh, no change in time).
+inline constexpr std::size_t gradient_cone_cell_box_budget = 1024;
 //! Interval subdivision of a box face to certify E ≠ 0 on it: maximal depth of the quadtree.
 inline constexpr int box_face_max_depth = 14;
 //! Input validation (meshing/input_validation.h): a box of the regularity check narrower than this

@@ -219,7 +219,9 @@ SolveResult ImplicitOracle::silhouette_critical(const Vec3& d, const Vec3& d2, c
 
 bool ImplicitOracle::prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) {
   const auto start = std::chrono::steady_clock::now();
-  const auto r = delmesh::prove_gradient_cone(*impl_->gradient, chart, domain, w, tolerances::gradient_cone_box_budget);
+  const std::size_t budget = domain.dimension() == 3 ? tolerances::gradient_cone_cell_box_budget
+                                                     : tolerances::gradient_cone_box_budget;
+  const auto r = delmesh::prove_gradient_cone(*impl_->gradient, chart, domain, w, budget);
   const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
   ++cone_stats_.attempts;
   cone_stats_.proved += r.proved ? 1 : 0;

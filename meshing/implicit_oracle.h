@@ -106,7 +106,9 @@ class ImplicitOracle final : public SurfaceOracle {
                     std::size_t box_budget) override;
 
   //! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P, P = domain in the chart (solvers/gradient_cone.h):
-  //! true is a proof, false proves nothing.  Counted under `cone_certificates`.
+  //! true is a proof, false proves nothing.  Within tolerances::gradient_cone_cell_box_budget
+  //! boxes over a 3-D domain (a Voronoi cell), tolerances::gradient_cone_box_budget over a facet.
+  //! Counted under `cone_certificates`.
   bool prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) override;
   //! The proved sign of ⟨∇E, w⟩ on the segment [a, b], or 0 (solvers/gradient_cone.h).
   int gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const override;

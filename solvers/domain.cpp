@@ -48,6 +48,16 @@ double Domain::scale() const {
 }
 
 DomainSide classify(const Domain& domain, const Interval* box) {
+  std::uint64_t active = all_half_spaces_active(domain);
+  return classify(domain, box, active);
+}
+
+std::uint64_t all_half_spaces_active(const Domain& domain) {
+  const std::size_t k = std::min(domain.half_spaces.size(), classify_mask_bits);
+  return k == classify_mask_bits ? ~std::uint64_t{0} : (std::uint64_t{1} << k) - 1;
+}
+
+DomainSide classify(const Domain& domain, const Interval* box, std::uint64_t& active) {
   const std::size_t n = domain.dimension();
   bool inside = true;
   for (std::size_t i = 0; i < n; ++i) {
@@ -55,11 +65,21 @@ DomainSide classify(const Domain& domain, const Interval* box) {
     if (box[i].inf() > hi || box[i].sup() < lo) return DomainSide::outside;
     if (!(box[i].inf() > lo && box[i].sup() < hi)) inside = false;
   }
-  for (const HalfSpace& h : domain.half_spaces) {
+  const std::size_t count = domain.half_spaces.size();
+  std::uint64_t contained = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const bool masked = i < classify_mask_bits;
+    if (masked && !(active >> i & 1)) continue;
+    const HalfSpace& h = domain.half_spaces[i];
     const Interval s = detail::half_space_excess(h.normal.data(), h.offset, box, n);
     if (s.inf() > 0) return DomainSide::outside;
-    if (!(s.sup() < 0)) inside = false;
+    if (s.sup() < 0) {
+      if (masked) contained |= std::uint64_t{1} << i;
+    } else {
+      inside = false;
+    }
   }
+  active &= ~contained;
   return inside ? DomainSide::inside : DomainSide::boundary;
 }
 

@@ -3,6 +3,7 @@
 //! Solver domains: an axis-aligned box in the unknowns intersected with half-spaces, i.e. a convex
 //! polytope (a Voronoi facet polygon in plane coordinates (u, v); a clipped Voronoi cell in x, y, z).
 
+#include <cstdint>
 #include <ostream>
 #include <vector>
 
@@ -51,5 +52,18 @@ inline std::ostream& operator<<(std::ostream& out, DomainSide side) { return wri
 //! evaluated in interval arithmetic.  Precondition: a RoundingGuard is alive.  Rigorous: inside
 //! and outside are proofs; boundary means undecided.
 DomainSide classify(const Domain& domain, const Interval* box);
+
+//! Half-spaces whose test classify(domain, box, active) can skip: bit i stands for
+//! domain.half_spaces[i], i < this; half-spaces beyond it are tested every time.
+inline constexpr std::size_t classify_mask_bits = 64;
+
+//! classify() for a sub-box of a box already classified: bit i of `active` clear means that
+//! half-space i strictly contains an enclosing box, hence this one (a half-space that strictly
+//! contains a box strictly contains each of its sub-boxes), and it is not evaluated again.  The
+//! bits of the half-spaces proved to contain `box` strictly are cleared, for its sub-boxes.
+//! Start a subdivision with all_half_spaces_active(domain).  The answer is classify()'s.
+DomainSide classify(const Domain& domain, const Interval* box, std::uint64_t& active);
+//! The mask of classify() with every half-space to be tested.
+std::uint64_t all_half_spaces_active(const Domain& domain);
 
 }  // namespace delmesh

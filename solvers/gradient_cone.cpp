@@ -1,6 +1,7 @@
 #include "solvers/gradient_cone.h"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "common/errors.h"
 #include "symbolic/scalar_traits.h"
@@ -25,13 +26,15 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
   RoundingGuard guard;
   GradientConeResult result;
   // A box with whether it is known to lie inside P (then so do its halves: classify() is not
-  // asked again).
+  // asked again), and the half-spaces not yet known to contain it (classify()'s mask).
   struct Box {
     std::array<Interval, 3> u;
     bool inside = false;
+    std::uint64_t active = 0;
   };
   std::vector<Box> stack(1);
   stack.reserve(64);
+  stack[0].active = all_half_spaces_active(domain);
   for (std::size_t j = 0; j < n; ++j) stack[0].u[j] = Interval(domain.box.bounds[j][0], domain.box.bounds[j][1]);
   // The world enclosure of chart points: origin + Σ_j u_j c_j, with u_j an interval or a point.
   auto to_world = [&](const Interval* u, Interval* x) {
@@ -46,7 +49,8 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     if (result.boxes >= box_budget) return result;
     ++result.boxes;
     const auto& u = box.u;
-    const DomainSide side = box.inside ? DomainSide::inside : classify(domain, u.data());
+    std::uint64_t active = box.active;
+    const DomainSide side = box.inside ? DomainSide::inside : classify(domain, u.data(), active);
     if (side == DomainSide::outside) continue;  // (i)
     Interval x[3], value, gradient[3];
     to_world(u.data(), x);
@@ -72,7 +76,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
           if (u[j].sup() - u[j].inf() > u[widest].sup() - u[widest].inf()) widest = j;
         const double lo = u[widest].inf(), hi = u[widest].sup(), mid = 0.5 * (lo + hi);
         if (!(lo < mid && mid < hi)) return result;
-        Box left{u, side == DomainSide::inside}, right = left;
+        Box left{u, side == DomainSide::inside, active}, right = left;
         left.u[widest] = Interval(lo, mid);
         right.u[widest] = Interval(mid, hi);
         stack.push_back(right);

@@ -15,7 +15,8 @@
 //!  (ii)  0 ∉ E(X) ∩ [E(c) + Σ_j ⟨∇E(X), c_j⟩ (U_j − u_c,j)]  (natural and mean-value forms,
 //!        c the box centre): then U contains no point of Σ, or
 //!  (iii) 0 ∉ ⟨∇E(X), w⟩: then the functional is non-zero on all of U.
-//! (A half of a box that classify() proved inside P is inside P: (i) is not tested again on it.)
+//! (A half of a box that classify() proved inside P is inside P: (i) is not tested again on it;
+//! nor, on a half, a half-space proved to contain the whole box strictly: classify()'s mask.)
 //! A box that none of these drops is bisected along its widest side; when the budget or the depth
 //! runs out the certificate fails.  Proof: every point of Σ ∩ P lies in some box of the final
 //! cover that was not dropped by (i) or (ii), i.e. one dropped by (iii), where the functional is

@@ -140,6 +140,46 @@ struct Plane {
   }
 };
 
+// The height ⟨x, a⟩ of the exact crossing x of the segment PQ with the plane through the double
+// points p0, p1, p2, in the number type NT: x = P + s (Q − P), s = h(P) / (h(P) − h(Q)) with
+// h(X) = det(p1 − p0, p2 − p0, X − p0).  Precondition: P and Q lie on different sides under the
+// perturbation, so h(P) ≠ h(Q) exactly (an enclosure of the denominator may still hold 0).
+template <class NT>
+NT crossing_height(const Plane& plane, const Vec3& P, const Vec3& Q, const Vec3& a) {
+  const Vec3 o = vec(plane.p0), o1 = vec(plane.p1), o2 = vec(plane.p2);
+  NT u[3], v[3], dp[3], dq[3];
+  for (int k = 0; k < 3; ++k) {
+    u[k] = NT(o1[k]) - NT(o[k]);
+    v[k] = NT(o2[k]) - NT(o[k]);
+    dp[k] = NT(P[k]) - NT(o[k]);
+    dq[k] = NT(Q[k]) - NT(o[k]);
+  }
+  const NT n0 = u[1] * v[2] - u[2] * v[1], n1 = u[2] * v[0] - u[0] * v[2], n2 = u[0] * v[1] - u[1] * v[0];
+  const NT hp = n0 * dp[0] + n1 * dp[1] + n2 * dp[2], hq = n0 * dq[0] + n1 * dq[1] + n2 * dq[2];
+  const NT t = hp / (hp - hq);
+  NT height = 0;
+  for (int k = 0; k < 3; ++k) {
+    const NT x = NT(P[k]) + t * (NT(Q[k]) - NT(P[k]));
+    height += x * NT(a[k]);
+  }
+  return height;
+}
+
+// The exact sign of ⟨x_e − x_f, a⟩ for the crossings x_e, x_f of the mesh segments e = e0 e1 and
+// f = f0 f1 with the plane (crossing_height's precondition on both).
+int crossing_height_sign(const Plane& plane, const Vec3& e0, const Vec3& e1, const Vec3& f0, const Vec3& f1,
+                         const Vec3& a) {
+  {
+    CGAL::Protect_FPU_rounding<true> guard;
+    using I = CGAL::Interval_nt_advanced;
+    const I difference = crossing_height<I>(plane, e0, e1, a) - crossing_height<I>(plane, f0, f1, a);
+    if (const int sign = interval_sign(difference); sign != 2) return sign;
+  }
+  using Q = CGAL::Exact_rational;
+  const Q difference = crossing_height<Q>(plane, e0, e1, a) - crossing_height<Q>(plane, f0, f1, a);
+  return static_cast<int>(CGAL::sign(difference));
+}
+
 // A plane section: per crossing mesh edge, its point and its neighbours along the section.
 struct SectionGraph {
   using Edge = std::pair<int, int>;
@@ -454,9 +494,14 @@ SolveResult MeshOracle::curve_critical(const Vec3& o, const Vec3& a, const Vec3&
     if (neighbours.size() != 2) continue;  // its other face is outside F's bounding box
     const Vec3& x = at.at(e);
     const auto uv = plane.uv(x);
-    if (!in_domain(domain, uv, 0)) continue;
-    const double u0 = dot(at.at(neighbours[0]) - o, a), u1 = dot(at.at(neighbours[1]) - o, a);
-    if ((u0 >= uv[0] && u1 >= uv[0]) || (u0 <= uv[0] && u1 <= uv[0])) result.roots.push_back(point_root(uv, x));
+    if (!in_domain(domain, uv, m.face_margin)) continue;
+    // The heights of the neighbours relative to e's, exactly (a tie counts both ways).
+    auto relative_height = [&](const SectionGraph::Edge& g) {
+      return crossing_height_sign(plane, m.points[g.first], m.points[g.second], m.points[e.first],
+                                  m.points[e.second], a);
+    };
+    const int s0 = relative_height(neighbours[0]), s1 = relative_height(neighbours[1]);
+    if ((s0 >= 0 && s1 >= 0) || (s0 <= 0 && s1 <= 0)) result.roots.push_back(point_root(uv, x));
   }
   return finish(curve_index, std::move(result), start);
 }

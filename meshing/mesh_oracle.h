@@ -41,7 +41,10 @@
 //!    unperturbed section is not a 1-manifold.
 //!  - curve_critical(o, a, b, F): the section Σ ∩ Π is a set of polylines whose vertices are the
 //!    crossings of mesh edges with Π; the roots are the polyline vertices inside F that are local
-//!    extrema of ⟨x, a⟩ along their polyline (compared on the constructed points).  FacetCycle
+//!    extrema of ⟨x, a⟩ along their polyline, inside F up to the face-membership tolerance.
+//!    The heights are compared exactly: those of the exact crossings of the mesh edges with the
+//!    plane through o, o + a, o + b (interval arithmetic, exact rationals when the sign is not
+//!    certain), and a tie counts as an extremum both ways.  FacetCycle
 //!    then runs the paper's line test through them (facet_cycle.h): a closed polyline inside F
 //!    has such a vertex, and the line through it in direction a meets the polyline twice.
 //!  - silhouette_plane(o, a, b, d, F): the silhouette J_d is the set of mesh edges whose two faces

@@ -202,6 +202,30 @@ BOOST_AUTO_TEST_CASE(a_torus_sliced_through_its_hole_gives_two_closed_polylines)
   BOOST_TEST(rings.size() == 2u);
 }
 
+BOOST_AUTO_TEST_CASE(section_extrema_are_decided_on_the_exact_crossings) {
+  // A tetrahedron cut by the plane x = 0 into a quadrilateral section whose corners are the
+  // crossings of the edges A1B1, A2B1, A2B2, A1B2 (A at x = −1, B at x = 1).  Exactly, the heights
+  // y are (y_A + y_B)/2, so A1B1 is the lowest corner (y_A1 < y_A2).  In doubles, each crossing is
+  // y_A + (y_B − y_A)/2 with y_B − y_A rounded, which puts A2B1 below A1B1 by 1.1e-16.
+  const double ya1 = 0x1.4p-52, ya2 = 0x1.44p-52;
+  BOOST_TEST_REQUIRE(ya2 + 0.5 * (1 - ya2) < ya1 + 0.5 * (1 - ya1));  // the rounding this test is about
+  const SurfaceMesh tetrahedron =
+      mesh_of({{-1, ya1, 0}, {-1, ya2, 0.5}, {1, 1, 0}, {1, 3, 0}}, {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}});
+  MeshOracle oracle(tetrahedron, Box3::cube(4));
+  const Domain facet = Domain::from_box({{-1, 4}, {-1, 1}});
+  const auto critical = oracle.curve_critical({0, 0, 0}, {0, 1, 0}, {0, 0, 1}, facet);
+  // The lowest corner A1B1 (y ≈ 0.5, z = 0) is an extremum; A2B1 (y ≈ 0.5, z = 0.25), between
+  // A1B1 and A2B2, is not.
+  bool lowest = false;
+  for (const auto& root : critical.roots) {
+    if (root.world[1] > 1) continue;  // A1B2 or A2B2, near y = 1.5
+    BOOST_TEST(root.world[2] == 0);
+    lowest = true;
+  }
+  BOOST_TEST(lowest);
+  BOOST_TEST(critical.undecided.empty());
+}
+
 BOOST_AUTO_TEST_CASE(a_silhouette_edge_inside_a_cell) {
   MeshOracle oracle(octahedron(), Box3::cube(2));
   // In a direction close to z the silhouette is the equator square.

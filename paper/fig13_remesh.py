@@ -33,7 +33,9 @@ def caption(name, column, points, row):
         text += f"\n{genus_text(row['input_genus'])}"
     elif row:
         same = "as the input" if row["topology_matches"] == 1 else "DIFFERS from the input"
-        text += f"\n{row['status']}, {genus_text(row['output_genus'])} ({same})"
+        genus = genus_text(row["output_genus"])
+        # A long genus text (a defect) gets a line of its own, so that the caption fits the panel.
+        text += f"\n{row['status']}, {genus} ({same})" if len(genus) < 20 else f"\n{row['status']}: {genus}\n({same})"
         details = []
         if column == "final":
             details.append(f"min angle {row['min_angle_deg']:.1f}°")

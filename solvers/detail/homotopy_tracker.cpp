@@ -628,8 +628,8 @@ class PathTracker {
 }  // namespace
 
 PathEndpoint HomotopyTracker::track(const std::vector<Complex>& start, const TrackerSettings& settings) const {
-  // Every primitive has at most three unknowns: one stack-sized tracker serves n = 1, 2, 3 (its
-  // sizes are dynamic up to the maximum), a heap-sized one anything larger.
+  // The built-in primitives have at most three unknowns: one stack-sized tracker serves
+  // n = 1, 2, 3 (its sizes are dynamic up to the maximum), a heap-sized one anything larger.
   if (degrees_.size() <= 3) return PathTracker<3>(f_, degrees_, parameters_, gamma_, patch_, settings).track(start);
   return PathTracker<Eigen::Dynamic>(f_, degrees_, parameters_, gamma_, patch_, settings).track(start);
 }

@@ -56,22 +56,30 @@ int interval_sign(const CGAL::Interval_nt_advanced& x) {
   return 2;  // not certain
 }
 
-// The exact sign of ⟨x − y, d⟩.
-int dot_difference_sign(const Vec3& x, const Vec3& y, const Vec3& d) {
+// The exact sign of a quantity that value(NT{}) computes in the number type NT from the input
+// doubles: in interval arithmetic first, and in exact rationals when the interval's sign is not
+// certain.  value must store every intermediate as an NT (expression templates must not outlive
+// their operands).
+template <class Value>
+int filtered_sign(Value&& value) {
   {
     CGAL::Protect_FPU_rounding<true> guard;
-    using I = CGAL::Interval_nt_advanced;
-    I s = 0;
-    for (int k = 0; k < 3; ++k) s += (I(x[k]) - I(y[k])) * I(d[k]);
-    if (const int sign = interval_sign(s); sign != 2) return sign;
+    if (const int sign = interval_sign(value(CGAL::Interval_nt_advanced())); sign != 2) return sign;
   }
-  using Q = CGAL::Exact_rational;
-  Q s = 0;
-  for (int k = 0; k < 3; ++k) {
-    const Q difference = Q(x[k]) - Q(y[k]);
-    s += difference * Q(d[k]);
-  }
-  return static_cast<int>(CGAL::sign(s));
+  return static_cast<int>(CGAL::sign(value(CGAL::Exact_rational())));
+}
+
+// The exact sign of ⟨x − y, d⟩.
+int dot_difference_sign(const Vec3& x, const Vec3& y, const Vec3& d) {
+  return filtered_sign([&](auto zero) {
+    using NT = decltype(zero);
+    NT s = 0;
+    for (int k = 0; k < 3; ++k) {
+      const NT difference = NT(x[k]) - NT(y[k]);
+      s += difference * NT(d[k]);
+    }
+    return s;
+  });
 }
 
 // ⟨(b − a) × (c − a), d⟩ in the number type NT (every intermediate stored as an NT, so that
@@ -87,12 +95,7 @@ NT facing_determinant(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d
 
 // The exact sign of ⟨(b − a) × (c − a), d⟩: how the triangle abc faces relative to d.
 int facing_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  {
-    CGAL::Protect_FPU_rounding<true> guard;
-    const int sign = interval_sign(facing_determinant<CGAL::Interval_nt_advanced>(a, b, c, d));
-    if (sign != 2) return sign;
-  }
-  return static_cast<int>(CGAL::sign(facing_determinant<CGAL::Exact_rational>(a, b, c, d)));
+  return filtered_sign([&](auto zero) { return facing_determinant<decltype(zero)>(a, b, c, d); });
 }
 
 // Whether the point u (unknowns of the domain) lies in the domain's box and half-spaces, up to tol.
@@ -169,15 +172,11 @@ NT crossing_height(const Plane& plane, const Vec3& P, const Vec3& Q, const Vec3&
 // f = f0 f1 with the plane (crossing_height's precondition on both).
 int crossing_height_sign(const Plane& plane, const Vec3& e0, const Vec3& e1, const Vec3& f0, const Vec3& f1,
                          const Vec3& a) {
-  {
-    CGAL::Protect_FPU_rounding<true> guard;
-    using I = CGAL::Interval_nt_advanced;
-    const I difference = crossing_height<I>(plane, e0, e1, a) - crossing_height<I>(plane, f0, f1, a);
-    if (const int sign = interval_sign(difference); sign != 2) return sign;
-  }
-  using Q = CGAL::Exact_rational;
-  const Q difference = crossing_height<Q>(plane, e0, e1, a) - crossing_height<Q>(plane, f0, f1, a);
-  return static_cast<int>(CGAL::sign(difference));
+  return filtered_sign([&](auto zero) {
+    using NT = decltype(zero);
+    const NT difference = crossing_height<NT>(plane, e0, e1, a) - crossing_height<NT>(plane, f0, f1, a);
+    return difference;
+  });
 }
 
 // A plane section: per crossing mesh edge, its point and its neighbours along the section.

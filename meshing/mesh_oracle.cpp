@@ -350,6 +350,46 @@ SolveResult MeshOracle::finish(int index, SolveResult result, std::chrono::stead
   return result;
 }
 
+namespace {
+
+// How the line through pa, pb meets Σ at a mesh vertex x strictly between them (collinear with
+// them exactly): it crosses, it touches, or it runs in the plane of a face of x's star.
+enum class VertexPassage { crosses, touches, in_face_plane };
+
+// Near x, Σ is the cone from x over the link polygon a_0 … a_{k−1} (cyclic), and the line's two
+// rays from x leave in the directions ±D, D = pb − pa.  Let χ(u) be 1 if the ray x + t·u
+// (small t > 0) runs inside the solid, else 0.  Seen along D, i.e. projected onto the plane
+// ⟂ D through x, the link becomes a closed polygon around the projection of x; its winding
+// number about that point is χ(D) − χ(−D) (crossing the cone changes χ by one, and the
+// projection sends the unit sphere minus ±D onto the punctured plane, keeping the angle about
+// the axis).  So the line crosses Σ at x iff the winding number is ±1, and touches iff it is 0.
+// It is counted by the signed crossings of a half-plane bounded by the line (through a point c
+// off the line): with y(w) = orientation(pa, pb, c, w) and the turn orientation(pa, pb, a_i,
+// a_{i+1}) — both exact — this is the crossing-number rule in the projected plane, with
+// y ≤ 0 / y > 0 as the two sides (a link vertex on the half-plane is not counted twice).  A turn
+// of zero means a_i, a_{i+1} and the line are coplanar: the line lies in the plane of the face
+// x a_i a_{i+1}, and nothing is decided.
+VertexPassage vertex_passage(const std::vector<Point3>& link, const Point3& pa, const Point3& pb) {
+  Point3 c = pa;
+  for (int k = 0; k < 3; ++k) {
+    c = Point3(pa.x() + (k == 0), pa.y() + (k == 1), pa.z() + (k == 2));
+    if (!CGAL::collinear(pa, pb, c)) break;
+  }
+  auto up = [&](const Point3& w) { return CGAL::orientation(pa, pb, c, w) == CGAL::POSITIVE; };
+  int winding = 0;
+  for (std::size_t i = 0; i < link.size(); ++i) {
+    const Point3& a = link[i];
+    const Point3& b = link[(i + 1) % link.size()];
+    const auto turn = CGAL::orientation(pa, pb, a, b);
+    if (turn == CGAL::COPLANAR) return VertexPassage::in_face_plane;
+    if (!up(a) && up(b) && turn == CGAL::POSITIVE) ++winding;
+    if (up(a) && !up(b) && turn == CGAL::NEGATIVE) --winding;
+  }
+  return winding != 0 ? VertexPassage::crosses : VertexPassage::touches;
+}
+
+}  // namespace
+
 SolveResult MeshOracle::surface_line(const Vec3& p, const Vec3& v, double t0, double t1) {
   const auto start = std::chrono::steady_clock::now();
   const Impl& m = *impl_;
@@ -422,7 +462,12 @@ SolveResult MeshOracle::surface_line(const Vec3& p, const Vec3& v, double t0, do
   for (int vtx : vertex_hits) {
     const Vec3& x = m.points[vtx];
     const double t = std::clamp(t0 + dot(x - A, B - A) / dot(B - A, B - A) * (t1 - t0), t0, t1);
-    result.undecided.push_back(point_region({t}, x, UndecidedReason::singular_root));
+    std::vector<Point3> link;
+    for (int w : m.link[vtx]) link.push_back(point(m.points[w]));
+    if (vertex_passage(link, pa, pb) == VertexPassage::crosses)
+      result.roots.push_back(point_root({t}, x));
+    else
+      result.undecided.push_back(point_region({t}, x, UndecidedReason::singular_root));
   }
   if (zero_at_t0) result.undecided.push_back(point_region({t0}, A, UndecidedReason::boundary_root));
   if (zero_at_t1) result.undecided.push_back(point_region({t1}, B, UndecidedReason::boundary_root));

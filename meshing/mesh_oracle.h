@@ -25,12 +25,15 @@
 //!
 //! The six primitives of §5.2 on a PL surface:
 //!  - surface_line(p, v, t0, t1): every point where the segment meets Σ.  A transversal crossing
-//!    of a face's interior, or of an edge whose two faces lie on opposite sides of the segment's
-//!    line, is a root (t and its world point).  A segment that meets an edge and touches without
-//!    crossing (both faces on the same side), or passes through a mesh vertex, is reported as an
-//!    undecided region with reason singular_root at that point — the analogue of a double root,
-//!    which the checks treat as a candidate witness.  A zero at t0 or t1 is boundary_root; a
-//!    segment lying in a face's plane and meeting the face is non_isolated.
+//!    of a face's interior, of an edge whose two faces lie on opposite sides of the segment's
+//!    line, or of a mesh vertex is a root (t and its world point).  At a vertex x the line
+//!    crosses iff the link of x, seen along the line, winds once around x (the two rays from x
+//!    then start on opposite sides of Σ), decided by exact orientations.  A segment that meets
+//!    an edge or a vertex and touches without crossing (both faces on the same side; a winding
+//!    number of zero) is reported as an undecided region with reason singular_root at that
+//!    point — the analogue of a double root, which the checks treat as a candidate witness.  A
+//!    zero at t0 or t1 is boundary_root; a segment lying in a face's plane and meeting the face
+//!    is non_isolated (and a vertex of that face on the segment stays singular_root).
 //!  - surface_critical(d, domain): the mesh vertices in the domain that are strict local minima
 //!    or maxima of the height ⟨x, d⟩ over their link (ties by index, above): every component has
 //!    at least two (its highest and lowest vertices), which is what Lemma 5.2's seeds need.

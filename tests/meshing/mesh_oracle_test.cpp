@@ -151,11 +151,20 @@ BOOST_AUTO_TEST_CASE(segments_through_a_cube_face_edge_and_vertex) {
     BOOST_TEST((r.undecided[0].reason == UndecidedReason::singular_root));
     BOOST_TEST(distance(r.undecided[0].world, Vec3{1, 1, 0.3}) < 1e-15);
   }
-  // Through the vertex (1, 1, 1): reported undecided at the vertex (a candidate witness).
+  // Through the vertex (1, 1, 1) into the cube: a crossing, at t = 1.
   {
     const auto r = oracle.surface_line({2, 2, 2}, {-1, -1, -1}, 0, 1.5);
+    BOOST_TEST(r.is_complete());
+    BOOST_TEST_REQUIRE(r.roots.size() == 1u);
+    BOOST_TEST((r.roots[0].world == Vec3{1, 1, 1}));
+    BOOST_TEST(r.roots[0].midpoint[0] == 1.0);
+  }
+  // Through the vertex (1, 1, 1) and away, outside on both sides: it touches (a candidate).
+  {
+    const auto r = oracle.surface_line({0, 2, 1.5}, {1, -1, -0.5}, 0, 2);
     BOOST_TEST(r.roots.empty());
     BOOST_TEST_REQUIRE(r.undecided.size() == 1u);
+    BOOST_TEST((r.undecided[0].reason == UndecidedReason::singular_root));
     BOOST_TEST((r.undecided[0].world == Vec3{1, 1, 1}));
   }
   // A zero at the segment's end, and the inside/outside sign.
@@ -200,6 +209,31 @@ BOOST_AUTO_TEST_CASE(a_torus_sliced_through_its_hole_gives_two_closed_polylines)
   // A horizontal plane through the hole: the outer and the inner circle.
   const auto rings = oracle.section({0, 0, 0.0123}, {1, 0, 0}, {0, 1, 0});
   BOOST_TEST(rings.size() == 2u);
+}
+
+BOOST_AUTO_TEST_CASE(lines_through_a_saddle_vertex_of_a_torus) {
+  // The vertex x of the inner equator at angle 0, where the mesh is saddle-shaped.
+  const double R = 2, r = 0.7;
+  const int n = 32, m = 16;
+  MeshOracle oracle(torus(R, r, n, m), Box3::cube(3));
+  const Vec3 x{R + r * std::cos(M_PI), 0, r * std::sin(M_PI)};
+  // Radially out of the hole into the tube: a crossing at x.
+  {
+    const auto line = oracle.surface_line({0.5, x[1], x[2]}, {1, 0, 0}, 0, 1.5 - 0.5);
+    BOOST_TEST(line.is_complete());
+    BOOST_TEST_REQUIRE(line.roots.size() == 1u);
+    BOOST_TEST((line.roots[0].world == x));
+  }
+  // Along the equator's tangent: inside the tube on both sides of x (the chords to the
+  // neighbouring meridians bend towards the axis), so the line touches from inside.
+  {
+    const auto line = oracle.surface_line({x[0], -0.3, x[2]}, {0, 1, 0}, 0, 0.6);
+    BOOST_TEST(line.roots.empty());
+    BOOST_TEST_REQUIRE(line.undecided.size() == 1u);
+    BOOST_TEST((line.undecided[0].reason == UndecidedReason::singular_root));
+    BOOST_TEST((line.undecided[0].world == x));
+    BOOST_TEST(oracle.value_sign({x[0], 0.2, x[2]}) == -1);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(section_extrema_are_decided_on_the_exact_crossings) {

@@ -38,7 +38,7 @@ struct ImplicitOracle::Impl {
   std::vector<CompiledPrimitive> primitives;  // in registry order
   std::vector<std::vector<int>> degrees;      // for homotopy (square polynomial systems), else empty
   std::unique_ptr<LinePolynomial> line_polynomial;
-  std::unique_ptr<CompiledSystem> gradient;  // E with its Jacobian = ∇E
+  std::unique_ptr<CompiledSystem> gradient;  // E with its Jacobian ∇E and its Hessian
   std::mutex statistics_mutex;                 // statistics updates from concurrent calls
   // The registry indices of the primitives with a method of their own.
   std::size_t surface_critical = registry_index("surface_critical"), surface_line = registry_index("surface_line"),
@@ -66,7 +66,7 @@ struct ImplicitOracle::Impl {
     if (s.is_polynomial()) line_polynomial = std::make_unique<LinePolynomial>(s);
     const std::vector<GiNaC::symbol> xyz{coordinate_x(), coordinate_y(), coordinate_z()};
     gradient = std::make_unique<CompiledSystem>(std::vector<GiNaC::ex>{s.E()}, xyz, std::vector<GiNaC::symbol>{},
-                                                false, PolynomialFormBuild::never);
+                                                true, PolynomialFormBuild::never);
   }
 };
 

@@ -25,6 +25,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
 
   RoundingGuard guard;
   GradientConeResult result;
+  const bool with_hessians = E.has_hessians();
   // A box with whether it is known to lie inside P (then so do its halves: classify() is not
   // asked again), and the half-spaces not yet known to contain it (classify()'s mask).
   struct Box {
@@ -60,14 +61,31 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     if (certainly_nonzero(functional)) continue;
     if (!certainly_nonzero(value)) {
       // (ii) mean-value form around the box centre.
-      Interval centre[3], centre_world[3], centre_value;
+      Interval centre[3], centre_world[3], centre_value, centre_gradient[3];
       for (std::size_t j = 0; j < n; ++j) centre[j] = Interval(CGAL::to_double(u[j]));
       to_world(centre, centre_world);
-      E.values<Interval>(centre_world, nullptr, &centre_value);
+      if (with_hessians)
+        E.values_and_jacobian<Interval>(centre_world, nullptr, &centre_value, centre_gradient);
+      else
+        E.values<Interval>(centre_world, nullptr, &centre_value);
       Interval mean_value = centre_value;
       for (std::size_t j = 0; j < n; ++j) {
         const auto& c = chart.columns[j];
         mean_value += (gradient[0] * c[0] + gradient[1] * c[1] + gradient[2] * c[2]) * (u[j] - centre[j]);
+      }
+      // (iii′) the functional's mean-value form, on a box that may meet Σ.
+      if (!certainly_nonzero(mean_value) && with_hessians) {
+        Interval hessian[9];
+        E.hessians<Interval>(x, nullptr, hessian);
+        Interval mean_functional = centre_gradient[0] * w[0] + centre_gradient[1] * w[1] + centre_gradient[2] * w[2];
+        for (std::size_t j = 0; j < n; ++j) {
+          const auto& c = chart.columns[j];
+          Interval slope(0);  // ⟨H(X) w, c_j⟩, the derivative of the functional along c_j
+          for (int k = 0; k < 3; ++k)
+            slope += (hessian[3 * k] * w[0] + hessian[3 * k + 1] * w[1] + hessian[3 * k + 2] * w[2]) * c[k];
+          mean_functional += slope * (u[j] - centre[j]);
+        }
+        if (certainly_nonzero(mean_functional)) continue;
       }
       if (!certainly_nonzero(mean_value)) {
         // Bisect along the widest side; a side that no longer splits ends the attempt.

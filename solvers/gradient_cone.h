@@ -14,7 +14,10 @@
 //!  (i)   it lies outside P (classify() proves it), or
 //!  (ii)  0 ∉ E(X) ∩ [E(c) + Σ_j ⟨∇E(X), c_j⟩ (U_j − u_c,j)]  (natural and mean-value forms,
 //!        c the box centre): then U contains no point of Σ, or
-//!  (iii) 0 ∉ ⟨∇E(X), w⟩: then the functional is non-zero on all of U.
+//!  (iii) 0 ∉ ⟨∇E(X), w⟩: then the functional is non-zero on all of U; or, when E was compiled
+//!        with Hessians and (ii) did not drop U, 0 ∉ ⟨∇E(c), w⟩ + Σ_j ⟨H(X) w, c_j⟩ (U_j − u_c,j)
+//!        (the functional's mean-value form: its gradient is H w, and X holds the segment from
+//!        c to every point of U).
 //! (A half of a box that classify() proved inside P is inside P: (i) is not tested again on it;
 //! nor, on a half, a half-space proved to contain the whole box strictly: classify()'s mask.)
 //! A box that none of these drops is bisected along its widest side; when the budget or the depth

@@ -71,6 +71,29 @@ BOOST_AUTO_TEST_CASE(planar_chart_section_of_a_facet) {
   BOOST_TEST(!prove_gradient_cone(E, chart, Domain::from_box({{-0.2, 0.2}, {0.8, 1.2}}), {1, 0, 0}, 500).proved);
 }
 
+BOOST_AUTO_TEST_CASE(hessians_decide_boxes_the_natural_form_cannot) {
+  // The torus E = (|x|² + R² − r²)² − 4R²(x² + y²), R = 1, r = 0.4, and w = (0.3, 0.2, 0.93): over
+  // the slab z ∈ [0.2, 0.5] (the top of the tube, whose normals lean less than 60° from e_z) the
+  // functional ⟨∇E, w⟩ keeps its sign on Σ.  Both forms prove it; the functional's mean-value
+  // form (E compiled with Hessians) needs fewer boxes.  A slab through the equator z = 0, where
+  // ⟨∇E, w⟩ vanishes on Σ (at four points of the two equator circles), is never proved.
+  const GiNaC::symbol &x = coordinate_x(), &y = coordinate_y(), &z = coordinate_z();
+  const GiNaC::ex s = x * x + y * y + z * z + GiNaC::numeric(84, 100);
+  const GiNaC::ex torus = s * s - 4 * (x * x + y * y);
+  const CompiledSystem natural({torus}, {x, y, z}, {});
+  const CompiledSystem centred({torus}, {x, y, z}, {}, true);
+  const std::array<double, 3> w{0.3, 0.2, 0.93};
+  const Domain top = cube(-1.5, 1.5, -1.5, 1.5, 0.2, 0.5);
+  const auto without = prove_gradient_cone(natural, AffineChart::identity(), top, w, 100000);
+  const auto with = prove_gradient_cone(centred, AffineChart::identity(), top, w, 100000);
+  BOOST_TEST(without.proved);
+  BOOST_TEST(with.proved);
+  BOOST_TEST(with.boxes < without.boxes);
+  const Domain across = cube(-1.5, 1.5, -1.5, 1.5, -0.1, 0.5);
+  for (const CompiledSystem* E : {&natural, &centred})
+    BOOST_TEST(!prove_gradient_cone(*E, AffineChart::identity(), across, w, 20000).proved);
+}
+
 BOOST_AUTO_TEST_CASE(misuse_throws) {
   const auto E = unit_sphere();
   AffineChart chart;

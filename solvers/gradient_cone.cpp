@@ -9,6 +9,13 @@
 
 namespace delmesh {
 
+namespace {
+
+// ⟨g, v⟩ for an interval vector g and a point vector v of ℝ³.
+Interval inner(const Interval* g, const std::array<double, 3>& v) { return g[0] * v[0] + g[1] * v[1] + g[2] * v[2]; }
+
+}  // namespace
+
 AffineChart AffineChart::identity() {
   AffineChart chart;
   chart.columns = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -56,51 +63,40 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     Interval x[3], value, gradient[3];
     to_world(u.data(), x);
     E.values_and_jacobian<Interval>(x, nullptr, &value, gradient);
-    // (iii) first: on most boxes that meet Σ the functional is what decides.
-    const Interval functional = gradient[0] * w[0] + gradient[1] * w[1] + gradient[2] * w[2];
-    if (certainly_nonzero(functional)) continue;
-    if (!certainly_nonzero(value)) {
-      // (ii) mean-value form around the box centre.
-      Interval centre[3], centre_world[3], centre_value, centre_gradient[3];
-      for (std::size_t j = 0; j < n; ++j) centre[j] = Interval(CGAL::to_double(u[j]));
-      to_world(centre, centre_world);
-      if (with_hessians)
-        E.values_and_jacobian<Interval>(centre_world, nullptr, &centre_value, centre_gradient);
-      else
-        E.values<Interval>(centre_world, nullptr, &centre_value);
-      Interval mean_value = centre_value;
-      for (std::size_t j = 0; j < n; ++j) {
-        const auto& c = chart.columns[j];
-        mean_value += (gradient[0] * c[0] + gradient[1] * c[1] + gradient[2] * c[2]) * (u[j] - centre[j]);
-      }
-      // (iii′) the functional's mean-value form, on a box that may meet Σ.
-      if (!certainly_nonzero(mean_value) && with_hessians) {
-        Interval hessian[9];
-        E.hessians<Interval>(x, nullptr, hessian);
-        Interval mean_functional = centre_gradient[0] * w[0] + centre_gradient[1] * w[1] + centre_gradient[2] * w[2];
-        for (std::size_t j = 0; j < n; ++j) {
-          const auto& c = chart.columns[j];
-          Interval slope(0);  // ⟨H(X) w, c_j⟩, the derivative of the functional along c_j
-          for (int k = 0; k < 3; ++k)
-            slope += (hessian[3 * k] * w[0] + hessian[3 * k + 1] * w[1] + hessian[3 * k + 2] * w[2]) * c[k];
-          mean_functional += slope * (u[j] - centre[j]);
-        }
-        if (certainly_nonzero(mean_functional)) continue;
-      }
-      if (!certainly_nonzero(mean_value)) {
-        // Bisect along the widest side; a side that no longer splits ends the attempt.
-        std::size_t widest = 0;
-        for (std::size_t j = 1; j < n; ++j)
-          if (u[j].sup() - u[j].inf() > u[widest].sup() - u[widest].inf()) widest = j;
-        const double lo = u[widest].inf(), hi = u[widest].sup(), mid = 0.5 * (lo + hi);
-        if (!(lo < mid && mid < hi)) return result;
-        Box left{u, side == DomainSide::inside, active}, right = left;
-        left.u[widest] = Interval(lo, mid);
-        right.u[widest] = Interval(mid, hi);
-        stack.push_back(right);
-        stack.push_back(left);
-      }
+    // (iii) first: on most boxes that meet Σ the functional is what decides; then (ii)'s
+    // natural form.
+    if (certainly_nonzero(inner(gradient, w)) || certainly_nonzero(value)) continue;
+    // (ii) mean-value form around the box centre.
+    Interval centre[3], centre_world[3], centre_value, centre_gradient[3];
+    for (std::size_t j = 0; j < n; ++j) centre[j] = Interval(CGAL::to_double(u[j]));
+    to_world(centre, centre_world);
+    if (with_hessians)
+      E.values_and_jacobian<Interval>(centre_world, nullptr, &centre_value, centre_gradient);
+    else
+      E.values<Interval>(centre_world, nullptr, &centre_value);
+    Interval mean_value = centre_value;
+    for (std::size_t j = 0; j < n; ++j) mean_value += inner(gradient, chart.columns[j]) * (u[j] - centre[j]);
+    if (certainly_nonzero(mean_value)) continue;
+    // (iii′) the functional's mean-value form, on a box that may meet Σ.
+    if (with_hessians) {
+      Interval hessian[9], hessian_w[3];  // H(X) and H(X) w, the functional's gradient
+      E.hessians<Interval>(x, nullptr, hessian);
+      for (int k = 0; k < 3; ++k) hessian_w[k] = inner(hessian + 3 * k, w);
+      Interval mean_functional = inner(centre_gradient, w);
+      for (std::size_t j = 0; j < n; ++j) mean_functional += inner(hessian_w, chart.columns[j]) * (u[j] - centre[j]);
+      if (certainly_nonzero(mean_functional)) continue;
     }
+    // Bisect along the widest side; a side that no longer splits ends the attempt.
+    std::size_t widest = 0;
+    for (std::size_t j = 1; j < n; ++j)
+      if (u[j].sup() - u[j].inf() > u[widest].sup() - u[widest].inf()) widest = j;
+    const double lo = u[widest].inf(), hi = u[widest].sup(), mid = 0.5 * (lo + hi);
+    if (!(lo < mid && mid < hi)) return result;
+    Box left{u, side == DomainSide::inside, active}, right = left;
+    left.u[widest] = Interval(lo, mid);
+    right.u[widest] = Interval(mid, hi);
+    stack.push_back(right);
+    stack.push_back(left);
   }
   result.proved = true;
   return result;
@@ -122,7 +118,7 @@ int gradient_functional_sign(const CompiledSystem& E, const std::array<double, 3
   Interval x[3], value, gradient[3];
   for (int k = 0; k < 3; ++k) x[k] = Interval(std::min(a[k], b[k]), std::max(a[k], b[k]));
   E.values_and_jacobian<Interval>(x, nullptr, &value, gradient);
-  return sign_of(gradient[0] * w[0] + gradient[1] * w[1] + gradient[2] * w[2]);
+  return sign_of(inner(gradient, w));
 }
 
 int value_sign(const CompiledSystem& E, const std::array<double, 3>& lo, const std::array<double, 3>& hi) {

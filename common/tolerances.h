@@ -317,6 +317,18 @@ inline constexpr std::size_t gradient_cone_box_budget = 192;
 //! instead of 192 cuts those solves from 335 to 74 and the run's instructions by 18 %, with the
 //! same mesh (torus at 0.05: 102 to 22 solves, the same mesh, no change in time).
 inline constexpr std::size_t gradient_cone_cell_box_budget = 1024;
+//! Facets from a cell certificate (RestrictedDelaunay::cell_certified()): a facet pq of a
+//! certified cell V_p follows from the cell when |⟨n_p, q − p⟩| / |q − p| is below the proof's
+//! slope.  The cover of V_p is refined (solvers/gradient_cone.h, SlopeRefinement) towards the
+//! largest of these values up to the cap, times the margin, within the box budget; facets beyond
+//! the cap (q across Σ from p, where the slope would have to approach 1) get their own cover.
+//! The attempt is made when p is inserted, for the facets of its new edges, with a cover budget
+//! that keeps a failure cheap (a failed attempt is not kept: Silhouette tries again later, with
+//! gradient_cone_cell_box_budget, on a cell that may have shrunk).
+inline constexpr double cell_slope_cap = 0.2;
+inline constexpr double cell_slope_margin = 1.05;
+inline constexpr std::size_t cell_slope_box_budget = 128;
+inline constexpr std::size_t cell_slope_cover_budget = 192;
 //! Interval subdivision of a box face to certify E ≠ 0 on it: maximal depth of the quadtree.
 inline constexpr int box_face_max_depth = 14;
 //! Input validation (meshing/input_validation.h): a box of the regularity check narrower than this

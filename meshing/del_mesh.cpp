@@ -171,7 +171,8 @@ void add_run_statistics(nlohmann::json& j, Refinement& refinement, const Surface
   j["edge_records"] = {{"solved", refinement.restricted().records_solved()},
                        {"restricted", refinement.restricted().records_restricted()}};
   j["voronoi_facets"] = {{"built", refinement.restricted().facets_built()},
-                         {"missing_surface", refinement.restricted().facets_missing_surface()}};
+                         {"missing_surface", refinement.restricted().facets_missing_surface()},
+                         {"certified_by_cell", refinement.restricted().facets_certified_by_cell()}};
   j["height_direction"] = seeds.height_direction;
   j["height_direction_attempts"] = seeds.attempts;
   j["seed_undecided"] = seeds.undecided;

@@ -218,16 +218,32 @@ SolveResult ImplicitOracle::silhouette_critical(const Vec3& d, const Vec3& d2, c
 }
 
 bool ImplicitOracle::prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) {
-  const auto start = std::chrono::steady_clock::now();
   const std::size_t budget = domain.dimension() == 3 ? tolerances::gradient_cone_cell_box_budget
                                                      : tolerances::gradient_cone_box_budget;
-  const auto r = delmesh::prove_gradient_cone(*impl_->gradient, chart, domain, w, budget);
+  return gradient_cone(chart, domain, w, budget, {}).proved;
+}
+
+double ImplicitOracle::gradient_cone_slope(const AffineChart& chart, const Domain& domain, const Vec3& w,
+                                           double target) {
+  return gradient_cone(chart, domain, w, tolerances::cell_slope_cover_budget, {target, tolerances::cell_slope_box_budget})
+      .slope;
+}
+
+GradientConeResult ImplicitOracle::gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w,
+                                                 std::size_t budget, const SlopeRefinement& refinement) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto r = delmesh::prove_gradient_cone(*impl_->gradient, chart, domain, w, budget, refinement);
   const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
   ++cone_stats_.attempts;
   cone_stats_.proved += r.proved ? 1 : 0;
   cone_stats_.boxes += r.boxes;
-  cone_stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return r.proved;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  cone_stats_.seconds += seconds;
+  if (!r.proved) {
+    cone_stats_.failed_boxes += r.boxes;
+    cone_stats_.failed_seconds += seconds;
+  }
+  return r;
 }
 
 int ImplicitOracle::gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const {
@@ -311,7 +327,9 @@ nlohmann::json ImplicitOracle::statistics_json() const {
   j["cone_certificates"] = {{"attempts", cone_stats_.attempts},
                             {"proved", cone_stats_.proved},
                             {"boxes", cone_stats_.boxes},
-                            {"seconds", cone_stats_.seconds}};
+                            {"seconds", cone_stats_.seconds},
+                            {"boxes_failed", cone_stats_.failed_boxes},
+                            {"seconds_failed", cone_stats_.failed_seconds}};
   j["backend"] = backend_ == SolverBackend::homotopy ? "homotopy" : "subdivision";
   return j;
 }

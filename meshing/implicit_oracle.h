@@ -110,6 +110,11 @@ class ImplicitOracle final : public SurfaceOracle {
   //! boxes over a 3-D domain (a Voronoi cell), tolerances::gradient_cone_box_budget over a facet.
   //! Counted under `cone_certificates`.
   bool prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) override;
+  //! The slope of that certificate, 0 if it fails (solvers/gradient_cone.h): within
+  //! tolerances::cell_slope_cover_budget boxes, refined towards `target` within
+  //! tolerances::cell_slope_box_budget more; counted likewise.
+  double gradient_cone_slope(const AffineChart& chart, const Domain& domain, const Vec3& w, double target) override;
+  bool bounds_cone_slopes() const override { return true; }
   //! The proved sign of ⟨∇E, w⟩ on the segment [a, b], or 0 (solvers/gradient_cone.h).
   int gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const override;
   //! The proved sign of E(x), or 0 if E(x) is zero up to rounding (solvers/gradient_cone.h).
@@ -157,9 +162,14 @@ class ImplicitOracle final : public SurfaceOracle {
   std::uint64_t seed_ = 1;
   std::optional<std::chrono::steady_clock::time_point> deadline_;
   std::vector<PrimitiveStatistics> stats_;
+  //! Cone certificates attempted, proved, their boxes and time; the boxes and time of the failed
+  //! ones (each of which leads to a full solve) apart.
+  //! The certificate within `budget` boxes, counted.
+  GradientConeResult gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w, std::size_t budget,
+                                   const SlopeRefinement& refinement);
   struct ConeStatistics {
-    std::size_t attempts = 0, proved = 0, boxes = 0;
-    double seconds = 0;
+    std::size_t attempts = 0, proved = 0, boxes = 0, failed_boxes = 0;
+    double seconds = 0, failed_seconds = 0;
   } cone_stats_;
 };
 

@@ -256,6 +256,15 @@ std::vector<VertexId> Refinement::prepare_new_edges(VertexId x, const std::vecto
     }
     new_edges.push_back({xq, std::move(thirds)});
   }
+  // V_x's certificate first: the facets of the new edges xq lie in V_x and may follow from it.
+  // Not while only the topology checks run: their cells are large and their certificates often
+  // fail, and a failure here would be paid again by Silhouette.
+  if (geometry_enabled_) {
+    std::vector<VertexId> facet_sites;
+    facet_sites.reserve(new_edges.size());
+    for (const auto& e : new_edges) facet_sites.push_back(e.first[0] == x ? e.first[1] : e.first[0]);
+    restricted_.cell_certified(x, facet_sites);
+  }
   restricted_.prepare_facets(new_edges, parallel_);
   for (const auto& e : new_edges) queue_edge(e.first);
   return neighbours;
@@ -269,6 +278,7 @@ void Refinement::remove(VertexId p) {
   del_.remove(p);
   ++seeds_deleted_;
   restricted_.forget(star, edges);
+  restricted_.forget_cell(p);
   restricted_.invalidate(around);
   queue_everything_within(around);
 }

@@ -173,12 +173,16 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
 void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>>& edges,
                                         const detail::ParallelFor& parallel) {
   std::vector<FacetEntry> built(edges.size());
+  std::vector<SectionProof> proofs(edges.size());
   parallel.run(edges.size(), [&](std::size_t i) {
     const auto& [e, ring] = edges[i];
     built[i].facet = voronoi_facet(del_, e, oracle_.box(), facet_rotation(e), &ring);
-    built[i].section_certified = certify_section(e, built[i].facet) ? 1 : 0;
+    proofs[i] = certify_section(e, built[i].facet);
   });
-  for (std::size_t i = 0; i < edges.size(); ++i) *facets_.try_emplace(edges[i].first).first = std::move(built[i]);
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    record_section(built[i].section_certified, proofs[i]);
+    *facets_.try_emplace(edges[i].first).first = std::move(built[i]);
+  }
   facets_built_ += edges.size();
 }
 
@@ -280,12 +284,83 @@ const VoronoiFacet& RestrictedDelaunay::facet(const EdgeKey& e, const std::vecto
 bool RestrictedDelaunay::facet_section_certified(const EdgeKey& e) {
   const VoronoiFacet& f = facet(e);
   auto& entry = *facets_.find(e);
-  if (entry.section_certified < 0) entry.section_certified = certify_section(e, f) ? 1 : 0;
+  if (entry.section_certified < 0) record_section(entry.section_certified, certify_section(e, f));
   return entry.section_certified == 1;
 }
 
-bool RestrictedDelaunay::certify_section(const EdgeKey& e, const VoronoiFacet& f) const {
-  if (!f.valid && !f.degenerate) return false;
+void RestrictedDelaunay::record_section(int& slot, SectionProof proof) {
+  slot = proof == SectionProof::none ? 0 : 1;
+  if (proof == SectionProof::by_cell) ++facets_certified_by_cell_;
+}
+
+bool RestrictedDelaunay::cell_certified(VertexId p, const std::vector<VertexId>& facet_sites) {
+  using State = CellCertificate::State;
+  if (static_cast<std::size_t>(p) >= cells_.size()) cells_.resize(static_cast<std::size_t>(p) + 1);
+  CellCertificate& c = cells_[p];
+  if (c.state == State::proved) return true;
+  if (c.state == State::failed && c.vertices == del_.size()) return false;
+  c = CellCertificate{};
+  const Vec3 n = oracle_.normal(del_.point(p));
+  if (!(norm(n) > 0)) return false;
+  // With facets to certify: the slope that certifies every facet pq a slope up to the cap can.
+  double target = 0;
+  for (VertexId q : facet_sites) {
+    const Vec3 m = del_.point(q) - del_.point(p);
+    const double along = std::abs(dot(m, n)) / norm(m);
+    if (along <= tolerances::cell_slope_cap) target = std::max(target, along);
+  }
+  target *= tolerances::cell_slope_margin;
+  // No facet would follow (or the oracle bounds no slopes): Silhouette's turn.
+  if (!facet_sites.empty() && (!(target > 0) || !oracle_.bounds_cone_slopes())) return false;
+  const VoronoiCell cell = voronoi_cell(del_, p, oracle_.box());
+  if (!cell.valid) return false;
+  if (target > 0) {
+    // For the facets, within the smaller budget; a failure is not kept.
+    const double slope = oracle_.gradient_cone_slope(AffineChart::identity(), cell.domain, n, target);
+    if (!(slope > 0)) return false;
+    c.state = State::proved;
+    c.w = n;
+    c.slope = slope;
+    return true;
+  }
+  if (oracle_.prove_gradient_cone(AffineChart::identity(), cell.domain, n)) {
+    c.state = State::proved;  // without a slope
+    return true;
+  }
+  c.state = State::failed;
+  c.vertices = del_.size();
+  return false;
+}
+
+void RestrictedDelaunay::forget_cell(VertexId p) {
+  if (static_cast<std::size_t>(p) < cells_.size()) cells_[p] = CellCertificate{};
+}
+
+namespace {
+
+//! Whether |⟨w, q − p⟩| / |q − p| < slope, with q − p and the quotient enclosed by intervals.
+bool plane_within_slope(const Vec3& w, const Vec3& p, const Vec3& q, double slope) {
+  RoundingGuard guard;
+  Interval m[3];
+  for (int k = 0; k < 3; ++k) m[k] = Interval(q[k]) - Interval(p[k]);
+  const Interval along = m[0] * w[0] + m[1] * w[1] + m[2] * w[2];
+  const Interval length = CGAL::sqrt(CGAL::square(m[0]) + CGAL::square(m[1]) + CGAL::square(m[2]));
+  if (!(length.inf() > 0)) return false;
+  return (CGAL::abs(along) / length).sup() < slope;
+}
+
+}  // namespace
+
+RestrictedDelaunay::SectionProof RestrictedDelaunay::certify_section(const EdgeKey& e, const VoronoiFacet& f) const {
+  if (!f.valid && !f.degenerate) return SectionProof::none;
+  const Vec3& p = del_.point(e[0]);
+  const Vec3& q = del_.point(e[1]);
+  for (VertexId v : e) {
+    if (static_cast<std::size_t>(v) >= cells_.size()) continue;
+    const CellCertificate& c = cells_[v];
+    if (c.state == CellCertificate::State::proved && plane_within_slope(c.w, p, q, c.slope))
+      return SectionProof::by_cell;
+  }
   // The in-plane part of ∇E at the midpoint of pq (the plane's origin before clipping): it
   // depends on p and q only, so a facet that shrinks keeps its direction (refinement.h).
   const Vec3 midpoint = 0.5 * (del_.point(e[0]) + del_.point(e[1]));
@@ -293,12 +368,13 @@ bool RestrictedDelaunay::certify_section(const EdgeKey& e, const VoronoiFacet& f
   const Vec3 m = normalized(f.normal);
   Vec3 w = g - dot(g, m) * m;
   if (!(norm(w) > 0)) w = f.a;
-  if (f.valid) return oracle_.prove_gradient_cone(f.chart(), f.domain, normalized(w));
+  auto proof = [](bool proved) { return proved ? SectionProof::by_cover : SectionProof::none; };
+  if (f.valid) return proof(oracle_.prove_gradient_cone(f.chart(), f.domain, normalized(w)));
   // A degenerate facet lies in the bounding box of its polygon's points (VoronoiFacet), widened
   // by the membership tolerance as its world box is (WitnessCollector::add_degenerate_facet).
   const double margin = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
-  if (f.polygon.empty() || !(margin > 0)) return false;
-  return oracle_.prove_gradient_cone(f.chart(), f.polygon_hull(margin), normalized(w));
+  if (f.polygon.empty() || !(margin > 0)) return SectionProof::none;
+  return proof(oracle_.prove_gradient_cone(f.chart(), f.polygon_hull(margin), normalized(w)));
 }
 
 namespace {
@@ -427,6 +503,7 @@ VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::a
 void RestrictedDelaunay::invalidate(const std::vector<VertexId>& vertices) {
   auto in = [&](VertexId v) { return std::binary_search(vertices.begin(), vertices.end(), v); };
   for (VertexId v : vertices) {
+    forget_cell(v);
     if (!del_.contains(v)) continue;
     for (const auto& t : del_.incident_triangles(v))
       if (t[0] == v && in(t[1]) && in(t[2])) erase_record(t);
@@ -445,6 +522,7 @@ void RestrictedDelaunay::shrink(const InsertionChange& change) {
     edges_.clear();
     stars_.clear();
     facets_.clear();
+    cells_.clear();
     return;
   }
   forget_destroyed(change);

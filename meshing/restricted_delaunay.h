@@ -135,7 +135,28 @@ class RestrictedDelaunay {
   //! FacetContact and FacetCycle have no witness in F.  For a degenerate facet (no area in
   //! doubles) the cone is tried on VoronoiFacet::polygon_hull() widened by
   //! face_membership_relative_tolerance · diag, which holds F.  Computed once per facet.
+  //!
+  //! The facet's own cover is not needed when the cell of p or of q is certified with a slope
+  //! (cell_certified()): F ⊆ V_p ∩ V_q, so a proof |⟨∇E, n_p⟩| ≥ ρ |∇E| on Σ ∩ V_p with
+  //! |⟨n_p, q − p⟩| / |q − p| < ρ (bounded by interval arithmetic; q − p is normal to F's plane)
+  //! is the certificate of F with the in-plane direction n_p − ⟨n_p, q − p⟩ (q − p) / |q − p|²
+  //! (the slope argument of solvers/gradient_cone.h).  It rests on what the cell's proof rests on:
+  //! that the cell's domain holds V_p ∩ B (voronoi_geometry.h), which the faces of one computed
+  //! diagram do up to tolerances::face_membership_relative_tolerance.  Counted
+  //! (facets_certified_by_cell()).
   bool facet_section_certified(const EdgeKey& e);
+  //! The Silhouette certificate of V_p (silhouette.h): the gradient cone with w = n_p =
+  //! ∇E(p)/|∇E(p)| over voronoi_cell(p), its slope kept.  A proof is kept until V_p may have grown
+  //! (invalidate() or forget_cell() of p, a non-local shrink()): insertions only shrink V_p, and a
+  //! proof over V_p holds on every subset of it.  A failure is kept while Del S has as many
+  //! vertices (it is not tried again on the same cell).  Returns whether a proof is kept now.
+  //! `facet_sites`: the q whose facets pq are to be certified from the cell; the cover is refined
+  //! (SlopeRefinement) towards the least slope that certifies those of them with
+  //! |⟨n_p, q − p⟩| / |q − p| ≤ tolerances::cell_slope_cap, within
+  //! tolerances::cell_slope_box_budget extra boxes.
+  bool cell_certified(VertexId p, const std::vector<VertexId>& facet_sites = {});
+  //! Forgets the cell certificate of p (before p is removed, or when V_p may grow).
+  void forget_cell(VertexId p);
   //! The seeded rotation of the frame of facet e (generic in-plane direction d = a); attempt k > 0
   //! gives the k-th alternative rotation (attempt_seed()).
   double facet_rotation(const EdgeKey& e, int attempt = 0) const;
@@ -144,7 +165,7 @@ class RestrictedDelaunay {
   VoronoiFacet rotated_facet(const EdgeKey& e, int attempt) const;
 
   //! Forgets the cached record of every current Delaunay triangle and edge all of whose vertices
-  //! are in `vertices` (sorted ascending).
+  //! are in `vertices` (sorted ascending), and the cell certificates of those vertices.
   void invalidate(const std::vector<VertexId>& vertices);
   //! Forgets the records of these simplices (e.g. the star of a vertex about to be removed).
   void forget(const std::vector<TriangleKey>& triangles, const std::vector<EdgeKey>& edges);
@@ -157,6 +178,8 @@ class RestrictedDelaunay {
   //! Facets built, and facets proved to miss Σ without being built (statistics).
   std::size_t facets_built() const { return facets_built_; }
   std::size_t facets_missing_surface() const { return facets_missing_surface_; }
+  //! Facet certificates obtained from a certified cell (facet_section_certified()).
+  std::size_t facets_certified_by_cell() const { return facets_certified_by_cell_; }
 
   //! Restricted triangles incident to p (current Delaunay triangles only), ascending.
   std::vector<TriangleKey> star(VertexId p);
@@ -193,8 +216,13 @@ class RestrictedDelaunay {
   //! The same at a known slot whose previous record had restricted status `was_restricted`.
   const VoronoiEdgeRecord& assign(const TriangleKey& t, VoronoiEdgeRecord& slot, bool was_restricted,
                                   VoronoiEdgeRecord&& record, bool solved);
-  //! The gradient-cone certificate of facet_section_certified().  Thread-safe.
-  bool certify_section(const EdgeKey& e, const VoronoiFacet& f) const;
+  //! How the section of a facet was certified, if it was.
+  enum class SectionProof : signed char { none, by_cell, by_cover };
+  //! The certificate of facet_section_certified(): from a certified cell of p or q, else the
+  //! gradient cone over F.  Thread-safe while no cell certificate is being added.
+  SectionProof certify_section(const EdgeKey& e, const VoronoiFacet& f) const;
+  //! Stores a facet's certificate and counts one obtained from a cell.
+  void record_section(int& slot, SectionProof proof);
   //! Keeps stars_ in step with a record of t whose restricted status went from `was` to `is`.
   void track(const TriangleKey& t, bool was_restricted, bool is_restricted);
   void erase_record(const TriangleKey& t);
@@ -211,7 +239,15 @@ class RestrictedDelaunay {
   };
   detail::FlatTable<2, FacetEntry> facets_;
   std::size_t records_solved_ = 0, records_restricted_ = 0;
-  std::size_t facets_built_ = 0, facets_missing_surface_ = 0;
+  std::size_t facets_built_ = 0, facets_missing_surface_ = 0, facets_certified_by_cell_ = 0;
+  //! cells_[p]: the kept cell certificate of p (cell_certified()).
+  struct CellCertificate {
+    enum class State : signed char { none, proved, failed } state = State::none;
+    Vec3 w{};                   //!< n_p, the cone's direction
+    double slope = 0;           //!< the proof's slope (0: none)
+    std::size_t vertices = 0;   //!< |S| when a failure was found
+  };
+  std::vector<CellCertificate> cells_;
   //! stars_[v]: the recorded restricted triangles containing v (in no particular order).
   std::vector<std::vector<TriangleKey>> stars_;
   bool every_triangle_recorded_ = false;

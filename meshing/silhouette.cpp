@@ -22,6 +22,8 @@ Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, cons
 CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool facets_clean, int attempt) {
   const auto& del = restricted.delaunay();
   auto& oracle = restricted.oracle();
+  // J_{n_p} ∩ V_p = ∅ proved by the kept or a new cell certificate: nothing to solve.
+  if (restricted.cell_certified(p)) return {};
   const Vec3& pp = del.point(p);
   WitnessCollector collector(CheckKind::silhouette, p, pp);
   const Vec3 n_p = oracle.normal(pp);
@@ -36,8 +38,6 @@ CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool 
     collector.add_unsettled(UnsettledReason::degenerate_face, pp);
     return collector.take();
   }
-  // J_{n_p} ∩ V_p = ∅ proved by the gradient cone (solvers/gradient_cone.h): nothing to solve.
-  if (oracle.prove_gradient_cone(AffineChart::identity(), cell.domain, n_p)) return {};
   const Vec3 d2 = silhouette_direction(restricted, p, n_p, attempt);
   collector.add_result(oracle, cell, oracle.silhouette_critical(n_p, d2, cell.domain));
   if (collector.points() > 0) return collector.take();

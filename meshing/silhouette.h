@@ -31,7 +31,8 @@ Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, cons
 //! Before each solve a gradient-cone certificate (solvers/gradient_cone.h, w = n_p) is tried on
 //! the domain: when it proves ⟨∇E, n_p⟩ ≠ 0 on Σ ∩ V_p (resp. Σ ∩ F), that domain holds no point
 //! of J_{n_p}, hence no root of SilhouetteCritical (resp. SilhouettePlane), and the solve is
-//! skipped.  The certificate proves what an empty solver answer would say, so no root is lost;
+//! skipped.  The cell's is RestrictedDelaunay::cell_certified(): a proof made over V_p when p was
+//! inserted holds for the current V_p, which can only have shrunk since.  The certificate proves what an empty solver answer would say, so no root is lost;
 //! only undecided regions (which it shows to hold no root) are not reported.
 //!
 //! attempt: which generic direction d′ SilhouetteCritical uses (silhouette_direction()).

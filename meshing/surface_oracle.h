@@ -82,6 +82,16 @@ class SurfaceOracle {
   //! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P, P = domain in the chart: true is a proof, false
   //! proves nothing (an implementation may never prove).
   virtual bool prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) = 0;
+  //! The same certificate with its slope (solvers/gradient_cone.h): a returned ρ > 0 is a proof
+  //! of |⟨∇E, w⟩| ≥ ρ |∇E| > 0 on Σ ∩ P (ρ = +∞: Σ ∩ P = ∅); 0 proves nothing.  The cover may be
+  //! refined to raise ρ towards `target` (SlopeRefinement).  The default, for an oracle that
+  //! bounds no slopes, returns 0.
+  virtual double gradient_cone_slope(const AffineChart& chart, const Domain& domain, const Vec3& w, double target) {
+    (void)chart, (void)domain, (void)w, (void)target;
+    return 0;
+  }
+  //! Whether gradient_cone_slope() can return a slope (false: it always returns 0).
+  virtual bool bounds_cone_slopes() const { return false; }
   //! The proved sign of ⟨∇E, w⟩ on the segment [a, b], or 0 (nothing proved).
   virtual int gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const = 0;
   //! The proved sign of E(x): −1 inside Σ, +1 outside, 0 on Σ or not decided.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 
 #include "common/errors.h"
 #include "symbolic/scalar_traits.h"
@@ -14,6 +15,21 @@ namespace {
 // ⟨g, v⟩ for an interval vector g and a point vector v of ℝ³.
 Interval inner(const Interval* g, const std::array<double, 3>& v) { return g[0] * v[0] + g[1] * v[1] + g[2] * v[2]; }
 
+// a ∩ b for two enclosures of the same real number (so it is not empty; b if rounding said so).
+Interval meet(const Interval& a, const Interval& b) {
+  const double lo = std::max(a.inf(), b.inf()), hi = std::min(a.sup(), b.sup());
+  return lo <= hi ? Interval(lo, hi) : b;
+}
+
+// A lower bound of min |φ| / max |g| over the enclosures φ ∌ 0 of ⟨∇E, w⟩ and g of ∇E on a box
+// (upward rounding: the quotient is taken as an interval and its lower end kept).
+double box_slope(const Interval& functional, const Interval* gradient) {
+  const double least = functional.inf() > 0 ? functional.inf() : -functional.sup();
+  const Interval norm_squared = CGAL::square(gradient[0]) + CGAL::square(gradient[1]) + CGAL::square(gradient[2]);
+  const double largest = CGAL::sqrt(norm_squared).sup();
+  return (Interval(least) / Interval(largest)).inf();
+}
+
 }  // namespace
 
 AffineChart AffineChart::identity() {
@@ -23,7 +39,8 @@ AffineChart AffineChart::identity() {
 }
 
 GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChart& chart, const Domain& domain,
-                                       const std::array<double, 3>& w, std::size_t box_budget) {
+                                       const std::array<double, 3>& w, std::size_t box_budget,
+                                       const SlopeRefinement& refinement) {
   const std::size_t n = domain.dimension();
   if (chart.columns.size() != n || n < 1 || n > 3)
     throw PreconditionViolation("prove_gradient_cone: the chart's columns must match the domain's dimension");
@@ -32,18 +49,41 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
 
   RoundingGuard guard;
   GradientConeResult result;
+  double slope = std::numeric_limits<double>::infinity();
   const bool with_hessians = E.has_hessians();
   // A box with whether it is known to lie inside P (then so do its halves: classify() is not
-  // asked again), and the half-spaces not yet known to contain it (classify()'s mask).
+  // asked again), and the half-spaces not yet known to contain it (classify()'s mask).  A
+  // refining box is a part of a box that (iii) dropped with slope bound `parent_slope`, split only
+  // to raise that bound: it is covered by its parent's decision, so it never fails (when no test
+  // drops it, the parent's bound stands for it), and it does not count against box_budget.
   struct Box {
     std::array<Interval, 3> u;
     bool inside = false;
+    bool refining = false;
+    double parent_slope = 0;
     std::uint64_t active = 0;
   };
+  std::size_t refining_boxes = 0, refining_created = 0;
   std::vector<Box> stack(1);
   stack.reserve(64);
   stack[0].active = all_half_spaces_active(domain);
   for (std::size_t j = 0; j < n; ++j) stack[0].u[j] = Interval(domain.box.bounds[j][0], domain.box.bounds[j][1]);
+  // Pushes the halves of `box` along its widest side (the lower one on top); false if it does
+  // not split.
+  auto split = [&](const Box& box, bool inside, std::uint64_t active, bool refining, double parent_slope) {
+    const auto& u = box.u;
+    std::size_t widest = 0;
+    for (std::size_t j = 1; j < n; ++j)
+      if (u[j].sup() - u[j].inf() > u[widest].sup() - u[widest].inf()) widest = j;
+    const double lo = u[widest].inf(), hi = u[widest].sup(), mid = 0.5 * (lo + hi);
+    if (!(lo < mid && mid < hi)) return false;
+    Box left{u, inside, refining, parent_slope, active}, right = left;
+    left.u[widest] = Interval(lo, mid);
+    right.u[widest] = Interval(mid, hi);
+    stack.push_back(right);
+    stack.push_back(left);
+    return true;
+  };
   // The world enclosure of chart points: origin + Σ_j u_j c_j, with u_j an interval or a point.
   auto to_world = [&](const Interval* u, Interval* x) {
     for (int k = 0; k < 3; ++k) {
@@ -54,7 +94,11 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
   while (!stack.empty()) {
     const Box box = stack.back();
     stack.pop_back();
-    if (result.boxes >= box_budget) return result;
+    if (box.refining) {
+      ++refining_boxes;
+    } else if (result.boxes - refining_boxes >= box_budget) {
+      return result;
+    }
     ++result.boxes;
     const auto& u = box.u;
     std::uint64_t active = box.active;
@@ -63,42 +107,90 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     Interval x[3], value, gradient[3];
     to_world(u.data(), x);
     E.values_and_jacobian<Interval>(x, nullptr, &value, gradient);
-    // (iii) first: on most boxes that meet Σ the functional is what decides; then (ii)'s
-    // natural form.
-    if (certainly_nonzero(inner(gradient, w)) || certainly_nonzero(value)) continue;
-    // (ii) mean-value form around the box centre.
-    Interval centre[3], centre_world[3], centre_value, centre_gradient[3];
-    for (std::size_t j = 0; j < n; ++j) centre[j] = Interval(CGAL::to_double(u[j]));
-    to_world(centre, centre_world);
-    if (with_hessians)
-      E.values_and_jacobian<Interval>(centre_world, nullptr, &centre_value, centre_gradient);
-    else
-      E.values<Interval>(centre_world, nullptr, &centre_value);
-    Interval mean_value = centre_value;
-    for (std::size_t j = 0; j < n; ++j) mean_value += inner(gradient, chart.columns[j]) * (u[j] - centre[j]);
-    if (certainly_nonzero(mean_value)) continue;
-    // (iii′) the functional's mean-value form, on a box that may meet Σ.
-    if (with_hessians) {
-      Interval hessian[9], hessian_w[3];  // H(X) and H(X) w, the functional's gradient
-      E.hessians<Interval>(x, nullptr, hessian);
-      for (int k = 0; k < 3; ++k) hessian_w[k] = inner(hessian + 3 * k, w);
-      Interval mean_functional = inner(centre_gradient, w);
-      for (std::size_t j = 0; j < n; ++j) mean_functional += inner(hessian_w, chart.columns[j]) * (u[j] - centre[j]);
-      if (certainly_nonzero(mean_functional)) continue;
+    if (certainly_nonzero(value)) continue;  // (ii), natural form
+    // The box's slope bound once (iii) drops it (−1: not dropped).
+    double box_bound = -1;
+    const Interval functional = inner(gradient, w);
+    // The centre, E and ∇E there, and H(X), computed once a test needs them.
+    Interval centre[3], centre_world[3], centre_value, centre_gradient[3], hessian[9];
+    bool have_centre = false, have_hessian = false;
+    auto at_centre = [&] {
+      if (have_centre) return;
+      for (std::size_t j = 0; j < n; ++j) centre[j] = Interval(CGAL::to_double(u[j]));
+      to_world(centre, centre_world);
+      if (with_hessians)
+        E.values_and_jacobian<Interval>(centre_world, nullptr, &centre_value, centre_gradient);
+      else
+        E.values<Interval>(centre_world, nullptr, &centre_value);
+      have_centre = true;
+    };
+    auto mean_value_excludes_zero = [&] {
+      at_centre();
+      Interval mean_value = centre_value;
+      for (std::size_t j = 0; j < n; ++j) mean_value += inner(gradient, chart.columns[j]) * (u[j] - centre[j]);
+      return certainly_nonzero(mean_value);
+    };
+    // ∇E on the box by its mean-value form about the centre, met with the natural enclosure.
+    auto centred_gradient = [&](Interval* g) {
+      if (!have_hessian) E.hessians<Interval>(x, nullptr, hessian);
+      have_hessian = true;
+      for (int k = 0; k < 3; ++k) {
+        Interval gk = centre_gradient[k];
+        for (std::size_t j = 0; j < n; ++j) gk += inner(hessian + 3 * k, chart.columns[j]) * (u[j] - centre[j]);
+        g[k] = meet(gk, gradient[k]);
+      }
+    };
+    if (certainly_nonzero(functional)) {
+      box_bound = refinement.target > 0 ? box_slope(functional, gradient) : 0;  // (iii), natural form
+      if (box_bound < refinement.target && with_hessians) {
+        // A sharper bound from the mean-value forms, unless the box misses Σ.
+        if (mean_value_excludes_zero()) continue;
+        Interval g[3];
+        centred_gradient(g);
+        const Interval phi = meet(inner(g, w), functional);
+        if (certainly_nonzero(phi)) box_bound = std::max(box_bound, box_slope(phi, g));
+      }
+    } else {
+      if (mean_value_excludes_zero()) continue;  // (ii), mean-value form
+      if (with_hessians) {
+        // (iii′) the functional's mean-value form: its gradient is H w.
+        at_centre();
+        if (!have_hessian) E.hessians<Interval>(x, nullptr, hessian);
+        have_hessian = true;
+        Interval hessian_w[3];
+        for (int k = 0; k < 3; ++k) hessian_w[k] = inner(hessian + 3 * k, w);
+        Interval mean_functional = inner(centre_gradient, w);
+        for (std::size_t j = 0; j < n; ++j) mean_functional += inner(hessian_w, chart.columns[j]) * (u[j] - centre[j]);
+        if (certainly_nonzero(mean_functional)) {
+          if (refinement.target > 0) {
+            Interval g[3];
+            centred_gradient(g);
+            box_bound = box_slope(mean_functional, g);
+          } else {
+            box_bound = 0;  // no slope asked for
+          }
+        }
+      }
     }
-    // Bisect along the widest side; a side that no longer splits ends the attempt.
-    std::size_t widest = 0;
-    for (std::size_t j = 1; j < n; ++j)
-      if (u[j].sup() - u[j].inf() > u[widest].sup() - u[widest].inf()) widest = j;
-    const double lo = u[widest].inf(), hi = u[widest].sup(), mid = 0.5 * (lo + hi);
-    if (!(lo < mid && mid < hi)) return result;
-    Box left{u, side == DomainSide::inside, active}, right = left;
-    left.u[widest] = Interval(lo, mid);
-    right.u[widest] = Interval(mid, hi);
-    stack.push_back(right);
-    stack.push_back(left);
+    if (box_bound >= 0) {
+      box_bound = std::max(box_bound, box.refining ? box.parent_slope : 0.0);
+      if (box_bound < refinement.target && refining_created + 2 <= refinement.box_budget &&
+          split(box, side == DomainSide::inside, active, true, box_bound)) {
+        refining_created += 2;
+        continue;
+      }
+      slope = std::min(slope, box_bound);
+      continue;
+    }
+    if (box.refining) {
+      slope = std::min(slope, box.parent_slope);  // covered by its parent's decision
+      continue;
+    }
+    // A side that no longer splits ends the attempt.
+    if (!split(box, side == DomainSide::inside, active, false, 0)) return result;
   }
   result.proved = true;
+  result.slope = slope;
   return result;
 }
 

@@ -35,6 +35,21 @@
 //!    ⟨t, d⟩ = ⟨∇E, m × d⟩ = ⟨∇E, w⟩ ≠ 0, so the curve has no critical point in direction d
 //!    inside F: FacetCycle in direction d has no critical point to shoot a line from, and no
 //!    closed curve of Σ ∩ Π lies in F (it would have one).
+//!
+//! Slope.  A proof also bounds the angle between ∇E and the line of w: on a box dropped by (iii),
+//! with Φ ∌ 0 the enclosure of the functional that decided and G the natural enclosure of ∇E,
+//! every x in the box has |⟨∇E(x), w⟩| ≥ min |Φ| and |∇E(x)| ≤ max |G| (the Euclidean norm of
+//! the componentwise maxima), so |⟨∇E(x), w⟩| ≥ ρ_U |∇E(x)| with ρ_U = min |Φ| / max |G|
+//! (rounded down).  As every point of Σ ∩ P lies in such a box, the least ρ_U over them, the
+//! slope ρ, satisfies |⟨∇E(x), w⟩| ≥ ρ |∇E(x)| > 0 on all of Σ ∩ P (ρ = +∞ if no box needed (iii):
+//! then Σ ∩ P = ∅).
+//!
+//! What a slope gives (used by the mesher to certify the facets of a certified cell): let P hold a
+//! convex set F in a plane Π with normal vector M, and |⟨w, M⟩| / |M| < ρ.  Then
+//! w′ = w − (⟨w, M⟩ / |M|²) M is parallel to Π and, for x ∈ Σ ∩ F and g = ∇E(x),
+//!     |⟨g, w′⟩| ≥ |⟨g, w⟩| − (|⟨w, M⟩| / |M|) · |⟨g, M⟩| / |M| ≥ (ρ − |⟨w, M⟩| / |M|) |g| > 0
+//! (g ≠ 0 because ⟨g, w⟩ ≠ 0), i.e. the certificate of F with the in-plane direction w′ holds:
+//! the conclusions (a) and (b) above for FacetContact and FacetCycle follow without a cover of F.
 
 #include <array>
 #include <cstddef>
@@ -56,13 +71,28 @@ struct AffineChart {
 struct GradientConeResult {
   bool proved = false;     //!< ⟨∇E, w⟩ ≠ 0 on Σ ∩ P is proved
   std::size_t boxes = 0;   //!< boxes examined
+  //! When proved and a slope was asked for (SlopeRefinement::target > 0): the slope ρ of the file
+  //! comment, |⟨∇E, w⟩| ≥ ρ |∇E| on Σ ∩ P (+∞ when Σ ∩ P is proved empty); 0 otherwise.
+  double slope = 0;
+};
+
+//! The slope, if asked for (target > 0), and extra subdivision to raise it: a box that (iii)
+//! drops with ρ_U < target gets a second bound from the mean-value forms of ∇E and of the
+//! functional (when E has Hessians), and if that is still below target it is bisected instead, as
+//! long as at most box_budget such halves are made in all.  The halves do not use the
+//! certificate's own budget and cannot fail: each lies in a box that (iii) dropped, whose bound
+//! stands for a half that no test drops.  So refining never turns a proof into a failure.
+struct SlopeRefinement {
+  double target = 0;
+  std::size_t box_budget = 0;
 };
 
 //! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P (see the file comment).  `E` has one equation E in the
 //! unknowns (x, y, z) and no parameters; its Jacobian is ∇E.  Throws PreconditionViolation if
 //! the chart's columns do not match domain.dimension() or E is not of that shape.
 GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChart& chart, const Domain& domain,
-                                       const std::array<double, 3>& w, std::size_t box_budget);
+                                       const std::array<double, 3>& w, std::size_t box_budget,
+                                       const SlopeRefinement& refinement = {});
 
 //! The sign of ⟨∇E(x), w⟩ on the whole segment [a, b], proved by one interval evaluation over
 //! the segment's bounding box: +1 or −1, or 0 if the enclosure contains 0 (nothing proved).  A

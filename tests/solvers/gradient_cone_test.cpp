@@ -94,6 +94,37 @@ BOOST_AUTO_TEST_CASE(hessians_decide_boxes_the_natural_form_cannot) {
     BOOST_TEST(!prove_gradient_cone(*E, AffineChart::identity(), across, w, 20000).proved);
 }
 
+BOOST_AUTO_TEST_CASE(the_slope_bounds_the_angle_to_w_from_below) {
+  // On the cap Σ ∩ {|x|, |y| ≤ 0.3, z ≥ 0.5} of the unit sphere, ⟨∇E, e_z⟩ / |∇E| = z, whose
+  // least value is √(1 − 2·0.3²) = √0.82 at the corners: every proved slope is a lower bound of
+  // it, and refining the cover towards a target raises the slope past the target without
+  // turning the proof into a failure (the refining boxes do not use the cover's budget).
+  const GiNaC::symbol &x = coordinate_x(), &y = coordinate_y(), &z = coordinate_z();
+  const CompiledSystem E({x * x + y * y + z * z - 1}, {x, y, z}, {}, true);
+  const Domain cap = cube(-0.3, 0.3, -0.3, 0.3, 0.5, 1.1);
+  const double least = std::sqrt(0.82);
+  const auto plain = prove_gradient_cone(E, AffineChart::identity(), cap, {0, 0, 1}, 200);
+  BOOST_TEST(plain.proved);
+  BOOST_TEST(plain.slope == 0.0);  // no slope asked for
+  const auto coarse = prove_gradient_cone(E, AffineChart::identity(), cap, {0, 0, 1}, 200, {1e-300, 0});
+  BOOST_TEST(coarse.proved);
+  BOOST_TEST(coarse.slope > 0.0);
+  BOOST_TEST(coarse.slope <= least);
+  const auto refined = prove_gradient_cone(E, AffineChart::identity(), cap, {0, 0, 1}, coarse.boxes, {0.88, 100000});
+  BOOST_TEST(refined.proved);
+  BOOST_TEST(refined.slope >= 0.88);
+  BOOST_TEST(refined.slope <= least);
+  // A slope can never exceed the true one, however much is spent.
+  const auto beyond = prove_gradient_cone(E, AffineChart::identity(), cap, {0, 0, 1}, coarse.boxes, {0.95, 20000});
+  BOOST_TEST(beyond.proved);
+  BOOST_TEST(beyond.slope <= least);
+  // A domain that misses Σ has slope +∞: nothing is left to bound.
+  const auto empty = prove_gradient_cone(E, AffineChart::identity(), cube(-0.3, 0.3, -0.3, 0.3, -0.3, 0.3), {1, 0, 0},
+                                         50, {0.5, 100});
+  BOOST_TEST(empty.proved);
+  BOOST_TEST(std::isinf(empty.slope));
+}
+
 BOOST_AUTO_TEST_CASE(misuse_throws) {
   const auto E = unit_sphere();
   AffineChart chart;

@@ -322,7 +322,8 @@ inline constexpr std::size_t gradient_cone_cell_box_budget = 1024;
 //! slope.  The cover of V_p is refined (solvers/gradient_cone.h, SlopeRefinement) towards the
 //! largest of these values up to the cap, times the margin, within the box budget; facets beyond
 //! the cap (q across Σ from p, where the slope would have to approach 1) get their own cover.
-//! The attempt is made when p is inserted, for the facets of its new edges, with a cover budget
+//! During the geometric refinement the attempt is made when p is inserted, for the facets of its
+//! new edges (Refinement::prepare_new_edges), with a cover budget
 //! that keeps a failure cheap (a failed attempt is not kept: Silhouette tries again later, with
 //! gradient_cone_cell_box_budget, on a cell that may have shrunk).
 inline constexpr double cell_slope_cap = 0.2;

@@ -162,11 +162,11 @@ class ImplicitOracle final : public SurfaceOracle {
   std::uint64_t seed_ = 1;
   std::optional<std::chrono::steady_clock::time_point> deadline_;
   std::vector<PrimitiveStatistics> stats_;
-  //! Cone certificates attempted, proved, their boxes and time; the boxes and time of the failed
-  //! ones (each of which leads to a full solve) apart.
   //! The certificate within `budget` boxes, counted.
   GradientConeResult gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w, std::size_t budget,
                                    const SlopeRefinement& refinement);
+  //! Cone certificates attempted, proved, their boxes and time; the boxes and time of the failed
+  //! ones (each of which leads to a full solve) apart.
   struct ConeStatistics {
     std::size_t attempts = 0, proved = 0, boxes = 0, failed_boxes = 0;
     double seconds = 0, failed_seconds = 0;

@@ -363,7 +363,7 @@ RestrictedDelaunay::SectionProof RestrictedDelaunay::certify_section(const EdgeK
   }
   // The in-plane part of ∇E at the midpoint of pq (the plane's origin before clipping): it
   // depends on p and q only, so a facet that shrinks keeps its direction (refinement.h).
-  const Vec3 midpoint = 0.5 * (del_.point(e[0]) + del_.point(e[1]));
+  const Vec3 midpoint = 0.5 * (p + q);
   const Vec3 g = oracle_.gradient(midpoint);
   const Vec3 m = normalized(f.normal);
   Vec3 w = g - dot(g, m) * m;

@@ -130,10 +130,14 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
       for (std::size_t j = 0; j < n; ++j) mean_value += inner(gradient, chart.columns[j]) * (u[j] - centre[j]);
       return certainly_nonzero(mean_value);
     };
-    // ∇E on the box by its mean-value form about the centre, met with the natural enclosure.
-    auto centred_gradient = [&](Interval* g) {
+    auto box_hessian = [&] {
       if (!have_hessian) E.hessians<Interval>(x, nullptr, hessian);
       have_hessian = true;
+    };
+    // ∇E on the box by its mean-value form about the centre, met with the natural enclosure.
+    auto centred_gradient = [&](Interval* g) {
+      at_centre();
+      box_hessian();
       for (int k = 0; k < 3; ++k) {
         Interval gk = centre_gradient[k];
         for (std::size_t j = 0; j < n; ++j) gk += inner(hessian + 3 * k, chart.columns[j]) * (u[j] - centre[j]);
@@ -154,9 +158,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
       if (mean_value_excludes_zero()) continue;  // (ii), mean-value form
       if (with_hessians) {
         // (iii′) the functional's mean-value form: its gradient is H w.
-        at_centre();
-        if (!have_hessian) E.hessians<Interval>(x, nullptr, hessian);
-        have_hessian = true;
+        box_hessian();
         Interval hessian_w[3];
         for (int k = 0; k < 3; ++k) hessian_w[k] = inner(hessian + 3 * k, w);
         Interval mean_functional = inner(centre_gradient, w);
@@ -190,7 +192,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     if (!split(box, side == DomainSide::inside, active, false, 0)) return result;
   }
   result.proved = true;
-  result.slope = slope;
+  result.slope = refinement.target > 0 ? slope : 0;
   return result;
 }
 

@@ -26,8 +26,9 @@ std::optional<std::array<double, 2>> clip_line_to_facet(const VoronoiFacet& f, d
 }  // namespace
 
 CheckResult facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& pq, int attempt) {
+  if (restricted.facet_section_certified(pq)) return {};
   const VoronoiFacet& cached = restricted.facet(pq);
-  if (!cached.valid || restricted.facet_section_certified(pq)) return {};
+  if (!cached.valid) return {};
   // Another generic direction d: the same facet in another frame.
   const VoronoiFacet rotated = attempt > 0 ? restricted.rotated_facet(pq, attempt) : VoronoiFacet{};
   const VoronoiFacet& f = attempt > 0 ? rotated : cached;

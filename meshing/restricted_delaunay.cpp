@@ -172,18 +172,23 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
 
 void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>>& edges,
                                         const detail::ParallelFor& parallel) {
+  // A facet that follows from a certified cell needs no geometry: it is built only if some
+  // check asks for it later (facet()).
   std::vector<FacetEntry> built(edges.size());
   std::vector<SectionProof> proofs(edges.size());
   parallel.run(edges.size(), [&](std::size_t i) {
     const auto& [e, ring] = edges[i];
+    proofs[i] = certify_by_cell(e);
+    if (proofs[i] != SectionProof::none) return;
     built[i].facet = voronoi_facet(del_, e, oracle_.box(), facet_rotation(e), &ring);
-    proofs[i] = certify_section(e, built[i].facet);
+    built[i].built = true;
+    proofs[i] = certify_by_cover(e, built[i].facet);
   });
   for (std::size_t i = 0; i < edges.size(); ++i) {
+    facets_built_ += built[i].built;
     record_section(built[i].section_certified, proofs[i]);
     *facets_.try_emplace(edges[i].first).first = std::move(built[i]);
   }
-  facets_built_ += edges.size();
 }
 
 bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>& ring,
@@ -274,18 +279,25 @@ std::optional<VoronoiEdgeRecord> RestrictedDelaunay::restrict_record(const Voron
 }
 
 const VoronoiFacet& RestrictedDelaunay::facet(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>* ring) {
-  if (const FacetEntry* entry = facets_.find(e)) return entry->facet;
-  ++facets_built_;
-  FacetEntry& entry = *facets_.try_emplace(e).first;
-  entry = FacetEntry{voronoi_facet(del_, e, oracle_.box(), facet_rotation(e), ring)};
-  return entry.facet;
+  const auto [entry, added] = facets_.try_emplace(e);
+  if (added) *entry = FacetEntry{};
+  if (!entry->built) {
+    ++facets_built_;
+    entry->facet = voronoi_facet(del_, e, oracle_.box(), facet_rotation(e), ring);
+    entry->built = true;
+  }
+  return entry->facet;
 }
 
 bool RestrictedDelaunay::facet_section_certified(const EdgeKey& e) {
-  const VoronoiFacet& f = facet(e);
-  auto& entry = *facets_.find(e);
-  if (entry.section_certified < 0) record_section(entry.section_certified, certify_section(e, f));
-  return entry.section_certified == 1;
+  if (const FacetEntry* entry = facets_.find(e); entry && entry->section_certified >= 0)
+    return entry->section_certified == 1;
+  SectionProof proof = certify_by_cell(e);
+  if (proof == SectionProof::none) proof = certify_by_cover(e, facet(e));
+  const auto [entry, added] = facets_.try_emplace(e);
+  if (added) *entry = FacetEntry{};
+  record_section(entry->section_certified, proof);
+  return entry->section_certified == 1;
 }
 
 void RestrictedDelaunay::record_section(int& slot, SectionProof proof) {
@@ -351,8 +363,7 @@ bool plane_within_slope(const Vec3& w, const Vec3& p, const Vec3& q, double slop
 
 }  // namespace
 
-RestrictedDelaunay::SectionProof RestrictedDelaunay::certify_section(const EdgeKey& e, const VoronoiFacet& f) const {
-  if (!f.valid && !f.degenerate) return SectionProof::none;
+RestrictedDelaunay::SectionProof RestrictedDelaunay::certify_by_cell(const EdgeKey& e) const {
   const Vec3& p = del_.point(e[0]);
   const Vec3& q = del_.point(e[1]);
   for (VertexId v : e) {
@@ -361,6 +372,13 @@ RestrictedDelaunay::SectionProof RestrictedDelaunay::certify_section(const EdgeK
     if (c.state == CellCertificate::State::proved && plane_within_slope(c.w, p, q, c.slope))
       return SectionProof::by_cell;
   }
+  return SectionProof::none;
+}
+
+RestrictedDelaunay::SectionProof RestrictedDelaunay::certify_by_cover(const EdgeKey& e, const VoronoiFacet& f) const {
+  if (!f.valid && !f.degenerate) return SectionProof::none;
+  const Vec3& p = del_.point(e[0]);
+  const Vec3& q = del_.point(e[1]);
   // The in-plane part of ∇E at the midpoint of pq (the plane's origin before clipping): it
   // depends on p and q only, so a facet that shrinks keeps its direction (refinement.h).
   const Vec3 midpoint = 0.5 * (p + q);

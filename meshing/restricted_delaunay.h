@@ -125,7 +125,8 @@ class RestrictedDelaunay {
   //! regions: then F ∩ Σ ≠ ∅ or undecided) or is degenerate.  Counted (facets_missing_surface()).
   bool facet_misses_surface(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>& ring,
                             const std::vector<const VoronoiEdgeRecord*>& boundary);
-  //! Whether the facet of e is cached (then e is a current Delaunay edge).
+  //! Whether the facet of e is cached, its geometry or only its section certificate (then e is
+  //! a current Delaunay edge).
   bool has_facet(const EdgeKey& e) const { return facets_.find(e) != nullptr; }
   //! The facet of a current Delaunay edge (computed on first use, then cached).  `ring`, if
   //! given, is Delaunay::edge_ring(e) in any order (saves looking it up).
@@ -143,7 +144,9 @@ class RestrictedDelaunay {
   //! (the slope argument of solvers/gradient_cone.h).  It rests on what the cell's proof rests on:
   //! that the cell's domain holds V_p ∩ B (voronoi_geometry.h), which the faces of one computed
   //! diagram do up to tolerances::face_membership_relative_tolerance.  Counted
-  //! (facets_certified_by_cell()).
+  //! (facets_certified_by_cell()).  This route reads no geometry of F, and holds whether F ∩ B is
+  //! a polygon, degenerate or empty; it is tried first, and a facet it certifies is not built
+  //! (here nor by prepare_facets()) until facet() is asked for it.
   bool facet_section_certified(const EdgeKey& e);
   //! The Silhouette certificate of V_p (silhouette.h): the gradient cone with w = n_p =
   //! ∇E(p)/|∇E(p)| over voronoi_cell(p), its slope kept.  A proof is kept until V_p may have grown
@@ -218,9 +221,13 @@ class RestrictedDelaunay {
                                   VoronoiEdgeRecord&& record, bool solved);
   //! How the section of a facet was certified, if it was.
   enum class SectionProof : signed char { none, by_cell, by_cover };
-  //! The certificate of facet_section_certified(): from a certified cell of p or q, else the
-  //! gradient cone over F.  Thread-safe while no cell certificate is being added.
-  SectionProof certify_section(const EdgeKey& e, const VoronoiFacet& f) const;
+  //! The two certificates of facet_section_certified(), tried in this order; both are
+  //! thread-safe while no cell certificate is being added.  From a certified cell of p or q:
+  //! reads the cells and the sites only, not F's geometry (a proof over V_p holds on every
+  //! part of it, F ∩ B empty or degenerate included).
+  SectionProof certify_by_cell(const EdgeKey& e) const;
+  //! The gradient cone over F (a valid or degenerate facet; none for an empty one).
+  SectionProof certify_by_cover(const EdgeKey& e, const VoronoiFacet& f) const;
   //! Stores a facet's certificate and counts one obtained from a cell.
   void record_section(int& slot, SectionProof proof);
   //! Keeps stars_ in step with a record of t whose restricted status went from `was` to `is`.
@@ -233,8 +240,10 @@ class RestrictedDelaunay {
   SurfaceOracle& oracle_;
   std::uint64_t seed_;
   RecordTable edges_;
+  //! A facet certified by a cell has no geometry until facet() is asked for it.
   struct FacetEntry {
     VoronoiFacet facet;
+    bool built = false;          //!< `facet` holds F's geometry
     int section_certified = -1;  //!< −1 not tried, 0 failed, 1 proved
   };
   detail::FlatTable<2, FacetEntry> facets_;

@@ -115,6 +115,7 @@ const VoronoiEdgeRecord& RestrictedDelaunay::voronoi_edge_record(const TriangleK
 
 std::vector<TriangleKey> RestrictedDelaunay::forget_destroyed(const InsertionChange& change) {
   std::vector<TriangleKey> left;
+  for (const auto& t : change.destroyed_triangles) edges_.prefetch(t);
   for (const auto& t : change.destroyed_triangles) {
     const VoronoiEdgeRecord* r = edges_.take(t);
     if (!r || r->restricted || r->shrunk) left.push_back(t);
@@ -132,6 +133,7 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
   // table survive later insertions into it.)
   std::vector<StarRecord> out(star.size());
   std::vector<std::size_t> to_solve;
+  for (const auto& s : star) edges_.prefetch(s.key);
   for (std::size_t i = 0; i < star.size(); ++i) {
     const auto& s = star[i];
     // A triangle containing the new vertex is new: it has no record.

@@ -80,7 +80,9 @@ MeshInputPlan plan_mesh_input(const MeshRequest& request);
 //! DelMesh on the plan's mesh through a MeshOracle (meshing/mesh_oracle.h), with `options`
 //! (the plan's, plus progress and interrupt).  The statistics are del_mesh's, with "input_mesh":
 //! {file, vertices, triangles, components, genus_per_component, box, bounding_box_diagonal,
-//! median_edge_length, components_reversed}.
+//! median_edge_length, components_reversed, folded_vertices {count, locations}}.  A plan whose
+//! mesh has folded vertices (meshing/folded_vertices.h) carries a warning that the run cannot
+//! end complete.
 DelMeshResult remesh(const MeshInputPlan& plan, const DelMeshOptions& options);
 
 //! The statistics record of a run as `delmesh mesh --input-mesh` writes it: del_mesh's (or

@@ -172,8 +172,31 @@ MeshInputPlan plan_mesh_input(const MeshRequest& r) {
   plan.options.min_spacing = tolerances::min_spacing_median_edge_fraction * plan.mesh.median_edge_length;
   limit_options(r, plan.options);
   if (!covered) plan.warnings.push_back(lambda_warning(r.lambda));
+  if (const auto& folded = plan.mesh.folded_vertices; !folded.empty()) {
+    const Point3& x = plan.mesh.mesh.point(folded.front());
+    std::ostringstream warning;
+    warning << folded.size() << " vertex(es) of the input are folded (the first: " << std::size_t(folded.front())
+            << " at (" << x.x() << ", " << x.y() << ", " << x.z()
+            << ")): faces around them face every direction both ways, so Silhouette can never be clean there "
+               "and the run cannot end complete (meshing/folded_vertices.h)";
+    plan.warnings.push_back(warning.str());
+  }
   return plan;
 }
+
+namespace {
+
+// The input's folded vertices: {count, locations (the first tolerances::floor_locations_listed)}.
+nlohmann::json folded_vertices_json(const InputMesh& m) {
+  nlohmann::json locations = nlohmann::json::array();
+  for (std::size_t i = 0; i < m.folded_vertices.size() && i < tolerances::floor_locations_listed; ++i) {
+    const Point3& x = m.mesh.point(m.folded_vertices[i]);
+    locations.push_back({x.x(), x.y(), x.z()});
+  }
+  return {{"count", m.folded_vertices.size()}, {"locations", locations}};
+}
+
+}  // namespace
 
 DelMeshResult remesh(const MeshInputPlan& plan, const DelMeshOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -192,6 +215,7 @@ DelMeshResult remesh(const MeshInputPlan& plan, const DelMeshOptions& options) {
                                      {"bounding_box_diagonal", m.bounding_box_diagonal},
                                      {"median_edge_length", m.median_edge_length},
                                      {"components_reversed", m.components_reversed},
+                                     {"folded_vertices", folded_vertices_json(m)},
                                      {"seconds_oracle_build", seconds_oracle}};
   return result;
 }

@@ -18,6 +18,7 @@
 
 #include "common/errors.h"
 #include "common/tolerances.h"
+#include "meshing/folded_vertices.h"
 #include "meshing/mesh_io.h"
 
 namespace delmesh {
@@ -239,6 +240,7 @@ InputMesh validate_input_mesh(const std::vector<Point3>& points, const std::vect
     lengths.push_back(std::sqrt(CGAL::to_double(
         CGAL::squared_distance(input.mesh.point(input.mesh.vertex(e, 0)), input.mesh.point(input.mesh.vertex(e, 1))))));
   input.median_edge_length = lower_median(std::move(lengths));
+  input.folded_vertices = folded_vertices(input.mesh);
   return input;
 }
 

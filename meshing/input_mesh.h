@@ -57,6 +57,9 @@ struct InputMesh {
   std::size_t polygons_triangulated = 0;  //!< faces of the file with more than three vertices
   std::size_t unreferenced_vertices = 0;  //!< points of the file referenced by no face (dropped)
   std::size_t components_reversed = 0;    //!< components whose orientation was reversed
+  //! The folded vertices of `mesh` (meshing/folded_vertices.h): where they exist, Silhouette can
+  //! never be clean and no remeshing run can end complete.
+  std::vector<SurfaceMesh::Vertex_index> folded_vertices;
   bool reoriented() const { return components_reversed > 0; }
 };
 

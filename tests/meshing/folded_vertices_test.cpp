@@ -1,0 +1,88 @@
+#include "meshing/folded_vertices.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <boost/test/unit_test.hpp>
+
+#include "meshing/input_mesh.h"
+#include "tests/meshing/known_meshes.h"
+#include "tests/temp_dir.h"
+
+using namespace delmesh;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A fan of four faces around the origin whose normals are positive multiples of (1, 0, 0.3),
+// (0, 1, −0.3), (−1, 0, 0.3), (0, −1, −0.3): their mean is the origin, inside their tetrahedron.
+test::Soup folded_fan() {
+  return {{Point3(0, 0, 0), Point3(-0.3, -0.3, 1), Point3(0.3, -0.3, -1), Point3(-0.3, -0.3, -1),
+           Point3(0.3, -0.3, 1)},
+          {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}}};
+}
+
+std::vector<SurfaceMesh::Vertex_index> folded_in_archive_mesh(const std::string& name, SurfaceMesh* mesh = nullptr) {
+  const std::string archive = "/usr/share/doc/libcgal-dev/data.tar.gz";
+  BOOST_REQUIRE_MESSAGE(fs::exists(archive), archive + " is missing (install libcgal-demo)");
+  test::TempDir dir;
+  const std::string member = "data/meshes/" + name + ".off";
+  const std::string command = "tar -xzf " + archive + " -C '" + dir.path.string() + "' " + member;
+  BOOST_REQUIRE(std::system(command.c_str()) == 0);
+  const InputMesh input = read_input_mesh((dir.path / member).string());
+  if (mesh) *mesh = input.mesh;
+  BOOST_TEST(input.folded_vertices == folded_vertices(input.mesh), boost::test_tools::per_element());
+  return input.folded_vertices;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(folded_vertices_suite)
+
+BOOST_AUTO_TEST_CASE(a_fan_whose_normals_surround_the_origin_is_folded) {
+  const SurfaceMesh mesh = folded_fan().to_surface_mesh();
+  const auto folded = folded_vertices(mesh);
+  BOOST_REQUIRE(folded.size() == 1u);
+  BOOST_TEST(mesh.point(folded.front()) == Point3(0, 0, 0));
+  // Every direction sees the fan's faces facing both ways.
+  for (const Vector3 n : {Vector3(0, 0, 1), Vector3(1, 0, 0), Vector3(0.3, -0.7, 0.2), Vector3(-1, 2, 5)}) {
+    int facing = 0, away = 0;
+    for (const auto f : mesh.faces()) {
+      const auto h = mesh.halfedge(f);
+      const Point3 &a = mesh.point(mesh.source(h)), &b = mesh.point(mesh.target(h)),
+                   &c = mesh.point(mesh.target(mesh.next(h)));
+      const double d = CGAL::cross_product(b - a, c - a) * n;
+      facing += d > 0;
+      away += d < 0;
+    }
+    BOOST_TEST(facing > 0);
+    BOOST_TEST(away > 0);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(convex_saddle_and_flat_vertices_are_not_folded) {
+  BOOST_TEST(folded_vertices(test::octahedron().to_surface_mesh()).empty());
+  BOOST_TEST(folded_vertices(test::icosahedron().to_surface_mesh()).empty());
+  // The torus has saddle vertices on its inner equator: their normals still fit in a hemisphere.
+  BOOST_TEST(folded_vertices(test::torus(16, 8).to_surface_mesh()).empty());
+  // Four coplanar faces: every normal is the same, nowhere near surrounding the origin.
+  const test::Soup flat{{Point3(0, 0, 0), Point3(1, 0, 0), Point3(0, 1, 0), Point3(-1, 0, 0), Point3(0, -1, 0)},
+                        {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}}};
+  BOOST_TEST(folded_vertices(flat.to_surface_mesh()).empty());
+}
+
+BOOST_AUTO_TEST_CASE(cgal_meshes_femur_has_one_folded_vertex_the_others_none) {
+  // femur's fold is why its remeshing cannot end complete (paper/README.md, Fig. 13 table).
+  SurfaceMesh femur;
+  const auto folded = folded_in_archive_mesh("femur", &femur);
+  BOOST_REQUIRE(folded.size() == 1u);
+  const Point3& x = femur.point(folded.front());
+  BOOST_TEST(std::abs(x.x() + 0.006) < 1e-3);
+  BOOST_TEST(std::abs(x.y() + 0.074) < 1e-3);
+  BOOST_TEST(std::abs(x.z() + 0.434) < 1e-3);
+  for (const std::string name : {"eight", "knot1", "knot2", "elephant"})
+    BOOST_TEST(folded_in_archive_mesh(name).empty(), name);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -14,6 +14,7 @@
 
 #include "apps/command_line.h"
 #include "common/errors.h"
+#include "common/huge_page_heap.h"
 
 namespace {
 
@@ -29,6 +30,7 @@ int code(ExitCode c) { return static_cast<int>(c); }
 }  // namespace
 
 int main(int argc, char** argv) {
+  delmesh::back_heap_with_huge_pages();
   std::signal(SIGPIPE, SIG_IGN);
   std::set_terminate(on_terminate);
   std::ios::sync_with_stdio(true);

@@ -41,6 +41,7 @@
 #include <unordered_map>
 
 #include "common/errors.h"
+#include "common/huge_page_heap.h"
 #include "experiments/experiment_support.h"
 #include "meshing/del_mesh.h"
 #include "meshing/mesh_io.h"
@@ -260,6 +261,7 @@ std::string field_list(const std::vector<double>& values) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  delmesh::back_heap_with_huge_pages();
   CLI::App app{"delmesh vs CGAL Surface_mesher and Mesh_3 (seconds-per-vertex benchmark, coarsest-topology "
                "comparison and the topology demo); writes <out-dir>/compare_cgal.csv"};
   std::string surfaces = "torus,genus2", demo_surfaces = "thin_handle,two_blobs,near_sheets";

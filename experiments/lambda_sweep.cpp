@@ -42,6 +42,7 @@
 #include <sstream>
 
 #include "common/errors.h"
+#include "common/huge_page_heap.h"
 #include "experiments/experiment_support.h"
 #include "meshing/del_mesh.h"
 #include "meshing/dense_sample.h"
@@ -281,6 +282,7 @@ std::string lambda_tag(double lambda) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  delmesh::back_heap_with_huge_pages();
   CLI::App app{"Theorem 6.1 by experiment: DelMesh over a lambda sweep, checked by the independent "
                "checker against the bounds, with real epsilon-samples for the size; writes "
                "<out-dir>/lambda_sweep.csv, eps_sample.csv, eps_reference.csv, lfs_estimate.csv"};

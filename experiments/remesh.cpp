@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "common/huge_page_heap.h"
 #include "common/tolerances.h"
 #include "experiments/experiment_support.h"
 #include "meshing/del_mesh.h"
@@ -113,6 +114,7 @@ std::vector<std::string> extract_inputs(const std::string& archive, const std::v
 }  // namespace
 
 int main(int argc, char** argv) {
+  delmesh::back_heap_with_huge_pages();
   CLI::App app{"Remesh closed triangle meshes with DelMesh (Fig. 13): topology-phase and final meshes, the "
                "checker's reports and <out-dir>/remesh.csv"};
   std::vector<std::string> paths;

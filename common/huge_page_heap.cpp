@@ -1,0 +1,57 @@
+// The malloc heap on transparent huge pages.  See huge_page_heap.h.
+#include "common/huge_page_heap.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <vector>
+
+#if defined(__linux__) && defined(__GLIBC__)
+#include <malloc.h>
+#include <sys/mman.h>
+#define DELMESH_HUGE_PAGE_HEAP 1
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#undef DELMESH_HUGE_PAGE_HEAP
+#endif
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#undef DELMESH_HUGE_PAGE_HEAP
+#endif
+#endif
+
+namespace delmesh {
+
+bool back_heap_with_huge_pages(std::size_t bytes) {
+#ifdef DELMESH_HUGE_PAGE_HEAP
+  // glibc's largest M_MMAP_THRESHOLD on 64-bit systems; blocks of half of it stay in the heap.
+  constexpr std::size_t heap_threshold = std::size_t(32) << 20;
+  constexpr std::size_t block = heap_threshold / 2;
+  constexpr std::uintptr_t huge_page = std::uintptr_t(2) << 20;
+  if (mallopt(M_MMAP_THRESHOLD, static_cast<int>(heap_threshold)) != 1) return false;
+  // The heap is never trimmed: trimming would hand the advised range back to the system.
+  mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
+  std::vector<void*> blocks;
+  blocks.reserve(bytes / block + 1);
+  std::uintptr_t lo = UINTPTR_MAX, hi = 0;
+  for (std::size_t taken = 0; taken < bytes; taken += block) {
+    void* p = std::malloc(block);
+    if (!p) break;
+    blocks.push_back(p);
+    lo = std::min(lo, reinterpret_cast<std::uintptr_t>(p));
+    hi = std::max(hi, reinterpret_cast<std::uintptr_t>(p) + block);
+  }
+  // The blocks follow one another in the heap; the huge pages wholly inside their range.
+  const std::uintptr_t first = (lo + huge_page - 1) & ~(huge_page - 1), last = hi & ~(huge_page - 1);
+  const bool advised = !blocks.empty() && first < last &&
+                       madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE) == 0;
+  for (void* p : blocks) std::free(p);
+  return advised;
+#else
+  (void)bytes;
+  return false;
+#endif
+}
+
+}  // namespace delmesh

@@ -1,0 +1,84 @@
+#include "common/huge_page_heap.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <boost/test/unit_test.hpp>
+
+namespace {
+
+// The kernel's transparent huge page mode: "always", "madvise" or "never" (empty if unknown).
+std::string huge_page_mode() {
+  std::ifstream in("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string line;
+  std::getline(in, line);
+  const auto open = line.find('['), close = line.find(']');
+  return open == std::string::npos || close == std::string::npos ? "" : line.substr(open + 1, close - open - 1);
+}
+
+// The kB of anonymous huge pages in this process's heap mapping (/proc/self/smaps: a mapping's
+// header line, then "Field: value" lines).
+long heap_huge_page_kb() {
+  std::ifstream in("/proc/self/smaps");
+  std::string line;
+  bool in_heap = false;
+  long kb = 0;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::string first;
+    fields >> first;
+    if (first.empty()) continue;
+    if (first.back() != ':') {
+      in_heap = line.find("[heap]") != std::string::npos;
+    } else if (in_heap && first == "AnonHugePages:") {
+      long value = 0;
+      fields >> value;
+      kb += value;
+    }
+  }
+  return kb;
+}
+
+bool address_sanitizer() {
+#if defined(__SANITIZE_ADDRESS__)
+  return true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  return true;
+#else
+  return false;
+#endif
+#else
+  return false;
+#endif
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(huge_page_heap)
+
+BOOST_AUTO_TEST_CASE(the_heap_that_follows_lies_on_huge_pages_where_the_kernel_offers_them) {
+  const std::string mode = huge_page_mode();
+  const bool offered = (mode == "always" || mode == "madvise") && !address_sanitizer();
+#if defined(__linux__) && defined(__GLIBC__)
+  BOOST_TEST(delmesh::back_heap_with_huge_pages(std::size_t(64) << 20) == offered);
+#else
+  BOOST_TEST(!delmesh::back_heap_with_huge_pages(std::size_t(64) << 20));
+#endif
+  // Memory allocated afterwards is ordinary memory: written and read back in full.
+  constexpr std::size_t bytes = std::size_t(16) << 20;
+  auto* p = static_cast<unsigned char*>(std::malloc(bytes));
+  BOOST_REQUIRE(p != nullptr);
+  for (std::size_t i = 0; i < bytes; ++i) p[i] = static_cast<unsigned char>(i * 7);
+  bool same = true;
+  for (std::size_t i = 0; i < bytes; ++i) same = same && p[i] == static_cast<unsigned char>(i * 7);
+  BOOST_TEST(same);
+  // With the advice taken, the 16 MiB just touched lie on 2 MiB pages (those wholly inside it,
+  // as far as the kernel finds free ones: at least one).
+  if (offered && mode == "madvise") BOOST_TEST(heap_huge_page_kb() >= 2048);
+  std::free(p);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -104,8 +104,9 @@ class RestrictedDelaunay {
   //! the records are forgotten.
   std::vector<StarRecord> prepare_star(const std::vector<Delaunay::StarTriangle>& star,
                                        const detail::ParallelFor& parallel);
-  //! Builds the facets of these edges (with the triangles around them, as Delaunay::edge_ring) and their
-  //! section certificates, on `parallel`'s threads.
+  //! The section certificates of these edges' facets (with the triangles around them, as
+  //! Delaunay::edge_ring), on `parallel`'s threads: from a certified cell where one certifies the
+  //! facet (its geometry is then not built), else from the facet's own cover, built for it.
   void prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>>& edges,
                       const detail::ParallelFor& parallel);
   //! Whether Σ misses the facet F of the Delaunay edge e = pq, proved from `boundary`, the current

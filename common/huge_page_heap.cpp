@@ -43,6 +43,8 @@ bool back_heap_with_huge_pages(std::size_t bytes) {
   std::vector<void*> blocks;
   blocks.reserve(bytes / block + 1);
   std::uintptr_t lo = UINTPTR_MAX, hi = 0;
+  // A larger reservation would exceed the trim threshold and be handed back when freed.
+  bytes = std::min<std::size_t>(bytes, std::numeric_limits<int>::max() - block);
   for (std::size_t taken = 0; taken < bytes; taken += block) {
     void* p = std::malloc(block);
     if (!p) break;

@@ -20,8 +20,7 @@
 //! (/sys/kernel/mm/transparent_hugepage/enabled); with `never` it has no effect.  Elsewhere than
 //! Linux and glibc, under AddressSanitizer (its own allocator), and under strict overcommit
 //! accounting (vm.overcommit_memory = 2, where untouched heap would still be charged) the call
-//! does nothing.  Memory beyond the reserved range is allocated as before, on 4 KiB pages
-//! (the torus at size bound 0.01, 108 000 vertices, peaks at 1.25 GB).
+//! does nothing.  Memory beyond the reserved range is allocated as before, on 4 KiB pages.
 //!
 //! What it changes: where memory lies, never what is computed (no result of delmesh depends on
 //! an address; the meshes are byte-identical with and without it).  Call it once, at the start
@@ -31,8 +30,10 @@
 
 namespace delmesh {
 
-//! The heap's default reservation: 1 GiB of address space (not of memory).
-inline constexpr std::size_t huge_page_heap_default_bytes = std::size_t(1) << 30;
+//! The heap's default reservation: 1.75 GiB of address space (not of memory), enough for the
+//! torus at size bound 0.01 (1.25 GB) and below glibc's largest trim threshold (2 GiB − 1), which
+//! keeps the freed range in the heap.
+inline constexpr std::size_t huge_page_heap_default_bytes = std::size_t(7) << 28;
 
 //! See the file comment.  Returns whether the range was advised (false where the call does
 //! nothing, or the kernel refused the advice).

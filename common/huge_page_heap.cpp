@@ -40,22 +40,38 @@ bool back_heap_with_huge_pages(std::size_t bytes) {
   if (mallopt(M_MMAP_THRESHOLD, static_cast<int>(heap_threshold)) != 1) return false;
   // The heap is never trimmed: trimming would hand the advised range back to the system.
   mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
-  std::vector<void*> blocks;
-  blocks.reserve(bytes / block + 1);
-  std::uintptr_t lo = UINTPTR_MAX, hi = 0;
   // A larger reservation would exceed the trim threshold and be handed back when freed.
   bytes = std::min<std::size_t>(bytes, std::numeric_limits<int>::max() - block);
+  std::vector<void*> blocks;
+  blocks.reserve(bytes / block + 1);
   for (std::size_t taken = 0; taken < bytes; taken += block) {
     void* p = std::malloc(block);
     if (!p) break;
     blocks.push_back(p);
-    lo = std::min(lo, reinterpret_cast<std::uintptr_t>(p));
-    hi = std::max(hi, reinterpret_cast<std::uintptr_t>(p) + block);
   }
-  // The blocks follow one another in the heap; the huge pages wholly inside their range.
-  const std::uintptr_t first = (lo + huge_page - 1) & ~(huge_page - 1), last = hi & ~(huge_page - 1);
-  const bool advised = !blocks.empty() && first < last &&
-                       madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE) == 0;
+  // The huge pages wholly inside [lo, hi).
+  auto advise = [](std::uintptr_t lo, std::uintptr_t hi) {
+    const std::uintptr_t first = (lo + huge_page - 1) & ~(huge_page - 1), last = hi & ~(huge_page - 1);
+    return first < last && madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE) == 0;
+  };
+  // The blocks follow one another in the heap (each after the previous one's chunk header), and
+  // are advised as one range; if the heap could not grow in one piece (glibc then maps further
+  // blocks elsewhere), each block is advised on its own, so that nothing between them is.
+  bool contiguous = !blocks.empty();
+  for (std::size_t i = 1; i < blocks.size() && contiguous; ++i) {
+    const auto gap = reinterpret_cast<std::uintptr_t>(blocks[i]) - reinterpret_cast<std::uintptr_t>(blocks[i - 1]);
+    contiguous = gap >= block && gap <= block + 64;
+  }
+  bool advised = false;
+  if (contiguous) {
+    advised = advise(reinterpret_cast<std::uintptr_t>(blocks.front()),
+                     reinterpret_cast<std::uintptr_t>(blocks.back()) + block);
+  } else {
+    for (void* p : blocks) {
+      const auto start = reinterpret_cast<std::uintptr_t>(p);
+      advised = advise(start, start + block) || advised;
+    }
+  }
   for (void* p : blocks) std::free(p);
   return advised;
 #else

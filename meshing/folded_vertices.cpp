@@ -36,19 +36,23 @@ bool origin_in_hull(const std::vector<Exact::Point_3>& normals) {
 }  // namespace
 
 std::vector<SurfaceMesh::Vertex_index> folded_vertices(const SurfaceMesh& mesh) {
+  // Each face's normal once, by face index.
   const CGAL::Cartesian_converter<Kernel, Exact> to_exact;
+  std::vector<Exact::Point_3> face_normal(mesh.number_of_faces() + mesh.number_of_removed_faces());
+  for (const auto f : mesh.faces()) {
+    const auto h = mesh.halfedge(f);
+    const Exact::Point_3 a = to_exact(mesh.point(mesh.source(h)));
+    const Exact::Point_3 b = to_exact(mesh.point(mesh.target(h)));
+    const Exact::Point_3 c = to_exact(mesh.point(mesh.target(mesh.next(h))));
+    face_normal[f] = CGAL::ORIGIN + CGAL::cross_product(b - a, c - a);
+  }
   std::vector<SurfaceMesh::Vertex_index> folded;
   std::vector<Exact::Point_3> normals;
   for (const auto v : mesh.vertices()) {
+    if (mesh.is_isolated(v)) continue;
     normals.clear();
-    for (const auto f : CGAL::faces_around_target(mesh.halfedge(v), mesh)) {
-      if (f == SurfaceMesh::null_face()) continue;
-      const auto h = mesh.halfedge(f);
-      const Exact::Point_3 a = to_exact(mesh.point(mesh.source(h)));
-      const Exact::Point_3 b = to_exact(mesh.point(mesh.target(h)));
-      const Exact::Point_3 c = to_exact(mesh.point(mesh.target(mesh.next(h))));
-      normals.push_back(CGAL::ORIGIN + CGAL::cross_product(b - a, c - a));
-    }
+    for (const auto f : CGAL::faces_around_target(mesh.halfedge(v), mesh))
+      if (f != SurfaceMesh::null_face()) normals.push_back(face_normal[f]);
     if (normals.size() >= 4 && origin_in_hull(normals)) folded.push_back(v);
   }
   return folded;

@@ -280,26 +280,31 @@ std::optional<VoronoiEdgeRecord> RestrictedDelaunay::restrict_record(const Voron
   return r;
 }
 
-const VoronoiFacet& RestrictedDelaunay::facet(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>* ring) {
+RestrictedDelaunay::FacetEntry& RestrictedDelaunay::facet_entry(const EdgeKey& e) {
   const auto [entry, added] = facets_.try_emplace(e);
   if (added) *entry = FacetEntry{};
-  if (!entry->built) {
+  return *entry;
+}
+
+const VoronoiFacet& RestrictedDelaunay::facet(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>* ring) {
+  FacetEntry& entry = facet_entry(e);
+  if (!entry.built) {
     ++facets_built_;
-    entry->facet = voronoi_facet(del_, e, oracle_.box(), facet_rotation(e), ring);
-    entry->built = true;
+    entry.facet = voronoi_facet(del_, e, oracle_.box(), facet_rotation(e), ring);
+    entry.built = true;
   }
-  return entry->facet;
+  return entry.facet;
 }
 
 bool RestrictedDelaunay::facet_section_certified(const EdgeKey& e) {
-  if (const FacetEntry* entry = facets_.find(e); entry && entry->section_certified >= 0)
-    return entry->section_certified == 1;
-  SectionProof proof = certify_by_cell(e);
-  if (proof == SectionProof::none) proof = certify_by_cover(e, facet(e));
-  const auto [entry, added] = facets_.try_emplace(e);
-  if (added) *entry = FacetEntry{};
-  record_section(entry->section_certified, proof);
-  return entry->section_certified == 1;
+  // The entry stays where it is while facet() fills in its geometry (FlatTable's contract).
+  FacetEntry& entry = facet_entry(e);
+  if (entry.section_certified < 0) {
+    SectionProof proof = certify_by_cell(e);
+    if (proof == SectionProof::none) proof = certify_by_cover(e, facet(e));
+    record_section(entry.section_certified, proof);
+  }
+  return entry.section_certified == 1;
 }
 
 void RestrictedDelaunay::record_section(int& slot, SectionProof proof) {

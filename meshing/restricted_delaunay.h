@@ -248,6 +248,8 @@ class RestrictedDelaunay {
     int section_certified = -1;  //!< −1 not tried, 0 failed, 1 proved
   };
   detail::FlatTable<2, FacetEntry> facets_;
+  //! The entry of e, added empty (no geometry, no certificate) if there is none.
+  FacetEntry& facet_entry(const EdgeKey& e);
   std::size_t records_solved_ = 0, records_restricted_ = 0;
   std::size_t facets_built_ = 0, facets_missing_surface_ = 0, facets_certified_by_cell_ = 0;
   //! cells_[p]: the kept cell certificate of p (cell_certified()).

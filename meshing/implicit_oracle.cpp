@@ -236,6 +236,7 @@ GradientConeResult ImplicitOracle::gradient_cone(const AffineChart& chart, const
   const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
   ++cone_stats_.attempts;
   cone_stats_.proved += r.proved ? 1 : 0;
+  cone_stats_.refuted += r.refuted ? 1 : 0;
   cone_stats_.boxes += r.boxes;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   cone_stats_.seconds += seconds;
@@ -326,6 +327,7 @@ nlohmann::json ImplicitOracle::statistics_json() const {
   j["per_primitive"] = per;
   j["cone_certificates"] = {{"attempts", cone_stats_.attempts},
                             {"proved", cone_stats_.proved},
+                            {"refuted", cone_stats_.refuted},
                             {"boxes", cone_stats_.boxes},
                             {"seconds", cone_stats_.seconds},
                             {"boxes_failed", cone_stats_.failed_boxes},

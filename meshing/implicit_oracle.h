@@ -165,10 +165,11 @@ class ImplicitOracle final : public SurfaceOracle {
   //! The certificate within `budget` boxes, counted.
   GradientConeResult gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w, std::size_t budget,
                                    const SlopeRefinement& refinement);
-  //! Cone certificates attempted, proved, their boxes and time; the boxes and time of the failed
-  //! ones (each of which leads to a full solve) apart.
+  //! Cone certificates attempted, proved, refuted (solvers/gradient_cone.h, test (iv)), their
+  //! boxes and time; the boxes and time of the failed ones (each of which leads to a full solve)
+  //! apart.
   struct ConeStatistics {
-    std::size_t attempts = 0, proved = 0, boxes = 0, failed_boxes = 0;
+    std::size_t attempts = 0, proved = 0, refuted = 0, boxes = 0, failed_boxes = 0;
     double seconds = 0, failed_seconds = 0;
   } cone_stats_;
 };

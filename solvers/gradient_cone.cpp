@@ -1,8 +1,10 @@
 #include "solvers/gradient_cone.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 
 #include "common/errors.h"
 #include "symbolic/scalar_traits.h"
@@ -28,6 +30,66 @@ double box_slope(const Interval& functional, const Interval* gradient) {
   const Interval norm_squared = CGAL::square(gradient[0]) + CGAL::square(gradient[1]) + CGAL::square(gradient[2]);
   const double largest = CGAL::sqrt(norm_squared).sup();
   return (Interval(least) / Interval(largest)).inf();
+}
+
+// Whether the Krawczyk operator proves a zero of f(u) = (E(x(u)), ⟨∇E(x(u)), w⟩) in the box U (in
+// chart coordinates, n = 2 or 3; x the chart) — in the slice u_k = c_k through the centre c along
+// one coordinate k when n = 3, the unknowns being the other two.  `centre_value` and
+// `centre_gradient` enclose E and ∇E at the centre c (a point), `gradient` and `hessian` (rows
+// H_k·) enclose ∇E and H over the world box of U, which holds the slice.  The derivative of f in
+// u_j is (⟨∇E, c_j⟩, ⟨H w, c_j⟩).  With Y the slice's box in the two unknowns, y its centre, J
+// the enclosure of f′ on Y and C ≈ (mid J)⁻¹:
+//     K = y − C f(y) + (I − C J)(Y − y)  ⊂  int Y   ⇒   f has a zero in Y
+// (Krawczyk's theorem: K holds every zero of f in Y, and K ⊆ Y makes y − C f(y) a self-map of Y
+// by the mean-value theorem, whose fixed point is a zero).  Returns a box in U holding that zero
+// (K on the unknowns, the slice's point on the other coordinate), or nothing.
+std::optional<std::array<Interval, 3>> functional_zero(const AffineChart& chart, const std::array<Interval, 3>& u, const Interval* centre,
+                            const Interval& centre_value, const Interval* centre_gradient, const Interval* gradient,
+                            const Interval* hessian, const std::array<double, 3>& w) {
+  const std::size_t n = chart.columns.size();
+  if (n < 2) return std::nullopt;
+  Interval hessian_w[3];
+  for (int k = 0; k < 3; ++k) hessian_w[k] = inner(hessian + 3 * k, w);
+  Interval J[2][3];
+  for (std::size_t j = 0; j < n; ++j) {
+    J[0][j] = inner(gradient, chart.columns[j]);
+    J[1][j] = inner(hessian_w, chart.columns[j]);
+  }
+  // The two unknowns: in dimension 3, drop the coordinate whose 2 × 2 minor of mid J is largest.
+  std::array<std::size_t, 2> unknowns{0, 1};
+  auto mid = [](const Interval& a) { return 0.5 * (a.inf() + a.sup()); };
+  auto minor = [&](std::size_t a, std::size_t b) {
+    return mid(J[0][a]) * mid(J[1][b]) - mid(J[0][b]) * mid(J[1][a]);
+  };
+  if (n == 3) {
+    double best = std::abs(minor(0, 1));
+    for (const auto& pair : {std::array<std::size_t, 2>{0, 2}, std::array<std::size_t, 2>{1, 2}})
+      if (std::abs(minor(pair[0], pair[1])) > best) {
+        best = std::abs(minor(pair[0], pair[1]));
+        unknowns = pair;
+      }
+  }
+  const std::size_t a = unknowns[0], b = unknowns[1];
+  const double det = minor(a, b);
+  if (!(std::abs(det) > 0) || !std::isfinite(det)) return std::nullopt;
+  // C = (mid J)⁻¹ (any matrix serves; only its quality matters).
+  const double C[2][2] = {{mid(J[1][b]) / det, -mid(J[0][b]) / det}, {-mid(J[1][a]) / det, mid(J[0][a]) / det}};
+  const Interval f[2] = {centre_value, inner(centre_gradient, w)};
+  const Interval offset[2] = {u[a] - centre[a], u[b] - centre[b]};
+  const std::size_t index[2] = {a, b};
+  std::array<Interval, 3> zero;
+  for (std::size_t j = 0; j < n; ++j) zero[j] = centre[j];
+  for (int r = 0; r < 2; ++r) {
+    Interval k = centre[index[r]] - (C[r][0] * f[0] + C[r][1] * f[1]);
+    for (int c = 0; c < 2; ++c) {
+      const Interval identity(r == c ? 1.0 : 0.0);
+      k += (identity - (C[r][0] * J[0][index[c]] + C[r][1] * J[1][index[c]])) * offset[c];
+    }
+    const Interval& y = u[index[r]];
+    if (!(y.inf() < k.inf() && k.sup() < y.sup())) return std::nullopt;
+    zero[index[r]] = k;
+  }
+  return zero;
 }
 
 }  // namespace
@@ -187,6 +249,16 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     if (box.refining) {
       slope = std::min(slope, box.parent_slope);  // covered by its parent's decision
       continue;
+    }
+    // (iv) A zero of the functional on Σ proved inside P refutes the certificate.
+    if (with_hessians && have_hessian && have_centre) {
+      if (const auto zero = functional_zero(chart, u, centre, centre_value, centre_gradient, gradient, hessian, w)) {
+        std::uint64_t zero_active = active;
+        if (side == DomainSide::inside || classify(domain, zero->data(), zero_active) == DomainSide::inside) {
+          result.refuted = true;
+          return result;
+        }
+      }
     }
     // A side that no longer splits ends the attempt.
     if (!split(box, side == DomainSide::inside, active, false, 0)) return result;

@@ -21,7 +21,13 @@
 //! (A half of a box that classify() proved inside P is inside P: (i) is not tested again on it;
 //! nor, on a half, a half-space proved to contain the whole box strictly: classify()'s mask.)
 //! A box that none of these drops is bisected along its widest side; when the budget or the depth
-//! runs out the certificate fails.  Proof: every point of Σ ∩ P lies in some box of the final
+//! runs out the certificate fails.  It also fails at once, refuted, when
+//!  (iv)  on a box U proved inside P (E compiled with Hessians), the Krawczyk operator of
+//!        f = (E, ⟨∇E, w⟩) — on U itself in dimension 2, on the slice of U through its centre
+//!        across one coordinate in dimension 3 — maps the box of the unknowns into its interior:
+//!        then f has a zero x* ∈ U ⊆ P, a point of Σ ∩ P where the functional vanishes, and every
+//!        box that holds x* fails (ii) and (iii) whatever the subdivision, so no budget could give
+//!        a proof.  This only saves the boxes a hopeless attempt would spend.  Proof: every point of Σ ∩ P lies in some box of the final
 //! cover that was not dropped by (i) or (ii), i.e. one dropped by (iii), where the functional is
 //! non-zero.  Each test is a rigorous interval enclosure (a RoundingGuard is taken), so `proved`
 //! is a proof; a failure proves nothing and the caller must solve the full system.
@@ -71,6 +77,8 @@ struct AffineChart {
 struct GradientConeResult {
   bool proved = false;     //!< ⟨∇E, w⟩ ≠ 0 on Σ ∩ P is proved
   std::size_t boxes = 0;   //!< boxes examined
+  //! Not proved because a point of Σ ∩ P where ⟨∇E, w⟩ = 0 was proved to exist (test (iv)).
+  bool refuted = false;
   //! When proved and a slope was asked for (SlopeRefinement::target > 0): the slope ρ of the file
   //! comment, |⟨∇E, w⟩| ≥ ρ |∇E| on Σ ∩ P (+∞ when Σ ∩ P is proved empty); 0 otherwise.
   double slope = 0;

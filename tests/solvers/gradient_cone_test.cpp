@@ -125,6 +125,42 @@ BOOST_AUTO_TEST_CASE(the_slope_bounds_the_angle_to_w_from_below) {
   BOOST_TEST(std::isinf(empty.slope));
 }
 
+BOOST_AUTO_TEST_CASE(a_proved_zero_of_the_functional_refutes_the_certificate) {
+  // With Hessians, a box inside P around a point of the equator z = 0 (where ⟨∇E, e_z⟩ = 2z
+  // vanishes on the sphere) gets a Krawczyk proof of that zero: the attempt stops, refuted, long
+  // before its budget.  Without Hessians it cannot refute, and drills towards the equator until a
+  // box no longer splits; on the cap it proves and is not refuted.
+  const GiNaC::symbol &x = coordinate_x(), &y = coordinate_y(), &z = coordinate_z();
+  const CompiledSystem E({x * x + y * y + z * z - 1}, {x, y, z}, {}, true);
+  const Domain across = cube(0.5, 1.5, -0.5, 0.5, -0.2, 0.2);
+  const auto refuted = prove_gradient_cone(E, AffineChart::identity(), across, {0, 0, 1}, 100000);
+  BOOST_TEST(!refuted.proved);
+  BOOST_TEST(refuted.refuted);
+  BOOST_TEST(refuted.boxes < 200u);
+  const auto spent = prove_gradient_cone(unit_sphere(), AffineChart::identity(), across, {0, 0, 1}, 1000);
+  BOOST_TEST(!spent.proved);
+  BOOST_TEST(!spent.refuted);
+  BOOST_TEST(spent.boxes > 4 * refuted.boxes);
+  const auto cap = prove_gradient_cone(E, AffineChart::identity(), cube(-1.5, 1.5, -1.5, 1.5, 0.5, 1.5), {0, 0, 1}, 200);
+  BOOST_TEST(cap.proved);
+  BOOST_TEST(!cap.refuted);
+  // In a facet's plane chart (dimension 2, no slice): the circle of Σ ∩ {z = 0.2} crosses x = 0,
+  // where the functional 2x vanishes, inside the square around (0, 0.98).
+  AffineChart chart;
+  chart.origin = {0, 0, 0.2};
+  chart.columns = {{1, 0, 0}, {0, 1, 0}};
+  const auto planar = prove_gradient_cone(E, chart, Domain::from_box({{-0.2, 0.2}, {0.8, 1.2}}), {1, 0, 0}, 100000);
+  BOOST_TEST(planar.refuted);
+  BOOST_TEST(planar.boxes < 200u);
+  // A zero just outside the half-space that bounds P (z ≥ 0.01) refutes nothing: the cover of
+  // the part above it is proved.
+  Domain above = across;
+  above.half_spaces.push_back(HalfSpace{{0, 0, -1}, -0.01});
+  const auto cut = prove_gradient_cone(E, AffineChart::identity(), above, {0, 0, 1}, 100000);
+  BOOST_TEST(cut.proved);
+  BOOST_TEST(!cut.refuted);
+}
+
 BOOST_AUTO_TEST_CASE(misuse_throws) {
   const auto E = unit_sphere();
   AffineChart chart;

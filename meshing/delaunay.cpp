@@ -89,7 +89,7 @@ struct DelaunayImpl {
 
 }  // namespace detail
 
-Delaunay::Delaunay() : impl_(std::make_unique<detail::DelaunayImpl>()) {}
+Delaunay::Delaunay() : impl_(std::make_unique<detail::DelaunayImpl>()), points_(&impl_->points) {}
 Delaunay::~Delaunay() = default;
 Delaunay::Delaunay(Delaunay&&) noexcept = default;
 Delaunay& Delaunay::operator=(Delaunay&&) noexcept = default;
@@ -210,11 +210,7 @@ bool Delaunay::contains(VertexId id) const {
          impl_->handles[id] != detail::Dt::Vertex_handle();
 }
 
-const std::array<double, 3>& Delaunay::point(VertexId id) const {
-  if (id < 0 || id >= static_cast<VertexId>(impl_->points.size()))
-    throw PreconditionViolation("Delaunay::point: bad id");
-  return impl_->points[id];
-}
+void Delaunay::bad_point_id() { throw PreconditionViolation("Delaunay::point: bad id"); }
 
 bool Delaunay::is_seed(VertexId id) const { return impl_->seeds.at(id) != 0; }
 std::size_t Delaunay::size() const { return impl_->alive; }

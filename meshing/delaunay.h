@@ -70,7 +70,12 @@ class Delaunay {
   void remove(VertexId id);
 
   bool contains(VertexId id) const;
-  const std::array<double, 3>& point(VertexId id) const;
+  //! The point of a vertex ever inserted (removed ones keep theirs); throws PreconditionViolation
+  //! for another id.
+  const std::array<double, 3>& point(VertexId id) const {
+    if (id < 0 || static_cast<std::size_t>(id) >= points_->size()) bad_point_id();
+    return (*points_)[static_cast<std::size_t>(id)];
+  }
   bool is_seed(VertexId id) const;
   std::size_t size() const;
   int dimension() const;
@@ -122,7 +127,11 @@ class Delaunay {
   std::optional<VertexId> insert_point(const std::array<double, 3>& p, bool is_seed, InsertionChange* change,
                                        VertexId hint);
 
+  [[noreturn]] static void bad_point_id();
+
   std::unique_ptr<detail::DelaunayImpl> impl_;
+  //! impl_->points, read inline by point() (the implementation, hence the vector, never moves).
+  const std::vector<std::array<double, 3>>* points_;
 };
 
 }  // namespace delmesh

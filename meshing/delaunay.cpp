@@ -165,6 +165,10 @@ std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, b
       // the boundary facets' edges are taken first, each edge once.
       detail::CavityEdges& seen = impl_->cavity_edges;
       seen.start(3 * (boundary.size() + internal.size()));
+      change->shrunk_triangles.reserve(boundary.size());
+      change->destroyed_triangles.reserve(internal.size());
+      change->shrunk_edges.reserve(3 * boundary.size());
+      change->destroyed_edges.reserve(3 * internal.size());
       for (const auto& [facets, triangles, edges] :
            {std::tie(boundary, change->shrunk_triangles, change->shrunk_edges),
             std::tie(internal, change->destroyed_triangles, change->destroyed_edges)})

@@ -567,6 +567,25 @@ std::vector<TriangleKey> RestrictedDelaunay::star(VertexId p) {
   return out;
 }
 
+std::optional<std::array<TriangleKey, 2>> RestrictedDelaunay::restricted_pair(const EdgeKey& e) {
+  std::array<TriangleKey, 2> pair;
+  std::size_t count = 0;
+  auto take = [&](const TriangleKey& t) {
+    if (t[0] != e[1] && t[1] != e[1] && t[2] != e[1]) return;
+    if (count < 2) pair[count] = t;
+    ++count;
+  };
+  if (every_triangle_recorded_) {
+    if (static_cast<std::size_t>(e[0]) < stars_.size())
+      for (const auto& t : stars_[e[0]]) take(t);
+  } else {
+    for (const auto& t : star(e[0])) take(t);
+  }
+  if (count != 2) return std::nullopt;
+  if (pair[1] < pair[0]) std::swap(pair[0], pair[1]);
+  return pair;
+}
+
 std::vector<std::pair<TriangleKey, Vec3>> RestrictedDelaunay::unresolved_regions() const {
   std::vector<std::pair<TriangleKey, Vec3>> out;
   edges_.for_each([&](const TriangleKey& t, const VoronoiEdgeRecord& r) {

@@ -187,6 +187,10 @@ class RestrictedDelaunay {
 
   //! Restricted triangles incident to p (current Delaunay triangles only), ascending.
   std::vector<TriangleKey> star(VertexId p);
+  //! The restricted triangles that contain the edge e, ascending, if there are exactly two (e is
+  //! then an interior edge of the surface Tri S|Σ around it); nothing otherwise.  The same as
+  //! filtering star(e[0]), without copying the star.
+  std::optional<std::array<TriangleKey, 2>> restricted_pair(const EdgeKey& e);
   //! The caller promises that from now on every current Delaunay triangle has a record whenever
   //! star() is called (the refinement driver computes each new or changed triangle's record at
   //! once).  star() then reads the restricted stars kept up to date with the records instead of

@@ -20,10 +20,9 @@ Vec3 outward_normal(RestrictedDelaunay& restricted, const TriangleKey& t) {
 }
 
 std::optional<Witness> smooth_witness(RestrictedDelaunay& restricted, const EdgeKey& pq, double threshold) {
-  std::vector<TriangleKey> pair;
-  for (const auto& t : restricted.star(pq[0]))
-    if (t[0] == pq[1] || t[1] == pq[1] || t[2] == pq[1]) pair.push_back(t);
-  if (pair.size() != 2) return std::nullopt;
+  const auto found = restricted.restricted_pair(pq);
+  if (!found) return std::nullopt;
+  const auto& pair = *found;
   const Vec3 n1 = outward_normal(restricted, pair[0]), n2 = outward_normal(restricted, pair[1]);
   const double g = std::acos(std::clamp(dot(n1, n2), -1.0, 1.0));
   if (!(g > threshold)) return std::nullopt;

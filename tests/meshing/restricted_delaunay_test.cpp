@@ -52,6 +52,34 @@ BOOST_AUTO_TEST_CASE(octahedron_is_its_own_restricted_triangulation) {
   BOOST_TEST(f.oracle.statistics("surface_line").calls == calls + 1);
 }
 
+// restricted_pair(e) is star(e[0]) filtered to the triangles containing e, when there are two: on
+// the octahedron every edge lies in exactly two faces, and a diagonal of it lies in none.
+BOOST_AUTO_TEST_CASE(restricted_pair_is_the_filtered_star) {
+  CheckFixture f(test::unit_sphere, 1.5, {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
+  const auto faces = f.restricted.triangles();
+  for (bool recorded : {false, true}) {
+    if (recorded) f.restricted.assume_every_triangle_recorded();
+    int edges = 0;
+    for (VertexId p = 0; p < 6; ++p)
+      for (VertexId q = p + 1; q < 6; ++q) {
+        std::vector<TriangleKey> filtered;
+        for (const auto& t : f.restricted.star(p))
+          if (std::find(t.begin(), t.end(), q) != t.end()) filtered.push_back(t);
+        const auto pair = f.restricted.restricted_pair({p, q});
+        if (filtered.size() != 2) {
+          BOOST_TEST(!pair.has_value());
+          continue;
+        }
+        ++edges;
+        BOOST_REQUIRE(pair.has_value());
+        BOOST_TEST((*pair)[0] == filtered[0]);
+        BOOST_TEST((*pair)[1] == filtered[1]);
+      }
+    BOOST_TEST(edges == 12);  // the octahedron's edges; its three diagonals have no face
+  }
+  BOOST_TEST(faces.size() == 8u);
+}
+
 // An insertion shrinks the dual edges of its cavity's boundary; their records are restricted from
 // the old ones (no SurfaceLine solve) and agree with records solved from scratch.
 BOOST_AUTO_TEST_CASE(shrunk_records_equal_solved_records) {

@@ -169,12 +169,12 @@ Certificate certify_mesh(const std::vector<Point3>& points, const std::vector<st
   const std::vector<TriangleKey> all_triangles = del.triangles();
   for (const auto& t : all_triangles) {
     if (stopped()) break;
-    check_face(FaceKind::triangle, t, [&] { return !restricted.voronoi_edge_record(t).unresolved.empty(); });
+    check_face(FaceKind::triangle, t, [&] { return !restricted.voronoi_edge_record(t).unresolved().empty(); });
     const VoronoiEdgeRecord& record = restricted.voronoi_edge_record(t);
     CheckResult unresolved;
-    for (const auto& x : record.unresolved)
+    for (const auto& x : record.unresolved())
       unresolved.unsettled.push_back({CheckKind::vor_edge, UnsettledReason::unresolved_crossing, x});
-    if (!record.unresolved.empty()) {
+    if (!record.unresolved().empty()) {
       for (VertexId v : t) unresolved_at[v] = true;
       for (const auto& e : {make_edge_key(t[0], t[1]), make_edge_key(t[0], t[2]), make_edge_key(t[1], t[2])})
         unresolved_edges.insert(e);

@@ -39,7 +39,7 @@ const std::vector<CheckInfo>& builtin_checks() {
                          return vor_edge_witness(c.restricted, as_triangle(f));
                        }};
     vor_edge.may_fire = [](const VoronoiEdgeRecord& rec) {
-      return !rec.candidates.empty() || rec.crossings.size() >= 2;
+      return !rec.candidates().empty() || rec.crossings().size() >= 2;
     };
     vor_edge.reads_restricted_status = true;
     vor_edge.kind = CheckKind::vor_edge;

@@ -12,6 +12,71 @@
 
 namespace delmesh {
 
+namespace {
+
+// The number of entries of a lists block with these counts (unresolved, crossings, candidates).
+std::size_t block_entries(std::size_t unresolved, std::size_t crossings, std::size_t candidates) {
+  return 1 + unresolved + 2 * (crossings + candidates);
+}
+
+}  // namespace
+
+RecordPoints VoronoiEdgeRecord::list(int which) const {
+  if (!lists_) return {};
+  const Vec3& counts = lists_[0];
+  const auto n_unresolved = static_cast<std::size_t>(counts[0]), n_crossings = static_cast<std::size_t>(counts[1]),
+             n_candidates = static_cast<std::size_t>(counts[2]);
+  const std::size_t sizes[5] = {n_unresolved, n_crossings, n_candidates, n_crossings, n_candidates};
+  std::size_t start = 1;
+  for (int k = 0; k < which; ++k) start += sizes[k];
+  return {lists_.get() + start, sizes[which]};
+}
+
+std::unique_ptr<Vec3[]> VoronoiEdgeRecord::copy(const VoronoiEdgeRecord& other) {
+  if (!other.lists_) return nullptr;
+  const Vec3& counts = other.lists_[0];
+  const std::size_t n = block_entries(static_cast<std::size_t>(counts[0]), static_cast<std::size_t>(counts[1]),
+                                      static_cast<std::size_t>(counts[2]));
+  std::unique_ptr<Vec3[]> block(new Vec3[n]);
+  std::copy(other.lists_.get(), other.lists_.get() + n, block.get());
+  return block;
+}
+
+VoronoiEdgeRecord& VoronoiEdgeRecord::operator=(const VoronoiEdgeRecord& other) {
+  if (this != &other) {
+    restricted = other.restricted;
+    shrunk = other.shrunk;
+    dual_point = other.dual_point;
+    edge = other.edge;
+    lists_ = copy(other);
+  }
+  return *this;
+}
+
+void VoronoiEdgeLists::clear() {
+  for (auto* points : {&unresolved, &crossings, &candidates}) points->clear();
+  crossing_range.clear();
+  candidate_range.clear();
+}
+
+void VoronoiEdgeRecord::set_lists(const VoronoiEdgeLists& lists) {
+  if (lists.crossing_range.size() != lists.crossings.size() || lists.candidate_range.size() != lists.candidates.size())
+    throw PreconditionViolation("VoronoiEdgeRecord::set_lists: a range list is not as long as its points");
+  const std::size_t nu = lists.unresolved.size(), nc = lists.crossings.size(), nk = lists.candidates.size();
+  if (nu + nc + nk == 0) {
+    lists_.reset();
+    return;
+  }
+  std::unique_ptr<Vec3[]> block(new Vec3[block_entries(nu, nc, nk)]);
+  block[0] = {static_cast<double>(nu), static_cast<double>(nc), static_cast<double>(nk)};
+  Vec3* out = block.get() + 1;
+  for (const auto* points : {&lists.unresolved, &lists.crossings, &lists.candidates})
+    out = std::copy(points->begin(), points->end(), out);
+  for (const auto* ranges : {&lists.crossing_range, &lists.candidate_range})
+    for (const auto& r : *ranges) *out++ = {r[0], r[1], 0.0};
+  lists_ = std::move(block);
+}
+
 using namespace detail;
 
 namespace {
@@ -43,7 +108,7 @@ bool excludes_zero_on(const SurfaceOracle& oracle, const Vec3& lo, const Vec3& h
 
 //! The record's (valid) edge meets Σ nowhere, and nothing on it is unsettled.
 bool misses_surface(const VoronoiEdgeRecord& r) {
-  return r.edge.valid && r.crossings.empty() && r.candidates.empty() && r.unresolved.empty();
+  return r.edge.valid && r.crossings().empty() && r.candidates().empty() && r.unresolved().empty();
 }
 
 }  // namespace
@@ -201,7 +266,8 @@ bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vecto
   BoundingBox ends;
   bool inside_box = true;  // every Voronoi edge of F valid, with both ends at Voronoi vertices
   for (const VoronoiEdgeRecord* r : boundary) {
-    if (!r->crossings.empty() || !r->candidates.empty() || !r->unresolved.empty() || r->edge.degenerate) return false;
+    if (!r->crossings().empty() || !r->candidates().empty() || !r->unresolved().empty() || r->edge.degenerate)
+      return false;
     const VoronoiEdge& edge = r->edge;
     if (!edge.valid) {
       // An edge that is neither valid nor degenerate lies outside B, unless it has no line at all
@@ -243,14 +309,14 @@ const VoronoiEdgeRecord* RestrictedDelaunay::cached_record(const TriangleKey& t)
 std::optional<VoronoiEdgeRecord> RestrictedDelaunay::restrict_record(const VoronoiEdgeRecord& old,
                                                                      const VoronoiEdge& edge) const {
   const VoronoiEdge& e = old.edge;
-  if (!old.unresolved.empty() || !e.valid || !edge.valid) return std::nullopt;
+  if (!old.unresolved().empty() || !e.valid || !edge.valid) return std::nullopt;
   if (edge.point != e.point || edge.direction != e.direction) return std::nullopt;
   // e′ ⊆ e as computed; the new ends are those of e′ clamped into e (exact as sets).
   const double t0 = std::max(edge.t0, e.t0), t1 = std::min(edge.t1, e.t1);
   if (!(t0 < t1)) return std::nullopt;
   const double margin = tolerances::duplicate_sample_relative_distance * oracle_.diagonal();
   // 1: inside e′ away from its ends, 0: outside e′, −1: undecided.
-  auto side = [&](const std::array<double, 2>& range) {
+  auto side = [&](const Vec3& range) {
     if (range[1] < t0 - margin || range[0] > t1 + margin) return 0;
     if (range[0] > t0 + margin && range[1] < t1 - margin) return 1;
     return -1;
@@ -260,23 +326,26 @@ std::optional<VoronoiEdgeRecord> RestrictedDelaunay::restrict_record(const Voron
   r.edge.t0 = t0;
   r.edge.t1 = t1;
   // Keeps the points whose enclosures lie inside e′; false if one cannot be placed.
-  auto keep = [&](const std::vector<Vec3>& points, const std::vector<std::array<double, 2>>& ranges,
-                  std::vector<Vec3>& kept_points, std::vector<std::array<double, 2>>& kept_ranges) {
+  thread_local VoronoiEdgeLists lists;
+  lists.clear();
+  auto keep = [&](RecordPoints points, RecordPoints ranges, std::vector<Vec3>& kept_points,
+                  std::vector<std::array<double, 2>>& kept_ranges) {
     for (std::size_t i = 0; i < points.size(); ++i) {
       const int s = side(ranges[i]);
       if (s < 0) return false;
       if (s == 0) continue;
       kept_points.push_back(points[i]);
-      kept_ranges.push_back(ranges[i]);
+      kept_ranges.push_back({ranges[i][0], ranges[i][1]});
     }
     return true;
   };
-  if (!keep(old.crossings, old.crossing_range, r.crossings, r.crossing_range) ||
-      !keep(old.candidates, old.candidate_range, r.candidates, r.candidate_range))
+  if (!keep(old.crossings(), old.crossing_range(), lists.crossings, lists.crossing_range) ||
+      !keep(old.candidates(), old.candidate_range(), lists.candidates, lists.candidate_range))
     return std::nullopt;
+  r.set_lists(lists);
   // No crossing is at a Voronoi vertex of e′, so the §5.1 rule keeps every crossing.
-  r.restricted = !r.crossings.empty();
-  if (r.restricted) r.dual_point = r.crossings.front();
+  r.restricted = !lists.crossings.empty();
+  if (r.restricted) r.dual_point = lists.crossings.front();
   return r;
 }
 
@@ -439,19 +508,26 @@ std::optional<double> monotone_zero(const SurfaceOracle& oracle, const VoronoiEd
 
 VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes) const {
   VoronoiEdgeRecord r;
+  // The lists are gathered here (one scratch per thread), then packed into the record.
+  thread_local VoronoiEdgeLists lists;
+  lists.clear();
+  auto finish = [&] {
+    r.set_lists(lists);
+    return std::move(r);
+  };
   r.edge = voronoi_edge(del_, t, oracle_.box(), apexes);
   if (r.edge.degenerate) {
     // The edge is numerically the point v: Σ passes through it unless SurfaceLine excludes a
     // segment of length 2δ about v along the edge's line.
     const double delta = tolerances::duplicate_sample_relative_distance * oracle_.diagonal();
     const auto near = oracle_.surface_line(r.edge.point, r.edge.direction, r.edge.t0 - delta, r.edge.t0 + delta);
-    if (!near.roots.empty() || !near.undecided.empty()) r.unresolved.push_back(r.edge.at(r.edge.t0));
+    if (!near.roots.empty() || !near.undecided.empty()) lists.unresolved.push_back(r.edge.at(r.edge.t0));
   }
-  if (!r.edge.valid) return r;
+  if (!r.edge.valid) return finish();
   const auto& e = r.edge;
   // E keeps one sign on a box holding e: e ∩ Σ = ∅, which is all SurfaceLine could answer.
   const auto box = segment_box(e);
-  if (oracle_.value_sign(box[0], box[1]) != 0) return r;
+  if (oracle_.value_sign(box[0], box[1]) != 0) return finish();
   const auto result = oracle_.surface_line(e.point, e.direction, e.t0, e.t1);
   const double face_tol = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
   // Zeros at Voronoi vertices: whether each would be excluded by §5.1 if it were the only one.
@@ -471,18 +547,18 @@ VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::a
     const int sv = oracle_.value_sign(v);
     if (s == 0) {
       // E is not proved monotone on R: it may hold several zeros.  Kept as a crossing, unresolved.
-      r.crossings.push_back(v);
-      r.crossing_range.push_back({lo, hi});
-      r.unresolved.push_back(v);
+      lists.crossings.push_back(v);
+      lists.crossing_range.push_back({lo, hi});
+      lists.unresolved.push_back(v);
     } else if (sv == 0) {
       // E(v) = 0 up to rounding and E monotone on R: v is R's only zero, the §5.1 case.
-      r.crossings.push_back(v);
-      r.crossing_range.push_back({std::min(lo, tv), std::max(hi, tv)});
+      lists.crossings.push_back(v);
+      lists.crossing_range.push_back({std::min(lo, tv), std::max(hi, tv)});
       vertex_root_excluded.push_back(s > 0);
     } else if (const auto t = monotone_zero(oracle_, e, tv, tf, sv)) {
       // E(v) ≠ 0: R's one zero is a crossing inside e (none if E keeps its sign on R).
-      r.crossings.push_back(e.at(*t));
-      r.crossing_range.push_back({lo, hi});
+      lists.crossings.push_back(e.at(*t));
+      lists.crossing_range.push_back({lo, hi});
     }
   };
   const double vertex_tol = tolerances::duplicate_sample_relative_distance * oracle_.diagonal();
@@ -493,8 +569,8 @@ VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::a
     } else if (e.at_vertex1 && std::abs(t - e.t1) <= vertex_tol) {
       add_near_vertex(e.t1, false, lo, hi);
     } else {
-      r.crossings.push_back(root.world);
-      r.crossing_range.push_back({lo, hi});
+      lists.crossings.push_back(root.world);
+      lists.crossing_range.push_back({lo, hi});
     }
   }
   for (const auto& u : result.undecided) {
@@ -511,18 +587,18 @@ VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::a
       const double tx = dot(*x - e.point, e.direction);
       const double off = distance(*x, e.at(tx));
       if (off <= tol && tx >= e.t0 - tol && tx <= e.t1 + tol) {
-        r.candidates.push_back(*x);
-        r.candidate_range.push_back({std::min(lo, tx - tol), std::max(hi, tx + tol)});
+        lists.candidates.push_back(*x);
+        lists.candidate_range.push_back({std::min(lo, tx - tol), std::max(hi, tx + tol)});
         continue;
       }
     }
-    r.unresolved.push_back(u.world);
+    lists.unresolved.push_back(u.world);
   }
   const bool lone_excluded_vertex =
-      r.crossings.size() == 1 && vertex_root_excluded.size() == 1 && vertex_root_excluded[0];
-  r.restricted = !r.crossings.empty() && !lone_excluded_vertex;
-  if (r.restricted) r.dual_point = r.crossings.front();
-  return r;
+      lists.crossings.size() == 1 && vertex_root_excluded.size() == 1 && vertex_root_excluded[0];
+  r.restricted = !lists.crossings.empty() && !lone_excluded_vertex;
+  if (r.restricted) r.dual_point = lists.crossings.front();
+  return finish();
 }
 
 void RestrictedDelaunay::invalidate(const std::vector<VertexId>& vertices) {
@@ -589,7 +665,7 @@ std::optional<std::array<TriangleKey, 2>> RestrictedDelaunay::restricted_pair(co
 std::vector<std::pair<TriangleKey, Vec3>> RestrictedDelaunay::unresolved_regions() const {
   std::vector<std::pair<TriangleKey, Vec3>> out;
   edges_.for_each([&](const TriangleKey& t, const VoronoiEdgeRecord& r) {
-    for (const auto& x : r.unresolved) out.push_back({t, x});
+    for (const auto& x : r.unresolved()) out.push_back({t, x});
   });
   std::sort(out.begin(), out.end());
   return out;

@@ -53,21 +53,70 @@
 
 namespace delmesh {
 
-//! The Voronoi edge of one Delaunay triangle and its intersections with Σ.
-struct VoronoiEdgeRecord {
-  // The fields read on every lookup come first (one cache line).
-  bool restricted = false;       //!< the triangle is in Tri S|Σ (with the §5.1 rule)
-  bool shrunk = false;           //!< the dual edge shrank since: restrict or solve again on use
+//! A read-only run of points held by a VoronoiEdgeRecord (valid while the record lives unchanged).
+class RecordPoints {
+ public:
+  RecordPoints() = default;
+  RecordPoints(const Vec3* first, std::size_t count) : first_(first), count_(count) {}
+  const Vec3* begin() const { return first_; }
+  const Vec3* end() const { return first_ + count_; }
+  std::size_t size() const { return count_; }
+  bool empty() const { return count_ == 0; }
+  const Vec3& front() const { return first_[0]; }
+  const Vec3& operator[](std::size_t i) const { return first_[i]; }
+
+ private:
+  const Vec3* first_ = nullptr;
+  std::size_t count_ = 0;
+};
+
+//! The lists of a VoronoiEdgeRecord while they are built (RestrictedDelaunay::compute()).
+struct VoronoiEdgeLists {
+  std::vector<Vec3> unresolved, crossings, candidates;
+  //! [t_lo, t_hi] of each crossing and each candidate.
+  std::vector<std::array<double, 2>> crossing_range, candidate_range;
+  //! Empties every list (keeping the capacity).
+  void clear();
+};
+
+//! The Voronoi edge of one Delaunay triangle and its intersections with Σ.  The lists live in one
+//! block of their own, allocated only when one of them is not empty (most edges miss Σ), so that
+//! the records of a large triangulation stay small.
+class VoronoiEdgeRecord {
+ public:
+  bool restricted = false;  //!< the triangle is in Tri S|Σ (with the §5.1 rule)
+  bool shrunk = false;      //!< the dual edge shrank since: restrict or solve again on use
+  Vec3 dual_point{};        //!< a counted point of e ∩ Σ when restricted
+  VoronoiEdge edge;
+
+  VoronoiEdgeRecord() = default;
+  VoronoiEdgeRecord(const VoronoiEdgeRecord& other) : restricted(other.restricted), shrunk(other.shrunk),
+      dual_point(other.dual_point), edge(other.edge), lists_(copy(other)) {}
+  VoronoiEdgeRecord& operator=(const VoronoiEdgeRecord& other);
+  VoronoiEdgeRecord(VoronoiEdgeRecord&&) noexcept = default;
+  VoronoiEdgeRecord& operator=(VoronoiEdgeRecord&&) noexcept = default;
+
   //! Centres of the undecided regions on e that are neither a zero at a Voronoi vertex nor a
   //! candidate (projection failed or left the edge), and the point of a degenerate edge that Σ
   //! may pass through: what the record could not settle.
-  std::vector<Vec3> unresolved;
-  Vec3 dual_point{};             //!< a counted point of e ∩ Σ when restricted
-  std::vector<Vec3> crossings;   //!< all points of e ∩ Σ (certified, and zeros at Voronoi vertices)
-  std::vector<Vec3> candidates;  //!< projected undecided regions (tangency candidates)
-  //! The solver's enclosure [t_lo, t_hi] of each crossing and each candidate, on edge's line.
-  std::vector<std::array<double, 2>> crossing_range, candidate_range;
-  VoronoiEdge edge;
+  RecordPoints unresolved() const { return list(0); }
+  //! All points of e ∩ Σ (certified, and zeros at Voronoi vertices).
+  RecordPoints crossings() const { return list(1); }
+  //! Projected undecided regions (tangency candidates).
+  RecordPoints candidates() const { return list(2); }
+  //! The solver's enclosure [t_lo, t_hi] on the edge's line of each crossing and each candidate,
+  //! as the first two coordinates of each entry (the third is 0).
+  RecordPoints crossing_range() const { return list(3); }
+  RecordPoints candidate_range() const { return list(4); }
+  //! Replaces the lists by these (each range list as long as its point list).
+  void set_lists(const VoronoiEdgeLists& lists);
+
+ private:
+  //! Block layout: one entry holding the three counts (of unresolved, crossings, candidates),
+  //! then the points of the five lists in the order of list().
+  std::unique_ptr<Vec3[]> lists_;
+  RecordPoints list(int which) const;
+  static std::unique_ptr<Vec3[]> copy(const VoronoiEdgeRecord& other);
 };
 
 class RestrictedDelaunay {

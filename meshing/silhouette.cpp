@@ -46,7 +46,7 @@ CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool 
   if (facets_clean) {
     for (const auto& t : del.incident_triangles(p)) {
       const auto& rec = restricted.voronoi_edge_record(t);
-      if (rec.crossings.empty() && rec.candidates.empty() && rec.unresolved.empty()) continue;
+      if (rec.crossings().empty() && rec.candidates().empty() && rec.unresolved().empty()) continue;
       for (VertexId v : t)
         if (v != p) crossing.push_back(v);
     }

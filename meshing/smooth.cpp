@@ -28,7 +28,7 @@ std::optional<Witness> smooth_witness(RestrictedDelaunay& restricted, const Edge
   if (!(g > threshold)) return std::nullopt;
   WitnessCollector collector(CheckKind::smooth, pq[0], restricted.delaunay().point(pq[0]));
   for (const auto& t : pair)
-    for (const auto& x : restricted.voronoi_edge_record(t).crossings) collector.add(x);
+    for (const auto& x : restricted.voronoi_edge_record(t).crossings()) collector.add(x);
   auto witnesses = collector.take().witnesses;
   if (witnesses.empty()) return std::nullopt;  // restricted triangles have crossings: not reached
   return witnesses.front();

@@ -54,7 +54,7 @@ CheckResult topo_disk_witness(RestrictedDelaunay& restricted, VertexId p) {
   if (is_topological_disk(restricted.star(p), p)) return {};
   detail::WitnessCollector collector(CheckKind::topo_disk, p, restricted.delaunay().point(p));
   for (const auto& t : restricted.delaunay().incident_triangles(p))
-    for (const auto& x : restricted.voronoi_edge_record(t).crossings) collector.add(x);
+    for (const auto& x : restricted.voronoi_edge_record(t).crossings()) collector.add(x);
   if (collector.points() == 0) collector.add_unsettled(UnsettledReason::no_witness, restricted.delaunay().point(p));
   return collector.take();
 }

@@ -10,9 +10,9 @@ CheckResult vor_edge_witness(RestrictedDelaunay& restricted, const TriangleKey& 
   const Vec3& pp = restricted.delaunay().point(p);
   // Tangency candidates first; the crossings (when there are two or more) after them.
   detail::WitnessCollector candidates(CheckKind::vor_edge, p, pp), crossings(CheckKind::vor_edge, p, pp);
-  for (const auto& x : r.candidates) candidates.add(x, true);
-  if (r.crossings.size() >= 2)
-    for (const auto& x : r.crossings) crossings.add(x);
+  for (const auto& x : r.candidates()) candidates.add(x, true);
+  if (r.crossings().size() >= 2)
+    for (const auto& x : r.crossings()) crossings.add(x);
   CheckResult result = candidates.take();
   for (auto& w : crossings.take().witnesses) result.witnesses.push_back(w);
   return result;

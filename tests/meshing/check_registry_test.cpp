@@ -54,12 +54,20 @@ BOOST_AUTO_TEST_CASE(vor_edge_may_fire_only_on_a_candidate_or_two_crossings) {
   BOOST_TEST_REQUIRE(static_cast<bool>(may_fire));
   VoronoiEdgeRecord record;
   BOOST_TEST(!may_fire(record));
-  record.crossings = {{0, 0, 1}};
+  VoronoiEdgeLists lists;
+  lists.crossings = {{0, 0, 1}};
+  lists.crossing_range = {{0, 0}};
+  record.set_lists(lists);
   BOOST_TEST(!may_fire(record));
-  record.crossings.push_back({0, 0, -1});
+  lists.crossings.push_back({0, 0, -1});
+  lists.crossing_range.push_back({1, 1});
+  record.set_lists(lists);
   BOOST_TEST(may_fire(record));
-  record.crossings.resize(1);
-  record.candidates = {{1, 0, 0}};
+  lists.crossings.resize(1);
+  lists.crossing_range.resize(1);
+  lists.candidates = {{1, 0, 0}};
+  lists.candidate_range = {{2, 2}};
+  record.set_lists(lists);
   BOOST_TEST(may_fire(record));
 }
 

@@ -31,7 +31,7 @@ BOOST_AUTO_TEST_CASE(voronoi_vertex_on_the_surface_follows_section_5_1) {
       // The zero at v is found at v (a §5.1 vertex zero) or, the constructed vertex being
       // rounded to just outside Σ, not at all: either way the triangle is not restricted.
       BOOST_TEST(!rec.restricted);
-      BOOST_TEST(rec.crossings.size() <= 1u);
+      BOOST_TEST(rec.crossings().size() <= 1u);
       ++excluded;
     }
   }
@@ -98,9 +98,9 @@ BOOST_AUTO_TEST_CASE(shrunk_records_equal_solved_records) {
   for (std::size_t i = 0; i < kept.size(); ++i) {
     const auto& solved = fresh.voronoi_edge_record(change.shrunk_triangles[i]);
     BOOST_TEST(kept[i].restricted == solved.restricted);
-    BOOST_TEST(kept[i].crossings.size() == solved.crossings.size());
-    for (std::size_t k = 0; k < std::min(kept[i].crossings.size(), solved.crossings.size()); ++k)
-      for (int c = 0; c < 3; ++c) BOOST_TEST(std::abs(kept[i].crossings[k][c] - solved.crossings[k][c]) < 1e-12);
+    BOOST_TEST(kept[i].crossings().size() == solved.crossings().size());
+    for (std::size_t k = 0; k < std::min(kept[i].crossings().size(), solved.crossings().size()); ++k)
+      for (int c = 0; c < 3; ++c) BOOST_TEST(std::abs(kept[i].crossings()[k][c] - solved.crossings()[k][c]) < 1e-12);
   }
 }
 
@@ -133,9 +133,9 @@ BOOST_AUTO_TEST_CASE(exact_vertex_zero_is_excluded_by_a_proved_sign) {
   BOOST_TEST_REQUIRE(rec.edge.at_vertex0 != rec.edge.at_vertex1);
   BOOST_TEST_REQUIRE(detail::distance(voronoi_vertex(rec.edge), {1, 0, 0}) == 0.0);
   BOOST_TEST(!rec.restricted);
-  BOOST_TEST(rec.unresolved.empty());
-  BOOST_TEST_REQUIRE(rec.crossings.size() == 1u);
-  BOOST_TEST(detail::distance(rec.crossings[0], {1, 0, 0}) == 0.0);
+  BOOST_TEST(rec.unresolved().empty());
+  BOOST_TEST_REQUIRE(rec.crossings().size() == 1u);
+  BOOST_TEST(detail::distance(rec.crossings()[0], {1, 0, 0}) == 0.0);
 }
 
 // δ = 2⁻³³: v lies inside the ball, and Σ crosses the ray δ from v — within the Voronoi-vertex
@@ -147,10 +147,10 @@ BOOST_AUTO_TEST_CASE(crossing_next_to_a_vertex_is_not_collapsed_onto_it) {
   const auto& rec = f.restricted.voronoi_edge_record({0, 1, 2});
   BOOST_TEST_REQUIRE(detail::distance(voronoi_vertex(rec.edge), {1 - delta, 0, 0}) == 0.0);
   BOOST_TEST(rec.restricted);
-  BOOST_TEST(rec.unresolved.empty());
-  BOOST_TEST_REQUIRE(rec.crossings.size() == 1u);
-  BOOST_TEST(std::abs(f.oracle.E(rec.crossings[0])) < 1e-15);
-  BOOST_TEST(rec.crossings[0][0] > 1 - delta / 2);
+  BOOST_TEST(rec.unresolved().empty());
+  BOOST_TEST_REQUIRE(rec.crossings().size() == 1u);
+  BOOST_TEST(std::abs(f.oracle.E(rec.crossings()[0])) < 1e-15);
+  BOOST_TEST(rec.crossings()[0][0] > 1 - delta / 2);
 }
 
 // facet_misses_surface() against the facets themselves: on points near the unit sphere, every

@@ -15,7 +15,7 @@ BOOST_AUTO_TEST_SUITE(vor_edge)
 BOOST_AUTO_TEST_CASE(edge_crossing_twice_fires_with_the_furthest_crossing) {
   CheckFixture f(test::unit_sphere, 1.5, {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}});
   const auto& rec = f.restricted.voronoi_edge_record({0, 1, 2});
-  BOOST_TEST(rec.crossings.size() == 2u);
+  BOOST_TEST(rec.crossings().size() == 2u);
   const auto w = vor_edge_witness(f.restricted, {0, 1, 2});
   BOOST_TEST_REQUIRE(!w.witnesses.empty());
   BOOST_TEST(w.witnesses.front().kind == CheckKind::vor_edge);
@@ -27,7 +27,7 @@ BOOST_AUTO_TEST_CASE(edge_crossing_twice_fires_with_the_furthest_crossing) {
 BOOST_AUTO_TEST_CASE(ray_crossing_once_does_not_fire) {
   CheckFixture f(test::unit_sphere, 1.5, {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, 0, -1}});
   const auto& rec = f.restricted.voronoi_edge_record({0, 1, 2});
-  BOOST_TEST(rec.crossings.size() == 1u);
+  BOOST_TEST(rec.crossings().size() == 1u);
   BOOST_TEST(rec.restricted);
   BOOST_TEST(vor_edge_witness(f.restricted, {0, 1, 2}).clean());
 }

@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 
+#include "common/errors.h"
 #include "common/tolerances.h"
 #include "meshing/detail/vec3.h"
 #include "solvers/query_geometry.h"

@@ -90,8 +90,9 @@ class VoronoiEdgeRecord {
   VoronoiEdge edge;
 
   VoronoiEdgeRecord() = default;
-  VoronoiEdgeRecord(const VoronoiEdgeRecord& other) : restricted(other.restricted), shrunk(other.shrunk),
-      dual_point(other.dual_point), edge(other.edge), lists_(copy(other)) {}
+  VoronoiEdgeRecord(const VoronoiEdgeRecord& other)
+      : restricted(other.restricted), shrunk(other.shrunk), dual_point(other.dual_point), edge(other.edge),
+        lists_(copy(other)) {}
   VoronoiEdgeRecord& operator=(const VoronoiEdgeRecord& other);
   VoronoiEdgeRecord(VoronoiEdgeRecord&&) noexcept = default;
   VoronoiEdgeRecord& operator=(VoronoiEdgeRecord&&) noexcept = default;
@@ -108,7 +109,8 @@ class VoronoiEdgeRecord {
   //! as the first two coordinates of each entry (the third is 0).
   RecordPoints crossing_range() const { return list(3); }
   RecordPoints candidate_range() const { return list(4); }
-  //! Replaces the lists by these (each range list as long as its point list).
+  //! Replaces the lists by these.  Throws PreconditionViolation unless each range list is as long
+  //! as its point list.
   void set_lists(const VoronoiEdgeLists& lists);
 
  private:

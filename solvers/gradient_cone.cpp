@@ -32,7 +32,7 @@ double box_slope(const Interval& functional, const Interval* gradient) {
   return (Interval(least) / Interval(largest)).inf();
 }
 
-// Whether the Krawczyk operator proves a zero of f(u) = (E(x(u)), ⟨∇E(x(u)), w⟩) in the box U (in
+// A zero of f(u) = (E(x(u)), ⟨∇E(x(u)), w⟩) in the box U (in
 // chart coordinates, n = 2 or 3; x the chart) — in the slice u_k = c_k through the centre c along
 // one coordinate k when n = 3, the unknowns being the other two.  `centre_value` and
 // `centre_gradient` enclose E and ∇E at the centre c (a point), `gradient` and `hessian` (rows
@@ -41,11 +41,12 @@ double box_slope(const Interval& functional, const Interval* gradient) {
 // the enclosure of f′ on Y and C ≈ (mid J)⁻¹:
 //     K = y − C f(y) + (I − C J)(Y − y)  ⊂  int Y   ⇒   f has a zero in Y
 // (Krawczyk's theorem: K holds every zero of f in Y, and K ⊆ Y makes y − C f(y) a self-map of Y
-// by the mean-value theorem, whose fixed point is a zero).  Returns a box in U holding that zero
-// (K on the unknowns, the slice's point on the other coordinate), or nothing.
-std::optional<std::array<Interval, 3>> functional_zero(const AffineChart& chart, const std::array<Interval, 3>& u, const Interval* centre,
-                            const Interval& centre_value, const Interval* centre_gradient, const Interval* gradient,
-                            const Interval* hessian, const std::array<double, 3>& w) {
+// by the mean-value theorem, whose fixed point is a zero).  Returns a box in U holding the zero
+// the operator proves (K on the unknowns, the slice's point on the other coordinate), or nothing.
+std::optional<std::array<Interval, 3>> functional_zero(const AffineChart& chart, const std::array<Interval, 3>& u,
+                                                       const Interval* centre, const Interval& centre_value,
+                                                       const Interval* centre_gradient, const Interval* gradient,
+                                                       const Interval* hessian, const std::array<double, 3>& w) {
   const std::size_t n = chart.columns.size();
   if (n < 2) return std::nullopt;
   Interval hessian_w[3];

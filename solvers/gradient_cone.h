@@ -22,12 +22,14 @@
 //! nor, on a half, a half-space proved to contain the whole box strictly: classify()'s mask.)
 //! A box that none of these drops is bisected along its widest side; when the budget or the depth
 //! runs out the certificate fails.  It also fails at once, refuted, when
-//!  (iv)  on a box U proved inside P (E compiled with Hessians), the Krawczyk operator of
+//!  (iv)  on a box U that (i)–(iii) keep (E compiled with Hessians), the Krawczyk operator of
 //!        f = (E, ⟨∇E, w⟩) — on U itself in dimension 2, on the slice of U through its centre
-//!        across one coordinate in dimension 3 — maps the box of the unknowns into its interior:
-//!        then f has a zero x* ∈ U ⊆ P, a point of Σ ∩ P where the functional vanishes, and every
-//!        box that holds x* fails (ii) and (iii) whatever the subdivision, so no budget could give
-//!        a proof.  This only saves the boxes a hopeless attempt would spend.  Proof: every point of Σ ∩ P lies in some box of the final
+//!        across one coordinate in dimension 3 — maps the box of the unknowns into its interior,
+//!        and U or the image box is proved inside P: then f has a zero x* ∈ P, a point of Σ ∩ P
+//!        where the functional vanishes; every box holding x* fails (ii) and (iii) whatever the
+//!        subdivision, so no budget could give a proof, and (iv) only saves the boxes a hopeless
+//!        attempt would spend.
+//! Proof of a certificate: every point of Σ ∩ P lies in some box of the final
 //! cover that was not dropped by (i) or (ii), i.e. one dropped by (iii), where the functional is
 //! non-zero.  Each test is a rigorous interval enclosure (a RoundingGuard is taken), so `proved`
 //! is a proof; a failure proves nothing and the caller must solve the full system.

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "check_fixture.h"
+#include "common/errors.h"
 #include "meshing/detail/vec3.h"
 #include "meshing/restricted_delaunay.h"
 
@@ -50,6 +51,40 @@ BOOST_AUTO_TEST_CASE(octahedron_is_its_own_restricted_triangulation) {
   f.restricted.invalidate({0, 2, 4});
   (void)f.restricted.triangles();
   BOOST_TEST(f.oracle.statistics("surface_line").calls == calls + 1);
+}
+
+// A record's lists come back as they were set, in order, through copies and moves; empty lists
+// leave no block; lists whose ranges do not match are refused.
+BOOST_AUTO_TEST_CASE(record_lists_round_trip) {
+  VoronoiEdgeLists lists;
+  lists.unresolved = {{9, 9, 9}};
+  lists.crossings = {{1, 2, 3}, {4, 5, 6}};
+  lists.crossing_range = {{0.1, 0.2}, {0.3, 0.4}};
+  lists.candidates = {{7, 8, 9}};
+  lists.candidate_range = {{0.5, 0.6}};
+  VoronoiEdgeRecord record;
+  record.set_lists(lists);
+  const VoronoiEdgeRecord copy = record;
+  VoronoiEdgeRecord assigned;
+  assigned = copy;
+  const VoronoiEdgeRecord moved = std::move(record);
+  for (const VoronoiEdgeRecord* r : std::initializer_list<const VoronoiEdgeRecord*>{&copy, &assigned, &moved}) {
+    BOOST_TEST_REQUIRE(r->unresolved().size() == 1u);
+    BOOST_TEST(r->unresolved()[0] == (Vec3{9, 9, 9}));
+    BOOST_TEST_REQUIRE(r->crossings().size() == 2u);
+    BOOST_TEST(r->crossings()[1] == (Vec3{4, 5, 6}));
+    BOOST_TEST_REQUIRE(r->crossing_range().size() == 2u);
+    BOOST_TEST(r->crossing_range()[1][0] == 0.3);
+    BOOST_TEST(r->crossing_range()[1][1] == 0.4);
+    BOOST_TEST_REQUIRE(r->candidates().size() == 1u);
+    BOOST_TEST(r->candidates().front() == (Vec3{7, 8, 9}));
+    BOOST_TEST(r->candidate_range()[0][1] == 0.6);
+  }
+  assigned.set_lists(VoronoiEdgeLists{});
+  BOOST_TEST(assigned.crossings().empty());
+  BOOST_TEST(assigned.unresolved().empty());
+  lists.crossing_range.pop_back();
+  BOOST_CHECK_THROW(assigned.set_lists(lists), PreconditionViolation);
 }
 
 // restricted_pair(e) is star(e[0]) filtered to the triangles containing e, when there are two: on

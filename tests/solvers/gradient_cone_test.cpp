@@ -141,7 +141,8 @@ BOOST_AUTO_TEST_CASE(a_proved_zero_of_the_functional_refutes_the_certificate) {
   BOOST_TEST(!spent.proved);
   BOOST_TEST(!spent.refuted);
   BOOST_TEST(spent.boxes > 4 * refuted.boxes);
-  const auto cap = prove_gradient_cone(E, AffineChart::identity(), cube(-1.5, 1.5, -1.5, 1.5, 0.5, 1.5), {0, 0, 1}, 200);
+  const Domain upper = cube(-1.5, 1.5, -1.5, 1.5, 0.5, 1.5);
+  const auto cap = prove_gradient_cone(E, AffineChart::identity(), upper, {0, 0, 1}, 200);
   BOOST_TEST(cap.proved);
   BOOST_TEST(!cap.refuted);
   // In a facet's plane chart (dimension 2, no slice): the circle of Σ ∩ {z = 0.2} crosses x = 0,

@@ -135,6 +135,9 @@ ExitCode run_check(const CheckOptions& o) {
   if (!o.certify && o.surface.given())
     throw InvalidInput("--surface and --expr are used only with --certify (the certificate of the mesh for that surface)");
   if (!o.certify && o.seed_option->count() > 0) throw InvalidInput("--seed is used only with --certify");
+  // Installed before the mesh is read: a signal that arrives while the mesh is read or the surface
+  // compiled then stops the certificate at its first step instead of ending the process.
+  if (o.certify) install_interrupt_handlers();
   // Read as a soup: open, non-manifold and non-orientable meshes are reported, not refused.
   const TriangleSoup soup = read_triangle_soup(o.mesh);
   const CheckVerdict verdict = check_verdict(check_mesh(soup.points, soup.triangles),
@@ -142,7 +145,6 @@ ExitCode run_check(const CheckOptions& o) {
   std::optional<Certificate> certificate;
   if (o.certify) {
     const SurfaceInput input = o.surface.resolve();
-    install_interrupt_handlers();
     CertificateOptions options;
     options.seed = o.seed;
     options.interrupt = &interrupt_flag();

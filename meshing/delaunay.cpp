@@ -1,6 +1,7 @@
 #include "meshing/delaunay.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <iterator>
@@ -89,7 +90,12 @@ struct DelaunayImpl {
 
 }  // namespace detail
 
-Delaunay::Delaunay() : impl_(std::make_unique<detail::DelaunayImpl>()), points_(&impl_->points) {}
+namespace {
+std::atomic<std::uint64_t> last_serial{0};
+}  // namespace
+
+Delaunay::Delaunay()
+    : impl_(std::make_unique<detail::DelaunayImpl>()), points_(&impl_->points), serial_(++last_serial) {}
 Delaunay::~Delaunay() = default;
 Delaunay::Delaunay(Delaunay&&) noexcept = default;
 Delaunay& Delaunay::operator=(Delaunay&&) noexcept = default;
@@ -288,14 +294,16 @@ std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x) const {
   const auto v = impl_->handle(x);
   std::vector<detail::Dt::Cell_handle> cells;
   dt.incident_cells(v, std::back_inserter(cells));
+  // Each cell has one facet opposite x and shares its three facets at x with other cells.
+  out.reserve(cells.size() * 5 / 2 + 1);
   for (const auto& c : cells) {
     const int ix = c->index(v);
     for (int j = 0; j < 4; ++j) {
-      const auto t = facet_key(dt, detail::Dt::Facet(c, j));
-      if (!t) continue;
       // A facet containing x lies in two cells of x's star: it is kept from the one at the lower
       // address (the facet opposite x lies in one cell of the star only).
       if (j != ix && &*c->neighbor(j) < &*c) continue;
+      const auto t = facet_key(dt, detail::Dt::Facet(c, j));
+      if (!t) continue;
       out.push_back({*t, facet_apexes(dt, c, j), j != ix});
     }
   }

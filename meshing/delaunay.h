@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -78,6 +79,10 @@ class Delaunay {
   }
   bool is_seed(VertexId id) const;
   std::size_t size() const;
+  //! A number that no other Delaunay made in this process has (a move passes it on).  With ids
+  //! never reused and points never changed, (serial(), ids) always names the same points, so a
+  //! value computed from them may be kept under that key.
+  std::uint64_t serial() const { return serial_; }
   int dimension() const;
   //! Ids of the current vertices, ascending.
   std::vector<VertexId> vertices() const;
@@ -132,6 +137,7 @@ class Delaunay {
   std::unique_ptr<detail::DelaunayImpl> impl_;
   //! impl_->points, read inline by point() (the implementation, hence the vector, never moves).
   const std::vector<std::array<double, 3>>* points_;
+  std::uint64_t serial_;
 };
 
 }  // namespace delmesh

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "common/errors.h"
@@ -138,7 +139,23 @@ Vec3 voronoi_vertex(const Delaunay& del, std::array<VertexId, 4> cell) {
   order(0, 2);
   order(1, 3);
   order(1, 2);
-  return circumcentre(del.point(cell[0]), del.point(cell[1]), del.point(cell[2]), del.point(cell[3]));
+  // A direct-mapped memo per thread: the faces at a Voronoi vertex ask for it one after another.
+  struct Memo {
+    std::uint64_t serial = 0;  // no Delaunay has serial 0
+    std::array<VertexId, 4> cell{};
+    Vec3 centre{};
+  };
+  constexpr std::size_t memo_size = 1024;
+  thread_local std::array<Memo, memo_size> memo;
+  std::uint64_t hash = 0;
+  for (VertexId v : cell) hash = (hash ^ static_cast<std::uint32_t>(v)) * 0x100000001b3ull;
+  Memo& m = memo[(hash >> 20) % memo_size];
+  if (m.serial != del.serial() || m.cell != cell) {
+    m.serial = del.serial();
+    m.cell = cell;
+    m.centre = circumcentre(del.point(cell[0]), del.point(cell[1]), del.point(cell[2]), del.point(cell[3]));
+  }
+  return m.centre;
 }
 
 bool half_spaces_contain(const Domain& domain, const std::vector<double>& u, double tolerance) {

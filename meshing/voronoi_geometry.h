@@ -51,7 +51,8 @@
 namespace delmesh {
 
 //! The Voronoi vertex dual to a finite Delaunay cell: the circumcentre of its four sites,
-//! computed from the sites in increasing id order (the same point for every face at it).
+//! computed from the sites in increasing id order (the same point for every face at it).  The
+//! last ones computed on each thread are kept under (Delaunay::serial(), ids) and returned again.
 //! \pre the four ids are distinct vertices of Del S, not coplanar.
 Vec3 voronoi_vertex(const Delaunay& del, std::array<VertexId, 4> cell);
 

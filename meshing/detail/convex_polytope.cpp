@@ -116,11 +116,15 @@ void ConvexPolytope::add_cut_face(const V3& n, double eps, int label, std::size_
     const double t = y / r;  // in [-1, 1]
     return x >= 0 ? (t >= 0 ? t : 4 + t) : 2 - t;
   };
-  std::sort(cut_.begin(), cut_.end(), [&](const V3& p, const V3& q) { return pseudo_angle(p) < pseudo_angle(q); });
+  // Each angle is computed once and sorted with its point.
+  by_angle_.clear();
+  for (const auto& p : cut_) by_angle_.push_back({pseudo_angle(p), p});
+  std::sort(by_angle_.begin(), by_angle_.end(),
+            [](const AngledPoint& p, const AngledPoint& q) { return p.angle < q.angle; });
   // Points closer than eps to the previous one are the same vertex (it lay on the plane).
   PolytopeFace& slot = next_slot(count);
   std::vector<V3>& loop = slot.loop;
-  for (const auto& p : cut_)
+  for (const auto& [angle, p] : by_angle_)
     if (loop.empty() || distance(loop.back(), p) > eps) loop.push_back(p);
   if (loop.size() >= 3 && distance(loop.front(), loop.back()) <= eps) loop.pop_back();
   if (loop.size() >= 3) {

@@ -46,6 +46,11 @@ class ConvexPolytope {
   std::vector<PolytopeFace> spare_;
   std::vector<double> side_;
   std::vector<V3> cut_;
+  struct AngledPoint {
+    double angle;
+    V3 point;
+  };
+  std::vector<AngledPoint> by_angle_;  // cut_ with each point's angle about the cut's centroid
 };
 
 }  // namespace delmesh::detail

@@ -26,6 +26,28 @@ BOOST_AUTO_TEST_CASE(edge_of_a_hull_triangle_is_a_ray_clipped_by_the_box) {
   BOOST_TEST((e.at_vertex0 != e.at_vertex1));
 }
 
+// The kept Voronoi vertices belong to their triangulation: two triangulations with the same ids
+// at different points, asked in turn (and one of them after a move), get their own circumcentres.
+BOOST_AUTO_TEST_CASE(voronoi_vertex_is_the_circumcentre_in_each_triangulation) {
+  Delaunay a, b;
+  BOOST_TEST(a.serial() != b.serial());
+  // Both regular tetrahedra inscribed in spheres about (0, 0, 0) and (3, 5, 7).
+  const std::vector<Vec3> corners{{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+  for (const Vec3& p : corners) {
+    a.insert(p, false);
+    b.insert({p[0] + 3, p[1] + 5, p[2] + 7}, false);
+  }
+  for (int round = 0; round < 3; ++round) {
+    BOOST_TEST(detail::norm(voronoi_vertex(a, {0, 1, 2, 3})) == 0.0);
+    BOOST_TEST(detail::distance(voronoi_vertex(b, {3, 2, 1, 0}), Vec3{3, 5, 7}) == 0.0);
+  }
+  const std::uint64_t serial = b.serial();
+  Delaunay moved = std::move(b);
+  BOOST_TEST(moved.serial() == serial);
+  BOOST_TEST(detail::distance(voronoi_vertex(moved, {0, 1, 2, 3}), Vec3{3, 5, 7}) == 0.0);
+  BOOST_TEST(Delaunay().serial() != a.serial());
+}
+
 BOOST_AUTO_TEST_CASE(edge_in_dimension_two_is_a_full_line) {
   Delaunay del;
   for (auto p : std::vector<Vec3>{{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}}) del.insert(p, false);

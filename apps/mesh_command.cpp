@@ -356,6 +356,9 @@ ExitCode exit_code(MeshStatus status, const nlohmann::json& statistics, double m
 //! The steps: plan the run and check its outputs (every option valid from then on, so a warning
 //! cannot precede an `error:` about them), mesh, certify if asked, write, and map the status.
 ExitCode run_mesh(const MeshOptions& o) {
+  // Installed before the input is read: a signal that arrives while the surface is compiled or an
+  // input mesh read then stops the run at its first check instead of ending the process.
+  install_interrupt_handlers();
   MeshRun run = plan_run(o);
   const std::pair<std::string, std::string> files = output_files(o, run.name());
   const std::string& out = files.first;
@@ -363,7 +366,6 @@ ExitCode run_mesh(const MeshOptions& o) {
   for (const std::string& warning : run.warnings()) print_warning(warning);
   if (!o.quiet) report_progress(o, run);
 
-  install_interrupt_handlers();
   DelMeshOptions& options = run.options();
   options.interrupt = &interrupt_flag();
   DelMeshResult result =

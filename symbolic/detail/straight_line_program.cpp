@@ -537,14 +537,21 @@ bool StraightLineProgram::is_polynomial_program() const {
 
 namespace {
 
-//! c = a·b truncated after t^(n−1); c must not alias a or b.
+//! c = a·b truncated after t^(n−1), where a_i = 0 for i > da and b_i = 0 for i > db (da, db < n);
+//! returns the degree bound of c, min(da + db, n − 1).  Only the coefficients up to it are
+//! written (c must not alias a or b; its higher coefficients are left as they are).  The products
+//! with a known zero factor are skipped: each sum then adds the same nonzero products in the same
+//! order as the full convolution, and adding an exact zero changes no bound.
 template <class T>
-void multiply_truncated(const T* a, const T* b, std::size_t n, T* c) {
-  for (std::size_t k = 0; k < n; ++k) {
-    T sum = a[0] * b[k];
-    for (std::size_t i = 1; i <= k; ++i) sum += a[i] * b[k - i];
+std::size_t multiply_truncated(const T* a, std::size_t da, const T* b, std::size_t db, std::size_t n, T* c) {
+  const std::size_t dc = std::min(da + db, n - 1);
+  for (std::size_t k = 0; k <= dc; ++k) {
+    const std::size_t lo = k > db ? k - db : 0, hi = std::min(k, da);
+    T sum = a[lo] * b[k - lo];
+    for (std::size_t i = lo + 1; i <= hi; ++i) sum += a[i] * b[k - i];
     c[k] = sum;
   }
+  return dc;
 }
 
 }  // namespace
@@ -554,14 +561,23 @@ bool StraightLineProgram::evaluate_along_line(const T* point, const T* direction
   if (order < 0 || !is_polynomial_program()) return false;
   const std::size_t n = static_cast<std::size_t>(order) + 1;
   const std::size_t n_c = constants_.size();
+  const std::size_t n_registers = n_inputs_ + n_c + code_.size();
+  // degree[r] bounds the degree in t of register r: 1 for an input, 0 for a constant, and what
+  // the instruction makes of its operands' bounds (capped at the order); every coefficient above
+  // it is zero, so it is neither computed nor read.
   thread_local std::vector<T> registers, power, product;
-  registers.assign((n_inputs_ + n_c + code_.size()) * n, T(0));
+  thread_local std::vector<std::size_t> degree;
+  registers.assign(n_registers * n, T(0));
+  degree.assign(n_registers, 0);
   power.resize(n);
   product.resize(n);
   auto reg = [&](std::int32_t i) { return registers.data() + static_cast<std::size_t>(i) * n; };
   for (std::size_t i = 0; i < n_inputs_; ++i) {
     reg(static_cast<std::int32_t>(i))[0] = point[i];
-    if (n > 1) reg(static_cast<std::int32_t>(i))[1] = direction[i];
+    if (n > 1) {
+      reg(static_cast<std::int32_t>(i))[1] = direction[i];
+      degree[i] = 1;
+    }
   }
   thread_local std::vector<T> constant_values;
   constant_values.resize(n_c);
@@ -572,31 +588,39 @@ bool StraightLineProgram::evaluate_along_line(const T* point, const T* direction
     const Instruction& ins = code_[k];
     T* out = reg(first + static_cast<std::int32_t>(k));
     const T* a = reg(ins.a);
+    const std::size_t da = degree[ins.a];
+    std::size_t& d = degree[n_inputs_ + n_c + k];
     switch (ins.op) {
       case OpCode::add:
-        for (std::size_t i = 0; i < n; ++i) out[i] = a[i] + reg(ins.b)[i];
+      case OpCode::sub: {
+        const T* b = reg(ins.b);
+        d = std::max(da, degree[ins.b]);
+        if (ins.op == OpCode::add)
+          for (std::size_t i = 0; i <= d; ++i) out[i] = a[i] + b[i];
+        else
+          for (std::size_t i = 0; i <= d; ++i) out[i] = a[i] - b[i];
         break;
-      case OpCode::sub:
-        for (std::size_t i = 0; i < n; ++i) out[i] = a[i] - reg(ins.b)[i];
-        break;
+      }
       case OpCode::neg:
-        for (std::size_t i = 0; i < n; ++i) out[i] = -a[i];
+        d = da;
+        for (std::size_t i = 0; i <= d; ++i) out[i] = -a[i];
         break;
-      case OpCode::mul: multiply_truncated(a, reg(ins.b), n, out); break;
-      case OpCode::square: multiply_truncated(a, a, n, out); break;
+      case OpCode::mul: d = multiply_truncated(a, da, reg(ins.b), degree[ins.b], n, out); break;
+      case OpCode::square: d = multiply_truncated(a, da, a, da, n, out); break;
       case OpCode::pow: {
-        // Square-and-multiply on truncated series: out = a^e.
-        std::fill(out, out + n, T(0));
+        // Square-and-multiply on truncated series: out = a^e (out starts as the series 1).
         out[0] = T(1);
-        std::copy(a, a + n, power.begin());
+        d = 0;
+        std::copy(a, a + da + 1, power.begin());
+        std::size_t dp = da;
         for (std::int32_t e = ins.b; e > 0; e >>= 1) {
           if (e & 1) {
-            multiply_truncated(out, power.data(), n, product.data());
-            std::copy(product.begin(), product.end(), out);
+            d = multiply_truncated(out, d, power.data(), dp, n, product.data());
+            std::copy(product.begin(), product.begin() + d + 1, out);
           }
           if (e > 1) {
-            multiply_truncated(power.data(), power.data(), n, product.data());
-            std::copy(product.begin(), product.end(), power.begin());
+            dp = multiply_truncated(power.data(), dp, power.data(), dp, n, product.data());
+            std::copy(product.begin(), product.begin() + dp + 1, power.begin());
           }
         }
         break;

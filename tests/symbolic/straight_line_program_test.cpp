@@ -288,6 +288,27 @@ BOOST_AUTO_TEST_CASE(evaluation_along_a_line_gives_the_exact_coefficients) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(evaluation_along_a_line_is_exact_above_and_below_the_degree) {
+  // f = (x − 2y)^5·z + 3(y + z)² − x has degree 6 along a line: for every order the coefficients
+  // up to min(order, 6) are exact (small integers, exact in doubles) and those above 6 are zero,
+  // whatever another program left in the evaluator's scratch series in between.
+  const GiNaC::symbol x("x"), y("y"), z("z"), t("t");
+  const GiNaC::ex f = GiNaC::pow(x - 2 * y, 5) * z + 3 * GiNaC::pow(y + z, 2) - x;
+  const StraightLineProgram program({f}, {x, y, z});
+  const StraightLineProgram other({GiNaC::pow(x + 3, 7) * GiNaC::pow(y, 4) - z}, {x, y, z});
+  const GiNaC::ex along = f.subs(GiNaC::lst{x == 1 + t, y == 2 - t, z == -1 + 2 * t}).expand();
+  const double point[3] = {1, 2, -1}, direction[3] = {1, -1, 2};
+  for (int order : {0, 3, 6, 9}) {
+    std::vector<double> scratch(10), coefficients(static_cast<std::size_t>(order) + 1, 7.0);
+    const double far[3] = {5, -4, 3}, steep[3] = {-2, 6, 1};
+    BOOST_TEST_REQUIRE(other.evaluate_along_line(far, steep, 9, scratch.data()));
+    BOOST_TEST_REQUIRE(program.evaluate_along_line(point, direction, order, coefficients.data()));
+    for (int k = 0; k <= order; ++k)
+      BOOST_TEST(coefficients[k] == GiNaC::ex_to<GiNaC::numeric>(along.coeff(t, k)).to_double(),
+                 "order " << order << ", coefficient " << k);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(evaluation_along_a_line_refuses_non_polynomial_programs) {
   const GiNaC::symbol x("x");
   const StraightLineProgram program({GiNaC::exp(x) + x}, {x});

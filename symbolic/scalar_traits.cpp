@@ -48,7 +48,22 @@ double widen_up(double x) {
 //! guard's upward rounding: the upper bound by plain products (rounded up), the lower one by
 //! negated products −((−a)·b) (the product a·b rounded down, a, b ≥ 0).  These are the products
 //! CGAL's interval arithmetic makes for nonnegative point intervals, without its case analysis.
-Interval nonnegative_point_power(double v, unsigned long n) {
+//! The exponents up to 4 (the common ones in surface equations and their derivatives) are
+//! written out: the same products in the same order as the loop, whose factors 1 are exact.
+inline Interval nonnegative_point_power(double v, unsigned long n) {
+  switch (n) {
+    case 1: return Interval(v, v);
+    case 2: return Interval(-((-v) * v), v * v);
+    case 3: {
+      const double square_lo = -((-v) * v), square_hi = v * v;
+      return Interval(-((-v) * square_lo), v * square_hi);
+    }
+    case 4: {
+      const double square_lo = -((-v) * v), square_hi = v * v;
+      return Interval(-((-square_lo) * square_lo), square_hi * square_hi);
+    }
+    default: break;
+  }
   double base_lo = v, base_hi = v, lo = 1, hi = 1;
   while (true) {
     if (n & 1UL) {
@@ -62,7 +77,7 @@ Interval nonnegative_point_power(double v, unsigned long n) {
   }
 }
 //! Enclosure of vⁿ for any point v and n ≥ 1.
-Interval point_power(double v, unsigned long n) {
+inline Interval point_power(double v, unsigned long n) {
   if (v >= 0) return nonnegative_point_power(v, n);
   const Interval p = nonnegative_point_power(-v, n);
   return (n % 2 == 1) ? -p : p;

@@ -96,6 +96,28 @@ BOOST_AUTO_TEST_CASE(interval_square_and_powers_are_exact_ranges) {
   mpfr_clear(exact);
 }
 
+BOOST_AUTO_TEST_CASE(interval_powers_of_points_enclose_the_exact_power_tightly) {
+  // For every exponent (the written-out ones up to 4 and the loop beyond) and points of both
+  // signs whose powers are not doubles, the exact power (MPFR, 400 bits: exact up to n = 7)
+  // lies in the interval, which is a few ulps wide.
+  RoundingGuard guard;
+  mpfr_t exact;
+  mpfr_init2(exact, 400);
+  for (double v : {1.1, -1.1, 0.7, -3.3, 1e-3}) {
+    for (int n = 1; n <= 7; ++n) {
+      Interval r;
+      IT::pow(r, Interval(v), n);
+      mpfr_set_d(exact, v, MPFR_RNDN);
+      mpfr_pow_ui(exact, exact, static_cast<unsigned long>(n), MPFR_RNDN);
+      BOOST_TEST((mpfr_cmp_d(exact, r.inf()) >= 0 && mpfr_cmp_d(exact, r.sup()) <= 0), "v " << v << ", n " << n);
+      const double magnitude = std::max(std::abs(r.inf()), std::abs(r.sup()));
+      BOOST_TEST(r.sup() - r.inf() <= 2 * n * std::numeric_limits<double>::epsilon() * magnitude,
+                 "v " << v << ", n " << n);
+    }
+  }
+  mpfr_clear(exact);
+}
+
 BOOST_AUTO_TEST_CASE(interval_rational_constants_are_tight_enclosures) {
   Interval third, pi;
   IT::set_rational(third, Rational(1) / 3);

@@ -131,18 +131,32 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
   stack.reserve(64);
   stack[0].active = all_half_spaces_active(domain);
   for (std::size_t j = 0; j < n; ++j) stack[0].u[j] = Interval(domain.box.bounds[j][0], domain.box.bounds[j][1]);
-  // Pushes the halves of `box` along its widest side (the lower one on top); false if it does
-  // not split.
-  auto split = [&](const Box& box, bool inside, std::uint64_t active, bool refining, double parent_slope) {
+  // Pushes the halves of `box` (the lower one on top) across the side of largest smear, the
+  // width times the largest |∂E/∂u_j| on the box (`gradient` encloses ∇E there), or across the
+  // widest side when the smear is not finite or its side no longer splits.  False if no side
+  // splits.
+  auto split = [&](const Box& box, bool inside, std::uint64_t active, bool refining, double parent_slope,
+                   const Interval* gradient) {
     const auto& u = box.u;
-    std::size_t widest = 0;
-    for (std::size_t j = 1; j < n; ++j)
-      if (u[j].sup() - u[j].inf() > u[widest].sup() - u[widest].inf()) widest = j;
-    const double lo = u[widest].inf(), hi = u[widest].sup(), mid = 0.5 * (lo + hi);
-    if (!(lo < mid && mid < hi)) return false;
+    auto width = [&](std::size_t j) { return u[j].sup() - u[j].inf(); };
+    auto splits = [&](std::size_t j) {
+      const double mid = 0.5 * (u[j].inf() + u[j].sup());
+      return u[j].inf() < mid && mid < u[j].sup();
+    };
+    std::size_t widest = 0, smeared = 0;
+    double largest_smear = -1;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (width(j) > width(widest)) widest = j;
+      const Interval d = inner(gradient, chart.columns[j]);
+      const double smear = width(j) * std::max(std::abs(d.inf()), std::abs(d.sup()));
+      if (smear > largest_smear) smeared = j, largest_smear = smear;
+    }
+    const std::size_t side = std::isfinite(largest_smear) && splits(smeared) ? smeared : widest;
+    if (!splits(side)) return false;
+    const double lo = u[side].inf(), hi = u[side].sup(), mid = 0.5 * (lo + hi);
     Box left{u, inside, refining, parent_slope, active}, right = left;
-    left.u[widest] = Interval(lo, mid);
-    right.u[widest] = Interval(mid, hi);
+    left.u[side] = Interval(lo, mid);
+    right.u[side] = Interval(mid, hi);
     stack.push_back(right);
     stack.push_back(left);
     return true;
@@ -240,7 +254,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     if (box_bound >= 0) {
       box_bound = std::max(box_bound, box.refining ? box.parent_slope : 0.0);
       if (box_bound < refinement.target && refining_created + 2 <= refinement.box_budget &&
-          split(box, side == DomainSide::inside, active, true, box_bound)) {
+          split(box, side == DomainSide::inside, active, true, box_bound, gradient)) {
         refining_created += 2;
         continue;
       }
@@ -262,7 +276,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
       }
     }
     // A side that no longer splits ends the attempt.
-    if (!split(box, side == DomainSide::inside, active, false, 0)) return result;
+    if (!split(box, side == DomainSide::inside, active, false, 0, gradient)) return result;
   }
   result.proved = true;
   result.slope = refinement.target > 0 ? slope : 0;

@@ -20,8 +20,11 @@
 //!        c to every point of U).
 //! (A half of a box that classify() proved inside P is inside P: (i) is not tested again on it;
 //! nor, on a half, a half-space proved to contain the whole box strictly: classify()'s mask.)
-//! A box that none of these drops is bisected along its widest side; when the budget or the depth
-//! runs out the certificate fails.  It also fails at once, refuted, when
+//! A box that none of these drops is bisected across the side j along which E varies most on it,
+//! the largest (width of U_j)·max|⟨∇E(X), c_j⟩| (the maximal-smear rule of interval subdivision:
+//! near Σ that is the side across the surface, so E's sign separates the halves soonest); when the
+//! budget or the depth runs out the certificate fails.  (The rule only orders the work: any
+//! bisection gives a cover, so the proof below does not depend on it.)  It also fails at once, refuted, when
 //!  (iv)  on a box U that (i)–(iii) keep (E compiled with Hessians), the Krawczyk operator of
 //!        f = (E, ⟨∇E, w⟩) — on U itself in dimension 2, on the slice of U through its centre
 //!        across one coordinate in dimension 3 — maps the box of the unknowns into its interior,

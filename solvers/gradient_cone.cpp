@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "common/errors.h"
+#include "solvers/detail/interval_box.h"
 #include "symbolic/scalar_traits.h"
 #include "symbolic/scalar_types.h"
 
@@ -138,20 +139,19 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
   auto split = [&](const Box& box, bool inside, std::uint64_t active, bool refining, double parent_slope,
                    const Interval* gradient) {
     const auto& u = box.u;
-    auto width = [&](std::size_t j) { return u[j].sup() - u[j].inf(); };
     auto splits = [&](std::size_t j) {
       const double mid = 0.5 * (u[j].inf() + u[j].sup());
       return u[j].inf() < mid && mid < u[j].sup();
     };
-    std::size_t widest = 0, smeared = 0;
+    std::size_t smeared = 0;
     double largest_smear = -1;
     for (std::size_t j = 0; j < n; ++j) {
-      if (width(j) > width(widest)) widest = j;
       const Interval d = inner(gradient, chart.columns[j]);
-      const double smear = width(j) * std::max(std::abs(d.inf()), std::abs(d.sup()));
+      const double smear = detail::width(u[j]) * std::max(std::abs(d.inf()), std::abs(d.sup()));
       if (smear > largest_smear) smeared = j, largest_smear = smear;
     }
-    const std::size_t side = std::isfinite(largest_smear) && splits(smeared) ? smeared : widest;
+    const std::size_t side =
+        std::isfinite(largest_smear) && splits(smeared) ? smeared : detail::widest_side(u.data(), n);
     if (!splits(side)) return false;
     const double lo = u[side].inf(), hi = u[side].sup(), mid = 0.5 * (lo + hi);
     Box left{u, inside, refining, parent_slope, active}, right = left;

@@ -24,7 +24,8 @@
 //! the largest (width of U_j)·max|⟨∇E(X), c_j⟩| (the maximal-smear rule of interval subdivision:
 //! near Σ that is the side across the surface, so E's sign separates the halves soonest); when the
 //! budget or the depth runs out the certificate fails.  (The rule only orders the work: any
-//! bisection gives a cover, so the proof below does not depend on it.)  It also fails at once, refuted, when
+//! bisection gives a cover, so the proof below does not depend on it.)  It also fails at once,
+//! refuted, when
 //!  (iv)  on a box U that (i)–(iii) keep (E compiled with Hessians), the Krawczyk operator of
 //!        f = (E, ⟨∇E, w⟩) — on U itself in dimension 2, on the slice of U through its centre
 //!        across one coordinate in dimension 3 — maps the box of the unknowns into its interior,

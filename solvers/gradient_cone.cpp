@@ -18,6 +18,37 @@ namespace {
 // ⟨g, v⟩ for an interval vector g and a point vector v of ℝ³.
 Interval inner(const Interval* g, const std::array<double, 3>& v) { return g[0] * v[0] + g[1] * v[1] + g[2] * v[2]; }
 
+// The chart applied to points and covectors.  The identity chart of ℝ³ is read off directly: its
+// products with 0 and 1 and its sums with 0 are exact, so the enclosures are the ones the general
+// formulas give (for finite intervals), at none of their cost.
+class ChartMap {
+ public:
+  explicit ChartMap(const AffineChart& chart) : chart_(chart) {
+    const auto& c = chart.columns;
+    identity_ = c.size() == 3 && chart.origin == std::array<double, 3>{0, 0, 0};
+    for (std::size_t j = 0; identity_ && j < c.size(); ++j)
+      for (std::size_t k = 0; k < 3; ++k) identity_ = identity_ && c[j][k] == (j == k ? 1.0 : 0.0);
+  }
+  //! ⟨g, c_j⟩: the derivative in u_j of a function whose gradient is enclosed by g.
+  Interval along(const Interval* g, std::size_t j) const { return identity_ ? g[j] : inner(g, chart_.columns[j]); }
+  //! The world enclosure origin + Σ_j u_j c_j of chart points (u_j intervals or points).
+  void to_world(const Interval* u, Interval* x) const {
+    const std::size_t n = chart_.columns.size();
+    for (int k = 0; k < 3; ++k) {
+      if (identity_) {
+        x[k] = u[k];
+        continue;
+      }
+      x[k] = Interval(chart_.origin[k]);
+      for (std::size_t j = 0; j < n; ++j) x[k] += u[j] * chart_.columns[j][k];
+    }
+  }
+
+ private:
+  const AffineChart& chart_;
+  bool identity_ = false;
+};
+
 // a ∩ b for two enclosures of the same real number (so it is not empty; b if rounding said so).
 Interval meet(const Interval& a, const Interval& b) {
   const double lo = std::max(a.inf(), b.inf()), hi = std::min(a.sup(), b.sup());
@@ -44,18 +75,18 @@ double box_slope(const Interval& functional, const Interval* gradient) {
 // (Krawczyk's theorem: K holds every zero of f in Y, and K ⊆ Y makes y − C f(y) a self-map of Y
 // by the mean-value theorem, whose fixed point is a zero).  Returns a box in U holding the zero
 // the operator proves (K on the unknowns, the slice's point on the other coordinate), or nothing.
-std::optional<std::array<Interval, 3>> functional_zero(const AffineChart& chart, const std::array<Interval, 3>& u,
+std::optional<std::array<Interval, 3>> functional_zero(const ChartMap& chart, std::size_t n,
+                                                       const std::array<Interval, 3>& u,
                                                        const Interval* centre, const Interval& centre_value,
                                                        const Interval* centre_gradient, const Interval* gradient,
                                                        const Interval* hessian, const std::array<double, 3>& w) {
-  const std::size_t n = chart.columns.size();
   if (n < 2) return std::nullopt;
   Interval hessian_w[3];
   for (int k = 0; k < 3; ++k) hessian_w[k] = inner(hessian + 3 * k, w);
   Interval J[2][3];
   for (std::size_t j = 0; j < n; ++j) {
-    J[0][j] = inner(gradient, chart.columns[j]);
-    J[1][j] = inner(hessian_w, chart.columns[j]);
+    J[0][j] = chart.along(gradient, j);
+    J[1][j] = chart.along(hessian_w, j);
   }
   // The two unknowns: in dimension 3, drop the coordinate whose 2 × 2 minor of mid J is largest.
   std::array<std::size_t, 2> unknowns{0, 1};
@@ -112,6 +143,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     throw PreconditionViolation("prove_gradient_cone: E must be one equation in (x, y, z) without parameters");
 
   RoundingGuard guard;
+  const ChartMap map(chart);
   GradientConeResult result;
   double slope = std::numeric_limits<double>::infinity();
   const bool with_hessians = E.has_hessians();
@@ -146,7 +178,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     std::size_t smeared = 0;
     double largest_smear = -1;
     for (std::size_t j = 0; j < n; ++j) {
-      const Interval d = inner(gradient, chart.columns[j]);
+      const Interval d = map.along(gradient, j);
       const double smear = detail::width(u[j]) * std::max(std::abs(d.inf()), std::abs(d.sup()));
       if (smear > largest_smear) smeared = j, largest_smear = smear;
     }
@@ -160,13 +192,6 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     stack.push_back(right);
     stack.push_back(left);
     return true;
-  };
-  // The world enclosure of chart points: origin + Σ_j u_j c_j, with u_j an interval or a point.
-  auto to_world = [&](const Interval* u, Interval* x) {
-    for (int k = 0; k < 3; ++k) {
-      x[k] = Interval(chart.origin[k]);
-      for (std::size_t j = 0; j < n; ++j) x[k] += u[j] * chart.columns[j][k];
-    }
   };
   while (!stack.empty()) {
     const Box box = stack.back();
@@ -182,7 +207,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     const DomainSide side = box.inside ? DomainSide::inside : classify(domain, u.data(), active);
     if (side == DomainSide::outside) continue;  // (i)
     Interval x[3], value, gradient[3];
-    to_world(u.data(), x);
+    map.to_world(u.data(), x);
     E.values_and_jacobian<Interval>(x, nullptr, &value, gradient);
     if (certainly_nonzero(value)) continue;  // (ii), natural form
     // The box's slope bound once (iii) drops it (−1: not dropped).
@@ -194,7 +219,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     auto at_centre = [&] {
       if (have_centre) return;
       for (std::size_t j = 0; j < n; ++j) centre[j] = Interval(CGAL::to_double(u[j]));
-      to_world(centre, centre_world);
+      map.to_world(centre, centre_world);
       if (with_hessians)
         E.values_and_jacobian<Interval>(centre_world, nullptr, &centre_value, centre_gradient);
       else
@@ -204,7 +229,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     auto mean_value_excludes_zero = [&] {
       at_centre();
       Interval mean_value = centre_value;
-      for (std::size_t j = 0; j < n; ++j) mean_value += inner(gradient, chart.columns[j]) * (u[j] - centre[j]);
+      for (std::size_t j = 0; j < n; ++j) mean_value += map.along(gradient, j) * (u[j] - centre[j]);
       return certainly_nonzero(mean_value);
     };
     auto box_hessian = [&] {
@@ -217,7 +242,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
       box_hessian();
       for (int k = 0; k < 3; ++k) {
         Interval gk = centre_gradient[k];
-        for (std::size_t j = 0; j < n; ++j) gk += inner(hessian + 3 * k, chart.columns[j]) * (u[j] - centre[j]);
+        for (std::size_t j = 0; j < n; ++j) gk += map.along(hessian + 3 * k, j) * (u[j] - centre[j]);
         g[k] = meet(gk, gradient[k]);
       }
     };
@@ -239,7 +264,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
         Interval hessian_w[3];
         for (int k = 0; k < 3; ++k) hessian_w[k] = inner(hessian + 3 * k, w);
         Interval mean_functional = inner(centre_gradient, w);
-        for (std::size_t j = 0; j < n; ++j) mean_functional += inner(hessian_w, chart.columns[j]) * (u[j] - centre[j]);
+        for (std::size_t j = 0; j < n; ++j) mean_functional += map.along(hessian_w, j) * (u[j] - centre[j]);
         if (certainly_nonzero(mean_functional)) {
           if (refinement.target > 0) {
             Interval g[3];
@@ -267,7 +292,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     }
     // (iv) A zero of the functional on Σ proved inside P refutes the certificate.
     if (with_hessians && have_hessian && have_centre) {
-      if (const auto zero = functional_zero(chart, u, centre, centre_value, centre_gradient, gradient, hessian, w)) {
+      if (const auto zero = functional_zero(map, n, u, centre, centre_value, centre_gradient, gradient, hessian, w)) {
         std::uint64_t zero_active = active;
         if (side == DomainSide::inside || classify(domain, zero->data(), zero_active) == DomainSide::inside) {
           result.refuted = true;

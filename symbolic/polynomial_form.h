@@ -41,6 +41,16 @@ class PolynomialForm {
                                              const std::vector<GiNaC::symbol>& unknowns,
                                              const std::vector<GiNaC::symbol>& parameters);
 
+  //! An upper bound on the number of terms of the expanded equations, Σ_i term_count(e_i.expand()),
+  //! read off the expression trees without expanding, and min(·, cap).  Proof, by induction on the
+  //! tree of a polynomial: a symbol or a number expands to one term; a sum to at most the sum of
+  //! its operands' counts and a product to at most their product (like terms may merge or
+  //! cancel, never split); a^k with k a positive integer, a expanding to m terms, to at most the
+  //! number of monomials of degree k in m letters, C(m + k − 1, k).  Any other node (not
+  //! polynomial) gets cap, i.e. no bound.  try_build() skips its cheaper specialised expansions
+  //! when this bound already shows the terms within max_terms.
+  static std::size_t expansion_term_bound(const std::vector<GiNaC::ex>& equations, std::size_t cap);
+
   std::size_t n_unknowns() const { return n_; }
   std::size_t n_equations() const { return bases_.size(); }
   std::size_t n_parameters() const { return n_parameters_; }

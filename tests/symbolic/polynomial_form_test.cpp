@@ -100,6 +100,35 @@ BOOST_AUTO_TEST_CASE(early_rejection_agrees_with_the_full_term_count) {
   BOOST_TEST(rejected >= 12);
 }
 
+// The term bound read off the trees is never below the terms of the full expansion, is exact on
+// a product of sums with no merging, and is a real bound (below the cap) for the polynomial
+// systems of the catalog's primitives, the plane systems in nine parameters included.
+BOOST_AUTO_TEST_CASE(expansion_term_bound_holds_the_expanded_terms) {
+  const GiNaC::symbol a("a"), b("b"), c("c"), d("d");
+  BOOST_TEST(PolynomialForm::expansion_term_bound({(a + b) * (c + d)}, 1000) == 4u);
+  BOOST_TEST(PolynomialForm::expansion_term_bound({GiNaC::pow(a + b + c, 2)}, 1000) == 6u);  // C(4, 2)
+  BOOST_TEST(PolynomialForm::expansion_term_bound({GiNaC::pow(a + b, 40)}, 30) == 30u);       // saturated
+  BOOST_TEST(PolynomialForm::expansion_term_bound({GiNaC::exp(a)}, 77) == 77u);             // no bound
+  constexpr std::size_t cap = 100000;
+  int bounded = 0;
+  for (const std::string name : {"torus", "genus2", "tanglecube", "thin_handle", "metaball", "sphere"}) {
+    const Surface surface = catalog_entry(name).surface();
+    for (const PrimitiveInfo& info : primitive_registry()) {
+      const PrimitiveSystem system = info.build(surface);
+      const std::size_t bound = PolynomialForm::expansion_term_bound(system.equations, cap);
+      if (bound >= cap) continue;
+      std::size_t terms = 0;
+      for (const GiNaC::ex& e : system.equations) {
+        const GiNaC::ex x = e.expand();
+        terms += GiNaC::is_a<GiNaC::add>(x) ? x.nops() : 1;
+      }
+      BOOST_TEST(terms <= bound, name << " " << info.name << ": " << terms << " terms, bound " << bound);
+      ++bounded;
+    }
+  }
+  BOOST_TEST(bounded >= 24);
+}
+
 // The bound from a specialised expansion never exceeds the form's coefficient count, and it is
 // exact where no coefficient vanishes at the numbers (every catalog primitive here).  With
 // PolynomialFormBuild::if_it_pays a system keeps a form exactly when taylor_forms_pay() holds, and

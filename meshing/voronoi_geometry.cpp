@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
+#include <tuple>
 
 #include "common/errors.h"
 #include "common/tolerances.h"
@@ -449,10 +451,32 @@ void hold_vertices(const std::vector<std::array<VertexId, 4>>& cells, const std:
   }
 }
 
+// The cell of `site` on the box `points` (a bounding box of V_p ∩ B before rounding), enlarged
+// by a margin for the rounding of the points and intersected with B, cut by the bisectors of p
+// and all its `neighbours` (a neighbour whose facet in B has no area adds a redundant
+// half-space).  Nothing if the box ∩ B is empty.
+std::optional<VoronoiCell> cell_in_bounds(const Delaunay& del, VertexId site, const Box3& box, BoundingBox points,
+                                          std::vector<VertexId> neighbours) {
+  points.enlarge(tolerances::face_membership_relative_tolerance * box.diagonal());
+  std::vector<std::array<double, 2>> bounds;
+  for (int k = 0; k < 3; ++k) {
+    bounds.push_back({std::max(points.lo[k], box.lo[k]), std::min(points.hi[k], box.hi[k])});
+    if (!(bounds[k][0] < bounds[k][1])) return std::nullopt;
+  }
+  VoronoiCell cell;
+  cell.site = site;
+  cell.domain = Domain::from_box(std::move(bounds));
+  cell.facet_neighbours = std::move(neighbours);
+  const Vec3& p = del.point(site);
+  cell.domain.half_spaces.reserve(cell.facet_neighbours.size());
+  for (VertexId s : cell.facet_neighbours) cell.domain.half_spaces.push_back(bisector(p, del.point(s)));
+  cell.valid = true;
+  return cell;
+}
+
 // V_p from its vertices, when it is bounded: in dimension 3 the vertices of V_p are the Voronoi
-// vertices of the cells incident to p, so V_p ∩ B lies in their bounding box ∩ B; the bisectors
-// of p and all its neighbours cut it out (a neighbour whose facet has no area adds a redundant
-// half-space).  Nothing if a cell of p is infinite (V_p is unbounded) or the box ∩ B is empty.
+// vertices of the cells incident to p, so V_p ∩ B lies in their bounding box ∩ B.  Nothing if a
+// cell of p is infinite (V_p is unbounded) or the box ∩ B is empty.
 std::optional<VoronoiCell> cell_from_vertices(const Delaunay& del, VertexId site, const Box3& box,
                                               const std::vector<std::array<VertexId, 4>>& cells,
                                               const std::vector<Vec3>& corners) {
@@ -462,22 +486,111 @@ std::optional<VoronoiCell> cell_from_vertices(const Delaunay& del, VertexId site
     if (cells[k][1] < 0 || cells[k][2] < 0 || cells[k][3] < 0) return std::nullopt;
     vertices.add(corners[k]);
   }
-  // The box is enlarged by a margin for the rounding of the vertices, then intersected with B.
-  vertices.enlarge(tolerances::face_membership_relative_tolerance * box.diagonal());
-  std::vector<std::array<double, 2>> bounds;
-  for (int k = 0; k < 3; ++k) {
-    bounds.push_back({std::max(vertices.lo[k], box.lo[k]), std::min(vertices.hi[k], box.hi[k])});
-    if (!(bounds[k][0] < bounds[k][1])) return std::nullopt;
-  }
-  VoronoiCell cell;
-  cell.site = site;
-  cell.domain = Domain::from_box(std::move(bounds));
-  cell.facet_neighbours = del.neighbours(site);
+  return cell_in_bounds(del, site, box, vertices, del.neighbours(site));
+}
+
+// Adds to `points` the ends of the part of the segment {a + t (b − a) : t ∈ [t0, t1]} in B (t1 =
+// +∞ for a ray), if it has positive length.
+void add_clipped(const Vec3& a, const Vec3& v, double t0, double t1, const Box3& box, BoundingBox& points) {
+  if (!(norm(v) > 0)) return;
+  const auto inside = clip_line_to_box(a, v, box);
+  if (!inside) return;
+  const double lo = std::max(t0, (*inside)[0]), hi = std::min(t1, (*inside)[1]);
+  if (!(lo < hi)) return;
+  points.add(a + lo * v);
+  points.add(a + hi * v);
+}
+
+// V_p ∩ B when V_p is unbounded, from the Delaunay dual rather than by clipping.  V_p ∩ B is a
+// convex polytope, the hull of its vertices, each of which is
+//  (1) a Voronoi vertex of V_p in B (the circumcentre of a finite cell of p),
+//  (2) a point where an edge of V_p crosses ∂B: the edge dual to a triangle pqr is the segment
+//      between the Voronoi vertices of the two cells at pqr, or, when one of them is infinite
+//      (pqr on the convex hull), the ray from the other's Voronoi vertex along pqr's normal away
+//      from that cell's fourth vertex, or
+//  (3) a point where a facet of V_p crosses an edge of B, or (4) a corner of B in V_p: both are
+//      ends of the segment (edge of B) ∩ V_p, cut out of the edge by the bisectors of p and its
+//      neighbours.
+// So V_p ∩ B lies in the bounding box of these points, which is enlarged and intersected with B
+// as in cell_in_bounds().  A bisector parallel to an edge of B (within
+// tolerances::parallel_half_space_relative_slope) removes the edge only when the edge lies
+// beyond it by more than the enlargement; otherwise it is not applied, which can only widen the
+// box.  Nothing if a Voronoi vertex is not finite (a flat cell): the caller clips instead.
+std::optional<VoronoiCell> cell_from_dual(const Delaunay& del, VertexId site, const Box3& box,
+                                          const std::vector<std::array<VertexId, 4>>& cells,
+                                          const std::vector<Vec3>& corners) {
+  if (del.dimension() != 3) return std::nullopt;
   const Vec3& p = del.point(site);
-  cell.domain.half_spaces.reserve(cell.facet_neighbours.size());
-  for (VertexId s : cell.facet_neighbours) cell.domain.half_spaces.push_back(bisector(p, del.point(s)));
-  cell.valid = true;
-  return cell;
+  auto finite_cell = [&](std::size_t k) { return cells[k][1] >= 0 && cells[k][2] >= 0 && cells[k][3] >= 0; };
+  BoundingBox points;
+  // (1), and the triangles pqr of the cells, each with the cell it came from.
+  struct Side {
+    VertexId q, r;
+    std::size_t cell;
+    VertexId fourth;
+    bool operator<(const Side& o) const { return std::tie(q, r, cell) < std::tie(o.q, o.r, o.cell); }
+  };
+  std::vector<Side> sides;
+  sides.reserve(3 * cells.size());
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const auto& c = cells[k];
+    if (finite_cell(k)) {
+      const Vec3& v = corners[k];
+      if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) return std::nullopt;
+      if (box.contains(v)) points.add(v);
+    }
+    for (int j = 1; j < 4; ++j) {
+      const VertexId q = c[j % 3 + 1], r = c[(j + 1) % 3 + 1];
+      sides.push_back({std::min(q, r), std::max(q, r), k, c[j]});
+    }
+  }
+  // (2): each finite triangle pqr lies in two cells of p.
+  std::sort(sides.begin(), sides.end());
+  for (std::size_t i = 0; i + 1 < sides.size(); i += 2) {
+    const Side &s = sides[i], &t = sides[i + 1];
+    if (s.q != t.q || s.r != t.r) return std::nullopt;  // not a closed star: let the caller clip
+    if (s.q < 0) continue;                               // a triangle with the infinite vertex
+    const bool fs = finite_cell(s.cell), ft = finite_cell(t.cell);
+    if (fs && ft) {
+      add_clipped(corners[s.cell], corners[t.cell] - corners[s.cell], 0, 1, box, points);
+    } else if (fs || ft) {
+      const Side& f = fs ? s : t;
+      Vec3 n = cross(del.point(f.q) - p, del.point(f.r) - p);
+      if (dot(n, del.point(f.fourth) - p) > 0) n = -1.0 * n;
+      add_clipped(corners[f.cell], n, 0, std::numeric_limits<double>::infinity(), box, points);
+    }
+  }
+  // (3) and (4): the edges of B cut by the bisectors.
+  std::vector<VertexId> neighbours = del.neighbours(site);
+  const double margin = tolerances::face_membership_relative_tolerance * box.diagonal();
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    for (int corner = 0; corner < 4; ++corner) {
+      Vec3 start{};
+      start[u] = corner & 1 ? box.hi[u] : box.lo[u];
+      start[v] = corner & 2 ? box.hi[v] : box.lo[v];
+      LineClip edge(box.lo[axis], box.hi[axis]);
+      for (VertexId s : neighbours) {
+        const Vec3& x = del.point(s);
+        const Vec3 w = x - p;
+        const double slope = w[axis], rhs = dot(w, 0.5 * (x + p) - start), scale = norm(w);
+        if (std::abs(slope) <= tolerances::parallel_half_space_relative_slope * scale) {
+          if (rhs < -margin * scale) edge.emptied = true;
+          continue;
+        }
+        edge.keep(slope, rhs, scale);
+        if (!edge.nonempty()) break;
+      }
+      if (edge.emptied || edge.t0 > edge.t1) continue;
+      Vec3 a = start, b = start;
+      a[axis] = edge.t0;
+      b[axis] = edge.t1;
+      points.add(a);
+      points.add(b);
+    }
+  }
+  if (points.empty()) return std::nullopt;
+  return cell_in_bounds(del, site, box, points, std::move(neighbours));
 }
 
 // V_p ∩ B by clipping B with the bisectors of p and its neighbours, nearest first (their
@@ -528,6 +641,7 @@ VoronoiCell voronoi_cell(const Delaunay& del, VertexId site, const Box3& box) {
   const auto cells = del.incident_cells(site);
   const auto corners = cell_corners(del, cells);
   auto from_vertices = cell_from_vertices(del, site, box, cells, corners);
+  if (!from_vertices) from_vertices = cell_from_dual(del, site, box, cells, corners);
   VoronoiCell cell = from_vertices ? std::move(*from_vertices) : clipped_cell(del, site, box);
   if (cell.valid) hold_vertices(cells, corners, box, cell);
   return cell;

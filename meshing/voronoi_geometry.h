@@ -94,17 +94,21 @@ struct VoronoiFacet {
   bool contains(double u, double v, double tolerance) const;
 };
 
-//! The clipped Voronoi cell V_p ∩ B.  When V_p is bounded (dimension 3, every cell of p finite),
-//! its box is the bounding box of its vertices (voronoi_vertex() of p's cells), enlarged by
-//! tolerances::face_membership_relative_tolerance·diag(B) and intersected with B, and its
-//! half-spaces are the bisectors of p and all its neighbours; otherwise it is computed by
-//! clipping B by the bisectors, nearest neighbours first.  Either way the half-space of each
-//! neighbour q is then moved outwards to hold the Voronoi vertices of F_pq, and the box to hold
-//! the cell's Voronoi vertices in B.
+//! The clipped Voronoi cell V_p ∩ B.  In dimension 3 its half-spaces are the bisectors of p and
+//! all its neighbours, and its box is the bounding box of the vertices of V_p ∩ B, enlarged by
+//! tolerances::face_membership_relative_tolerance·diag(B) and intersected with B: when V_p is
+//! bounded (every cell of p finite) those of V_p (voronoi_vertex() of p's cells); otherwise
+//! read off the Delaunay dual: the Voronoi vertices in B, the points where V_p's edges
+//! (segments, and rays for the triangles of p on the convex hull) cross ∂B, and the ends of the
+//! parts of B's edges inside V_p.  Below dimension 3, or if a Voronoi vertex is not finite, it is
+//! computed by clipping B by the bisectors, nearest neighbours first (its half-spaces then those
+//! of the facets left).  Either way the half-space of each neighbour q is then moved outwards to
+//! hold the Voronoi vertices of F_pq, and the box to hold the cell's Voronoi vertices in B.
 struct VoronoiCell {
   VertexId site = -1;
-  //! q with a facet pq on ∂V_p: of positive area when clipped; every Delaunay neighbour when built
-  //! from the vertices (a facet of no area is then possible, and invalid as a VoronoiFacet).
+  //! q with a facet pq on ∂V_p: of positive area when clipped; every Delaunay neighbour in
+  //! dimension 3 otherwise (a facet of no area in B is then possible, and invalid as a
+  //! VoronoiFacet).
   std::vector<VertexId> facet_neighbours;
   Domain domain;                           //!< a box holding V_p ∩ B, and the bisector half-spaces
   bool valid = false;

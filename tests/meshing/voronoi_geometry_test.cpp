@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/tolerances.h"
+#include "meshing/detail/convex_polytope.h"
 #include "meshing/detail/vec3.h"
 #include "meshing/restricted_delaunay.h"
 #include "meshing/voronoi_geometry.h"
@@ -136,6 +137,46 @@ BOOST_AUTO_TEST_CASE(cell_domain_is_the_voronoi_cell) {
   }
   BOOST_TEST(inside > 1000);
   BOOST_TEST(outside > 1000);
+}
+
+// An unbounded cell's box, read off the Delaunay dual, is the bounding box of V_p ∩ B (computed
+// here by clipping B with every bisector) up to the rounding margin: it holds that box and
+// exceeds it by at most twice the margin on each side.  The cloud's hull vertices have unbounded
+// cells, and the box cuts through them.
+BOOST_AUTO_TEST_CASE(unbounded_cell_box_is_the_box_of_the_clipped_cell) {
+  Delaunay del;
+  for (int i = 0; i < 80; ++i)
+    del.insert({2 * seeded_uniform(13, i, 0) - 1, 2 * seeded_uniform(13, i, 1) - 1, 2 * seeded_uniform(13, i, 2) - 1},
+               false);
+  const Box3 box = Box3::cube(1.25);
+  const double margin = tolerances::face_membership_relative_tolerance * box.diagonal();
+  int unbounded = 0;
+  for (VertexId p : del.vertices()) {
+    const auto cells = del.incident_cells(p);
+    if (std::all_of(cells.begin(), cells.end(), [](const auto& c) { return c[1] >= 0 && c[2] >= 0 && c[3] >= 0; }))
+      continue;
+    ++unbounded;
+    detail::ConvexPolytope polytope;
+    polytope.reset(box);
+    for (VertexId q : del.neighbours(p)) {
+      using detail::operator-, detail::operator+, detail::operator*;
+      const Vec3 w = del.point(q) - del.point(p);
+      polytope.clip(w, detail::dot(w, 0.5 * (del.point(q) + del.point(p))), q);
+    }
+    BOOST_TEST_REQUIRE(!polytope.empty());
+    const auto exact = polytope.bounding_box();
+    const auto cell = voronoi_cell(del, p, box);
+    BOOST_TEST_REQUIRE(cell.valid);
+    BOOST_TEST(cell.facet_neighbours == del.neighbours(p));
+    for (int k = 0; k < 3; ++k) {
+      const auto& b = cell.domain.box.bounds[k];
+      BOOST_TEST(b[0] <= exact[0][k] + 1e-12);
+      BOOST_TEST(b[0] >= exact[0][k] - 2 * margin - 1e-12);
+      BOOST_TEST(b[1] >= exact[1][k] - 1e-12);
+      BOOST_TEST(b[1] <= exact[1][k] + 2 * margin + 1e-12);
+    }
+  }
+  BOOST_TEST(unbounded > 20);
 }
 
 // One diagram: every Voronoi vertex (voronoi_vertex of a finite cell) is the end of each of its

@@ -563,6 +563,18 @@ std::optional<VoronoiCell> cell_from_dual(const Delaunay& del, VertexId site, co
   // (3) and (4): the edges of B cut by the bisectors.
   std::vector<VertexId> neighbours = del.neighbours(site);
   const double margin = tolerances::face_membership_relative_tolerance * box.diagonal();
+  // The bisector of p and each neighbour x: normal w = x − p through the midpoint m, and |w|.
+  struct Bisector {
+    Vec3 w, m;
+    double scale;
+  };
+  std::vector<Bisector> bisectors;
+  bisectors.reserve(neighbours.size());
+  for (VertexId s : neighbours) {
+    const Vec3& x = del.point(s);
+    const Vec3 w = x - p;
+    bisectors.push_back({w, 0.5 * (x + p), norm(w)});
+  }
   for (int axis = 0; axis < 3; ++axis) {
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
     for (int corner = 0; corner < 4; ++corner) {
@@ -570,10 +582,8 @@ std::optional<VoronoiCell> cell_from_dual(const Delaunay& del, VertexId site, co
       start[u] = corner & 1 ? box.hi[u] : box.lo[u];
       start[v] = corner & 2 ? box.hi[v] : box.lo[v];
       LineClip edge(box.lo[axis], box.hi[axis]);
-      for (VertexId s : neighbours) {
-        const Vec3& x = del.point(s);
-        const Vec3 w = x - p;
-        const double slope = w[axis], rhs = dot(w, 0.5 * (x + p) - start), scale = norm(w);
+      for (const auto& [w, m, scale] : bisectors) {
+        const double slope = w[axis], rhs = dot(w, m - start);
         if (std::abs(slope) <= tolerances::parallel_half_space_relative_slope * scale) {
           if (rhs < -margin * scale) edge.emptied = true;
           continue;

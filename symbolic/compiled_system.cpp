@@ -98,6 +98,11 @@ void CompiledSystem::build_polynomial_form(const std::vector<GiNaC::ex>& equatio
       instructions < tolerances::taylor_form_instruction_ratio *
                          static_cast<double>(PolynomialForm::coefficient_lower_bound(equations, unknowns, parameters)))
     return;
+  // A coefficient program proved longer than the compiled one fails the rule's second condition.
+  if (forms == PolynomialFormBuild::if_it_pays &&
+      instructions < static_cast<double>(PolynomialForm::instruction_lower_bound(
+                         equations, unknowns, parameters, tolerances::polynomial_form_max_terms)))
+    return;
   polynomial_form_ = PolynomialForm::try_build(equations, unknowns, parameters, tolerances::polynomial_form_max_terms);
   taylor_forms_pay_ =
       polynomial_form_ &&

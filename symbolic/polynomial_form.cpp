@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
+#include <vector>
 
 namespace delmesh {
 
@@ -78,6 +80,58 @@ std::size_t PolynomialForm::expansion_term_bound(const std::vector<GiNaC::ex>& e
   std::size_t bound = 0;
   for (const GiNaC::ex& e : equations) bound = std::min(bound + term_bound(e, cap), cap);
   return bound;
+}
+
+std::size_t PolynomialForm::instruction_lower_bound(const std::vector<GiNaC::ex>& equations,
+                                                    const std::vector<GiNaC::symbol>& unknowns,
+                                                    const std::vector<GiNaC::symbol>& parameters,
+                                                    std::size_t max_terms) {
+  GiNaC::lst symbols;
+  for (const auto& u : unknowns) symbols.append(u);
+  for (const auto& q : parameters) symbols.append(q);
+  for (const GiNaC::ex& e : equations)
+    if (!e.is_polynomial(symbols)) return 0;
+  if (expansion_term_bound(equations, max_terms + 1) > max_terms) return 0;
+  // The exponents of the parameters in a factor q^k or q, added to `exponents`; false if the
+  // factor is not a power of a parameter, an unknown or a number.
+  auto add_factor = [&](const GiNaC::ex& factor, std::vector<int>& exponents) {
+    GiNaC::ex base = factor;
+    int k = 1;
+    if (GiNaC::is_a<GiNaC::power>(factor)) {
+      if (!GiNaC::is_a<GiNaC::numeric>(factor.op(1)) || !GiNaC::ex_to<GiNaC::numeric>(factor.op(1)).is_pos_integer())
+        return false;
+      base = factor.op(0);
+      k = GiNaC::ex_to<GiNaC::numeric>(factor.op(1)).to_int();
+    }
+    if (GiNaC::is_a<GiNaC::numeric>(base)) return true;
+    if (!GiNaC::is_a<GiNaC::symbol>(base)) return false;
+    for (std::size_t i = 0; i < parameters.size(); ++i)
+      if (base.is_equal(parameters[i])) {
+        exponents[i] += k;
+        return true;
+      }
+    for (const auto& u : unknowns)
+      if (base.is_equal(u)) return true;
+    return false;
+  };
+  std::set<std::vector<int>> monomials;
+  for (const GiNaC::ex& e : equations) {
+    const GiNaC::ex expanded = e.expand();
+    for (std::size_t t = 0; t < term_count(expanded); ++t) {
+      const GiNaC::ex term = term_at(expanded, t);
+      std::vector<int> exponents(parameters.size(), 0);
+      if (GiNaC::is_a<GiNaC::mul>(term)) {
+        for (std::size_t i = 0; i < term.nops(); ++i)
+          if (!add_factor(term.op(i), exponents)) return 0;
+      } else if (!add_factor(term, exponents)) {
+        return 0;
+      }
+      int degree = 0;
+      for (int k : exponents) degree += k;
+      if (degree >= 2) monomials.insert(std::move(exponents));
+    }
+  }
+  return monomials.size();
 }
 
 std::size_t PolynomialForm::coefficient_lower_bound(const std::vector<GiNaC::ex>& equations,

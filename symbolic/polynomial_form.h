@@ -41,6 +41,21 @@ class PolynomialForm {
                                              const std::vector<GiNaC::symbol>& unknowns,
                                              const std::vector<GiNaC::symbol>& parameters);
 
+  //! A lower bound on instruction_count() of try_build(equations, unknowns, parameters, max_terms)
+  //! when that form exists: the number of distinct monomials of total degree ≥ 2 in the
+  //! parameters alone among the terms of the expanded equations.  Proof: each such monomial m is
+  //! the parameter part of some term c·u^α·m, so c·m is a term of the coefficient of u^α, and
+  //! the coefficient program (compiled without expanding or factoring) computes c·m, or m
+  //! itself when c = ±1 (a negative term is subtracted), in a register of its own: its last
+  //! product or power is an instruction, and terms with different m are different expressions,
+  //! so no two of them share it.  Returns 0 (no bound) when an equation is not polynomial in the
+  //! unknowns and the parameters or expansion_term_bound() exceeds max_terms (the expansion
+  //! could be huge; try_build() then decides with its cheaper probes).  It costs the expansion
+  //! alone, not the coefficients nor their program.
+  static std::size_t instruction_lower_bound(const std::vector<GiNaC::ex>& equations,
+                                             const std::vector<GiNaC::symbol>& unknowns,
+                                             const std::vector<GiNaC::symbol>& parameters, std::size_t max_terms);
+
   //! An upper bound on the number of terms of the expanded equations, Σ_i term_count(e_i.expand()),
   //! read off the expression trees without expanding, and min(·, cap).  Proof, by induction on the
   //! tree of a polynomial: a symbol or a number expands to one term; a sum to at most the sum of

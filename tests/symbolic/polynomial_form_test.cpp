@@ -130,12 +130,14 @@ BOOST_AUTO_TEST_CASE(expansion_term_bound_holds_the_expanded_terms) {
 }
 
 // The bound from a specialised expansion never exceeds the form's coefficient count, and it is
-// exact where no coefficient vanishes at the numbers (every catalog primitive here).  With
+// exact where no coefficient vanishes at the numbers (every catalog primitive here); the bound
+// on the coefficient program never exceeds its instructions, and it exceeds the compiled
+// program's on the plane primitives.  With
 // PolynomialFormBuild::if_it_pays a system keeps a form exactly when taylor_forms_pay() holds, and
 // that answer is the one PolynomialFormBuild::always gives (a Kostlan system, where Taylor forms
 // pay, is among them).
 BOOST_AUTO_TEST_CASE(coefficient_lower_bound_and_the_forms_built_only_if_they_pay) {
-  int exact_bounds = 0, paying = 0, skipped = 0;
+  int exact_bounds = 0, paying = 0, skipped = 0, long_programs = 0;
   std::vector<Surface> surfaces;
   for (const std::string name : {"torus", "genus2", "tanglecube", "thin_handle", "metaball"})
     surfaces.push_back(catalog_entry(name).surface());
@@ -151,6 +153,10 @@ BOOST_AUTO_TEST_CASE(coefficient_lower_bound_and_the_forms_built_only_if_they_pa
       if (const PolynomialForm* form = always.polynomial_form()) {
         BOOST_TEST(bound <= form->n_coefficients(), surface.text() << " " << info.name);
         exact_bounds += bound == form->n_coefficients() ? 1 : 0;
+        const std::size_t instructions = PolynomialForm::instruction_lower_bound(
+            system.equations, system.unknowns, system.parameters, tolerances::polynomial_form_max_terms);
+        BOOST_TEST(instructions <= form->instruction_count(), surface.text() << " " << info.name);
+        long_programs += instructions > always.instruction_count() ? 1 : 0;
       }
       BOOST_TEST(if_it_pays.taylor_forms_pay() == always.taylor_forms_pay(), surface.text() << " " << info.name);
       BOOST_TEST(static_cast<bool>(if_it_pays.polynomial_form()) == always.taylor_forms_pay());
@@ -161,6 +167,7 @@ BOOST_AUTO_TEST_CASE(coefficient_lower_bound_and_the_forms_built_only_if_they_pa
     }
   }
   BOOST_TEST(exact_bounds >= 20);
+  BOOST_TEST(long_programs >= 10);  // the plane primitives, skipped without their forms
   BOOST_TEST(paying >= 1);
   BOOST_TEST(skipped >= 12);
   // A coefficient that vanishes at the numbers: q·u² with q ↦ 2 keeps degree 2, (q − 2)·u² drops it.

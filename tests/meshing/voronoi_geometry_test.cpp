@@ -106,7 +106,7 @@ BOOST_AUTO_TEST_CASE(cell_is_clipped_by_bisectors) {
 
 // A cell's domain is V_p: on a seeded cloud, points whose nearest site is p (by brute force) lie
 // in p's domain box and half-spaces, and points nearer to another site violate a half-space;
-// bounded cells (built from their vertices) and cells reaching the box (clipped) alike.
+// bounded cells (built from their vertices) and unbounded ones (read off the Delaunay dual) alike.
 BOOST_AUTO_TEST_CASE(cell_domain_is_the_voronoi_cell) {
   Delaunay del;
   std::vector<Vec3> sites;

@@ -489,8 +489,8 @@ std::optional<VoronoiCell> cell_from_vertices(const Delaunay& del, VertexId site
   return cell_in_bounds(del, site, box, vertices, del.neighbours(site));
 }
 
-// Adds to `points` the ends of the part of the segment {a + t (b − a) : t ∈ [t0, t1]} in B (t1 =
-// +∞ for a ray), if it has positive length.
+// Adds to `points` the ends of the part of the segment {a + t v : t ∈ [t0, t1]} in B (t1 = +∞
+// for a ray), if it has positive length.
 void add_clipped(const Vec3& a, const Vec3& v, double t0, double t1, const Box3& box, BoundingBox& points) {
   if (!(norm(v) > 0)) return;
   const auto inside = clip_line_to_box(a, v, box);

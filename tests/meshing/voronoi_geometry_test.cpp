@@ -13,6 +13,15 @@ using namespace delmesh;
 
 BOOST_AUTO_TEST_SUITE(voronoi_geometry)
 
+namespace {
+
+//! The i-th point of the seeded cloud `seed` in [−1, 1]³.
+Vec3 cloud_point(std::uint64_t seed, int i) {
+  return {2 * seeded_uniform(seed, i, 0) - 1, 2 * seeded_uniform(seed, i, 1) - 1, 2 * seeded_uniform(seed, i, 2) - 1};
+}
+
+}  // namespace
+
 BOOST_AUTO_TEST_CASE(edge_of_a_hull_triangle_is_a_ray_clipped_by_the_box) {
   Delaunay del;
   for (auto p : std::vector<Vec3>{{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, 0, -1}}) del.insert(p, false);
@@ -111,7 +120,7 @@ BOOST_AUTO_TEST_CASE(cell_domain_is_the_voronoi_cell) {
   Delaunay del;
   std::vector<Vec3> sites;
   for (int i = 0; i < 60; ++i) {
-    const Vec3 x{2 * seeded_uniform(5, i, 0) - 1, 2 * seeded_uniform(5, i, 1) - 1, 2 * seeded_uniform(5, i, 2) - 1};
+    const Vec3 x = cloud_point(5, i);
     sites.push_back(x);
     del.insert(x, false);
   }
@@ -145,9 +154,7 @@ BOOST_AUTO_TEST_CASE(cell_domain_is_the_voronoi_cell) {
 // cells, and the box cuts through them.
 BOOST_AUTO_TEST_CASE(unbounded_cell_box_is_the_box_of_the_clipped_cell) {
   Delaunay del;
-  for (int i = 0; i < 80; ++i)
-    del.insert({2 * seeded_uniform(13, i, 0) - 1, 2 * seeded_uniform(13, i, 1) - 1, 2 * seeded_uniform(13, i, 2) - 1},
-               false);
+  for (int i = 0; i < 80; ++i) del.insert(cloud_point(13, i), false);
   const Box3 box = Box3::cube(1.25);
   const double margin = tolerances::face_membership_relative_tolerance * box.diagonal();
   int unbounded = 0;
@@ -184,9 +191,7 @@ BOOST_AUTO_TEST_CASE(unbounded_cell_box_is_the_box_of_the_clipped_cell) {
 // a facet built from a given ring is the facet built by looking the ring up.
 BOOST_AUTO_TEST_CASE(faces_share_their_voronoi_vertices) {
   Delaunay del;
-  for (int i = 0; i < 80; ++i)
-    del.insert({2 * seeded_uniform(11, i, 0) - 1, 2 * seeded_uniform(11, i, 1) - 1, 2 * seeded_uniform(11, i, 2) - 1},
-               false);
+  for (int i = 0; i < 80; ++i) del.insert(cloud_point(11, i), false);
   const Box3 box = Box3::cube(1.5);
   int vertices = 0, edge_ends = 0, facets = 0, cells = 0;
   for (VertexId x : del.vertices()) {

@@ -515,7 +515,8 @@ void add_clipped(const Vec3& a, const Vec3& v, double t0, double t1, const Box3&
 // as in cell_in_bounds().  A bisector parallel to an edge of B (within
 // tolerances::parallel_half_space_relative_slope) removes the edge only when the edge lies
 // beyond it by more than the enlargement; otherwise it is not applied, which can only widen the
-// box.  Nothing if a Voronoi vertex is not finite (a flat cell): the caller clips instead.
+// box.  Nothing if a Voronoi vertex is not finite (a flat cell) or a hull triangle is flat (its
+// ray has no direction): the caller clips instead.
 std::optional<VoronoiCell> cell_from_dual(const Delaunay& del, VertexId site, const Box3& box,
                                           const std::vector<std::array<VertexId, 4>>& cells,
                                           const std::vector<Vec3>& corners) {
@@ -556,6 +557,7 @@ std::optional<VoronoiCell> cell_from_dual(const Delaunay& del, VertexId site, co
     } else if (fs || ft) {
       const Side& f = fs ? s : t;
       Vec3 n = cross(del.point(f.q) - p, del.point(f.r) - p);
+      if (!(norm(n) > 0)) return std::nullopt;  // a flat hull triangle has no ray: let the caller clip
       if (dot(n, del.point(f.fourth) - p) > 0) n = -1.0 * n;
       add_clipped(corners[f.cell], n, 0, std::numeric_limits<double>::infinity(), box, points);
     }

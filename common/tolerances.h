@@ -317,6 +317,11 @@ inline constexpr std::size_t gradient_cone_box_budget = 192;
 //! instead of 192 cuts those solves from 335 to 74 and the run's instructions by 18 %, with the
 //! same mesh (torus at 0.05: 102 to 22 solves, the same mesh, no change in time).
 inline constexpr std::size_t gradient_cone_cell_box_budget = 1024;
+//! Krawczyk steps, at most, that narrow the box of a refuted gradient-cone certificate around its
+//! proved point (GradientConeResult::vanishing_point).  The steps converge quadratically and stop
+//! as soon as the box stops shrinking, which a box of a few units in the last place reaches well
+//! within this many.
+inline constexpr int vanishing_point_narrowing_steps = 12;
 //! Facets from a cell certificate (RestrictedDelaunay::cell_certified()): a facet pq of a
 //! certified cell V_p follows from the cell when |⟨n_p, q − p⟩| / |q − p| is below the proof's
 //! slope.  The cover of V_p is refined (solvers/gradient_cone.h, SlopeRefinement) towards the

@@ -218,9 +218,15 @@ SolveResult ImplicitOracle::silhouette_critical(const Vec3& d, const Vec3& d2, c
 }
 
 bool ImplicitOracle::prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) {
+  return gradient_cone_answer(chart, domain, w).proved;
+}
+
+SurfaceOracle::ConeAnswer ImplicitOracle::gradient_cone_answer(const AffineChart& chart, const Domain& domain,
+                                                              const Vec3& w) {
   const std::size_t budget = domain.dimension() == 3 ? tolerances::gradient_cone_cell_box_budget
                                                      : tolerances::gradient_cone_box_budget;
-  return gradient_cone(chart, domain, w, budget, {}).proved;
+  const GradientConeResult r = gradient_cone(chart, domain, w, budget, {});
+  return {r.proved, r.vanishing_point};
 }
 
 double ImplicitOracle::gradient_cone_slope(const AffineChart& chart, const Domain& domain, const Vec3& w,

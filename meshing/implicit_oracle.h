@@ -110,6 +110,8 @@ class ImplicitOracle final : public SurfaceOracle {
   //! boxes over a 3-D domain (a Voronoi cell), tolerances::gradient_cone_box_budget over a facet.
   //! Counted under `cone_certificates`.
   bool prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) override;
+  //! The same attempt, with the point of Σ ∩ P where ⟨∇E, w⟩ = 0 that refuted it, if one did.
+  ConeAnswer gradient_cone_answer(const AffineChart& chart, const Domain& domain, const Vec3& w) override;
   //! The slope of that certificate, 0 if it fails (solvers/gradient_cone.h): within
   //! tolerances::cell_slope_cover_budget boxes, refined towards `target` within
   //! tolerances::cell_slope_box_budget more; counted likewise.

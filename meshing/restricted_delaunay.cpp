@@ -412,13 +412,22 @@ bool RestrictedDelaunay::cell_certified(VertexId p, const std::vector<VertexId>&
     c.slope = slope;
     return true;
   }
-  if (oracle_.prove_gradient_cone(AffineChart::identity(), cell.domain, n)) {
+  SurfaceOracle::ConeAnswer answer = oracle_.gradient_cone_answer(AffineChart::identity(), cell.domain, n);
+  if (answer.proved) {
     c.state = State::proved;  // without a slope
     return true;
   }
   c.state = State::failed;
   c.vertices = del_.size();
+  c.silhouette_point = answer.vanishing_point;
   return false;
+}
+
+std::optional<Vec3> RestrictedDelaunay::cell_silhouette_point(VertexId p) const {
+  if (static_cast<std::size_t>(p) >= cells_.size()) return std::nullopt;
+  const CellCertificate& c = cells_[p];
+  if (c.state != CellCertificate::State::failed || c.vertices != del_.size()) return std::nullopt;
+  return c.silhouette_point;
 }
 
 void RestrictedDelaunay::forget_cell(VertexId p) {

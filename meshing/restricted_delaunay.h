@@ -210,6 +210,11 @@ class RestrictedDelaunay {
   //! |⟨n_p, q − p⟩| / |q − p| ≤ tolerances::cell_slope_cap, within
   //! tolerances::cell_slope_box_budget extra boxes.
   bool cell_certified(VertexId p, const std::vector<VertexId>& facet_sites = {});
+  //! When the kept certificate of V_p (cell_certified() without facet sites) failed because it
+  //! proved a point of Σ ∩ V_p where ⟨∇E, n_p⟩ = 0 — a point of the silhouette J_{n_p} in V_p
+  //! (SurfaceOracle::gradient_cone_answer()) — that point; nothing otherwise, or once Del S has
+  //! changed since.
+  std::optional<Vec3> cell_silhouette_point(VertexId p) const;
   //! Forgets the cell certificate of p (before p is removed, or when V_p may grow).
   void forget_cell(VertexId p);
   //! The seeded rotation of the frame of facet e (generic in-plane direction d = a); attempt k > 0
@@ -313,6 +318,7 @@ class RestrictedDelaunay {
     Vec3 w{};                   //!< n_p, the cone's direction
     double slope = 0;           //!< the proof's slope (0: none)
     std::size_t vertices = 0;   //!< |S| when a failure was found
+    std::optional<Vec3> silhouette_point;  //!< the point of J_{n_p} ∩ V_p that refuted it, if any
   };
   std::vector<CellCertificate> cells_;
   //! stars_[v]: the recorded restricted triangles containing v (in no particular order).

@@ -26,6 +26,13 @@ CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool 
   if (restricted.cell_certified(p)) return {};
   const Vec3& pp = del.point(p);
   WitnessCollector collector(CheckKind::silhouette, p, pp);
+  // The certificate failed on a proved point of J_{n_p} ∩ V_p: that point is the witness.
+  if (attempt == 0) {
+    if (const auto x = restricted.cell_silhouette_point(p)) {
+      collector.add(*x);
+      return collector.take();
+    }
+  }
   const Vec3 n_p = oracle.normal(pp);
   if (!(norm(n_p) > 0)) {
     // p is a sample of Σ, which is smooth: ∇E(p) = 0 means the evaluation failed.

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "common/errors.h"
+#include "common/tolerances.h"
 #include "solvers/detail/interval_box.h"
 #include "symbolic/scalar_traits.h"
 #include "symbolic/scalar_types.h"
@@ -64,65 +65,129 @@ double box_slope(const Interval& functional, const Interval* gradient) {
   return (Interval(least) / Interval(largest)).inf();
 }
 
-// A zero of f(u) = (E(x(u)), ⟨∇E(x(u)), w⟩) in the box U (in
-// chart coordinates, n = 2 or 3; x the chart) — in the slice u_k = c_k through the centre c along
-// one coordinate k when n = 3, the unknowns being the other two.  `centre_value` and
-// `centre_gradient` enclose E and ∇E at the centre c (a point), `gradient` and `hessian` (rows
-// H_k·) enclose ∇E and H over the world box of U, which holds the slice.  The derivative of f in
-// u_j is (⟨∇E, c_j⟩, ⟨H w, c_j⟩).  With Y the slice's box in the two unknowns, y its centre, J
-// the enclosure of f′ on Y and C ≈ (mid J)⁻¹:
-//     K = y − C f(y) + (I − C J)(Y − y)  ⊂  int Y   ⇒   f has a zero in Y
-// (Krawczyk's theorem: K holds every zero of f in Y, and K ⊆ Y makes y − C f(y) a self-map of Y
-// by the mean-value theorem, whose fixed point is a zero).  Returns a box in U holding the zero
-// the operator proves (K on the unknowns, the slice's point on the other coordinate), or nothing.
-std::optional<std::array<Interval, 3>> functional_zero(const ChartMap& chart, std::size_t n,
-                                                       const std::array<Interval, 3>& u,
-                                                       const Interval* centre, const Interval& centre_value,
-                                                       const Interval* centre_gradient, const Interval* gradient,
-                                                       const Interval* hessian, const std::array<double, 3>& w) {
-  if (n < 2) return std::nullopt;
-  Interval hessian_w[3];
-  for (int k = 0; k < 3; ++k) hessian_w[k] = inner(hessian + 3 * k, w);
-  Interval J[2][3];
-  for (std::size_t j = 0; j < n; ++j) {
-    J[0][j] = chart.along(gradient, j);
-    J[1][j] = chart.along(hessian_w, j);
-  }
-  // The two unknowns: in dimension 3, drop the coordinate whose 2 × 2 minor of mid J is largest.
-  std::array<std::size_t, 2> unknowns{0, 1};
-  auto mid = [](const Interval& a) { return 0.5 * (a.inf() + a.sup()); };
-  auto minor = [&](std::size_t a, std::size_t b) {
-    return mid(J[0][a]) * mid(J[1][b]) - mid(J[0][b]) * mid(J[1][a]);
-  };
-  if (n == 3) {
-    double best = std::abs(minor(0, 1));
-    for (const auto& pair : {std::array<std::size_t, 2>{0, 2}, std::array<std::size_t, 2>{1, 2}})
-      if (std::abs(minor(pair[0], pair[1])) > best) {
-        best = std::abs(minor(pair[0], pair[1]));
-        unknowns = pair;
-      }
-  }
-  const std::size_t a = unknowns[0], b = unknowns[1];
-  const double det = minor(a, b);
-  if (!(std::abs(det) > 0) || !std::isfinite(det)) return std::nullopt;
-  // C = (mid J)⁻¹ (any matrix serves; only its quality matters).
-  const double C[2][2] = {{mid(J[1][b]) / det, -mid(J[0][b]) / det}, {-mid(J[1][a]) / det, mid(J[0][a]) / det}};
-  const Interval f[2] = {centre_value, inner(centre_gradient, w)};
-  const Interval offset[2] = {u[a] - centre[a], u[b] - centre[b]};
-  const std::size_t index[2] = {a, b};
-  std::array<Interval, 3> zero;
-  for (std::size_t j = 0; j < n; ++j) zero[j] = centre[j];
-  for (int r = 0; r < 2; ++r) {
-    Interval k = centre[index[r]] - (C[r][0] * f[0] + C[r][1] * f[1]);
-    for (int c = 0; c < 2; ++c) {
-      const Interval identity(r == c ? 1.0 : 0.0);
-      k += (identity - (C[r][0] * J[0][index[c]] + C[r][1] * J[1][index[c]])) * offset[c];
+// The Krawczyk test for f(u) = (E(x(u)), ⟨∇E(x(u)), w⟩) on a box U in chart coordinates (n = 2
+// or 3; x the chart), in the slice u_k = c_k through the centre c along one coordinate k when
+// n = 3, the unknowns being the other two.  `centre_value` and `centre_gradient` enclose E and ∇E
+// at the centre c (a point), `gradient` and `hessian` (rows H_k·) enclose ∇E and H over the world
+// box of U, which holds the slice.  The derivative of f in u_j is (⟨∇E, c_j⟩, ⟨H w, c_j⟩).  With Y
+// the slice's box in the two unknowns, y its centre, J the enclosure of f′ on Y and C ≈ (mid J)⁻¹:
+//     K = y − C f(y) + (I − C J)(Y − y).
+// Every zero of f in Y lies in K, and K ⊂ int Y proves that f has one there (Krawczyk's theorem:
+// K ⊆ Y makes y − C f(y) a self-map of Y by the mean-value theorem, whose fixed point is a zero).
+class SliceKrawczyk {
+ public:
+  SliceKrawczyk(const ChartMap& chart, std::size_t n, const std::array<double, 3>& w) : chart_(chart), n_(n), w_(w) {}
+
+  //! The unknowns of U's slice: in dimension 3 the pair whose 2 × 2 minor of mid J is largest.
+  std::array<std::size_t, 2> unknowns(const Interval* gradient, const Interval* hessian) const {
+    Jacobian J;
+    fill(J, gradient, hessian);
+    std::array<std::size_t, 2> pair{0, 1};
+    if (n_ == 3) {
+      double best = std::abs(minor(J, 0, 1));
+      for (const auto& other : {std::array<std::size_t, 2>{0, 2}, std::array<std::size_t, 2>{1, 2}})
+        if (std::abs(minor(J, other[0], other[1])) > best) {
+          best = std::abs(minor(J, other[0], other[1]));
+          pair = other;
+        }
     }
-    const Interval& y = u[index[r]];
-    if (!(y.inf() < k.inf() && k.sup() < y.sup())) return std::nullopt;
-    zero[index[r]] = k;
+    return pair;
   }
-  return zero;
+
+  //! K on the unknowns `pair`, the centre's value on the other coordinate; nothing if mid J is
+  //! singular (or not finite).
+  std::optional<std::array<Interval, 3>> image(const std::array<std::size_t, 2>& pair, const std::array<Interval, 3>& u,
+                                               const Interval* centre, const Interval& centre_value,
+                                               const Interval* centre_gradient, const Interval* gradient,
+                                               const Interval* hessian) const {
+    Jacobian J;
+    fill(J, gradient, hessian);
+    const std::size_t a = pair[0], b = pair[1];
+    const double det = minor(J, a, b);
+    if (!(std::abs(det) > 0) || !std::isfinite(det)) return std::nullopt;
+    // C = (mid J)⁻¹ (any matrix serves; only its quality matters).
+    const double C[2][2] = {{mid(J[1][b]) / det, -mid(J[0][b]) / det}, {-mid(J[1][a]) / det, mid(J[0][a]) / det}};
+    const Interval f[2] = {centre_value, inner(centre_gradient, w_)};
+    const Interval offset[2] = {u[a] - centre[a], u[b] - centre[b]};
+    std::array<Interval, 3> k;
+    for (std::size_t j = 0; j < n_; ++j) k[j] = centre[j];
+    for (int r = 0; r < 2; ++r) {
+      Interval kr = centre[pair[r]] - (C[r][0] * f[0] + C[r][1] * f[1]);
+      for (int c = 0; c < 2; ++c) {
+        const Interval identity(r == c ? 1.0 : 0.0);
+        kr += (identity - (C[r][0] * J[0][pair[c]] + C[r][1] * J[1][pair[c]])) * offset[c];
+      }
+      k[pair[r]] = kr;
+    }
+    return k;
+  }
+
+ private:
+  using Jacobian = Interval[2][3];
+  static double mid(const Interval& a) { return 0.5 * (a.inf() + a.sup()); }
+  static double minor(const Jacobian& J, std::size_t a, std::size_t b) {
+    return mid(J[0][a]) * mid(J[1][b]) - mid(J[0][b]) * mid(J[1][a]);
+  }
+  void fill(Jacobian& J, const Interval* gradient, const Interval* hessian) const {
+    Interval hessian_w[3];
+    for (int k = 0; k < 3; ++k) hessian_w[k] = inner(hessian + 3 * k, w_);
+    for (std::size_t j = 0; j < n_; ++j) {
+      J[0][j] = chart_.along(gradient, j);
+      J[1][j] = chart_.along(hessian_w, j);
+    }
+  }
+
+  const ChartMap& chart_;
+  std::size_t n_;
+  std::array<double, 3> w_;
+};
+
+// The enclosures the Krawczyk test needs on a box U: ∇E and H over U's world box, E and ∇E at
+// U's centre c.
+struct KrawczykData {
+  Interval centre[3], centre_value, centre_gradient[3], gradient[3], hessian[9];
+};
+
+KrawczykData krawczyk_data(const CompiledSystem& E, const ChartMap& chart, std::size_t n,
+                           const std::array<Interval, 3>& u) {
+  KrawczykData d;
+  Interval x[3], value, centre_world[3];
+  chart.to_world(u.data(), x);
+  E.values_and_jacobian<Interval>(x, nullptr, &value, d.gradient);
+  E.hessians<Interval>(x, nullptr, d.hessian);
+  for (std::size_t j = 0; j < n; ++j) d.centre[j] = Interval(CGAL::to_double(u[j]));
+  chart.to_world(d.centre, centre_world);
+  E.values_and_jacobian<Interval>(centre_world, nullptr, &d.centre_value, d.centre_gradient);
+  return d;
+}
+
+// The world point at the centre of a box `zero` in the slice (unknowns `pair`) that holds a zero
+// x* of f, after narrowing the box by Krawczyk steps: each step replaces Y by K(Y) ∩ Y, which
+// still holds x* (every zero of f in Y lies in K(Y)), and the steps stop when the box no longer
+// shrinks.  So the point is within the final box's world extent of x*.
+std::array<double, 3> narrowed_zero(const CompiledSystem& E, const ChartMap& chart, const SliceKrawczyk& krawczyk,
+                                    std::size_t n, const std::array<std::size_t, 2>& pair,
+                                    std::array<Interval, 3> zero) {
+  for (int step = 0; step < tolerances::vanishing_point_narrowing_steps; ++step) {
+    const KrawczykData d = krawczyk_data(E, chart, n, zero);
+    const auto k = krawczyk.image(pair, zero, d.centre, d.centre_value, d.centre_gradient, d.gradient, d.hessian);
+    if (!k) break;
+    std::array<Interval, 3> next = zero;
+    bool shrinks = false, meets = true;
+    for (std::size_t j : pair) {
+      const double lo = std::max(zero[j].inf(), (*k)[j].inf()), hi = std::min(zero[j].sup(), (*k)[j].sup());
+      meets = meets && lo <= hi;
+      if (!meets) break;
+      shrinks = shrinks || lo > zero[j].inf() || hi < zero[j].sup();
+      next[j] = Interval(lo, hi);
+    }
+    if (!meets || !shrinks) break;
+    zero = next;
+  }
+  Interval centre[3], world[3];
+  for (std::size_t j = 0; j < n; ++j) centre[j] = Interval(CGAL::to_double(zero[j]));
+  chart.to_world(centre, world);
+  return {CGAL::to_double(world[0]), CGAL::to_double(world[1]), CGAL::to_double(world[2])};
 }
 
 }  // namespace
@@ -291,11 +356,18 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
       continue;
     }
     // (iv) A zero of the functional on Σ proved inside P refutes the certificate.
-    if (with_hessians && have_hessian && have_centre) {
-      if (const auto zero = functional_zero(map, n, u, centre, centre_value, centre_gradient, gradient, hessian, w)) {
+    if (with_hessians && have_hessian && have_centre && n >= 2) {
+      const SliceKrawczyk krawczyk(map, n, w);
+      const auto pair = krawczyk.unknowns(gradient, hessian);
+      const auto zero = krawczyk.image(pair, u, centre, centre_value, centre_gradient, gradient, hessian);
+      bool inside_box = zero.has_value();
+      for (std::size_t j : pair)
+        inside_box = inside_box && u[j].inf() < (*zero)[j].inf() && (*zero)[j].sup() < u[j].sup();
+      if (inside_box) {
         std::uint64_t zero_active = active;
         if (side == DomainSide::inside || classify(domain, zero->data(), zero_active) == DomainSide::inside) {
           result.refuted = true;
+          result.vanishing_point = narrowed_zero(E, map, krawczyk, n, pair, *zero);
           return result;
         }
       }

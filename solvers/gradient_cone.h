@@ -65,6 +65,7 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "solvers/domain.h"
@@ -85,6 +86,11 @@ struct GradientConeResult {
   std::size_t boxes = 0;   //!< boxes examined
   //! Not proved because a point of Σ ∩ P where ⟨∇E, w⟩ = 0 was proved to exist (test (iv)).
   bool refuted = false;
+  //! When refuted: that point x*, to the rounding of its enclosure.  The box of (iv) that holds
+  //! x* is narrowed by Krawczyk steps (each replaces the box Y by K(Y) ∩ Y, which still holds x*)
+  //! until it stops shrinking, at most tolerances::vanishing_point_narrowing_steps times; this is
+  //! the world image of its centre, so it lies within that box's extent of x*.
+  std::optional<std::array<double, 3>> vanishing_point;
   //! When proved and a slope was asked for (SlopeRefinement::target > 0): the slope ρ of the file
   //! comment, |⟨∇E, w⟩| ≥ ρ |∇E| on Σ ∩ P (+∞ when Σ ∩ P is proved empty); 0 otherwise.
   double slope = 0;

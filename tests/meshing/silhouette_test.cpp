@@ -24,6 +24,26 @@ BOOST_AUTO_TEST_CASE(cell_containing_a_handle_fires) {
   BOOST_TEST(std::abs(detail::dot(f.oracle.normal(w.witnesses.front().point), n)) < 1e-6);  // w ∈ J_{n_p}
 }
 
+// The cell's gradient-cone certificate over V_p fails by proving a point of Σ ∩ V_p where
+// ⟨∇E, n_p⟩ = 0 (a point of J_{n_p}): Silhouette returns that point and solves nothing; a retry
+// (attempt 1) solves the primitives instead.
+BOOST_AUTO_TEST_CASE(a_refuted_cell_certificate_gives_the_witness) {
+  CheckFixture f("(x^2+y^2+z^2+0.84)^2-4*(x^2+y^2)", 1.65, {{1.4, 0, 0}});
+  const auto w = silhouette_witness(f.restricted, 0);
+  const auto x = f.restricted.cell_silhouette_point(0);
+  BOOST_TEST_REQUIRE(x.has_value());
+  BOOST_TEST_REQUIRE(w.witnesses.size() == 1u);
+  BOOST_TEST(w.witnesses.front().point == *x);
+  const auto n = f.oracle.normal({1.4, 0, 0});
+  BOOST_TEST(std::abs(f.oracle.E(*x)) < 1e-12);
+  BOOST_TEST(std::abs(detail::dot(f.oracle.gradient(*x), n)) < 1e-12);
+  BOOST_TEST(std::abs((*x)[2]) <= 1.0);  // inside the box
+  BOOST_TEST(f.oracle.statistics("silhouette_critical").calls == 0u);
+  BOOST_TEST(f.oracle.statistics("silhouette_plane").calls == 0u);
+  BOOST_TEST(!silhouette_witness(f.restricted, 0, false, 1).witnesses.empty());
+  BOOST_TEST(f.oracle.statistics("silhouette_critical").calls == 1u);
+}
+
 // The driver's retries use other directions d′ ⟂ n_p (attempts 1 and 2): each still finds a point
 // of J_{n_p} in the cell, and not the same point as the seeded direction.
 BOOST_AUTO_TEST_CASE(alternative_directions_give_other_witnesses) {

@@ -137,9 +137,16 @@ BOOST_AUTO_TEST_CASE(a_proved_zero_of_the_functional_refutes_the_certificate) {
   BOOST_TEST(!refuted.proved);
   BOOST_TEST(refuted.refuted);
   BOOST_TEST(refuted.boxes < 200u);
+  // The refuting point, narrowed to the rounding: on the equator of the sphere, inside P.
+  BOOST_TEST_REQUIRE(refuted.vanishing_point.has_value());
+  const auto& v = *refuted.vanishing_point;
+  BOOST_TEST(std::abs(v[2]) < 1e-14);
+  BOOST_TEST(std::abs(v[0] * v[0] + v[1] * v[1] - 1) < 1e-14);
+  BOOST_TEST((v[0] >= 0.5 && std::abs(v[1]) <= 0.5));
   const auto spent = prove_gradient_cone(unit_sphere(), AffineChart::identity(), across, {0, 0, 1}, 1000);
   BOOST_TEST(!spent.proved);
   BOOST_TEST(!spent.refuted);
+  BOOST_TEST(!spent.vanishing_point.has_value());
   BOOST_TEST(spent.boxes > 4 * refuted.boxes);
   const Domain upper = cube(-1.5, 1.5, -1.5, 1.5, 0.5, 1.5);
   const auto cap = prove_gradient_cone(E, AffineChart::identity(), upper, {0, 0, 1}, 200);
@@ -153,6 +160,10 @@ BOOST_AUTO_TEST_CASE(a_proved_zero_of_the_functional_refutes_the_certificate) {
   const auto planar = prove_gradient_cone(E, chart, Domain::from_box({{-0.2, 0.2}, {0.8, 1.2}}), {1, 0, 0}, 100000);
   BOOST_TEST(planar.refuted);
   BOOST_TEST(planar.boxes < 200u);
+  BOOST_TEST_REQUIRE(planar.vanishing_point.has_value());
+  BOOST_TEST(std::abs((*planar.vanishing_point)[0]) < 1e-14);
+  BOOST_TEST(std::abs((*planar.vanishing_point)[1] - std::sqrt(0.96)) < 1e-14);
+  BOOST_TEST((*planar.vanishing_point)[2] == 0.2);
   // A zero just outside the half-space that bounds P (z ≥ 0.01) refutes nothing: the cover of
   // the part above it is proved.
   Domain above = across;

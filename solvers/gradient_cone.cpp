@@ -76,18 +76,26 @@ double box_slope(const Interval& functional, const Interval* gradient) {
 // K ⊆ Y makes y − C f(y) a self-map of Y by the mean-value theorem, whose fixed point is a zero).
 class SliceKrawczyk {
  public:
-  SliceKrawczyk(const ChartMap& chart, std::size_t n, const std::array<double, 3>& w) : chart_(chart), n_(n), w_(w) {}
+  //! `gradient` and `hessian` enclose ∇E and H over U's world box.
+  SliceKrawczyk(const ChartMap& chart, std::size_t n, const std::array<double, 3>& w, const Interval* gradient,
+                const Interval* hessian)
+      : n_(n), w_(w) {
+    Interval hessian_w[3];
+    for (int k = 0; k < 3; ++k) hessian_w[k] = inner(hessian + 3 * k, w);
+    for (std::size_t j = 0; j < n; ++j) {
+      J_[0][j] = chart.along(gradient, j);
+      J_[1][j] = chart.along(hessian_w, j);
+    }
+  }
 
   //! The unknowns of U's slice: in dimension 3 the pair whose 2 × 2 minor of mid J is largest.
-  std::array<std::size_t, 2> unknowns(const Interval* gradient, const Interval* hessian) const {
-    Jacobian J;
-    fill(J, gradient, hessian);
+  std::array<std::size_t, 2> unknowns() const {
     std::array<std::size_t, 2> pair{0, 1};
     if (n_ == 3) {
-      double best = std::abs(minor(J, 0, 1));
+      double best = std::abs(minor(0, 1));
       for (const auto& other : {std::array<std::size_t, 2>{0, 2}, std::array<std::size_t, 2>{1, 2}})
-        if (std::abs(minor(J, other[0], other[1])) > best) {
-          best = std::abs(minor(J, other[0], other[1]));
+        if (std::abs(minor(other[0], other[1])) > best) {
+          best = std::abs(minor(other[0], other[1]));
           pair = other;
         }
     }
@@ -98,15 +106,12 @@ class SliceKrawczyk {
   //! singular (or not finite).
   std::optional<std::array<Interval, 3>> image(const std::array<std::size_t, 2>& pair, const std::array<Interval, 3>& u,
                                                const Interval* centre, const Interval& centre_value,
-                                               const Interval* centre_gradient, const Interval* gradient,
-                                               const Interval* hessian) const {
-    Jacobian J;
-    fill(J, gradient, hessian);
+                                               const Interval* centre_gradient) const {
     const std::size_t a = pair[0], b = pair[1];
-    const double det = minor(J, a, b);
+    const double det = minor(a, b);
     if (!(std::abs(det) > 0) || !std::isfinite(det)) return std::nullopt;
     // C = (mid J)⁻¹ (any matrix serves; only its quality matters).
-    const double C[2][2] = {{mid(J[1][b]) / det, -mid(J[0][b]) / det}, {-mid(J[1][a]) / det, mid(J[0][a]) / det}};
+    const double C[2][2] = {{mid(J_[1][b]) / det, -mid(J_[0][b]) / det}, {-mid(J_[1][a]) / det, mid(J_[0][a]) / det}};
     const Interval f[2] = {centre_value, inner(centre_gradient, w_)};
     const Interval offset[2] = {u[a] - centre[a], u[b] - centre[b]};
     std::array<Interval, 3> k;
@@ -115,7 +120,7 @@ class SliceKrawczyk {
       Interval kr = centre[pair[r]] - (C[r][0] * f[0] + C[r][1] * f[1]);
       for (int c = 0; c < 2; ++c) {
         const Interval identity(r == c ? 1.0 : 0.0);
-        kr += (identity - (C[r][0] * J[0][pair[c]] + C[r][1] * J[1][pair[c]])) * offset[c];
+        kr += (identity - (C[r][0] * J_[0][pair[c]] + C[r][1] * J_[1][pair[c]])) * offset[c];
       }
       k[pair[r]] = kr;
     }
@@ -123,23 +128,14 @@ class SliceKrawczyk {
   }
 
  private:
-  using Jacobian = Interval[2][3];
   static double mid(const Interval& a) { return 0.5 * (a.inf() + a.sup()); }
-  static double minor(const Jacobian& J, std::size_t a, std::size_t b) {
-    return mid(J[0][a]) * mid(J[1][b]) - mid(J[0][b]) * mid(J[1][a]);
-  }
-  void fill(Jacobian& J, const Interval* gradient, const Interval* hessian) const {
-    Interval hessian_w[3];
-    for (int k = 0; k < 3; ++k) hessian_w[k] = inner(hessian + 3 * k, w_);
-    for (std::size_t j = 0; j < n_; ++j) {
-      J[0][j] = chart_.along(gradient, j);
-      J[1][j] = chart_.along(hessian_w, j);
-    }
+  double minor(std::size_t a, std::size_t b) const {
+    return mid(J_[0][a]) * mid(J_[1][b]) - mid(J_[0][b]) * mid(J_[1][a]);
   }
 
-  const ChartMap& chart_;
   std::size_t n_;
   std::array<double, 3> w_;
+  Interval J_[2][3];  //!< the enclosure of f′ on U: rows ∇E and H w along the chart's columns
 };
 
 // The enclosures the Krawczyk test needs on a box U: ∇E and H over U's world box, E and ∇E at
@@ -165,12 +161,13 @@ KrawczykData krawczyk_data(const CompiledSystem& E, const ChartMap& chart, std::
 // x* of f, after narrowing the box by Krawczyk steps: each step replaces Y by K(Y) ∩ Y, which
 // still holds x* (every zero of f in Y lies in K(Y)), and the steps stop when the box no longer
 // shrinks.  So the point is within the final box's world extent of x*.
-std::array<double, 3> narrowed_zero(const CompiledSystem& E, const ChartMap& chart, const SliceKrawczyk& krawczyk,
+std::array<double, 3> narrowed_zero(const CompiledSystem& E, const ChartMap& chart, const std::array<double, 3>& w,
                                     std::size_t n, const std::array<std::size_t, 2>& pair,
                                     std::array<Interval, 3> zero) {
   for (int step = 0; step < tolerances::vanishing_point_narrowing_steps; ++step) {
     const KrawczykData d = krawczyk_data(E, chart, n, zero);
-    const auto k = krawczyk.image(pair, zero, d.centre, d.centre_value, d.centre_gradient, d.gradient, d.hessian);
+    const SliceKrawczyk krawczyk(chart, n, w, d.gradient, d.hessian);
+    const auto k = krawczyk.image(pair, zero, d.centre, d.centre_value, d.centre_gradient);
     if (!k) break;
     std::array<Interval, 3> next = zero;
     bool shrinks = false, meets = true;
@@ -357,9 +354,9 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     }
     // (iv) A zero of the functional on Σ proved inside P refutes the certificate.
     if (with_hessians && have_hessian && have_centre && n >= 2) {
-      const SliceKrawczyk krawczyk(map, n, w);
-      const auto pair = krawczyk.unknowns(gradient, hessian);
-      const auto zero = krawczyk.image(pair, u, centre, centre_value, centre_gradient, gradient, hessian);
+      const SliceKrawczyk krawczyk(map, n, w, gradient, hessian);
+      const auto pair = krawczyk.unknowns();
+      const auto zero = krawczyk.image(pair, u, centre, centre_value, centre_gradient);
       bool inside_box = zero.has_value();
       for (std::size_t j : pair)
         inside_box = inside_box && u[j].inf() < (*zero)[j].inf() && (*zero)[j].sup() < u[j].sup();
@@ -367,7 +364,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
         std::uint64_t zero_active = active;
         if (side == DomainSide::inside || classify(domain, zero->data(), zero_active) == DomainSide::inside) {
           result.refuted = true;
-          result.vanishing_point = narrowed_zero(E, map, krawczyk, n, pair, *zero);
+          result.vanishing_point = narrowed_zero(E, map, w, n, pair, *zero);
           return result;
         }
       }

@@ -391,9 +391,11 @@ bool RestrictedDelaunay::cell_certified(VertexId p, const std::vector<VertexId>&
   c = CellCertificate{};
   const Vec3 n = oracle_.normal(del_.point(p));
   if (!(norm(n) > 0)) return false;
-  // With facets to certify: the slope that certifies every facet pq a slope up to the cap can.
+  // With facets to certify: the slope that certifies every facet pq a slope up to the cap can,
+  // leaving out the facets that q's kept certificate already certifies.
   double target = 0;
   for (VertexId q : facet_sites) {
+    if (certify_by_cell(make_edge_key(p, q)) == SectionProof::by_cell) continue;
     const Vec3 m = del_.point(q) - del_.point(p);
     const double along = std::abs(dot(m, n)) / norm(m);
     if (along <= tolerances::cell_slope_cap) target = std::max(target, along);

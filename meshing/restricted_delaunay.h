@@ -208,7 +208,9 @@ class RestrictedDelaunay {
   //! `facet_sites`: the q whose facets pq are to be certified from the cell; the cover is refined
   //! (SlopeRefinement) towards the least slope that certifies those of them with
   //! |⟨n_p, q − p⟩| / |q − p| ≤ tolerances::cell_slope_cap, within
-  //! tolerances::cell_slope_box_budget extra boxes.
+  //! tolerances::cell_slope_box_budget extra boxes.  Facets that q's kept certificate already
+  //! certifies (facet_section_certified()'s route through the cells) do not raise that slope;
+  //! when they are all the facets, nothing is tried (Silhouette's turn, as without facets).
   bool cell_certified(VertexId p, const std::vector<VertexId>& facet_sites = {});
   //! When the kept certificate of V_p (cell_certified() without facet sites) failed because it
   //! proved a point of Σ ∩ V_p where ⟨∇E, n_p⟩ = 0 — a point of the silhouette J_{n_p} in V_p

@@ -44,43 +44,38 @@ double widen_up(double x) {
   return x;
 }
 
-//! Enclosure of vⁿ for a point v ≥ 0 and n ≥ 1, by binary powering of its two bounds under the
-//! guard's upward rounding: the upper bound by plain products (rounded up), the lower one by
-//! negated products −((−a)·b) (the product a·b rounded down, a, b ≥ 0).  These are the products
-//! CGAL's interval arithmetic makes for nonnegative point intervals, without its case analysis.
-//! The exponents up to 4 (the common ones in surface equations and their derivatives) are
-//! written out: the same products in the same order as the loop, whose factors 1 are exact.
-inline Interval nonnegative_point_power(double v, unsigned long n) {
-  switch (n) {
-    case 1: return Interval(v, v);
-    case 2: return Interval(-((-v) * v), v * v);
-    case 3: {
-      const double square_lo = -((-v) * v), square_hi = v * v;
-      return Interval(-((-v) * square_lo), v * square_hi);
+//! vⁿ for v ≥ 0 and n ≥ 1 rounded up (Up) or down, by binary powering under the guard's upward
+//! rounding: plain products round up, and −((−a)·b) is the product a·b rounded down (a, b ≥ 0).
+//! These are the products CGAL's interval arithmetic makes for the bounds of nonnegative point
+//! intervals, without its case analysis, and only those of the bound asked for.  The exponents
+//! up to 4 (the common ones in surface equations and their derivatives) are written out: the
+//! same products in the same order as the loop, whose factors 1 are exact.
+template <bool Up>
+inline double nonnegative_power(double v, unsigned long n) {
+  const auto times = [](double a, double b) {
+    if constexpr (Up) {
+      return a * b;
+    } else {
+      return -((-a) * b);
     }
+  };
+  switch (n) {
+    case 1: return v;
+    case 2: return times(v, v);
+    case 3: return times(v, times(v, v));
     case 4: {
-      const double square_lo = -((-v) * v), square_hi = v * v;
-      return Interval(-((-square_lo) * square_lo), square_hi * square_hi);
+      const double square = times(v, v);
+      return times(square, square);
     }
     default: break;
   }
-  double base_lo = v, base_hi = v, lo = 1, hi = 1;
+  double base = v, result = 1;
   while (true) {
-    if (n & 1UL) {
-      lo = -((-lo) * base_lo);
-      hi = hi * base_hi;
-    }
+    if (n & 1UL) result = times(result, base);
     n >>= 1;
-    if (n == 0) return Interval(lo, hi);
-    base_lo = -((-base_lo) * base_lo);
-    base_hi = base_hi * base_hi;
+    if (n == 0) return result;
+    base = times(base, base);
   }
-}
-//! Enclosure of vⁿ for any point v and n ≥ 1.
-inline Interval point_power(double v, unsigned long n) {
-  if (v >= 0) return nonnegative_point_power(v, n);
-  const Interval p = nonnegative_point_power(-v, n);
-  return (n % 2 == 1) ? -p : p;
 }
 
 constexpr double kTwoPi = 6.283185307179586;   // nearest double to 2π
@@ -159,7 +154,9 @@ void ScalarTraits<Interval>::pow(Interval& out, const Interval& a, int n) {
   if (m == 2) {
     r = CGAL::square(a);  // the exact range of x², rounded outward
   } else if (m % 2 == 1) {
-    r = Interval(point_power(lo, m).inf(), point_power(hi, m).sup());
+    // x^m is increasing, and (−v)^m = −(v^m).
+    r = Interval(lo >= 0 ? nonnegative_power<false>(lo, m) : -nonnegative_power<true>(-lo, m),
+                 hi >= 0 ? nonnegative_power<true>(hi, m) : -nonnegative_power<false>(-hi, m));
   } else {
     double mig, mag;
     if (lo >= 0) {
@@ -172,7 +169,7 @@ void ScalarTraits<Interval>::pow(Interval& out, const Interval& a, int n) {
       mig = 0.0;
       mag = std::max(-lo, hi);
     }
-    r = Interval(nonnegative_point_power(mig, m).inf(), nonnegative_point_power(mag, m).sup());
+    r = Interval(nonnegative_power<false>(mig, m), nonnegative_power<true>(mag, m));
   }
   out = n < 0 ? 1.0 / r : r;
 }

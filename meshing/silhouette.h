@@ -18,10 +18,10 @@ Vec3 silhouette_direction(const RestrictedDelaunay& restricted, VertexId p, cons
 //! certificate (below) failed because it proved such a point (a zero of (E, ⟨∇E, n_p⟩) in V_p,
 //! RestrictedDelaunay::cell_silhouette_point()), that point is returned and nothing is solved;
 //! on a later attempt (attempt > 0, after it was rejected) the primitives below look for others.
-//! Otherwise SilhouetteCritical(Σ, n_p, d′) over the clipped cell V_p: a point inside V_p (the furthest
-//! from p; undecided regions are projected candidates) is returned.  Otherwise, for every facet
-//! pq of V_p, SilhouettePlane(Σ, Π_pq, n_p) over the facet polygon: a point inside the facet is
-//! returned.  Nothing if neither finds one.  Undecided regions whose projection fails or leaves
+//! Otherwise SilhouetteCritical(Σ, n_p, d′) over the clipped cell V_p: a point inside V_p (the
+//! furthest from p; undecided regions are projected candidates) is returned.  Otherwise, for
+//! every facet pq of V_p, SilhouettePlane(Σ, Π_pq, n_p) over the facet polygon: a point inside
+//! the facet is returned.  Nothing if neither finds one.  Undecided regions whose projection fails or leaves
 //! the face are unsettled (meshing/detail/candidates.h); so are a zero gradient at p and an
 //! empty clipped cell (numerical failures: p ∈ Σ is regular and interior to V_p).
 //!

@@ -217,11 +217,7 @@ SolveResult ImplicitOracle::silhouette_critical(const Vec3& d, const Vec3& d2, c
   return finish(index, params, solve_square(index, params, domain, tolerances::mesher_box_budget_3d), start);
 }
 
-bool ImplicitOracle::prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) {
-  return gradient_cone_answer(chart, domain, w).proved;
-}
-
-SurfaceOracle::ConeAnswer ImplicitOracle::gradient_cone_answer(const AffineChart& chart, const Domain& domain,
+SurfaceOracle::ConeAnswer ImplicitOracle::prove_gradient_cone(const AffineChart& chart, const Domain& domain,
                                                               const Vec3& w) {
   const std::size_t budget = domain.dimension() == 3 ? tolerances::gradient_cone_cell_box_budget
                                                      : tolerances::gradient_cone_box_budget;
@@ -242,7 +238,7 @@ GradientConeResult ImplicitOracle::gradient_cone(const AffineChart& chart, const
   const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
   ++cone_stats_.attempts;
   cone_stats_.proved += r.proved ? 1 : 0;
-  cone_stats_.refuted += r.refuted ? 1 : 0;
+  cone_stats_.refuted += r.refuted() ? 1 : 0;
   cone_stats_.boxes += r.boxes;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   cone_stats_.seconds += seconds;

@@ -106,12 +106,11 @@ class ImplicitOracle final : public SurfaceOracle {
                     std::size_t box_budget) override;
 
   //! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P, P = domain in the chart (solvers/gradient_cone.h):
-  //! true is a proof, false proves nothing.  Within tolerances::gradient_cone_cell_box_budget
-  //! boxes over a 3-D domain (a Voronoi cell), tolerances::gradient_cone_box_budget over a facet.
-  //! Counted under `cone_certificates`.
-  bool prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) override;
-  //! The same attempt, with the point of Σ ∩ P where ⟨∇E, w⟩ = 0 that refuted it, if one did.
-  ConeAnswer gradient_cone_answer(const AffineChart& chart, const Domain& domain, const Vec3& w) override;
+  //! a proof or nothing, with the point of Σ ∩ P where ⟨∇E, w⟩ = 0 that refuted the attempt, if
+  //! one did.  Within tolerances::gradient_cone_cell_box_budget boxes over a 3-D domain (a
+  //! Voronoi cell), tolerances::gradient_cone_box_budget over a facet.  Counted under
+  //! `cone_certificates`.
+  ConeAnswer prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) override;
   //! The slope of that certificate, 0 if it fails (solvers/gradient_cone.h): within
   //! tolerances::cell_slope_cover_budget boxes, refined towards `target` within
   //! tolerances::cell_slope_box_budget more; counted likewise.

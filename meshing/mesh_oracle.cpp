@@ -663,7 +663,8 @@ std::vector<MeshOracle::Polyline> MeshOracle::section(const Vec3& o, const Vec3&
   return out;
 }
 
-bool MeshOracle::prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) {
+SurfaceOracle::ConeAnswer MeshOracle::prove_gradient_cone(const AffineChart& chart, const Domain& domain,
+                                                          const Vec3& w) {
   const Impl& m = *impl_;
   const std::vector<int> near = chart.columns.size() == 2
                                     ? m.faces_near(Plane(chart.origin, chart.columns[0], chart.columns[1]), domain)
@@ -682,7 +683,7 @@ bool MeshOracle::prove_gradient_cone(const AffineChart& chart, const Domain& dom
   const std::lock_guard<std::mutex> lock(statistics_mutex_);
   ++cone_attempts_;
   cone_proved_ += proved ? 1 : 0;
-  return proved;
+  return {proved, std::nullopt};
 }
 
 int MeshOracle::gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const {

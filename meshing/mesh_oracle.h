@@ -71,7 +71,7 @@
 //!  - project(x): the closest point of Σ (AABB tree), if it lies in the box.
 //!  - prove_gradient_cone(chart, P, w): a proof that ⟨n_f, w⟩ has one strict sign on every face
 //!    that meets the bounding box of P (exact signs); then Σ ∩ P has no point where w is tangent,
-//!    and no silhouette point for w.  gradient_sign(a, b, w): the common strict sign of ⟨n_f, w⟩
+//!    and no silhouette point for w.  It reports no refuting point.  gradient_sign(a, b, w): the common strict sign of ⟨n_f, w⟩
 //!    over the faces the segment [a, b] meets (exact), so that the segment crosses Σ at most once
 //!    and only one way; 0 if the signs differ or one is 0; +1 if no face meets it (vacuous).
 //!  - solve(name, …): the six primitives above by their registry names and parameters; any other
@@ -124,7 +124,7 @@ class MeshOracle final : public SurfaceOracle {
   SolveResult solve(const std::string& primitive, const std::vector<double>& parameters, const Domain& domain,
                     std::size_t box_budget) override;
 
-  bool prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) override;
+  ConeAnswer prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) override;
   int gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const override;
   using SurfaceOracle::value_sign;
   int value_sign(const Vec3& lo, const Vec3& hi) const override;

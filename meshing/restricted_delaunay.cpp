@@ -387,7 +387,7 @@ bool RestrictedDelaunay::cell_certified(VertexId p, const std::vector<VertexId>&
   if (static_cast<std::size_t>(p) >= cells_.size()) cells_.resize(static_cast<std::size_t>(p) + 1);
   CellCertificate& c = cells_[p];
   if (c.state == State::proved) return true;
-  if (c.state == State::failed && c.vertices == del_.size()) return false;
+  if (failure_kept(c)) return false;
   c = CellCertificate{};
   const Vec3 n = oracle_.normal(del_.point(p));
   if (!(norm(n) > 0)) return false;
@@ -414,7 +414,7 @@ bool RestrictedDelaunay::cell_certified(VertexId p, const std::vector<VertexId>&
     c.slope = slope;
     return true;
   }
-  SurfaceOracle::ConeAnswer answer = oracle_.gradient_cone_answer(AffineChart::identity(), cell.domain, n);
+  SurfaceOracle::ConeAnswer answer = oracle_.prove_gradient_cone(AffineChart::identity(), cell.domain, n);
   if (answer.proved) {
     c.state = State::proved;  // without a slope
     return true;
@@ -428,8 +428,7 @@ bool RestrictedDelaunay::cell_certified(VertexId p, const std::vector<VertexId>&
 std::optional<Vec3> RestrictedDelaunay::cell_silhouette_point(VertexId p) const {
   if (static_cast<std::size_t>(p) >= cells_.size()) return std::nullopt;
   const CellCertificate& c = cells_[p];
-  if (c.state != CellCertificate::State::failed || c.vertices != del_.size()) return std::nullopt;
-  return c.silhouette_point;
+  return failure_kept(c) ? c.silhouette_point : std::nullopt;
 }
 
 void RestrictedDelaunay::forget_cell(VertexId p) {
@@ -475,12 +474,12 @@ RestrictedDelaunay::SectionProof RestrictedDelaunay::certify_by_cover(const Edge
   Vec3 w = g - dot(g, m) * m;
   if (!(norm(w) > 0)) w = f.a;
   auto proof = [](bool proved) { return proved ? SectionProof::by_cover : SectionProof::none; };
-  if (f.valid) return proof(oracle_.prove_gradient_cone(f.chart(), f.domain, normalized(w)));
+  if (f.valid) return proof(oracle_.prove_gradient_cone(f.chart(), f.domain, normalized(w)).proved);
   // A degenerate facet lies in the bounding box of its polygon's points (VoronoiFacet), widened
   // by the membership tolerance as its world box is (WitnessCollector::add_degenerate_facet).
   const double margin = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
   if (f.polygon.empty() || !(margin > 0)) return SectionProof::none;
-  return proof(oracle_.prove_gradient_cone(f.chart(), f.polygon_hull(margin), normalized(w)));
+  return proof(oracle_.prove_gradient_cone(f.chart(), f.polygon_hull(margin), normalized(w)).proved);
 }
 
 namespace {

@@ -214,8 +214,8 @@ class RestrictedDelaunay {
   bool cell_certified(VertexId p, const std::vector<VertexId>& facet_sites = {});
   //! When the kept certificate of V_p (cell_certified() without facet sites) failed because it
   //! proved a point of Σ ∩ V_p where ⟨∇E, n_p⟩ = 0 — a point of the silhouette J_{n_p} in V_p
-  //! (SurfaceOracle::gradient_cone_answer()) — that point; nothing otherwise, or once Del S has
-  //! changed since.
+  //! (SurfaceOracle::ConeAnswer::vanishing_point) — that point; nothing otherwise, or once Del S
+  //! has changed since.
   std::optional<Vec3> cell_silhouette_point(VertexId p) const;
   //! Forgets the cell certificate of p (before p is removed, or when V_p may grow).
   void forget_cell(VertexId p);
@@ -323,6 +323,10 @@ class RestrictedDelaunay {
     std::optional<Vec3> silhouette_point;  //!< the point of J_{n_p} ∩ V_p that refuted it, if any
   };
   std::vector<CellCertificate> cells_;
+  //! Whether c is a failure found on the current Del S (so it still stands).
+  bool failure_kept(const CellCertificate& c) const {
+    return c.state == CellCertificate::State::failed && c.vertices == del_.size();
+  }
   //! stars_[v]: the recorded restricted triangles containing v (in no particular order).
   std::vector<std::vector<TriangleKey>> stars_;
   bool every_triangle_recorded_ = false;

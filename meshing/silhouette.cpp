@@ -64,7 +64,7 @@ CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool 
     const VoronoiFacet& f = restricted.facet(make_edge_key(p, q));
     if (!f.valid) continue;
     // J_{n_p} ∩ F = ∅ proved by the gradient cone over F: nothing to solve on this facet.
-    if (oracle.prove_gradient_cone(f.chart(), f.domain, n_p)) continue;
+    if (oracle.prove_gradient_cone(f.chart(), f.domain, n_p).proved) continue;
     collector.add_result(oracle, f, oracle.silhouette_plane(f.origin, f.a, f.b, n_p, f.domain));
     if (collector.points() > 0) return collector.take();
   }

@@ -79,20 +79,17 @@ class SurfaceOracle {
   virtual SolveResult solve(const std::string& primitive, const std::vector<double>& parameters,
                             const Domain& domain, std::size_t box_budget) = 0;
 
-  //! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P, P = domain in the chart: true is a proof, false
-  //! proves nothing (an implementation may never prove).
-  virtual bool prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) = 0;
-  //! The same attempt, and when it failed because it proved a point of Σ ∩ P where ⟨∇E, w⟩ = 0
-  //! (solvers/gradient_cone.h, test (iv)), that point to the rounding of its enclosure
-  //! (GradientConeResult::vanishing_point).  The default, for an oracle that finds no such
-  //! points, is prove_gradient_cone()'s answer and no point.
+  //! What prove_gradient_cone() found.
   struct ConeAnswer {
-    bool proved = false;
+    bool proved = false;  //!< ⟨∇E, w⟩ ≠ 0 on Σ ∩ P is proved; false proves nothing
+    //! When the attempt failed because it proved a point of Σ ∩ P where ⟨∇E, w⟩ = 0
+    //! (solvers/gradient_cone.h, test (iv)): that point, to the rounding of its enclosure
+    //! (GradientConeResult::vanishing_point).  An implementation may never report one.
     std::optional<Vec3> vanishing_point;
   };
-  virtual ConeAnswer gradient_cone_answer(const AffineChart& chart, const Domain& domain, const Vec3& w) {
-    return {prove_gradient_cone(chart, domain, w), std::nullopt};
-  }
+  //! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P, P = domain in the chart (an implementation may never
+  //! prove).
+  virtual ConeAnswer prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) = 0;
   //! The same certificate with its slope (solvers/gradient_cone.h): a returned ρ > 0 is a proof
   //! of |⟨∇E, w⟩| ≥ ρ |∇E| > 0 on Σ ∩ P (ρ = +∞: Σ ∩ P = ∅); 0 proves nothing.  The cover may be
   //! refined to raise ρ towards `target` (SlopeRefinement).  The default, for an oracle that

@@ -363,7 +363,6 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
       if (inside_box) {
         std::uint64_t zero_active = active;
         if (side == DomainSide::inside || classify(domain, zero->data(), zero_active) == DomainSide::inside) {
-          result.refuted = true;
           result.vanishing_point = narrowed_zero(E, map, w, n, pair, *zero);
           return result;
         }

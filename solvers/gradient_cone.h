@@ -84,13 +84,14 @@ struct AffineChart {
 struct GradientConeResult {
   bool proved = false;     //!< ⟨∇E, w⟩ ≠ 0 on Σ ∩ P is proved
   std::size_t boxes = 0;   //!< boxes examined
-  //! Not proved because a point of Σ ∩ P where ⟨∇E, w⟩ = 0 was proved to exist (test (iv)).
-  bool refuted = false;
-  //! When refuted: that point x*, to the rounding of its enclosure.  The box of (iv) that holds
-  //! x* is narrowed by Krawczyk steps (each replaces the box Y by K(Y) ∩ Y, which still holds x*)
-  //! until it stops shrinking, at most tolerances::vanishing_point_narrowing_steps times; this is
-  //! the world image of its centre, so it lies within that box's extent of x*.
+  //! Set when the attempt is refuted: not proved because a point x* of Σ ∩ P where ⟨∇E, w⟩ = 0
+  //! was proved to exist (test (iv)).  It holds x* to the rounding of its enclosure: the box of
+  //! (iv) that holds x* is narrowed by Krawczyk steps (each replaces the box Y by K(Y) ∩ Y, which
+  //! still holds x*) until it stops shrinking, at most tolerances::vanishing_point_narrowing_steps
+  //! times; this is the world image of its centre, so it lies within that box's extent of x*.
   std::optional<std::array<double, 3>> vanishing_point;
+  //! Not proved because test (iv) proved a point of Σ ∩ P where ⟨∇E, w⟩ = 0 (vanishing_point).
+  bool refuted() const { return vanishing_point.has_value(); }
   //! When proved and a slope was asked for (SlopeRefinement::target > 0): the slope ρ of the file
   //! comment, |⟨∇E, w⟩| ≥ ρ |∇E| on Σ ∩ P (+∞ when Σ ∩ P is proved empty); 0 otherwise.
   double slope = 0;

@@ -192,7 +192,8 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
                   std::chrono::steady_clock::time_point start) {
   const RefinementLimits limits = refinement_limits(options, start);
   oracle.set_run_controls(options.seed, limits.deadline);
-  Refinement refinement(oracle, options.seed, limits, RecheckPolicy::new_faces, options.threads);
+  Refinement refinement(oracle, options.seed, limits, RecheckPolicy::new_faces, options.threads,
+                        options.parallel_every_batch);
 
   const SampleTopologyResult sampled = sample_topology(refinement);
   const SeedReport& seeds = sampled.seeds;

@@ -56,8 +56,10 @@ struct DelMeshOptions {
   double time_limit_seconds = 0;         //!< 0: none
   std::uint64_t seed = 1;                //!< generic directions; same seed → same mesh
   //! Threads computing the records of the faces each insertion changes; 0: every hardware
-  //! thread.  The mesh does not depend on it.
+  //! thread.  The mesh does not depend on it.  A batch smaller than tolerances::parallel_least_*
+  //! runs on one thread, unless parallel_every_batch (for tests of that independence).
   int threads = 0;
+  bool parallel_every_batch = false;
   //! If given, the run stops (status interrupted) at the first check after it becomes true; it
   //! is read between checks, so a signal handler may set it.
   const std::atomic<bool>* interrupt = nullptr;

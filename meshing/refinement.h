@@ -181,9 +181,10 @@ enum class RecheckPolicy {
 class Refinement {
  public:
   //! `threads` threads (0: every hardware thread) compute the records and facets of the faces an
-  //! insertion changes; the result is the same for every number of threads.
+  //! insertion changes, in batches large enough to pay for it (detail::ParallelFor; every batch
+  //! with `parallel_every_batch`); the result is the same for every number of threads.
   Refinement(SurfaceOracle& oracle, std::uint64_t seed, RefinementLimits limits,
-             RecheckPolicy policy = RecheckPolicy::new_faces, int threads = 1);
+             RecheckPolicy policy = RecheckPolicy::new_faces, int threads = 1, bool parallel_every_batch = false);
 
   //! Inserts the witness into S (unless it duplicates a sample), logs it, and queues the faces
   //! it created or changed.  Returns the new id, or nothing if rejected.

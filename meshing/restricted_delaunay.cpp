@@ -232,7 +232,7 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
   parallel.run(to_solve.size(), [&](std::size_t k) {
     const auto& s = star[to_solve[k]];
     solved[k] = compute(s.key, &s.apexes);
-  });
+  }, tolerances::parallel_least_records);
   for (std::size_t k = 0; k < to_solve.size(); ++k)
     out[to_solve[k]].record = &install(star[to_solve[k]].key, std::move(solved[k]), true);
   return out;
@@ -251,7 +251,7 @@ void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std
     built[i].facet = voronoi_facet(del_, e, oracle_.box(), facet_rotation(e), &ring);
     built[i].built = true;
     proofs[i] = certify_by_cover(e, built[i].facet);
-  });
+  }, tolerances::parallel_least_facets);
   for (std::size_t i = 0; i < edges.size(); ++i) {
     facets_built_ += built[i].built;
     record_section(built[i].section_certified, proofs[i]);

@@ -14,16 +14,16 @@ struct ParallelFor::Arena {
   explicit Arena(int threads) : arena(threads) {}
 };
 
-ParallelFor::ParallelFor(int threads)
-    : threads_(threads < 1 ? hardware_threads() : std::min(threads, hardware_threads())) {
+ParallelFor::ParallelFor(int threads, bool every_batch)
+    : threads_(threads < 1 ? hardware_threads() : std::min(threads, hardware_threads())), every_batch_(every_batch) {
   if (threads_ > 1) arena_ = std::make_unique<Arena>(threads_);
 }
 ParallelFor::~ParallelFor() = default;
 ParallelFor::ParallelFor(ParallelFor&&) noexcept = default;
 ParallelFor& ParallelFor::operator=(ParallelFor&&) noexcept = default;
 
-void ParallelFor::run(std::size_t n, const std::function<void(std::size_t)>& f) const {
-  if (!arena_ || n < 2) {
+void ParallelFor::run(std::size_t n, const std::function<void(std::size_t)>& f, std::size_t least) const {
+  if (!arena_ || n < (every_batch_ ? 2 : std::max<std::size_t>(least, 2))) {
     for (std::size_t i = 0; i < n; ++i) f(i);
     return;
   }

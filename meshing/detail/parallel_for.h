@@ -13,18 +13,23 @@ namespace delmesh::detail {
 class ParallelFor {
  public:
   //! Uses min(threads, hardware_threads()) threads, or every hardware thread for threads < 1; one
-  //! thread runs everything on the calling thread.
-  explicit ParallelFor(int threads);
+  //! thread runs everything on the calling thread.  every_batch: run() ignores `least` and hands
+  //! every batch of two or more items to the threads (to exercise that path in tests).
+  explicit ParallelFor(int threads, bool every_batch = false);
   ~ParallelFor();
   ParallelFor(ParallelFor&&) noexcept;
   ParallelFor& operator=(ParallelFor&&) noexcept;
 
   int threads() const { return threads_; }
-  void run(std::size_t n, const std::function<void(std::size_t)>& f) const;
+  //! Calls f(0), …, f(n−1).  A batch of fewer than `least` items (at least 2) runs on the calling
+  //! thread: handing a batch to the threads costs tens of microseconds, more than a small batch
+  //! of cheap items takes (see the call sites' constants in common/tolerances.h).
+  void run(std::size_t n, const std::function<void(std::size_t)>& f, std::size_t least = 2) const;
 
  private:
   struct Arena;
   int threads_ = 1;
+  bool every_batch_ = false;
   std::unique_ptr<Arena> arena_;
 };
 

@@ -188,7 +188,7 @@ std::vector<TriangleKey> RestrictedDelaunay::forget_destroyed(const InsertionCha
     if (r) track(t, r->restricted, false);
   }
   forget({}, change.destroyed_edges);
-  forget({}, change.shrunk_edges);
+  shrink_facets(change.shrunk_edges);
   return left;
 }
 
@@ -627,6 +627,19 @@ void RestrictedDelaunay::invalidate(const std::vector<VertexId>& vertices) {
 void RestrictedDelaunay::forget(const std::vector<TriangleKey>& triangles, const std::vector<EdgeKey>& edges) {
   for (const auto& t : triangles) erase_record(t);
   for (const auto& e : edges) facets_.erase(e);
+}
+
+void RestrictedDelaunay::shrink_facets(const std::vector<EdgeKey>& edges) {
+  for (const auto& e : edges) {
+    FacetEntry* entry = facets_.find(e);
+    if (!entry) continue;
+    if (entry->section_certified != 1) {
+      facets_.erase(e);
+      continue;
+    }
+    entry->facet = VoronoiFacet{};
+    entry->built = false;
+  }
 }
 
 void RestrictedDelaunay::shrink(const InsertionChange& change) {

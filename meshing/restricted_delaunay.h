@@ -136,8 +136,9 @@ class RestrictedDelaunay {
   //! calls it once the facet checks of e are done, so that memory stays proportional to the
   //! facets in work, not to all of Vor S.
   void release_facet(const EdgeKey& e) { facets_.erase(e); }
-  //! For a local insertion (Delaunay::insert's change): forgets the destroyed triangles' records
-  //! and the destroyed and shrunk edges' facets, like shrink() without marking the shrunk
+  //! For a local insertion (Delaunay::insert's change): forgets the destroyed triangles' records,
+  //! the destroyed edges' facets and the shrunk ones' geometry (shrink_facets()), like shrink()
+  //! without marking the shrunk
   //! triangles (prepare_star() takes them up next).  Returns the destroyed triangles that were
   //! restricted or had no up-to-date record: the restricted stars of their vertices may change.
   std::vector<TriangleKey> forget_destroyed(const InsertionChange& change);
@@ -231,8 +232,8 @@ class RestrictedDelaunay {
   void invalidate(const std::vector<VertexId>& vertices);
   //! Forgets the records of these simplices (e.g. the star of a vertex about to be removed).
   void forget(const std::vector<TriangleKey>& triangles, const std::vector<EdgeKey>& edges);
-  //! Applies an insertion's change: destroyed simplices are forgotten, shrunk facets forgotten,
-  //! shrunk edge records kept for restriction.  A non-local change forgets everything.
+  //! Applies an insertion's change: destroyed simplices are forgotten, shrunk facets keep only a
+  //! proved section certificate, shrunk edge records are kept for restriction.  A non-local change forgets everything.
   void shrink(const InsertionChange& change);
   //! Number of edge records solved, and of those obtained by restriction (statistics).
   std::size_t records_solved() const { return records_solved_; }
@@ -296,6 +297,12 @@ class RestrictedDelaunay {
   //! Keeps stars_ in step with a record of t whose restricted status went from `was` to `is`.
   void track(const TriangleKey& t, bool was_restricted, bool is_restricted);
   void erase_record(const TriangleKey& t);
+  //! The facets of edges whose facets shrank: the geometry is forgotten (rebuilt on demand), and
+  //! so is a section certificate that failed or was not tried; a proved one is kept.  The
+  //! shrunk facet F′ lies in F, in the same plane, and the in-plane direction of the proof
+  //! depends on the edge's sites only, so the proof over F holds over F′ (the monotonicity lemma
+  //! of refinement.h, with its conditions).
+  void shrink_facets(const std::vector<EdgeKey>& edges);
   //! The record of the shrunk edge `edge` restricted from `old`, or nothing if it must be solved.
   std::optional<VoronoiEdgeRecord> restrict_record(const VoronoiEdgeRecord& old, const VoronoiEdge& edge) const;
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "check_fixture.h"
 #include "common/errors.h"
@@ -137,6 +138,34 @@ BOOST_AUTO_TEST_CASE(shrunk_records_equal_solved_records) {
     for (std::size_t k = 0; k < std::min(kept[i].crossings().size(), solved.crossings().size()); ++k)
       for (int c = 0; c < 3; ++c) BOOST_TEST(std::abs(kept[i].crossings()[k][c] - solved.crossings()[k][c]) < 1e-12);
   }
+}
+
+// A facet that shrinks keeps a proved section certificate (the proof over F holds over F′ ⊆ F) and
+// loses its geometry; a certificate that failed is forgotten, to be tried on the smaller facet.
+BOOST_AUTO_TEST_CASE(a_shrunk_facet_keeps_a_proved_section_certificate) {
+  CheckFixture f(test::unit_sphere, 1.5, {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
+  std::map<EdgeKey, bool> before;
+  for (VertexId p : f.del.vertices())
+    for (VertexId q : f.del.neighbours(p))
+      if (p < q) before[make_edge_key(p, q)] = f.restricted.facet_section_certified(make_edge_key(p, q));
+  const auto [x, change] = f.del.insert_tracking({0.6, 0.6, 0.5291502622129181}, false);
+  BOOST_TEST_REQUIRE(x.has_value());
+  BOOST_TEST_REQUIRE(change.local);
+  f.restricted.shrink(change);
+  const auto attempts = [&] { return f.oracle.statistics_json()["cone_certificates"]["attempts"].get<std::size_t>(); };
+  const std::size_t attempts_before = attempts(), built_before = f.restricted.facets_built();
+  int kept = 0;
+  for (const auto& e : change.shrunk_edges) {
+    BOOST_TEST_REQUIRE(before.count(e) == 1u);
+    BOOST_TEST(f.restricted.has_facet(e) == before[e]);
+    if (!before[e]) continue;
+    ++kept;
+    BOOST_TEST(f.restricted.facet_section_certified(e));
+  }
+  BOOST_TEST(kept > 0);
+  BOOST_TEST(attempts() == attempts_before);            // no cover tried again
+  BOOST_TEST(f.restricted.facets_built() == built_before);  // no geometry rebuilt
+  for (const auto& e : change.destroyed_edges) BOOST_TEST(!f.restricted.has_facet(e));
 }
 
 BOOST_AUTO_TEST_CASE(seeded_uniform_is_deterministic_and_in_range) {

@@ -141,7 +141,9 @@ class SliceKrawczyk {
 // The enclosures the Krawczyk test needs on a box U: ∇E and H over U's world box, E and ∇E at
 // U's centre c.
 struct KrawczykData {
-  Interval centre[3], centre_value, centre_gradient[3], gradient[3], hessian[9];
+  Interval centre[3], centre_value, centre_gradient[3], derivatives[12];  // ∇E, then H
+  const Interval* gradient() const { return derivatives; }
+  const Interval* hessian() const { return derivatives + 3; }
 };
 
 KrawczykData krawczyk_data(const CompiledSystem& E, const ChartMap& chart, std::size_t n,
@@ -149,8 +151,7 @@ KrawczykData krawczyk_data(const CompiledSystem& E, const ChartMap& chart, std::
   KrawczykData d;
   Interval x[3], value, centre_world[3];
   chart.to_world(u.data(), x);
-  E.values_and_jacobian<Interval>(x, nullptr, &value, d.gradient);
-  E.hessians<Interval>(x, nullptr, d.hessian);
+  E.values_and_derivatives<Interval>(x, nullptr, &value, d.derivatives);
   for (std::size_t j = 0; j < n; ++j) d.centre[j] = Interval(CGAL::to_double(u[j]));
   chart.to_world(d.centre, centre_world);
   E.values_and_jacobian<Interval>(centre_world, nullptr, &d.centre_value, d.centre_gradient);
@@ -166,7 +167,7 @@ std::array<double, 3> narrowed_zero(const CompiledSystem& E, const ChartMap& cha
                                     std::array<Interval, 3> zero) {
   for (int step = 0; step < tolerances::vanishing_point_narrowing_steps; ++step) {
     const KrawczykData d = krawczyk_data(E, chart, n, zero);
-    const SliceKrawczyk krawczyk(chart, n, w, d.gradient, d.hessian);
+    const SliceKrawczyk krawczyk(chart, n, w, d.gradient(), d.hessian());
     const auto k = krawczyk.image(pair, zero, d.centre, d.centre_value, d.centre_gradient);
     if (!k) break;
     std::array<Interval, 3> next = zero;
@@ -268,16 +269,23 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     std::uint64_t active = box.active;
     const DomainSide side = box.inside ? DomainSide::inside : classify(domain, u.data(), active);
     if (side == DomainSide::outside) continue;  // (i)
-    Interval x[3], value, gradient[3];
+    // E and ∇E over the box, and H with them when E has Hessians (one program: the tests below
+    // want H on most boxes that (ii) does not drop, and it shares most of its work with ∇E).
+    Interval x[3], value, derivatives[12];
+    const Interval* const gradient = derivatives;
+    const Interval* const hessian = derivatives + 3;
     map.to_world(u.data(), x);
-    E.values_and_jacobian<Interval>(x, nullptr, &value, gradient);
+    if (with_hessians)
+      E.values_and_derivatives<Interval>(x, nullptr, &value, derivatives);
+    else
+      E.values_and_jacobian<Interval>(x, nullptr, &value, derivatives);
     if (certainly_nonzero(value)) continue;  // (ii), natural form
     // The box's slope bound once (iii) drops it (−1: not dropped).
     double box_bound = -1;
     const Interval functional = inner(gradient, w);
-    // The centre, E and ∇E there, and H(X), computed once a test needs them.
-    Interval centre[3], centre_world[3], centre_value, centre_gradient[3], hessian[9];
-    bool have_centre = false, have_hessian = false;
+    // The centre, and E and ∇E there, computed once a test needs them.
+    Interval centre[3], centre_world[3], centre_value, centre_gradient[3];
+    bool have_centre = false;
     auto at_centre = [&] {
       if (have_centre) return;
       for (std::size_t j = 0; j < n; ++j) centre[j] = Interval(CGAL::to_double(u[j]));
@@ -294,14 +302,9 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
       for (std::size_t j = 0; j < n; ++j) mean_value += map.along(gradient, j) * (u[j] - centre[j]);
       return certainly_nonzero(mean_value);
     };
-    auto box_hessian = [&] {
-      if (!have_hessian) E.hessians<Interval>(x, nullptr, hessian);
-      have_hessian = true;
-    };
     // ∇E on the box by its mean-value form about the centre, met with the natural enclosure.
     auto centred_gradient = [&](Interval* g) {
       at_centre();
-      box_hessian();
       for (int k = 0; k < 3; ++k) {
         Interval gk = centre_gradient[k];
         for (std::size_t j = 0; j < n; ++j) gk += map.along(hessian + 3 * k, j) * (u[j] - centre[j]);
@@ -322,7 +325,6 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
       if (mean_value_excludes_zero()) continue;  // (ii), mean-value form
       if (with_hessians) {
         // (iii′) the functional's mean-value form: its gradient is H w.
-        box_hessian();
         Interval hessian_w[3];
         for (int k = 0; k < 3; ++k) hessian_w[k] = inner(hessian + 3 * k, w);
         Interval mean_functional = inner(centre_gradient, w);
@@ -353,7 +355,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
       continue;
     }
     // (iv) A zero of the functional on Σ proved inside P refutes the certificate.
-    if (with_hessians && have_hessian && have_centre && n >= 2) {
+    if (with_hessians && have_centre && n >= 2) {
       const SliceKrawczyk krawczyk(map, n, w, gradient, hessian);
       const auto pair = krawczyk.unknowns();
       const auto zero = krawczyk.image(pair, u, centre, centre_value, centre_gradient);

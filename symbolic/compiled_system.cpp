@@ -61,9 +61,7 @@ CompiledSystem::CompiledSystem(const PrimitiveSystem& system, bool with_hessians
   values_ = std::make_unique<detail::StraightLineProgram>(system.equations, inputs);
   values_and_jacobian_ = std::make_unique<detail::StraightLineProgram>(
       values_and_jacobian_outputs(system.equations, system.jacobian, n_unknowns_), inputs);
-  if (with_hessians)
-    hessians_ = std::make_unique<detail::StraightLineProgram>(
-        hessian_outputs(system.jacobian, system.unknowns, n_equations_), inputs);
+  if (with_hessians) compile_hessians(system.equations, system.jacobian, system.unknowns, inputs);
   world_point_ = std::make_unique<detail::StraightLineProgram>(
       std::vector<GiNaC::ex>(system.world_point.begin(), system.world_point.end()), inputs);
   build_polynomial_form(system.equations, system.unknowns, system.parameters, forms);
@@ -78,13 +76,21 @@ CompiledSystem::CompiledSystem(const std::vector<GiNaC::ex>& equations, const st
   values_ = std::make_unique<detail::StraightLineProgram>(equations, inputs);
   values_and_jacobian_ = std::make_unique<detail::StraightLineProgram>(
       values_and_jacobian_outputs(equations, jacobian, n_unknowns_), inputs);
-  if (with_hessians)
-    hessians_ = std::make_unique<detail::StraightLineProgram>(hessian_outputs(jacobian, unknowns, n_equations_),
-                                                              inputs);
+  if (with_hessians) compile_hessians(equations, jacobian, unknowns, inputs);
   if (n_unknowns_ >= 3)
     world_point_ = std::make_unique<detail::StraightLineProgram>(
         std::vector<GiNaC::ex>{unknowns[0], unknowns[1], unknowns[2]}, inputs);
   build_polynomial_form(equations, unknowns, parameters, forms);
+}
+
+void CompiledSystem::compile_hessians(const std::vector<GiNaC::ex>& equations, const GiNaC::matrix& jacobian,
+                                      const std::vector<GiNaC::symbol>& unknowns,
+                                      const std::vector<GiNaC::symbol>& inputs) {
+  std::vector<GiNaC::ex> hessians = hessian_outputs(jacobian, unknowns, n_equations_);
+  std::vector<GiNaC::ex> all = values_and_jacobian_outputs(equations, jacobian, n_unknowns_);
+  all.insert(all.end(), hessians.begin(), hessians.end());
+  hessians_ = std::make_unique<detail::StraightLineProgram>(hessians, inputs);
+  values_and_derivatives_ = std::make_unique<detail::StraightLineProgram>(all, inputs);
 }
 
 void CompiledSystem::build_polynomial_form(const std::vector<GiNaC::ex>& equations,
@@ -135,6 +141,13 @@ void CompiledSystem::hessians(const T* unknowns, const T* parameters, T* hessian
 }
 
 template <class T>
+void CompiledSystem::values_and_derivatives(const T* unknowns, const T* parameters, T* values, T* derivatives) const {
+  if (!values_and_derivatives_)
+    throw PreconditionViolation("CompiledSystem::values_and_derivatives: compiled without Hessians");
+  values_and_derivatives_->evaluate(unknowns, n_unknowns_, parameters, values, n_equations_, derivatives);
+}
+
+template <class T>
 void CompiledSystem::world_point(const T* unknowns, const T* parameters, T* xyz) const {
   if (!world_point_)
     throw PreconditionViolation("CompiledSystem::world_point: no world point (fewer than 3 unknowns)");
@@ -145,6 +158,7 @@ void CompiledSystem::world_point(const T* unknowns, const T* parameters, T* xyz)
   template void CompiledSystem::values<T>(const T*, const T*, T*) const;                  \
   template void CompiledSystem::values_and_jacobian<T>(const T*, const T*, T*, T*) const; \
   template void CompiledSystem::hessians<T>(const T*, const T*, T*) const;                \
+  template void CompiledSystem::values_and_derivatives<T>(const T*, const T*, T*, T*) const; \
   template void CompiledSystem::world_point<T>(const T*, const T*, T*) const;
 DELMESH_DEFINE_COMPILED_SYSTEM(double)
 DELMESH_DEFINE_COMPILED_SYSTEM(Interval)

@@ -100,6 +100,12 @@ class CompiledSystem {
   //! PreconditionViolation).
   template <class T>
   void hessians(const T* unknowns, const T* parameters, T* hessians) const;
+  //! values as above, and derivatives = the Jacobian (m·n, as values_and_jacobian()) followed by
+  //! the Hessians (m·n·n, as hessians()), from one program that computes their common
+  //! sub-expressions once: cheaper than the two calls when both are wanted, and the same numbers
+  //! (each output is evaluated by the same operations).  Precondition: has_hessians().
+  template <class T>
+  void values_and_derivatives(const T* unknowns, const T* parameters, T* values, T* derivatives) const;
   //! The world point (x, y, z) of the unknowns (e.g. o + u a + v b for a plane system).
   template <class T>
   void world_point(const T* unknowns, const T* parameters, T* xyz) const;
@@ -109,10 +115,14 @@ class CompiledSystem {
   std::unique_ptr<detail::StraightLineProgram> values_;
   std::unique_ptr<detail::StraightLineProgram> values_and_jacobian_;
   std::unique_ptr<detail::StraightLineProgram> hessians_;
+  std::unique_ptr<detail::StraightLineProgram> values_and_derivatives_;  //!< with the Hessians
   std::unique_ptr<detail::StraightLineProgram> world_point_;
   std::unique_ptr<PolynomialForm> polynomial_form_;
   bool taylor_forms_pay_ = false;
 
+  //! Compiles hessians_ and values_and_derivatives_.
+  void compile_hessians(const std::vector<GiNaC::ex>& equations, const GiNaC::matrix& jacobian,
+                        const std::vector<GiNaC::symbol>& unknowns, const std::vector<GiNaC::symbol>& inputs);
   void build_polynomial_form(const std::vector<GiNaC::ex>& equations, const std::vector<GiNaC::symbol>& unknowns,
                              const std::vector<GiNaC::symbol>& parameters, PolynomialFormBuild forms);
 };
@@ -122,6 +132,7 @@ class CompiledSystem {
   extern template void CompiledSystem::values<T>(const T*, const T*, T*) const;                  \
   extern template void CompiledSystem::values_and_jacobian<T>(const T*, const T*, T*, T*) const; \
   extern template void CompiledSystem::hessians<T>(const T*, const T*, T*) const;                \
+  extern template void CompiledSystem::values_and_derivatives<T>(const T*, const T*, T*, T*) const; \
   extern template void CompiledSystem::world_point<T>(const T*, const T*, T*) const;
 DELMESH_DECLARE_COMPILED_SYSTEM(double)
 DELMESH_DECLARE_COMPILED_SYSTEM(Interval)

@@ -287,6 +287,39 @@ BOOST_AUTO_TEST_CASE(hessians_and_world_points_agree_with_evalf) {
   }
 }
 
+// The fused program gives exactly the numbers of values_and_jacobian() and hessians(), over
+// intervals (outward rounding) and doubles, on every catalog primitive.
+BOOST_AUTO_TEST_CASE(values_and_derivatives_are_exactly_the_separate_evaluations) {
+  std::mt19937_64 rng(21);
+  for (const Case& c : cases()) {
+    BOOST_TEST_REQUIRE(c.compiled.has_hessians());
+    const std::size_t m = c.system.n_equations(), n = c.system.n_unknowns();
+    for (int trial = 0; trial < 3; ++trial) {
+      const Input centre = random_input(c, rng);
+      std::vector<Interval> box(n), params(centre.parameters.begin(), centre.parameters.end());
+      for (std::size_t j = 0; j < n; ++j) box[j] = Interval(centre.unknowns[j] - 0.01, centre.unknowns[j] + 0.01);
+      std::vector<Interval> separate(m + m * n + m * n * n), fused(separate.size());
+      std::vector<double> separate_d(separate.size()), fused_d(separate.size());
+      {
+        RoundingGuard guard;
+        c.compiled.values_and_jacobian(box.data(), params.data(), separate.data(), separate.data() + m);
+        c.compiled.hessians(box.data(), params.data(), separate.data() + m + m * n);
+        c.compiled.values_and_derivatives(box.data(), params.data(), fused.data(), fused.data() + m);
+      }
+      c.compiled.values_and_jacobian(centre.unknowns.data(), centre.parameters.data(), separate_d.data(),
+                                     separate_d.data() + m);
+      c.compiled.hessians(centre.unknowns.data(), centre.parameters.data(), separate_d.data() + m + m * n);
+      c.compiled.values_and_derivatives(centre.unknowns.data(), centre.parameters.data(), fused_d.data(),
+                                        fused_d.data() + m);
+      for (std::size_t k = 0; k < separate.size(); ++k) {
+        BOOST_CHECK_MESSAGE(separate[k].inf() == fused[k].inf() && separate[k].sup() == fused[k].sup(),
+                            c.label << " output " << k);
+        BOOST_CHECK_MESSAGE(separate_d[k] == fused_d[k], c.label << " double output " << k);
+      }
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(general_constructor_derives_the_jacobian) {
   GiNaC::symbol x("x"), y("y"), z("z"), a("a");
   const CompiledSystem s({x * x * y - a, GiNaC::sin(x) + z}, {x, y, z}, {a}, true);
@@ -329,6 +362,8 @@ BOOST_AUTO_TEST_CASE(general_constructor_derives_the_jacobian) {
   }
   BOOST_CHECK_THROW(coefficients.world_point(static_cast<const double*>(nullptr), p, w), PreconditionViolation);
   BOOST_CHECK_THROW(coefficients.hessians(static_cast<const double*>(nullptr), p, H), PreconditionViolation);
+  BOOST_CHECK_THROW(coefficients.values_and_derivatives(static_cast<const double*>(nullptr), p, c, H),
+                    PreconditionViolation);
   BOOST_CHECK(!coefficients.has_hessians());
 
   // Moved-from and moved-to systems keep working.

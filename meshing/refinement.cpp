@@ -39,8 +39,8 @@ bool Refinement::face_current(const Simplex& s) const {
 Refinement::Refinement(SurfaceOracle& oracle, std::uint64_t seed, RefinementLimits limits, RecheckPolicy policy,
                        int threads, bool parallel_every_batch)
     : oracle_(oracle), seed_(seed), limits_(std::move(limits)), policy_(policy), restricted_(del_, oracle, seed),
-      steps_(make_table()), parallel_(threads, parallel_every_batch), insertions_(check_kind_count()), checks_(check_kind_count()),
-      seconds_(check_kind_count()), last_progress_(std::chrono::steady_clock::now()) {
+      steps_(make_table()), parallel_(threads, parallel_every_batch), insertions_(check_kind_count()),
+      checks_(check_kind_count()), seconds_(check_kind_count()), last_progress_(std::chrono::steady_clock::now()) {
   // insert() and remove() compute the record of every new or changed triangle at once.
   restricted_.assume_every_triangle_recorded();
   set_last_edge_step();

@@ -138,8 +138,7 @@ class RestrictedDelaunay {
   void release_facet(const EdgeKey& e) { facets_.erase(e); }
   //! For a local insertion (Delaunay::insert's change): forgets the destroyed triangles' records,
   //! the destroyed edges' facets and the shrunk ones' geometry (shrink_facets()), like shrink()
-  //! without marking the shrunk
-  //! triangles (prepare_star() takes them up next).  Returns the destroyed triangles that were
+  //! without marking the shrunk triangles (prepare_star() takes them up next).  Returns the destroyed triangles that were
   //! restricted or had no up-to-date record: the restricted stars of their vertices may change.
   std::vector<TriangleKey> forget_destroyed(const InsertionChange& change);
   //! A triangle of prepare_star(): its record now, and what its record said before.
@@ -233,7 +232,8 @@ class RestrictedDelaunay {
   //! Forgets the records of these simplices (e.g. the star of a vertex about to be removed).
   void forget(const std::vector<TriangleKey>& triangles, const std::vector<EdgeKey>& edges);
   //! Applies an insertion's change: destroyed simplices are forgotten, shrunk facets keep only a
-  //! proved section certificate, shrunk edge records are kept for restriction.  A non-local change forgets everything.
+  //! proved section certificate, shrunk edge records are kept for restriction.  A non-local
+  //! change forgets everything.
   void shrink(const InsertionChange& change);
   //! Number of edge records solved, and of those obtained by restriction (statistics).
   std::size_t records_solved() const { return records_solved_; }

@@ -246,7 +246,9 @@ class ThreadsTest(unittest.TestCase):
         sender.start()
         try:
             with self.assertRaises(KeyboardInterrupt):
-                delmesh.mesh(surface="chair", progress=progress)
+                # A run of several seconds (about 27 000 vertices), so that it is still running
+                # when the first progress report (after 0.5 s) sends the signal.
+                delmesh.mesh(surface="torus", size_bound=0.02, progress=progress)
             stopped = time.monotonic()
         finally:
             finished.set()
@@ -264,7 +266,8 @@ class ThreadsTest(unittest.TestCase):
             raise RuntimeError("enough")
 
         with self.assertRaisesRegex(RuntimeError, "enough"):
-            delmesh.mesh(surface="chair", progress=progress)
+            # Long enough to report progress (after 0.5 s) before it ends.
+            delmesh.mesh(surface="torus", size_bound=0.02, progress=progress)
 
 
 class CheckTest(unittest.TestCase):

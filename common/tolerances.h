@@ -317,6 +317,14 @@ inline constexpr std::size_t gradient_cone_box_budget = 192;
 //! instead of 192 cuts those solves from 335 to 74 and the run's instructions by 18 %, with the
 //! same mesh (torus at 0.05: 102 to 22 solves, the same mesh, no change in time).
 inline constexpr std::size_t gradient_cone_cell_box_budget = 1024;
+//! The box the mesher clips its Voronoi faces to (SurfaceOracle::clip_box(), solvers/surface_box.h):
+//! each side's search stops at boxes narrower than this fraction of the side of B, or after this
+//! many boxes (on the catalog surfaces a few hundred to a few thousand, well under a millisecond
+//! each side), and the box found is widened by this fraction of B's diagonal (then met with B), so
+//! that Σ lies in its interior.
+inline constexpr double surface_box_resolution = 1.0 / 64;
+inline constexpr std::size_t surface_box_evaluations_per_side = 4096;
+inline constexpr double surface_box_relative_margin = 1e-3;
 //! Krawczyk steps, at most, that narrow the box of a refuted gradient-cone certificate around its
 //! proved point (GradientConeResult::vanishing_point).  The steps converge quadratically and stop
 //! as soon as the box stops shrinking, which a box of a few units in the last place reaches well

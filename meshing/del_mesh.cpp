@@ -222,6 +222,8 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
   j["smooth_enabled"] = options.lambda < beta_lambda_bound;
   j["seed"] = options.seed;
   j["seconds_validation"] = seconds_validation;
+  const Box3& clip = oracle.clip_box();
+  j["clip_box"] = {clip.lo[0], clip.hi[0], clip.lo[1], clip.hi[1], clip.lo[2], clip.hi[2]};
   add_output_statistics(j, report, inconsistent, not_added, options.lambda);
   add_run_statistics(j, refinement, oracle, certification, defects, seeds, topology);
   j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

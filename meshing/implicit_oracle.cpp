@@ -11,6 +11,7 @@
 #include "solvers/homotopy_solver.h"
 #include "solvers/query_geometry.h"
 #include "solvers/subdivision_solver.h"
+#include "solvers/surface_box.h"
 #include "solvers/univariate_isolator.h"
 #include "symbolic/compiled_system.h"
 #include "symbolic/line_polynomial.h"
@@ -74,7 +75,20 @@ ImplicitOracle::ImplicitOracle(const Surface& surface, const Box3& box, SolverBa
     : impl_(std::make_unique<Impl>(surface, backend == SolverBackend::homotopy)),
       box_(box),
       backend_(backend),
-      stats_(impl_->primitives.size()) {}
+      stats_(impl_->primitives.size()) {
+  SurfaceBoxOptions options;
+  options.resolution = tolerances::surface_box_resolution;
+  options.evaluations_per_side = tolerances::surface_box_evaluations_per_side;
+  const SurfaceBox surface_box = surface_bounding_box(*impl_->gradient, box_, options);
+  clip_box_ = box_;
+  clip_box_evaluations_ = surface_box.evaluations;
+  if (surface_box.empty) return;
+  const double margin = tolerances::surface_box_relative_margin * box_.diagonal();
+  for (int k = 0; k < 3; ++k) {
+    clip_box_.lo[k] = std::max(box_.lo[k], surface_box.box.lo[k] - margin);
+    clip_box_.hi[k] = std::min(box_.hi[k], surface_box.box.hi[k] + margin);
+  }
+}
 ImplicitOracle::~ImplicitOracle() = default;
 ImplicitOracle::ImplicitOracle(ImplicitOracle&&) noexcept = default;
 ImplicitOracle& ImplicitOracle::operator=(ImplicitOracle&&) noexcept = default;

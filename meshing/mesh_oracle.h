@@ -113,6 +113,9 @@ class MeshOracle final : public SurfaceOracle {
   //! (the refinement driver reads it between checks).
   void set_run_controls(std::uint64_t seed, std::optional<std::chrono::steady_clock::time_point> deadline) override;
   const Box3& box() const override { return box_; }
+  //! The bounding box of the mesh's vertices (it holds every triangle), widened by
+  //! tolerances::surface_box_relative_margin · diagonal() and met with B.
+  const Box3& clip_box() const override { return clip_box_; }
 
   SolveResult surface_line(const Vec3& p, const Vec3& v, double t0, double t1) override;
   SolveResult surface_critical(const Vec3& d, const Domain& domain, std::size_t box_budget) override;
@@ -155,6 +158,7 @@ class MeshOracle final : public SurfaceOracle {
 
   std::unique_ptr<Impl> impl_;
   Box3 box_;
+  Box3 clip_box_;
   struct Counts {
     std::size_t calls = 0, certified_roots = 0, undecided = 0;
     double seconds = 0;

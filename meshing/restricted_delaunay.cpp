@@ -122,7 +122,7 @@ double RestrictedDelaunay::facet_rotation(const EdgeKey& e, int attempt) const {
 }
 
 VoronoiFacet RestrictedDelaunay::rotated_facet(const EdgeKey& e, int attempt) const {
-  return voronoi_facet(del_, e, oracle_.box(), facet_rotation(e, attempt));
+  return voronoi_facet(del_, e, oracle_.clip_box(), facet_rotation(e, attempt));
 }
 
 void RestrictedDelaunay::track(const TriangleKey& t, bool was_restricted, bool is_restricted) {
@@ -168,7 +168,7 @@ std::optional<VoronoiEdgeRecord> RestrictedDelaunay::update_without_solving(cons
     current = cached;
     return std::nullopt;
   }
-  return restrict_record(*cached, voronoi_edge(del_, t, oracle_.box(), apexes));
+  return restrict_record(*cached, voronoi_edge(del_, t, oracle_.clip_box(), apexes));
 }
 
 const VoronoiEdgeRecord& RestrictedDelaunay::voronoi_edge_record(const TriangleKey& t,
@@ -221,7 +221,7 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
       out[i].record = cached;
       continue;
     }
-    auto restricted = restrict_record(*cached, voronoi_edge(del_, s.key, oracle_.box(), &s.apexes));
+    auto restricted = restrict_record(*cached, voronoi_edge(del_, s.key, oracle_.clip_box(), &s.apexes));
     if (!restricted) {
       to_solve.push_back(i);
       continue;
@@ -248,7 +248,7 @@ void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std
     const auto& [e, ring] = edges[i];
     proofs[i] = certify_by_cell(e);
     if (proofs[i] != SectionProof::none) return;
-    built[i].facet = voronoi_facet(del_, e, oracle_.box(), facet_rotation(e), &ring);
+    built[i].facet = voronoi_facet(del_, e, oracle_.clip_box(), facet_rotation(e), &ring);
     built[i].built = true;
     proofs[i] = certify_by_cover(e, built[i].facet);
   }, tolerances::parallel_least_facets);
@@ -287,7 +287,7 @@ bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vecto
     // and each r (up to the margin, so that rounding can only add points).
     const Vec3& p = del_.point(e[0]);
     const Vec3& q = del_.point(e[1]);
-    for (const Vec3& y : plane_box_edge_points(0.5 * (p + q), q - p, oracle_.box())) {
+    for (const Vec3& y : plane_box_edge_points(0.5 * (p + q), q - p, oracle_.clip_box())) {
       const bool in_facet = std::all_of(ring.begin(), ring.end(), [&](const Delaunay::RingTriangle& t) {
         const Vec3& r = del_.point(t.third);
         const Vec3 w = r - p;
@@ -360,7 +360,7 @@ const VoronoiFacet& RestrictedDelaunay::facet(const EdgeKey& e, const std::vecto
   FacetEntry& entry = facet_entry(e);
   if (!entry.built) {
     ++facets_built_;
-    entry.facet = voronoi_facet(del_, e, oracle_.box(), facet_rotation(e), ring);
+    entry.facet = voronoi_facet(del_, e, oracle_.clip_box(), facet_rotation(e), ring);
     entry.built = true;
   }
   return entry.facet;
@@ -403,7 +403,7 @@ bool RestrictedDelaunay::cell_certified(VertexId p, const std::vector<VertexId>&
   target *= tolerances::cell_slope_margin;
   // No facet would follow (or the oracle bounds no slopes): Silhouette's turn.
   if (!facet_sites.empty() && (!(target > 0) || !oracle_.bounds_cone_slopes())) return false;
-  const VoronoiCell cell = voronoi_cell(del_, p, oracle_.box());
+  const VoronoiCell cell = voronoi_cell(del_, p, oracle_.clip_box());
   if (!cell.valid) return false;
   if (target > 0) {
     // For the facets, within the smaller budget; a failure is not kept.
@@ -526,7 +526,7 @@ VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::a
     r.set_lists(lists);
     return std::move(r);
   };
-  r.edge = voronoi_edge(del_, t, oracle_.box(), apexes);
+  r.edge = voronoi_edge(del_, t, oracle_.clip_box(), apexes);
   if (r.edge.degenerate) {
     // The edge is numerically the point v: Σ passes through it unless SurfaceLine excludes a
     // segment of length 2δ about v along the edge's line.

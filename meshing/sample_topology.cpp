@@ -21,7 +21,7 @@ Vec3 generic_direction(std::uint64_t seed, int k) {
 
 SeedReport insert_seeds(Refinement& refinement) {
   auto& oracle = refinement.oracle();
-  const Box3& box = oracle.box();
+  const Box3& box = oracle.clip_box();
   const Domain domain =
       Domain::from_box({{box.lo[0], box.hi[0]}, {box.lo[1], box.hi[1]}, {box.lo[2], box.hi[2]}});
   SeedReport report;

@@ -39,7 +39,7 @@ CheckResult silhouette_witness(RestrictedDelaunay& restricted, VertexId p, bool 
     collector.add_unsettled(UnsettledReason::degenerate_face, pp);
     return collector.take();
   }
-  const VoronoiCell cell = voronoi_cell(del, p, oracle.box());
+  const VoronoiCell cell = voronoi_cell(del, p, oracle.clip_box());
   if (!cell.valid) {
     // V_p ∋ p always has interior; an empty clipped cell is a numerical failure.
     collector.add_unsettled(UnsettledReason::degenerate_face, pp);

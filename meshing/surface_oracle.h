@@ -54,6 +54,10 @@ class SurfaceOracle {
   //! The box B; Σ lies in its interior.
   virtual const Box3& box() const = 0;
   double diagonal() const { return box().diagonal(); }
+  //! A box B′ ⊆ B that holds Σ ∩ B in its interior (proved, not assumed): the mesher clips every
+  //! Voronoi face to it (voronoi_geometry.h) and seeds in it, since all it checks of a face is
+  //! about Σ.  B itself by default.
+  virtual const Box3& clip_box() const { return box(); }
 
   //! SurfaceLine: the points of Σ on {p + t v : t ∈ [t0, t1]} (roots: transversal crossings;
   //! undecided: tangencies as singular_root, zeros at t0 or t1 as boundary_root).

@@ -301,6 +301,18 @@ std::vector<P2> without_repeated_corners(const std::vector<P2>& poly, double eps
   return clean;
 }
 
+// Whether w lies in the closed counter-clockwise polygon Π ∩ B (on the inner side of every side
+// ab, whose outward normal is (b_v − a_v, a_u − b_u)); a corner that is not finite does not.
+bool in_section(const std::vector<P2>& section_polygon, const P2& w) {
+  const std::size_t m = section_polygon.size();
+  for (std::size_t i = 0; i < m; ++i) {
+    const P2& a = section_polygon[i];
+    const P2& b = section_polygon[(i + 1) % m];
+    if (!((b[1] - a[1]) * (w[0] - a[0]) + (a[0] - b[0]) * (w[1] - a[1]) <= 0)) return false;  // NaN: outside
+  }
+  return true;
+}
+
 // The solver domain of a facet in dimension 3: the box of the polygon and of F's Voronoi vertices
 // in B (which the rounded corners of the polygon may miss by a few units in the last place), the
 // cutting half-planes, and the sides of Π ∩ B that the polygon reaches (the others are
@@ -314,13 +326,7 @@ Domain facet_domain(const std::vector<P2>& polygon, std::vector<HalfSpace> cuts,
   domain.half_spaces = std::move(cuts);
   const std::size_t m = section_polygon.size();
   for (const auto& [key, w] : corners) {
-    bool inside = true;
-    for (std::size_t i = 0; i < m && inside; ++i) {
-      const P2& a = section_polygon[i];
-      const P2& b = section_polygon[(i + 1) % m];
-      inside = (b[1] - a[1]) * (w[0] - a[0]) + (a[0] - b[0]) * (w[1] - a[1]) <= 0;
-    }
-    if (!inside) continue;
+    if (!in_section(section_polygon, w)) continue;
     for (int k = 0; k < 2; ++k) {
       bounds[k][0] = std::min(bounds[k][0], w[k]);
       bounds[k][1] = std::max(bounds[k][1], w[k]);
@@ -338,6 +344,24 @@ Domain facet_domain(const std::vector<P2>& polygon, std::vector<HalfSpace> cuts,
       domain.half_spaces.push_back(HalfSpace{{n[0], n[1]}, off});
   }
   return domain;
+}
+
+// The Voronoi vertices of F (the corners of the cells around pq, projected into Π) that lie in
+// the counter-clockwise polygon Π ∩ B.  F ∩ B holds them, so a facet whose clipped polygon comes out
+// empty while they exist is not empty: it has no area in doubles (every cut passes through one
+// point, e.g. for cospherical samples) and these points stand for it as a degenerate facet.
+template <class Corner>
+std::vector<P2> corners_in_section(const std::vector<Delaunay::RingTriangle>& cutting,
+                                   const std::vector<P2>& section_polygon, Corner& corner) {
+  std::vector<P2> inside;
+  for (const auto& [r, apexes] : cutting)
+    for (VertexId apex : apexes) {
+      if (apex < 0) continue;
+      const P2 w = corner(r, apex);
+      if (in_section(section_polygon, w) && std::find(inside.begin(), inside.end(), w) == inside.end())
+        inside.push_back(w);
+    }
+  return inside;
 }
 
 }  // namespace
@@ -391,6 +415,7 @@ VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3&
     clip_polygon(poly, n, off, scratch);
     poly.swap(scratch);
     if (poly.size() < 3) {
+      if (poly.empty()) poly = corners_in_section(cutting, section_polygon, corner);
       f.degenerate = !poly.empty();
       f.polygon = std::move(poly);
       return f;

@@ -45,7 +45,9 @@ BOOST_AUTO_TEST_CASE(a_refuted_cell_certificate_gives_the_witness) {
 }
 
 // The driver's retries use other directions d′ ⟂ n_p (attempts 1 and 2): each still finds a point
-// of J_{n_p} in the cell, and not the same point as the seeded direction.
+// of J_{n_p} in the cell, and not the same point as the seeded direction.  J_{n_p} on this torus
+// is four circles that cross, so the solves also leave undecided regions near the crossings;
+// their projections are candidates, points of Σ that need not lie on J_{n_p}.
 BOOST_AUTO_TEST_CASE(alternative_directions_give_other_witnesses) {
   CheckFixture f("(x^2+y^2+z^2+0.84)^2-4*(x^2+y^2)", 1.65, {{1.4, 0, 0}});
   const auto n = f.oracle.normal({1.4, 0, 0});
@@ -57,11 +59,16 @@ BOOST_AUTO_TEST_CASE(alternative_directions_give_other_witnesses) {
     BOOST_TEST(std::abs(detail::dot(d, n)) < 1e-12);
     BOOST_TEST(std::abs(detail::dot(d, d0)) < 1 - 1e-6);
     const auto w = silhouette_witness(f.restricted, 0, false, attempt);
-    BOOST_TEST_REQUIRE(!w.witnesses.empty());
-    const Vec3 x = w.witnesses.front().point;
-    BOOST_TEST(std::abs(f.oracle.E(x)) < 1e-8);
-    BOOST_TEST(std::abs(detail::dot(f.oracle.normal(x), n)) < 1e-6);  // x ∈ J_{n_p}
-    BOOST_TEST(detail::distance(x, first) > 1e-6);
+    std::size_t roots = 0;
+    for (const Witness& witness : w.witnesses) {
+      const Vec3& x = witness.point;
+      BOOST_TEST(std::abs(f.oracle.E(x)) < 1e-8);
+      if (witness.from_undecided) continue;
+      ++roots;
+      BOOST_TEST(std::abs(detail::dot(f.oracle.normal(x), n)) < 1e-6);  // x ∈ J_{n_p}
+      BOOST_TEST(detail::distance(x, first) > 1e-6);
+    }
+    BOOST_TEST(roots > 0u);
   }
 }
 

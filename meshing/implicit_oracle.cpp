@@ -81,7 +81,6 @@ ImplicitOracle::ImplicitOracle(const Surface& surface, const Box3& box, SolverBa
   options.evaluations_per_side = tolerances::surface_box_evaluations_per_side;
   const SurfaceBox surface_box = surface_bounding_box(*impl_->gradient, box_, options);
   clip_box_ = box_;
-  clip_box_evaluations_ = surface_box.evaluations;
   if (surface_box.empty) return;
   const double margin = tolerances::surface_box_relative_margin * box_.diagonal();
   for (int k = 0; k < 3; ++k) {

@@ -79,11 +79,9 @@ class ImplicitOracle final : public SurfaceOracle {
 
   const Box3& box() const override { return box_; }
   //! surface_bounding_box() of E in B (solvers/surface_box.h), computed at construction, widened by
-  //! tolerances::surface_box_relative_margin · diagonal() and met with B; B if Σ ∩ B = ∅ was proved
-  //! (input validation reports that case).
+  //! tolerances::surface_box_relative_margin · diagonal() and met with B; B itself if the search
+  //! proved Σ ∩ B empty.
   const Box3& clip_box() const override { return clip_box_; }
-  //! Interval evaluations of E spent on clip_box() (statistics).
-  std::size_t clip_box_evaluations() const { return clip_box_evaluations_; }
   const Surface& surface() const;
 
   //! SurfaceLine: zeros of E(p + t v) for t ∈ [t0, t1] (certified, or undecided regions:
@@ -166,7 +164,6 @@ class ImplicitOracle final : public SurfaceOracle {
   std::unique_ptr<Impl> impl_;
   Box3 box_;
   Box3 clip_box_;
-  std::size_t clip_box_evaluations_ = 0;
   SolverBackend backend_;
   std::uint64_t seed_ = 1;
   std::optional<std::chrono::steady_clock::time_point> deadline_;

@@ -8,8 +8,8 @@
 //! check of it is about Σ only, so the box B′ does as well as B and is often much smaller: the
 //! cells of samples on the convex hull are unbounded and reach the faces of B, where they flare
 //! out far from Σ, and each certificate or solve over them pays for the volume (on the catalog
-//! genus-2 surface B′ is [−1.07, 1.07] × [−0.63, 0.63] × [−0.14, 0.14] inside
-//! B = [−1.3, 1.3] × [−0.9, 0.9] × [−0.4, 0.4]).
+//! genus-2 surface, whose z stays within ±0.1415, B′ is about [−1.10, 1.14] × [−0.65, 0.68] ×
+//! [−0.15, 0.15] inside B = [−1.3, 1.3] × [−0.9, 0.9] × [−0.4, 0.4]).
 //!
 //! Method: the bound of each of the six sides is found by its own best-first search.  For the
 //! upper bound along axis k, a max-heap holds boxes keyed by their upper end in x_k; it starts

@@ -317,7 +317,8 @@ inline constexpr std::size_t gradient_cone_box_budget = 192;
 //! instead of 192 cuts those solves from 335 to 74 and the run's instructions by 18 %, with the
 //! same mesh (torus at 0.05: 102 to 22 solves, the same mesh, no change in time).
 inline constexpr std::size_t gradient_cone_cell_box_budget = 1024;
-//! The box the mesher clips its Voronoi faces to (SurfaceOracle::clip_box(), solvers/surface_box.h):
+//! The box the mesher clips its Voronoi faces to (SurfaceOracle::clip_box(), solvers/surface_box.h,
+//! whose SurfaceBoxOptions default to the first two):
 //! each side's search stops at boxes narrower than this fraction of the side of B, or after this
 //! many boxes (on the catalog surfaces a few hundred to a few thousand, well under a millisecond
 //! each side), and the box found is widened by this fraction of B's diagonal (then met with B), so

@@ -76,17 +76,8 @@ ImplicitOracle::ImplicitOracle(const Surface& surface, const Box3& box, SolverBa
       box_(box),
       backend_(backend),
       stats_(impl_->primitives.size()) {
-  SurfaceBoxOptions options;
-  options.resolution = tolerances::surface_box_resolution;
-  options.evaluations_per_side = tolerances::surface_box_evaluations_per_side;
-  const SurfaceBox surface_box = surface_bounding_box(*impl_->gradient, box_, options);
-  clip_box_ = box_;
-  if (surface_box.empty) return;
-  const double margin = tolerances::surface_box_relative_margin * box_.diagonal();
-  for (int k = 0; k < 3; ++k) {
-    clip_box_.lo[k] = std::max(box_.lo[k], surface_box.box.lo[k] - margin);
-    clip_box_.hi[k] = std::min(box_.hi[k], surface_box.box.hi[k] + margin);
-  }
+  const SurfaceBox surface_box = surface_bounding_box(*impl_->gradient, box_);
+  clip_box_ = surface_box.empty ? box_ : clip_box_around(surface_box.box, box_);
 }
 ImplicitOracle::~ImplicitOracle() = default;
 ImplicitOracle::ImplicitOracle(ImplicitOracle&&) noexcept = default;

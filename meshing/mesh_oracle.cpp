@@ -326,20 +326,15 @@ MeshOracle::MeshOracle(const SurfaceMesh& mesh, const Box3& box) : box_(box), st
   if (mesh.number_of_faces() == 0) throw PreconditionViolation("MeshOracle: the mesh has no face");
   if (!CGAL::is_closed(mesh) || !CGAL::is_triangle_mesh(mesh))
     throw PreconditionViolation("MeshOracle: the mesh is not a closed triangle mesh");
-  clip_box_.lo = box.hi;
-  clip_box_.hi = box.lo;
+  Box3 vertices{box.hi, box.lo};
   for (const Point3& p : mesh.points())
     for (int k = 0; k < 3; ++k) {
       if (!(p[k] > box.lo[k] && p[k] < box.hi[k]))
         throw PreconditionViolation("MeshOracle: a vertex of the mesh is not strictly inside the box");
-      clip_box_.lo[k] = std::min(clip_box_.lo[k], p[k]);
-      clip_box_.hi[k] = std::max(clip_box_.hi[k], p[k]);
+      vertices.lo[k] = std::min(vertices.lo[k], p[k]);
+      vertices.hi[k] = std::max(vertices.hi[k], p[k]);
     }
-  const double margin = tolerances::surface_box_relative_margin * box_.diagonal();
-  for (int k = 0; k < 3; ++k) {
-    clip_box_.lo[k] = std::max(box.lo[k], clip_box_.lo[k] - margin);
-    clip_box_.hi[k] = std::min(box.hi[k], clip_box_.hi[k] + margin);
-  }
+  clip_box_ = clip_box_around(vertices, box);
   impl_ = std::make_unique<Impl>(mesh);
   impl_->feature_tolerance = tolerances::mesh_feature_relative_distance * box_.diagonal();
   impl_->face_margin = tolerances::face_membership_relative_tolerance * box_.diagonal();

@@ -25,6 +25,7 @@
 //! Threads: the primitives may be called from several threads at once (implementations keep
 //! their statistics under a lock); set_run_controls() is called before that.
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -34,6 +35,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/tolerances.h"
 #include "common/vec3.h"
 #include "solvers/domain.h"
 #include "solvers/gradient_cone.h"
@@ -58,6 +60,22 @@ class SurfaceOracle {
   //! Voronoi face to it (voronoi_geometry.h) and seeds in it, since all it checks of a face is
   //! about Σ.  B itself by default.
   virtual const Box3& clip_box() const { return box(); }
+
+ protected:
+  //! The clip box of an implementation that has proved Σ ∩ box ⊆ tight: `tight` widened on every
+  //! side by tolerances::surface_box_relative_margin · box.diagonal(), so that Σ lies in its
+  //! interior, and met with `box`.
+  static Box3 clip_box_around(const Box3& tight, const Box3& box) {
+    const double margin = tolerances::surface_box_relative_margin * box.diagonal();
+    Box3 clip;
+    for (int k = 0; k < 3; ++k) {
+      clip.lo[k] = std::max(box.lo[k], tight.lo[k] - margin);
+      clip.hi[k] = std::min(box.hi[k], tight.hi[k] + margin);
+    }
+    return clip;
+  }
+
+ public:
 
   //! SurfaceLine: the points of Σ on {p + t v : t ∈ [t0, t1]} (roots: transversal crossings;
   //! undecided: tangencies as singular_root, zeros at t0 or t1 as boundary_root).

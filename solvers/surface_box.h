@@ -30,6 +30,7 @@
 
 #include <cstddef>
 
+#include "common/tolerances.h"
 #include "symbolic/compiled_system.h"
 #include "symbolic/surface.h"
 
@@ -37,9 +38,9 @@ namespace delmesh {
 
 struct SurfaceBoxOptions {
   //! A side's search stops when the top box is narrower than this fraction of B's side.
-  double resolution = 1.0 / 64;
+  double resolution = tolerances::surface_box_resolution;
   //! A side's search stops after this many boxes (its bound then is the top box's key).
-  std::size_t evaluations_per_side = 4096;
+  std::size_t evaluations_per_side = tolerances::surface_box_evaluations_per_side;
 };
 
 struct SurfaceBox {

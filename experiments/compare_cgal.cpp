@@ -5,7 +5,11 @@
 //!     delmesh (λ = 0.06, size bound H), Surface_mesher (angle 30°, radius H, distance H/10) and
 //!     Mesh_3 (facet_angle 30, facet_size H, facet_distance H/10, no perturb, no exude); the ratio
 //!     of delmesh's seconds per output vertex to Mesh_3's (target ≤ 3), the growth of delmesh's
-//!     seconds per vertex with the mesh, and its solver calls per vertex by primitive;
+//!     seconds per vertex with the mesh, and its solver calls per vertex by primitive.  With
+//!     --repeat K each case runs K rounds of Mesh_3 then delmesh (Surface_mesher in the first
+//!     only), every run a CSV row with its round; each round's ratio pairs two runs made one
+//!     after the other, so a slow phase of a shared machine tends to hit both, and the summary
+//!     gives the median, least and greatest ratio over the rounds;
 //!  2. coarsest: delmesh at λ = 0.06 without size bound against CGAL at the coarsest of a ladder of
 //!     settings that still gives the right topology;
 //!  3. demo: CGAL at coarse settings on thin_handle / two_blobs / near_sheets, where it loses a
@@ -33,6 +37,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -209,15 +214,16 @@ struct Context {
 };
 
 std::vector<std::string> csv_columns() {
-  std::vector<std::string> columns{"experiment", "surface", "method", "parameters", "status", "seconds",
+  std::vector<std::string> columns{"experiment", "surface", "method", "parameters", "round", "status", "seconds",
                                    "seconds_per_vertex", "expected_genus", "topology_correct"};
   append(columns, report_columns());
   return columns;
 }
 
-//! Checks, prints, writes the mesh and the CSV row of one run; returns the checker's report.
+//! Checks, prints, writes the mesh and the CSV row of one run (round `round` of its case);
+//! returns the checker's report.
 MeshReport record(Context& context, const std::string& experiment, const CatalogEntry& entry, Run& run,
-                  const CompiledE& E) {
+                  const CompiledE& E, int round = 1) {
   MeshReport report;
   if (!run.soup.triangles.empty()) report = check_mesh(run.soup.points, run.soup.triangles);
   const bool correct = report.has_topology(entry.genus_per_component);
@@ -227,7 +233,7 @@ MeshReport record(Context& context, const std::string& experiment, const Catalog
             << " deg, components " << report.components << ", genus " << field(report.genus_per_component)
             << (correct ? " (correct)" : " (WRONG, expected " + field(entry.genus_per_component) + ")") << ", "
             << run.seconds << " s" << std::endl;
-  std::vector<std::string> row{experiment, entry.name, run.method, run.parameters, run.status,
+  std::vector<std::string> row{experiment, entry.name, run.method, run.parameters, field(round), run.status,
                                field(run.seconds), field(per_vertex), field(entry.genus_per_component),
                                field(correct)};
   append(row, report_fields(report));
@@ -252,6 +258,13 @@ double seconds_per_vertex(const Run& run) {
   return referenced ? run.seconds / static_cast<double>(referenced) : std::numeric_limits<double>::quiet_NaN();
 }
 
+//! The median of a non-empty list (the mean of the middle two for an even count).
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
 std::string field_list(const std::vector<double>& values) {
   std::string text;
   for (double v : values) text += (text.empty() ? "" : ";") + field(v);
@@ -274,6 +287,7 @@ int main(int argc, char** argv) {
   std::vector<double> ladder{0.8, 0.4, 0.2, 0.1, 0.05};
   std::string out_dir = "out";
   bool no_meshes = false, skip_delmesh = false;
+  int repeat = 1;
   DelMeshOptions base;
   base.progress = nullptr;
   app.add_option("--surfaces", surfaces, "benchmark surfaces (catalog names, comma separated)")->capture_default_str();
@@ -284,6 +298,11 @@ int main(int argc, char** argv) {
                  "benchmark cases SURFACE:H, comma separated: delmesh with size bound H against CGAL with "
                  "facet size H and facet distance H/10")
       ->capture_default_str();
+  app.add_option("--repeat", repeat,
+                 "benchmark rounds per case: Mesh_3 then delmesh, K times (Surface_mesher once); the summary "
+                 "gives the median, least and greatest ratio")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
   app.add_option("--angle", cgal_angle, "CGAL facet angle bound (deg)")->capture_default_str();
   app.add_option("--cgal-error-bound", cgal_error_bound,
                  "benchmark only: relative error bound of CGAL's implicit-surface bisection (times the bounding "
@@ -315,6 +334,7 @@ int main(int argc, char** argv) {
                   {{"lambda", field(lambda)},
                    {"benchmark_cases", cases},
                    {"threads", field(base.threads)},
+                   {"repeat", field(repeat)},
                    {"cgal_angle", field(cgal_angle)},
                    {"cgal_error_bound", field(cgal_error_bound)},
                    {"demo_radii", field_list(coarse_radii)},
@@ -357,24 +377,47 @@ int main(int argc, char** argv) {
         const CgalSettings settings{cgal_angle, h, h / 10, cgal_error_bound};
         Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, settings);
         record(context, "benchmark", *s.entry, sm, s.E);
-        Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings);
-        record(context, "benchmark", *s.entry, m3, s.E);
+        // Per round: Mesh_3's and delmesh's seconds per vertex, and their ratio.
+        std::vector<double> m3_per_vertex, dm_per_vertex, ratios;
+        nlohmann::json statistics;
+        std::size_t vertices = 0;
+        for (int round = 1; round <= repeat; ++round) {
+          Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings);
+          record(context, "benchmark", *s.entry, m3, s.E, round);
+          if (skip_delmesh) continue;
+          Run dm = run_delmesh(*s.entry, lambda, h, base);
+          const MeshReport report = record(context, "benchmark", *s.entry, dm, s.E, round);
+          m3_per_vertex.push_back(seconds_per_vertex(m3));
+          dm_per_vertex.push_back(seconds_per_vertex(dm));
+          ratios.push_back(dm_per_vertex.back() / m3_per_vertex.back());
+          if (repeat > 1)
+            std::cout << "benchmark " << name << " H=" << h << " round " << round << ": ratio " << ratios.back()
+                      << std::endl;
+          // The same input and seed give the same mesh: a round that differs is reported.
+          if (round > 1 && report.vertices != vertices)
+            std::cout << "benchmark " << name << " H=" << h << " round " << round << ": delmesh made " << report.vertices
+                      << " vertices, round 1 " << vertices << " (not reproducible)" << std::endl;
+          statistics = std::move(dm.statistics);
+          vertices = report.vertices;
+        }
         if (skip_delmesh) continue;
-        Run dm = run_delmesh(*s.entry, lambda, h, base);
-        const MeshReport report = record(context, "benchmark", *s.entry, dm, s.E);
-        const double per_vertex = seconds_per_vertex(dm);
+        const double per_vertex = median(dm_per_vertex);
         const auto [first, inserted] = first_per_vertex.emplace(name, per_vertex);
         std::cout << "benchmark " << name << " H=" << h << ": delmesh " << per_vertex * 1e6
-                  << " us/vertex, Mesh_3 " << seconds_per_vertex(m3) * 1e6
-                  << " us/vertex, ratio " << per_vertex / seconds_per_vertex(m3) << " (target <= 3)";
+                  << " us/vertex, Mesh_3 " << median(m3_per_vertex) * 1e6 << " us/vertex, ratio " << median(ratios);
+        if (repeat > 1)
+          std::cout << " (median of " << repeat << " rounds, least "
+                    << *std::min_element(ratios.begin(), ratios.end()) << ", greatest "
+                    << *std::max_element(ratios.begin(), ratios.end()) << "; seconds per vertex: medians)";
+        std::cout << " (target <= 3)";
         if (!inserted) std::cout << ", delmesh us/vertex relative to the first " << name << " case " << per_vertex / first->second;
         std::cout << std::endl;
-        if (!dm.statistics.is_null() && report.vertices) {
-          const double n = static_cast<double>(report.vertices);
+        if (!statistics.is_null() && vertices) {
+          const double n = static_cast<double>(vertices);
           std::cout << "  solver calls per vertex:";
-          for (const auto& [primitive, p] : dm.statistics["solver"]["per_primitive"].items())
+          for (const auto& [primitive, p] : statistics["solver"]["per_primitive"].items())
             std::cout << " " << primitive << " " << p["calls"].get<double>() / n;
-          const auto& cone = dm.statistics["solver"]["cone_certificates"];
+          const auto& cone = statistics["solver"]["cone_certificates"];
           std::cout << "; cone certificates per vertex " << cone["attempts"].get<double>() / n << " ("
                     << cone["proved"].get<double>() / n << " proved)" << std::endl;
         }

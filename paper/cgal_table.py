@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """The CGAL comparison table (experiments/compare_cgal): per experiment, surface and mesher the
 vertices, minimum angle, topology found by the independent checker, seconds and seconds per vertex,
-plus the ratio of delmesh's seconds per vertex to Mesh_3's.  Reads <out>/compare_cgal.csv only;
+plus the ratio of delmesh's seconds per vertex to Mesh_3's (for a benchmark case run in several
+rounds, `compare_cgal --repeat K`: the median ratio of the rounds and its range; each round's rows
+carry their round number).  Reads <out>/compare_cgal.csv only;
 writes <out>/tables/compare_cgal.md and <out>/tables/compare_cgal.tex and prints the Markdown."""
 
 import argparse
@@ -30,21 +32,34 @@ def main():
     lines = []
     for r in rows:
         per_vertex = r["seconds_per_vertex"]
-        lines.append([r["experiment"], r["surface"], r["method"], str(r["parameters"]).replace(";", " "),
+        parameters = str(r["parameters"]).replace(";", " ")
+        if int(r.get("round", 1)) > 1:
+            parameters += f" (round {r['round']})"
+        lines.append([r["experiment"], r["surface"], r["method"], parameters,
                       fmt(r["vertices"]), fmt(float(r["min_angle_deg"]), 3), str(r["genus_per_component"]),
                       str(r["expected_genus"]), "ok" if r["topology_correct"] == 1 else "**wrong**",
                       fmt(float(r["seconds"]), 3), fmt(float(per_vertex) * 1e6, 3)])
     ratios = []
-    # benchmark: each case is a Surface_mesher, a Mesh_3 and a delmesh row, in that order.
+    # benchmark: each case is a Surface_mesher row, then per round a Mesh_3 and a delmesh row; the
+    # rounds of a case follow one another (round 1 starts a case).
     last_m3 = None
-    for r in rows:
-        if r["experiment"] != "benchmark":
+    rounds = []  # the current case's ratios
+    for r in rows + [None]:
+        if r is None or (r["experiment"] == "benchmark" and r["method"] == "mesh_3" and int(r.get("round", 1)) == 1):
+            if rounds:
+                values = sorted(rounds)
+                n = len(values)
+                middle = values[n // 2] if n % 2 else 0.5 * (values[n // 2 - 1] + values[n // 2])
+                spread = f" (median of {n} rounds, {values[0]:.2f}–{values[-1]:.2f})" if n > 1 else ""
+                ratios.append(("benchmark", case[0], case[1], middle, spread))
+            rounds = []
+        if r is None or r["experiment"] != "benchmark":
             continue
         if r["method"] == "mesh_3":
             last_m3 = r
+            case = (r["surface"], r["parameters"])
         elif r["method"] == "delmesh" and r["vertices"] and last_m3 and last_m3["vertices"]:
-            ratio = float(r["seconds_per_vertex"]) / float(last_m3["seconds_per_vertex"])
-            ratios.append(("benchmark", r["surface"], last_m3["parameters"], ratio))
+            rounds.append(float(r["seconds_per_vertex"]) / float(last_m3["seconds_per_vertex"]))
     for experiment in ("coarsest",):
         for surface in sorted({r["surface"] for r in rows if r["experiment"] == experiment}):
             sel = [r for r in rows if r["experiment"] == experiment and r["surface"] == surface]
@@ -54,16 +69,16 @@ def main():
                 m3 = m3[:1]  # the ladder runs coarse first: the first correct one is the coarsest
             if dm and m3:
                 ratio = float(dm[0]["seconds_per_vertex"]) / float(m3[-1]["seconds_per_vertex"])
-                ratios.append((experiment, surface, m3[-1]["parameters"], ratio))
+                ratios.append((experiment, surface, m3[-1]["parameters"], ratio, ""))
 
     md = [f"CGAL comparison (git {meta.get('git', '?')}, CGAL {meta.get('cgal', '?')}, {meta.get('date', '')})", ""]
     md.append("| " + " | ".join(header) + " |")
     md.append("|" + "---|" * len(header))
     md.extend("| " + " | ".join(line) + " |" for line in lines)
     md.append("")
-    for experiment, surface, params, ratio in ratios:
+    for experiment, surface, params, ratio, spread in ratios:
         md.append(f"- {experiment} {surface}: delmesh seconds per vertex / Mesh_3's ({params}) = {ratio:.2f}"
-                  + (" (target ≤ 3)" if experiment == "benchmark" else ""))
+                  + spread + (" (target ≤ 3)" if experiment == "benchmark" else ""))
     text = "\n".join(md) + "\n"
     with open(output_path(args.out, "tables", "compare_cgal.md"), "w") as f:
         f.write(text)

@@ -461,10 +461,11 @@ Command add_mesh_command(CLI::App& parent) {
       ->check(whole_number(0, std::numeric_limits<std::uint64_t>::max()))
       ->capture_default_str();
   sub->add_option("--threads", o->threads,
-                  "Threads for the records and facets of the Voronoi faces an insertion changes, when there are "
-                  "enough of them to pay for the hand-off (smaller batches run on one thread); 0 means every hardware "
-                  "thread. The mesh is the same for every value; at most 1024, and more than the hardware threads run "
-                  "as many as there are")
+                  "Threads for the work of an insertion: the new Voronoi cell's certificate beside the records of "
+                  "the changed Voronoi edges (two threads), and those records and the new facets on all threads "
+                  "when there are enough of them to pay for the hand-off (smaller batches run on one thread); 0 means "
+                  "every hardware thread. The mesh is the same for every value; at most 1024, and more than the "
+                  "hardware threads run as many as there are")
       ->type_name("N")
       ->check(whole_number(0, max_threads))
       ->capture_default_str();

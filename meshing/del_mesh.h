@@ -55,9 +55,11 @@ struct DelMeshOptions {
   std::size_t max_points = 200000;
   double time_limit_seconds = 0;         //!< 0: none
   std::uint64_t seed = 1;                //!< generic directions; same seed → same mesh
-  //! Threads computing the records of the faces each insertion changes; 0: every hardware
-  //! thread.  The mesh does not depend on it.  A batch smaller than tolerances::parallel_least_*
-  //! runs on one thread, unless parallel_every_batch (for tests of that independence).
+  //! Threads for each insertion's work: the new cell's certificate runs beside the records of
+  //! the changed faces (two threads), and batches of records and facets of at least
+  //! tolerances::parallel_least_* run on all threads (smaller ones on one, unless
+  //! parallel_every_batch, for tests of that independence); 0: every hardware thread.  The mesh
+  //! does not depend on it.
   int threads = 0;
   bool parallel_every_batch = false;
   //! If given, the run stops (status interrupted) at the first check after it becomes true; it

@@ -181,7 +181,28 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
   // Shrunk faces keep their clean results (the lemma in refinement.h); their records are brought
   // up to date now, and a triangle whose dual point changed goes to Quality and Smooth again.
   const auto star = del_.closed_star(x);
-  const auto records = restricted_.prepare_star(star, parallel_);
+  std::vector<RestrictedDelaunay::StarRecord> records;
+  auto prepare_records = [&] { records = restricted_.prepare_star(star, parallel_); };
+  if (geometry_enabled_) {
+    // V_x's certificate, towards the slope that certifies the facets of all the new edges xq
+    // (they lie in V_x; prepare_new_edges() takes those it certifies from it), alongside the
+    // records: neither reads what the other writes (restricted_delaunay.h), and V_x is built
+    // from its Delaunay cells taken here, without a walk of Del S on the other thread.  Not
+    // while only the topology checks run: their cells are large and their certificates often
+    // fail, and a failure here would be paid again by Silhouette.
+    const auto cells = del_.incident_cells(x);
+    std::vector<VertexId> neighbours;
+    neighbours.reserve(cells.size() + 2);
+    for (const auto& s : star)
+      if (s.contains_vertex)
+        for (VertexId v : s.key)
+          if (v != x) neighbours.push_back(v);
+    std::sort(neighbours.begin(), neighbours.end());
+    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+    parallel_.invoke([&] { restricted_.certify_new_cell(x, neighbours, cells, neighbours); }, prepare_records);
+  } else {
+    prepare_records();
+  }
   for (std::size_t i = 0; i < star.size(); ++i) {
     const auto& t = star[i].key;
     const VoronoiEdgeRecord& r = *records[i].record;
@@ -255,15 +276,6 @@ std::vector<VertexId> Refinement::prepare_new_edges(VertexId x, const std::vecto
       continue;
     }
     new_edges.push_back({xq, std::move(thirds)});
-  }
-  // V_x's certificate first: the facets of the new edges xq lie in V_x and may follow from it.
-  // Not while only the topology checks run: their cells are large and their certificates often
-  // fail, and a failure here would be paid again by Silhouette.
-  if (geometry_enabled_) {
-    std::vector<VertexId> facet_sites;
-    facet_sites.reserve(new_edges.size());
-    for (const auto& e : new_edges) facet_sites.push_back(e.first[0] == x ? e.first[1] : e.first[0]);
-    restricted_.cell_certified(x, facet_sites);
   }
   restricted_.prepare_facets(new_edges, parallel_);
   for (const auto& e : new_edges) queue_edge(e.first);

@@ -383,6 +383,17 @@ void RestrictedDelaunay::record_section(int& slot, SectionProof proof) {
 }
 
 bool RestrictedDelaunay::cell_certified(VertexId p, const std::vector<VertexId>& facet_sites) {
+  return certify_cell(p, facet_sites, [&] { return voronoi_cell(del_, p, oracle_.clip_box()); });
+}
+
+bool RestrictedDelaunay::certify_new_cell(VertexId x, const std::vector<VertexId>& facet_sites,
+                                          const std::vector<std::array<VertexId, 4>>& cells,
+                                          const std::vector<VertexId>& neighbours) {
+  return certify_cell(x, facet_sites, [&] { return voronoi_cell(del_, x, oracle_.clip_box(), cells, neighbours); });
+}
+
+bool RestrictedDelaunay::certify_cell(VertexId p, const std::vector<VertexId>& facet_sites,
+                                      const std::function<VoronoiCell()>& build_cell) {
   using State = CellCertificate::State;
   if (static_cast<std::size_t>(p) >= cells_.size()) cells_.resize(static_cast<std::size_t>(p) + 1);
   CellCertificate& c = cells_[p];
@@ -403,7 +414,7 @@ bool RestrictedDelaunay::cell_certified(VertexId p, const std::vector<VertexId>&
   target *= tolerances::cell_slope_margin;
   // No facet would follow (or the oracle bounds no slopes): Silhouette's turn.
   if (!facet_sites.empty() && (!(target > 0) || !oracle_.bounds_cone_slopes())) return false;
-  const VoronoiCell cell = voronoi_cell(del_, p, oracle_.clip_box());
+  const VoronoiCell cell = build_cell();
   if (!cell.valid) return false;
   if (target > 0) {
     // For the facets, within the smaller budget; a failure is not kept.

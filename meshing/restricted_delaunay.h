@@ -40,6 +40,7 @@
 //! about it.
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -212,6 +213,14 @@ class RestrictedDelaunay {
   //! certifies (facet_section_certified()'s route through the cells) do not raise that slope;
   //! when they are all the facets, nothing is tried (Silhouette's turn, as without facets).
   bool cell_certified(VertexId p, const std::vector<VertexId>& facet_sites = {});
+  //! cell_certified(x, facet_sites) for a vertex x just inserted, with V_x built from x's
+  //! Delaunay cells `cells` and neighbours `neighbours` (Delaunay::incident_cells(x) and
+  //! Delaunay::neighbours(x), taken by the caller; voronoi_cell()'s second form).  It reads the
+  //! points of Del S, the cell certificates of the facet sites and the oracle, and writes only the
+  //! certificate of x, so it may run on one thread while prepare_star() of x's star runs on
+  //! another (which reads and writes neither).
+  bool certify_new_cell(VertexId x, const std::vector<VertexId>& facet_sites,
+                        const std::vector<std::array<VertexId, 4>>& cells, const std::vector<VertexId>& neighbours);
   //! When the kept certificate of V_p (cell_certified() without facet sites) failed because it
   //! proved a point of Σ ∩ V_p where ⟨∇E, n_p⟩ = 0 — a point of the silhouette J_{n_p} in V_p
   //! (SurfaceOracle::ConeAnswer::vanishing_point) — that point; nothing otherwise, or once Del S
@@ -283,6 +292,8 @@ class RestrictedDelaunay {
   //! The same at a known slot whose previous record had restricted status `was_restricted`.
   const VoronoiEdgeRecord& assign(const TriangleKey& t, VoronoiEdgeRecord& slot, bool was_restricted,
                                   VoronoiEdgeRecord&& record, bool solved);
+  //! cell_certified() with V_p from `cell`, called only when a proof is tried.
+  bool certify_cell(VertexId p, const std::vector<VertexId>& facet_sites, const std::function<VoronoiCell()>& cell);
   //! How the section of a facet was certified, if it was.
   enum class SectionProof : signed char { none, by_cell, by_cover };
   //! The two certificates of facet_section_certified(), tried in this order; both are

@@ -504,14 +504,15 @@ std::optional<VoronoiCell> cell_in_bounds(const Delaunay& del, VertexId site, co
 // cell of p is infinite (V_p is unbounded) or the box ∩ B is empty.
 std::optional<VoronoiCell> cell_from_vertices(const Delaunay& del, VertexId site, const Box3& box,
                                               const std::vector<std::array<VertexId, 4>>& cells,
-                                              const std::vector<Vec3>& corners) {
+                                              const std::vector<Vec3>& corners,
+                                              const std::vector<VertexId>& neighbours) {
   if (del.dimension() != 3) return std::nullopt;
   BoundingBox vertices;
   for (std::size_t k = 0; k < cells.size(); ++k) {
     if (cells[k][1] < 0 || cells[k][2] < 0 || cells[k][3] < 0) return std::nullopt;
     vertices.add(corners[k]);
   }
-  return cell_in_bounds(del, site, box, vertices, del.neighbours(site));
+  return cell_in_bounds(del, site, box, vertices, neighbours);
 }
 
 // Adds to `points` the ends of the part of the segment {a + t v : t ∈ [t0, t1]} in B (t1 = +∞
@@ -544,7 +545,7 @@ void add_clipped(const Vec3& a, const Vec3& v, double t0, double t1, const Box3&
 // ray has no direction): the caller clips instead.
 std::optional<VoronoiCell> cell_from_dual(const Delaunay& del, VertexId site, const Box3& box,
                                           const std::vector<std::array<VertexId, 4>>& cells,
-                                          const std::vector<Vec3>& corners) {
+                                          const std::vector<Vec3>& corners, const std::vector<VertexId>& neighbours) {
   if (del.dimension() != 3) return std::nullopt;
   const Vec3& p = del.point(site);
   auto finite_cell = [&](std::size_t k) { return cells[k][1] >= 0 && cells[k][2] >= 0 && cells[k][3] >= 0; };
@@ -588,7 +589,6 @@ std::optional<VoronoiCell> cell_from_dual(const Delaunay& del, VertexId site, co
     }
   }
   // (3) and (4): the edges of B cut by the bisectors.
-  std::vector<VertexId> neighbours = del.neighbours(site);
   const double margin = tolerances::face_membership_relative_tolerance * box.diagonal();
   // The bisector of p and each neighbour x: normal w = x − p through the midpoint m, and |w|.
   struct Bisector {
@@ -627,21 +627,20 @@ std::optional<VoronoiCell> cell_from_dual(const Delaunay& del, VertexId site, co
     }
   }
   if (points.empty()) return std::nullopt;
-  return cell_in_bounds(del, site, box, points, std::move(neighbours));
+  return cell_in_bounds(del, site, box, points, neighbours);
 }
 
 // V_p ∩ B by clipping B with the bisectors of p and its neighbours, nearest first (their
 // bisectors cut the box down to about V_p at once, so most later clips find every vertex
 // inside and return early); its half-spaces are those of the facets left, in the order of
 // facet_neighbours.
-VoronoiCell clipped_cell(const Delaunay& del, VertexId site, const Box3& box) {
+VoronoiCell clipped_cell(const Delaunay& del, VertexId site, const Box3& box, const std::vector<VertexId>& neighbours) {
   VoronoiCell cell;
   cell.site = site;
   const Vec3& p = del.point(site);
   // One polytope per thread, reset for each cell: its buffers outlive the call.
   thread_local ConvexPolytope polytope;
   polytope.reset(box);
-  const std::vector<VertexId> neighbours = del.neighbours(site);
   std::vector<std::pair<double, VertexId>> by_distance;
   by_distance.reserve(neighbours.size());
   for (VertexId s : neighbours) {
@@ -674,12 +673,16 @@ VoronoiCell clipped_cell(const Delaunay& del, VertexId site, const Box3& box) {
 }  // namespace
 
 VoronoiCell voronoi_cell(const Delaunay& del, VertexId site, const Box3& box) {
+  return voronoi_cell(del, site, box, del.incident_cells(site), del.neighbours(site));
+}
+
+VoronoiCell voronoi_cell(const Delaunay& del, VertexId site, const Box3& box,
+                         const std::vector<std::array<VertexId, 4>>& cells, const std::vector<VertexId>& neighbours) {
   // Both ways, the half-spaces and the box are then moved out to hold the cell's Voronoi vertices.
-  const auto cells = del.incident_cells(site);
   const auto corners = cell_corners(del, cells);
-  auto from_vertices = cell_from_vertices(del, site, box, cells, corners);
-  if (!from_vertices) from_vertices = cell_from_dual(del, site, box, cells, corners);
-  VoronoiCell cell = from_vertices ? std::move(*from_vertices) : clipped_cell(del, site, box);
+  auto from_vertices = cell_from_vertices(del, site, box, cells, corners, neighbours);
+  if (!from_vertices) from_vertices = cell_from_dual(del, site, box, cells, corners, neighbours);
+  VoronoiCell cell = from_vertices ? std::move(*from_vertices) : clipped_cell(del, site, box, neighbours);
   if (cell.valid) hold_vertices(cells, corners, box, cell);
   return cell;
 }

@@ -129,6 +129,12 @@ std::array<Vec3, 2> voronoi_edge_ends(const Delaunay& del, const VoronoiEdge& e,
 VoronoiFacet voronoi_facet(const Delaunay& del, const EdgeKey& edge, const Box3& box, double rotation,
                            const std::vector<Delaunay::RingTriangle>* ring = nullptr);
 VoronoiCell voronoi_cell(const Delaunay& del, VertexId p, const Box3& box);
+//! The same cell from p's Delaunay cells `cells` (Delaunay::incident_cells(p)) and neighbours
+//! `neighbours` (Delaunay::neighbours(p)), known to the caller: it then reads only the points of
+//! `del`, never its combinatorial structure, so it may run on one thread while another walks
+//! `del` (a walk marks CGAL's cells as it goes) as long as neither changes it.
+VoronoiCell voronoi_cell(const Delaunay& del, VertexId p, const Box3& box,
+                         const std::vector<std::array<VertexId, 4>>& cells, const std::vector<VertexId>& neighbours);
 
 //! Whether the point u (solver unknowns) satisfies every half-space of the domain up to tolerance
 //! (the box is not tested).

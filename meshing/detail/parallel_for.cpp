@@ -4,6 +4,7 @@
 #include <thread>
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -32,6 +33,15 @@ void ParallelFor::run(std::size_t n, const std::function<void(std::size_t)>& f, 
       for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
     });
   });
+}
+
+void ParallelFor::invoke(const std::function<void()>& f, const std::function<void()>& g) const {
+  if (!arena_) {
+    f();
+    g();
+    return;
+  }
+  arena_->arena.execute([&] { tbb::parallel_invoke(f, g); });
 }
 
 int hardware_threads() {

@@ -2,7 +2,7 @@
 // Deterministic data parallelism for the mesher: run(n, f) calls f(0), …, f(n−1), each exactly
 // once, on up to `threads` threads (TBB), and returns when all are done.  Callers write each
 // f(i)'s result to slot i and use the slots in index order afterwards, so what they compute does
-// not depend on the number of threads.
+// not depend on the number of threads.  invoke(f, g) runs two independent tasks side by side.
 
 #include <cstddef>
 #include <functional>
@@ -25,6 +25,10 @@ class ParallelFor {
   //! thread: handing a batch to the threads costs tens of microseconds, more than a small batch
   //! of cheap items takes (see the call sites' constants in common/tolerances.h).
   void run(std::size_t n, const std::function<void(std::size_t)>& f, std::size_t least = 2) const;
+  //! Calls f and g: on two threads when there are threads, else f then g.  The caller makes them
+  //! independent (neither reads what the other writes), so the results do not depend on which.
+  //! An exception from either is rethrown here (after both have stopped).
+  void invoke(const std::function<void()>& f, const std::function<void()>& g) const;
 
  private:
   struct Arena;

@@ -1,6 +1,7 @@
 #include "meshing/detail/parallel_for.h"
 
 #include <atomic>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -32,6 +33,23 @@ BOOST_AUTO_TEST_CASE(a_batch_below_least_runs_on_the_calling_thread) {
   std::atomic<int> elsewhere{0};
   parallel.run(63, [&](std::size_t) { elsewhere += std::this_thread::get_id() != caller; }, 64);
   BOOST_TEST(elsewhere.load() == 0);
+}
+
+// invoke() calls each task exactly once, f before g on one thread, and rethrows a task's
+// exception after both have stopped.
+BOOST_AUTO_TEST_CASE(invoke_calls_both_tasks_once) {
+  for (int threads : {1, 2, 4}) {
+    const ParallelFor parallel(threads);
+    std::atomic<int> f_calls{0}, g_calls{0}, order{0};
+    int f_at = -1, g_at = -1;
+    parallel.invoke([&] { f_at = order++; ++f_calls; }, [&] { g_at = order++; ++g_calls; });
+    BOOST_TEST(f_calls.load() == 1);
+    BOOST_TEST(g_calls.load() == 1);
+    if (threads == 1) BOOST_TEST((f_at == 0 && g_at == 1));
+    std::atomic<int> other{0};
+    BOOST_CHECK_THROW(parallel.invoke([] { throw std::runtime_error("f"); }, [&] { ++other; }), std::runtime_error);
+    BOOST_TEST(other.load() <= 1);
+  }
 }
 
 // The thread count is the request capped by the hardware; 0 asks for every hardware thread.

@@ -217,8 +217,9 @@ class RestrictedDelaunay {
   //! Delaunay cells `cells` and neighbours `neighbours` (Delaunay::incident_cells(x) and
   //! Delaunay::neighbours(x), taken by the caller; voronoi_cell()'s second form).  It reads the
   //! points of Del S, the cell certificates of the facet sites and the oracle, and writes only the
-  //! certificate of x, so it may run on one thread while prepare_star() of x's star runs on
-  //! another (which reads and writes neither).
+  //! table of cell certificates (x's, growing the table to hold it), so it may run on one thread
+  //! while prepare_star() of x's star runs on another (which reads and writes none of these but
+  //! the points and the oracle, both read-only and thread-safe).
   bool certify_new_cell(VertexId x, const std::vector<VertexId>& facet_sites,
                         const std::vector<std::array<VertexId, 4>>& cells, const std::vector<VertexId>& neighbours);
   //! When the kept certificate of V_p (cell_certified() without facet sites) failed because it

@@ -120,6 +120,13 @@ VertexId vertex_id(const Dt& dt, typename Dt::Vertex_handle v) {
   return dt.is_infinite(v) ? VertexId(-1) : v->info().id;
 }
 
+// The cell c of x (x its vertex ix) as x and its other three vertices (−1 for the infinite one).
+template <class Dt>
+std::array<VertexId, 4> cell_vertices(const Dt& dt, typename Dt::Cell_handle c, int ix, VertexId x) {
+  return {x, vertex_id(dt, c->vertex((ix + 1) & 3)), vertex_id(dt, c->vertex((ix + 2) & 3)),
+          vertex_id(dt, c->vertex((ix + 3) & 3))};
+}
+
 // The apexes of facet (c, i): the vertex of c opposite it and that of the neighbour across it (−1
 // for the infinite vertex).
 template <class Dt>
@@ -287,8 +294,10 @@ std::optional<std::array<VertexId, 2>> Delaunay::triangle_apexes(const TriangleK
   return facet_apexes(dt, c, 6 - i - j - k);
 }
 
-std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x) const {
+std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x,
+                                                          std::vector<std::array<VertexId, 4>>* cell_ids) const {
   std::vector<StarTriangle> out;
+  if (cell_ids) cell_ids->clear();
   const auto& dt = impl_->dt;
   if (dt.dimension() != 3) return out;
   const auto v = impl_->handle(x);
@@ -296,8 +305,10 @@ std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x) const {
   dt.incident_cells(v, std::back_inserter(cells));
   // Each cell has one facet opposite x and shares its three facets at x with other cells.
   out.reserve(cells.size() * 5 / 2 + 1);
+  if (cell_ids) cell_ids->reserve(cells.size());
   for (const auto& c : cells) {
     const int ix = c->index(v);
+    if (cell_ids) cell_ids->push_back(cell_vertices(dt, c, ix, x));
     for (int j = 0; j < 4; ++j) {
       // A facet containing x lies in two cells of x's star: it is kept from the one at the lower
       // address (the facet opposite x lies in one cell of the star only).
@@ -319,11 +330,7 @@ std::vector<std::array<VertexId, 4>> Delaunay::incident_cells(VertexId x) const 
   std::vector<detail::Dt::Cell_handle> cells;
   dt.incident_cells(v, std::back_inserter(cells));
   out.reserve(cells.size());
-  for (const auto& c : cells) {
-    const int ix = c->index(v);
-    out.push_back({x, vertex_id(dt, c->vertex((ix + 1) & 3)), vertex_id(dt, c->vertex((ix + 2) & 3)),
-                   vertex_id(dt, c->vertex((ix + 3) & 3))});
-  }
+  for (const auto& c : cells) out.push_back(cell_vertices(dt, c, c->index(v), x));
   return out;
 }
 

@@ -101,8 +101,9 @@ class Delaunay {
     bool contains_vertex;
   };
   //! In dimension 3: every finite triangle of the cells incident to x, once each, ascending by
-  //! key.  Below dimension 3: empty.
-  std::vector<StarTriangle> closed_star(VertexId x) const;
+  //! key.  Below dimension 3: empty.  If `cells` is given it receives incident_cells(x), read in
+  //! the same walk.
+  std::vector<StarTriangle> closed_star(VertexId x, std::vector<std::array<VertexId, 4>>* cells = nullptr) const;
   //! In dimension 3: the vertices of the cells incident to x, x first (−1 for the infinite
   //! vertex), in CGAL's order of the cells.  Below dimension 3: empty.
   std::vector<std::array<VertexId, 4>> incident_cells(VertexId x) const;

@@ -180,17 +180,17 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
   for (const auto& t : restricted_.forget_destroyed(change)) star_change(t);
   // Shrunk faces keep their clean results (the lemma in refinement.h); their records are brought
   // up to date now, and a triangle whose dual point changed goes to Quality and Smooth again.
-  const auto star = del_.closed_star(x);
+  std::vector<std::array<VertexId, 4>> cells;  // x's Delaunay cells, read in the same walk
+  const auto star = del_.closed_star(x, geometry_enabled_ ? &cells : nullptr);
   std::vector<RestrictedDelaunay::StarRecord> records;
   auto prepare_records = [&] { records = restricted_.prepare_star(star, parallel_); };
   if (geometry_enabled_) {
     // V_x's certificate, towards the slope that certifies the facets of all the new edges xq
     // (they lie in V_x; prepare_new_edges() takes those it certifies from it), alongside the
     // records: neither reads what the other writes (restricted_delaunay.h), and V_x is built
-    // from its Delaunay cells taken here, without a walk of Del S on the other thread.  Not
-    // while only the topology checks run: their cells are large and their certificates often
-    // fail, and a failure here would be paid again by Silhouette.
-    const auto cells = del_.incident_cells(x);
+    // from its Delaunay cells, read here with the star, without a walk of Del S on the other
+    // thread.  Not while only the topology checks run: their cells are large and their
+    // certificates often fail, and a failure here would be paid again by Silhouette.
     std::vector<VertexId> neighbours;
     neighbours.reserve(cells.size() + 2);
     for (const auto& s : star)

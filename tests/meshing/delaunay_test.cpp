@@ -121,6 +121,10 @@ BOOST_AUTO_TEST_CASE(insertion_change_is_the_cavity) {
     }
     BOOST_TEST((link == as_set(change.shrunk_triangles)));
     BOOST_TEST((with_x == as_set(del.incident_triangles(*x))));
+    // The cells read in the same walk are incident_cells(x), in its order.
+    std::vector<std::array<VertexId, 4>> cells;
+    del.closed_star(*x, &cells);
+    BOOST_TEST((cells == del.incident_cells(*x)));
     for (const auto& t : change.shrunk_triangles) BOOST_TEST(before_triangles.count(t));
   }
 }

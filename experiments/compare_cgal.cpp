@@ -38,8 +38,10 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -258,11 +260,22 @@ double seconds_per_vertex(const Run& run) {
   return referenced ? run.seconds / static_cast<double>(referenced) : std::numeric_limits<double>::quiet_NaN();
 }
 
-//! The median of a non-empty list (the mean of the middle two for an even count).
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+//! The values of a list that are numbers (a run without a mesh has NaN seconds per vertex), sorted.
+std::vector<double> sorted_numbers(const std::vector<double>& values) {
+  std::vector<double> out;
+  for (double v : values)
+    if (!std::isnan(v)) out.push_back(v);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+//! The median of the numbers of a list (the mean of the middle two for an even count); NaN if
+//! there are none.
+double median(const std::vector<double>& values) {
+  const std::vector<double> v = sorted_numbers(values);
+  const std::size_t n = v.size();
+  if (n == 0) return std::numeric_limits<double>::quiet_NaN();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 std::string field_list(const std::vector<double>& values) {
@@ -405,10 +418,9 @@ int main(int argc, char** argv) {
         const auto [first, inserted] = first_per_vertex.emplace(name, per_vertex);
         std::cout << "benchmark " << name << " H=" << h << ": delmesh " << per_vertex * 1e6
                   << " us/vertex, Mesh_3 " << median(m3_per_vertex) * 1e6 << " us/vertex, ratio " << median(ratios);
-        if (repeat > 1)
-          std::cout << " (median of " << repeat << " rounds, least "
-                    << *std::min_element(ratios.begin(), ratios.end()) << ", greatest "
-                    << *std::max_element(ratios.begin(), ratios.end()) << "; seconds per vertex: medians)";
+        if (const auto range = sorted_numbers(ratios); repeat > 1 && !range.empty())
+          std::cout << " (median of " << range.size() << " rounds, least " << range.front() << ", greatest "
+                    << range.back() << "; seconds per vertex: medians)";
         std::cout << " (target <= 3)";
         if (!inserted) std::cout << ", delmesh us/vertex relative to the first " << name << " case " << per_vertex / first->second;
         std::cout << std::endl;

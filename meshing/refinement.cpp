@@ -199,7 +199,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
           if (v != x) neighbours.push_back(v);
     std::sort(neighbours.begin(), neighbours.end());
     neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
-    parallel_.invoke([&] { restricted_.certify_new_cell(x, neighbours, cells, neighbours); }, prepare_records);
+    parallel_.invoke([&] { restricted_.certify_new_cell(x, cells, neighbours); }, prepare_records);
   } else {
     prepare_records();
   }

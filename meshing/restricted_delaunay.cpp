@@ -386,10 +386,9 @@ bool RestrictedDelaunay::cell_certified(VertexId p, const std::vector<VertexId>&
   return certify_cell(p, facet_sites, [&] { return voronoi_cell(del_, p, oracle_.clip_box()); });
 }
 
-bool RestrictedDelaunay::certify_new_cell(VertexId x, const std::vector<VertexId>& facet_sites,
-                                          const std::vector<std::array<VertexId, 4>>& cells,
+bool RestrictedDelaunay::certify_new_cell(VertexId x, const std::vector<std::array<VertexId, 4>>& cells,
                                           const std::vector<VertexId>& neighbours) {
-  return certify_cell(x, facet_sites, [&] { return voronoi_cell(del_, x, oracle_.clip_box(), cells, neighbours); });
+  return certify_cell(x, neighbours, [&] { return voronoi_cell(del_, x, oracle_.clip_box(), cells, neighbours); });
 }
 
 bool RestrictedDelaunay::certify_cell(VertexId p, const std::vector<VertexId>& facet_sites,

@@ -213,15 +213,16 @@ class RestrictedDelaunay {
   //! certifies (facet_section_certified()'s route through the cells) do not raise that slope;
   //! when they are all the facets, nothing is tried (Silhouette's turn, as without facets).
   bool cell_certified(VertexId p, const std::vector<VertexId>& facet_sites = {});
-  //! cell_certified(x, facet_sites) for a vertex x just inserted, with V_x built from x's
-  //! Delaunay cells `cells` and neighbours `neighbours` (Delaunay::incident_cells(x) and
-  //! Delaunay::neighbours(x), taken by the caller; voronoi_cell()'s second form).  It reads the
-  //! points of Del S, the cell certificates of the facet sites and the oracle, and writes only the
-  //! table of cell certificates (x's, growing the table to hold it), so it may run on one thread
-  //! while prepare_star() of x's star runs on another (which reads and writes none of these but
-  //! the points and the oracle, both read-only and thread-safe).
-  bool certify_new_cell(VertexId x, const std::vector<VertexId>& facet_sites,
-                        const std::vector<std::array<VertexId, 4>>& cells, const std::vector<VertexId>& neighbours);
+  //! cell_certified(x, neighbours) for a vertex x just inserted: the facets of every new edge xq
+  //! are the facet sites, and V_x is built from x's Delaunay cells `cells` and neighbours
+  //! `neighbours` (Delaunay::incident_cells(x) and Delaunay::neighbours(x), taken by the caller;
+  //! voronoi_cell()'s second form).  It reads the points of Del S, the cell certificates of the
+  //! neighbours and the oracle, and writes only the table of cell certificates (x's, growing the
+  //! table to hold it), so it may run on one thread while prepare_star() of x's star runs on
+  //! another (which reads and writes none of these but the points and the oracle, both read-only
+  //! and thread-safe).
+  bool certify_new_cell(VertexId x, const std::vector<std::array<VertexId, 4>>& cells,
+                        const std::vector<VertexId>& neighbours);
   //! When the kept certificate of V_p (cell_certified() without facet sites) failed because it
   //! proved a point of Σ ∩ V_p where ⟨∇E, n_p⟩ = 0 — a point of the silhouette J_{n_p} in V_p
   //! (SurfaceOracle::ConeAnswer::vanishing_point) — that point; nothing otherwise, or once Del S

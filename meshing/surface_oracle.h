@@ -76,7 +76,6 @@ class SurfaceOracle {
   }
 
  public:
-
   //! SurfaceLine: the points of Σ on {p + t v : t ∈ [t0, t1]} (roots: transversal crossings;
   //! undecided: tangencies as singular_root, zeros at t0 or t1 as boundary_root).
   virtual SolveResult surface_line(const Vec3& p, const Vec3& v, double t0, double t1) = 0;

@@ -331,6 +331,11 @@ inline constexpr double surface_box_relative_margin = 1e-3;
 //! as soon as the box stops shrinking, which a box of a few units in the last place reaches well
 //! within this many.
 inline constexpr int vanishing_point_narrowing_steps = 12;
+//! The order of a gradient-cone subdivision's halves steers towards the least-norm zero of the
+//! linearised pair (E, ⟨∇E, w⟩); its two rows a, b count as parallel, and only E's row is used,
+//! when det [a·a a·b; a·b b·b] ≤ this times |a|² |b|².  (It orders work only; no proof rests on
+//! it.)
+inline constexpr double cone_guess_parallel_rows = 1e-12;
 //! Facets from a cell certificate (RestrictedDelaunay::cell_certified()): a facet pq of a
 //! certified cell V_p follows from the cell when |⟨n_p, q − p⟩| / |q − p| is below the proof's
 //! slope.  The cover of V_p is refined (solvers/gradient_cone.h, SlopeRefinement) towards the

@@ -32,6 +32,12 @@ class ChartMap {
   }
   //! ⟨g, c_j⟩: the derivative in u_j of a function whose gradient is enclosed by g.
   Interval along(const Interval* g, std::size_t j) const { return identity_ ? g[j] : inner(g, chart_.columns[j]); }
+  //! The same for a point vector g (rounded to nearest).
+  double along(const std::array<double, 3>& g, std::size_t j) const {
+    if (identity_) return g[j];
+    const auto& c = chart_.columns[j];
+    return g[0] * c[0] + g[1] * c[1] + g[2] * c[2];
+  }
   //! The world enclosure origin + Σ_j u_j c_j of chart points (u_j intervals or points).
   void to_world(const Interval* u, Interval* x) const {
     const std::size_t n = chart_.columns.size();
@@ -63,6 +69,45 @@ double box_slope(const Interval& functional, const Interval* gradient) {
   const Interval norm_squared = CGAL::square(gradient[0]) + CGAL::square(gradient[1]) + CGAL::square(gradient[2]);
   const double largest = CGAL::sqrt(norm_squared).sup();
   return (Interval(least) / Interval(largest)).inf();
+}
+
+// A guess, in chart coordinates, at a zero of f(u) = (E(x(u)), ⟨∇E(x(u)), w⟩) near the centre c
+// of a box: c + δ, δ the least-norm solution of the linearisation f(c) + f′(c) δ = 0, with f′(c)
+// from the midpoints of ∇E at c and of H over the box (or of E's row alone when the two rows are
+// nearly parallel).  Nothing when neither row is usable.  Only the order in which the halves of a
+// box are examined depends on it: it steers a refutation (test (iv)) towards the zero first.
+std::optional<std::array<double, 3>> predicted_zero(const ChartMap& chart, std::size_t n,
+                                                    const std::array<double, 3>& w, const Interval* centre,
+                                                    const Interval& centre_value, const Interval* centre_gradient,
+                                                    const Interval* hessian) {
+  auto mid = [](const Interval& a) { return 0.5 * (a.inf() + a.sup()); };
+  std::array<double, 3> g{}, hw{};
+  for (int k = 0; k < 3; ++k) {
+    g[k] = mid(centre_gradient[k]);
+    hw[k] = mid(hessian[3 * k]) * w[0] + mid(hessian[3 * k + 1]) * w[1] + mid(hessian[3 * k + 2]) * w[2];
+  }
+  const double r[2] = {mid(centre_value), g[0] * w[0] + g[1] * w[1] + g[2] * w[2]};
+  double a[3] = {}, b[3] = {}, aa = 0, ab = 0, bb = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    a[j] = chart.along(g, j);
+    b[j] = chart.along(hw, j);
+    aa += a[j] * a[j], ab += a[j] * b[j], bb += b[j] * b[j];
+  }
+  const double det = aa * bb - ab * ab;
+  double ya = 0, yb = 0;  // δ = −(ya a + yb b)
+  if (det > tolerances::cone_guess_parallel_rows * aa * bb) {
+    ya = (bb * r[0] - ab * r[1]) / det;
+    yb = (aa * r[1] - ab * r[0]) / det;
+  } else if (aa > 0) {
+    ya = r[0] / aa;
+  } else {
+    return std::nullopt;
+  }
+  std::array<double, 3> point{};
+  for (std::size_t j = 0; j < n; ++j) point[j] = mid(centre[j]) - (ya * a[j] + yb * b[j]);
+  for (std::size_t j = 0; j < n; ++j)
+    if (!std::isfinite(point[j])) return std::nullopt;
+  return point;
 }
 
 // The Krawczyk test for f(u) = (E(x(u)), ⟨∇E(x(u)), w⟩) on a box U in chart coordinates (n = 2
@@ -232,7 +277,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
   // widest side when the smear is not finite or its side no longer splits.  False if no side
   // splits.
   auto split = [&](const Box& box, bool inside, std::uint64_t active, bool refining, double parent_slope,
-                   const Interval* gradient) {
+                   const Interval* gradient, const std::optional<std::array<double, 3>>& towards = std::nullopt) {
     const auto& u = box.u;
     auto splits = [&](std::size_t j) {
       const double mid = 0.5 * (u[j].inf() + u[j].sup());
@@ -252,8 +297,9 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     Box left{u, inside, refining, parent_slope, active}, right = left;
     left.u[side] = Interval(lo, mid);
     right.u[side] = Interval(mid, hi);
-    stack.push_back(right);
-    stack.push_back(left);
+    const bool upper_first = towards && (*towards)[side] > mid;
+    stack.push_back(upper_first ? left : right);
+    stack.push_back(upper_first ? right : left);
     return true;
   };
   while (!stack.empty()) {
@@ -355,7 +401,9 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
       continue;
     }
     // (iv) A zero of the functional on Σ proved inside P refutes the certificate.
+    std::optional<std::array<double, 3>> towards;
     if (with_hessians && have_centre && n >= 2) {
+      towards = predicted_zero(map, n, w, centre, centre_value, centre_gradient, hessian);
       const SliceKrawczyk krawczyk(map, n, w, gradient, hessian);
       const auto pair = krawczyk.unknowns();
       const auto zero = krawczyk.image(pair, u, centre, centre_value, centre_gradient);
@@ -371,7 +419,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
       }
     }
     // A side that no longer splits ends the attempt.
-    if (!split(box, side == DomainSide::inside, active, false, 0, gradient)) return result;
+    if (!split(box, side == DomainSide::inside, active, false, 0, gradient, towards)) return result;
   }
   result.proved = true;
   result.slope = refinement.target > 0 ? slope : 0;

@@ -23,9 +23,14 @@
 //! A box that none of these drops is bisected across the side j along which E varies most on it,
 //! the largest (width of U_j)·max|⟨∇E(X), c_j⟩| (the maximal-smear rule of interval subdivision:
 //! near Σ that is the side across the surface, so E's sign separates the halves soonest); when the
-//! budget or the depth runs out the certificate fails.  (The rule only orders the work: any
-//! bisection gives a cover, so the proof below does not depend on it.)  It also fails at once,
-//! refuted, when
+//! budget or the depth runs out the certificate fails.  The boxes are examined depth first, and of
+//! the two halves of a box the one holding c + δ comes first, where c is the box's centre and δ
+//! the least-norm solution of the linearisation at c of f = (E, ⟨∇E, w⟩) (below): when the
+//! attempt is refuted by (iv), the box that refutes it is then usually reached after a few boxes
+//! instead of after the subtrees before it.  (The rule and the order only order the work: any
+//! bisection gives a cover, so the proof below depends on neither.  A proof examines the same
+//! boxes in any order, but for the halves of SlopeRefinement, whose budget goes to the boxes met
+//! first.)  It also fails at once, refuted, when
 //!  (iv)  on a box U that (i)–(iii) keep (E compiled with Hessians), the Krawczyk operator of
 //!        f = (E, ⟨∇E, w⟩) — on U itself in dimension 2, on the slice of U through its centre
 //!        across one coordinate in dimension 3 — maps the box of the unknowns into its interior,

@@ -225,14 +225,19 @@ SurfaceOracle::ConeAnswer ImplicitOracle::prove_gradient_cone(const AffineChart&
                                                               const Vec3& w) {
   const std::size_t budget = domain.dimension() == 3 ? tolerances::gradient_cone_cell_box_budget
                                                      : tolerances::gradient_cone_box_budget;
-  const GradientConeResult r = gradient_cone(chart, domain, w, budget, {});
-  return {r.proved, r.vanishing_point};
+  return answer(gradient_cone(chart, domain, w, budget, {}));
 }
 
-double ImplicitOracle::gradient_cone_slope(const AffineChart& chart, const Domain& domain, const Vec3& w,
-                                           double target) {
-  return gradient_cone(chart, domain, w, tolerances::cell_slope_cover_budget, {target, tolerances::cell_slope_box_budget})
-      .slope;
+SurfaceOracle::ConeAnswer ImplicitOracle::gradient_cone_slope(const AffineChart& chart, const Domain& domain,
+                                                              const Vec3& w, double target) {
+  return answer(gradient_cone(chart, domain, w, tolerances::cell_slope_cover_budget,
+                              {target, tolerances::cell_slope_box_budget}));
+}
+
+SurfaceOracle::ConeAnswer ImplicitOracle::answer(const GradientConeResult& r) {
+  ConeAnswer a{r.proved, r.vanishing_point, r.slope, std::nullopt};
+  if (r.proved) a.surface_box = std::array<Vec3, 2>{r.surface_lo, r.surface_hi};
+  return a;
 }
 
 GradientConeResult ImplicitOracle::gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w,

@@ -110,15 +110,16 @@ class ImplicitOracle final : public SurfaceOracle {
                     std::size_t box_budget) override;
 
   //! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P, P = domain in the chart (solvers/gradient_cone.h):
-  //! a proof or nothing, with the point of Σ ∩ P where ⟨∇E, w⟩ = 0 that refuted the attempt, if
-  //! one did.  Within tolerances::gradient_cone_cell_box_budget boxes over a 3-D domain (a
+  //! a proof, with a box holding Σ ∩ P, or nothing, with the point of Σ ∩ P where ⟨∇E, w⟩ = 0
+  //! that refuted the attempt, if one did.  Within tolerances::gradient_cone_cell_box_budget boxes over a 3-D domain (a
   //! Voronoi cell), tolerances::gradient_cone_box_budget over a facet.  Counted under
   //! `cone_certificates`.
   ConeAnswer prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) override;
   //! The slope of that certificate, 0 if it fails (solvers/gradient_cone.h): within
   //! tolerances::cell_slope_cover_budget boxes, refined towards `target` within
   //! tolerances::cell_slope_box_budget more; counted likewise.
-  double gradient_cone_slope(const AffineChart& chart, const Domain& domain, const Vec3& w, double target) override;
+  ConeAnswer gradient_cone_slope(const AffineChart& chart, const Domain& domain, const Vec3& w,
+                                 double target) override;
   bool bounds_cone_slopes() const override { return true; }
   //! The proved sign of ⟨∇E, w⟩ on the segment [a, b], or 0 (solvers/gradient_cone.h).
   int gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const override;
@@ -171,6 +172,9 @@ class ImplicitOracle final : public SurfaceOracle {
   //! The certificate within `budget` boxes, counted.
   GradientConeResult gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w, std::size_t budget,
                                    const SlopeRefinement& refinement);
+  //! The answer of a certificate: the proof, its slope and its box around Σ ∩ P, or the refuting
+  //! point.
+  static ConeAnswer answer(const GradientConeResult& r);
   //! Cone certificates attempted, proved, refuted (solvers/gradient_cone.h, test (iv)), their
   //! boxes and time; the boxes and time of the failed ones (each of which leads to a full solve)
   //! apart.

@@ -688,7 +688,9 @@ SurfaceOracle::ConeAnswer MeshOracle::prove_gradient_cone(const AffineChart& cha
   const std::lock_guard<std::mutex> lock(statistics_mutex_);
   ++cone_attempts_;
   cone_proved_ += proved ? 1 : 0;
-  return {proved, std::nullopt};
+  ConeAnswer answer;
+  answer.proved = proved;
+  return answer;
 }
 
 int MeshOracle::gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const {

@@ -9,6 +9,7 @@
 #include "common/tolerances.h"
 #include "meshing/detail/vec3.h"
 #include "solvers/query_geometry.h"
+#include "symbolic/scalar_traits.h"
 #include "symbolic/scalar_types.h"
 
 namespace delmesh {
@@ -417,16 +418,18 @@ bool RestrictedDelaunay::certify_cell(VertexId p, const std::vector<VertexId>& f
   if (!cell.valid) return false;
   if (target > 0) {
     // For the facets, within the smaller budget; a failure is not kept.
-    const double slope = oracle_.gradient_cone_slope(AffineChart::identity(), cell.domain, n, target);
-    if (!(slope > 0)) return false;
+    const SurfaceOracle::ConeAnswer answer = oracle_.gradient_cone_slope(AffineChart::identity(), cell.domain, n, target);
+    if (!(answer.slope > 0)) return false;
     c.state = State::proved;
     c.w = n;
-    c.slope = slope;
+    c.slope = answer.slope;
+    c.surface_box = answer.surface_box;
     return true;
   }
   SurfaceOracle::ConeAnswer answer = oracle_.prove_gradient_cone(AffineChart::identity(), cell.domain, n);
   if (answer.proved) {
     c.state = State::proved;  // without a slope
+    c.surface_box = answer.surface_box;
     return true;
   }
   c.state = State::failed;
@@ -447,6 +450,21 @@ void RestrictedDelaunay::forget_cell(VertexId p) {
 
 namespace {
 
+//! Whether the bisector plane {y : ⟨y − (p + q)/2, q − p⟩ = 0} of p and q misses the box
+//! [lo, hi] (true for an empty box), by one interval evaluation over the box.
+bool plane_misses_box(const Vec3& p, const Vec3& q, const std::array<Vec3, 2>& box) {
+  for (int k = 0; k < 3; ++k)
+    if (box[0][k] > box[1][k]) return true;
+  RoundingGuard guard;
+  Interval side(0);
+  for (int k = 0; k < 3; ++k) {
+    const Interval normal = Interval(q[k]) - Interval(p[k]);
+    const Interval middle = (Interval(q[k]) + Interval(p[k])) / 2;
+    side += normal * (Interval(box[0][k], box[1][k]) - middle);
+  }
+  return certainly_nonzero(side);
+}
+
 //! Whether |⟨w, q − p⟩| / |q − p| < slope, with q − p and the quotient enclosed by intervals.
 bool plane_within_slope(const Vec3& w, const Vec3& p, const Vec3& q, double slope) {
   RoundingGuard guard;
@@ -466,7 +484,8 @@ RestrictedDelaunay::SectionProof RestrictedDelaunay::certify_by_cell(const EdgeK
   for (VertexId v : e) {
     if (static_cast<std::size_t>(v) >= cells_.size()) continue;
     const CellCertificate& c = cells_[v];
-    if (c.state == CellCertificate::State::proved && plane_within_slope(c.w, p, q, c.slope))
+    if (c.state != CellCertificate::State::proved) continue;
+    if (plane_within_slope(c.w, p, q, c.slope) || (c.surface_box && plane_misses_box(p, q, *c.surface_box)))
       return SectionProof::by_cell;
   }
   return SectionProof::none;

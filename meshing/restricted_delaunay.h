@@ -194,7 +194,12 @@ class RestrictedDelaunay {
   //! (cell_certified()): F ⊆ V_p ∩ V_q, so a proof |⟨∇E, n_p⟩| ≥ ρ |∇E| on Σ ∩ V_p with
   //! |⟨n_p, q − p⟩| / |q − p| < ρ (bounded by interval arithmetic; q − p is normal to F's plane)
   //! is the certificate of F with the in-plane direction n_p − ⟨n_p, q − p⟩ (q − p) / |q − p|²
-  //! (the slope argument of solvers/gradient_cone.h).  It rests on what the cell's proof rests on:
+  //! (the slope argument of solvers/gradient_cone.h).  Nor when the proof over V_p (with or
+  //! without a slope) came with a box holding Σ ∩ V_p (SurfaceOracle::ConeAnswer::surface_box)
+  //! that the plane of F, the bisector of p and q, misses (one interval evaluation over the box):
+  //! then Σ ∩ F ⊆ Σ ∩ V_p lies off F's plane, so Σ ∩ F = ∅ and FacetContact and FacetCycle have
+  //! nothing to look at.  V_p only shrinks while the proof is kept, so both routes hold for the
+  //! facets of the current V_p.  They rest on what the cell's proof rests on:
   //! that the cell's domain holds V_p ∩ B (voronoi_geometry.h), which the faces of one computed
   //! diagram do up to tolerances::face_membership_relative_tolerance.  Counted
   //! (facets_certified_by_cell()).  This route reads no geometry of F, and holds whether F ∩ B is
@@ -339,6 +344,9 @@ class RestrictedDelaunay {
     enum class State : signed char { none, proved, failed } state = State::none;
     Vec3 w{};                   //!< n_p, the cone's direction
     double slope = 0;           //!< the proof's slope (0: none)
+    //! A box that holds Σ ∩ V_p, from the proof, if the oracle gives one
+    //! (SurfaceOracle::ConeAnswer::surface_box).
+    std::optional<std::array<Vec3, 2>> surface_box;
     std::size_t vertices = 0;   //!< |S| when a failure was found
     std::optional<Vec3> silhouette_point;  //!< the point of J_{n_p} ∩ V_p that refuted it, if any
   };

@@ -100,24 +100,31 @@ class SurfaceOracle {
   virtual SolveResult solve(const std::string& primitive, const std::vector<double>& parameters,
                             const Domain& domain, std::size_t box_budget) = 0;
 
-  //! What prove_gradient_cone() found.
+  //! What prove_gradient_cone() or gradient_cone_slope() found.
   struct ConeAnswer {
     bool proved = false;  //!< ⟨∇E, w⟩ ≠ 0 on Σ ∩ P is proved; false proves nothing
     //! When the attempt failed because it proved a point of Σ ∩ P where ⟨∇E, w⟩ = 0
     //! (solvers/gradient_cone.h, test (iv)): that point, to the rounding of its enclosure
     //! (GradientConeResult::vanishing_point).  An implementation may never report one.
     std::optional<Vec3> vanishing_point;
+    //! gradient_cone_slope() only: the slope ρ, > 0 exactly when proved.
+    double slope = 0;
+    //! When proved, if the implementation bounds it: a box {lo, hi} (world coordinates) that
+    //! holds Σ ∩ P, empty (lo[k] > hi[k] for some k) when Σ ∩ P = ∅ is proved
+    //! (GradientConeResult::surface_lo, surface_hi).
+    std::optional<std::array<Vec3, 2>> surface_box;
   };
   //! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P, P = domain in the chart (an implementation may never
   //! prove).
   virtual ConeAnswer prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) = 0;
-  //! The same certificate with its slope (solvers/gradient_cone.h): a returned ρ > 0 is a proof
-  //! of |⟨∇E, w⟩| ≥ ρ |∇E| > 0 on Σ ∩ P (ρ = +∞: Σ ∩ P = ∅); 0 proves nothing.  The cover may be
+  //! The same certificate with its slope (solvers/gradient_cone.h): a slope ρ > 0 is a proof of
+  //! |⟨∇E, w⟩| ≥ ρ |∇E| > 0 on Σ ∩ P (ρ = +∞: Σ ∩ P = ∅); 0 proves nothing.  The cover may be
   //! refined to raise ρ towards `target` (SlopeRefinement).  The default, for an oracle that
-  //! bounds no slopes, returns 0.
-  virtual double gradient_cone_slope(const AffineChart& chart, const Domain& domain, const Vec3& w, double target) {
+  //! bounds no slopes, proves nothing.
+  virtual ConeAnswer gradient_cone_slope(const AffineChart& chart, const Domain& domain, const Vec3& w,
+                                         double target) {
     (void)chart, (void)domain, (void)w, (void)target;
-    return 0;
+    return {};
   }
   //! Whether gradient_cone_slope() can return a slope (false: it always returns 0).
   virtual bool bounds_cone_slopes() const { return false; }

@@ -254,6 +254,15 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
   const ChartMap map(chart);
   GradientConeResult result;
   double slope = std::numeric_limits<double>::infinity();
+  // The bounding box of the world enclosures of the cover's boxes that may hold points of Σ.
+  constexpr double infinity = std::numeric_limits<double>::infinity();
+  std::array<double, 3> surface_lo{infinity, infinity, infinity}, surface_hi{-infinity, -infinity, -infinity};
+  auto holds_surface = [&](const Interval* x) {
+    for (int k = 0; k < 3; ++k) {
+      surface_lo[k] = std::min(surface_lo[k], x[k].inf());
+      surface_hi[k] = std::max(surface_hi[k], x[k].sup());
+    }
+  };
   const bool with_hessians = E.has_hessians();
   // A box with whether it is known to lie inside P (then so do its halves: classify() is not
   // asked again), and the half-spaces not yet known to contain it (classify()'s mask).  A
@@ -394,10 +403,12 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
         continue;
       }
       slope = std::min(slope, box_bound);
+      holds_surface(x);
       continue;
     }
     if (box.refining) {
       slope = std::min(slope, box.parent_slope);  // covered by its parent's decision
+      holds_surface(x);
       continue;
     }
     // (iv) A zero of the functional on Σ proved inside P refutes the certificate.
@@ -423,6 +434,8 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
   }
   result.proved = true;
   result.slope = refinement.target > 0 ? slope : 0;
+  result.surface_lo = surface_lo;
+  result.surface_hi = surface_hi;
   return result;
 }
 

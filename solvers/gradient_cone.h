@@ -100,6 +100,11 @@ struct GradientConeResult {
   //! When proved and a slope was asked for (SlopeRefinement::target > 0): the slope ρ of the file
   //! comment, |⟨∇E, w⟩| ≥ ρ |∇E| on Σ ∩ P (+∞ when Σ ∩ P is proved empty); 0 otherwise.
   double slope = 0;
+  //! When proved: a box [surface_lo, surface_hi] in world coordinates that holds Σ ∩ P, the
+  //! bounding box of the world enclosures of the boxes of the final cover that (i) and (ii) did
+  //! not drop (every point of Σ ∩ P lies in one: the proof above).  Empty (surface_lo[k] >
+  //! surface_hi[k] for every k) when there is none, i.e. Σ ∩ P = ∅ is proved.
+  std::array<double, 3> surface_lo{}, surface_hi{};
 };
 
 //! The slope, if asked for (target > 0), and extra subdivision to raise it: a box that (iii)

@@ -168,6 +168,32 @@ BOOST_AUTO_TEST_CASE(a_shrunk_facet_keeps_a_proved_section_certificate) {
   for (const auto& e : change.destroyed_edges) BOOST_TEST(!f.restricted.has_facet(e));
 }
 
+// A facet across Σ follows from a certified cell whose box around Σ ∩ V_p its plane misses.  On
+// the flat ellipsoid x² + y² + 100 z² = 1 (two sheets 0.2 apart), p and q are the poles and six
+// samples surround each.  The facet of pq lies in the plane z = 0, between the sheets, while
+// Σ ∩ V_p is a small cap at z ≈ 0.1; q − p is along n_p, so no slope could certify it.
+BOOST_AUTO_TEST_CASE(a_facet_off_the_cells_surface_box_follows_from_the_cell) {
+  std::vector<Vec3> points{{0, 0, 0.1}, {0, 0, -0.1}};
+  const double radius = 0.2, height = 0.1 * std::sqrt(1 - radius * radius);
+  for (int k = 0; k < 6; ++k) {
+    const double phi = k * M_PI / 3;
+    points.push_back({radius * std::cos(phi), radius * std::sin(phi), height});
+    points.push_back({radius * std::cos(phi + 0.5), radius * std::sin(phi + 0.5), -height});
+  }
+  CheckFixture f("x^2+y^2+100*z^2-1", 1.5, points);
+  const EdgeKey pq = make_edge_key(0, 1);
+  const auto around_p = f.del.neighbours(0);
+  BOOST_TEST_REQUIRE(std::count(around_p.begin(), around_p.end(), 1) == 1);
+  BOOST_TEST_REQUIRE(f.restricted.cell_certified(0));
+  const auto attempts = [&] { return f.oracle.statistics_json()["cone_certificates"]["attempts"].get<std::size_t>(); };
+  const std::size_t attempts_before = attempts(), by_cell_before = f.restricted.facets_certified_by_cell(),
+                    built_before = f.restricted.facets_built();
+  BOOST_TEST(f.restricted.facet_section_certified(pq));
+  BOOST_TEST(attempts() == attempts_before);  // no cover of the facet
+  BOOST_TEST(f.restricted.facets_certified_by_cell() == by_cell_before + 1);
+  BOOST_TEST(f.restricted.facets_built() == built_before);  // nor its geometry
+}
+
 BOOST_AUTO_TEST_CASE(seeded_uniform_is_deterministic_and_in_range) {
   BOOST_TEST(seeded_uniform(3, 1, 2, 3) == seeded_uniform(3, 1, 2, 3));
   BOOST_TEST(seeded_uniform(3, 1, 2, 3) != seeded_uniform(4, 1, 2, 3));

@@ -58,6 +58,28 @@ BOOST_AUTO_TEST_CASE(a_domain_missing_the_surface_is_proved_for_any_direction) {
   BOOST_TEST(r.proved);
 }
 
+BOOST_AUTO_TEST_CASE(the_surface_box_holds_the_section_and_is_empty_off_the_surface) {
+  // The cap Σ ∩ {z ≥ 0.5} = {x² + y² ≤ 0.75, z = √(1 − x² − y²)}: its box is [−√0.75, √0.75]² ×
+  // [0.5, 1], which the proof's box must hold, inside the domain's box.
+  const auto E = unit_sphere();
+  const auto r = prove_gradient_cone(E, AffineChart::identity(), cube(-1.5, 1.5, -1.5, 1.5, 0.5, 1.5), {0, 0, 1}, 2000);
+  BOOST_REQUIRE(r.proved);
+  const double rim = std::sqrt(0.75);
+  for (int i = 0; i <= 64; ++i)
+    for (int j = 0; j <= 64; ++j) {
+      const double x = -rim + 2 * rim * i / 64, y = -rim + 2 * rim * j / 64;
+      if (x * x + y * y > 0.75) continue;
+      const double p[3] = {x, y, std::sqrt(1 - x * x - y * y)};
+      for (int k = 0; k < 3; ++k) BOOST_TEST((r.surface_lo[k] <= p[k] && p[k] <= r.surface_hi[k]));
+    }
+  BOOST_TEST(r.surface_lo[2] >= 0.5);
+  BOOST_TEST(r.surface_hi[2] <= 1.5);
+  // A proof that Σ misses the domain leaves the box empty.
+  const auto inside = prove_gradient_cone(E, AffineChart::identity(), cube(-0.3, 0.3, -0.3, 0.3, -0.3, 0.3), {1, 0, 0}, 50);
+  BOOST_REQUIRE(inside.proved);
+  for (int k = 0; k < 3; ++k) BOOST_TEST(inside.surface_lo[k] > inside.surface_hi[k]);
+}
+
 BOOST_AUTO_TEST_CASE(planar_chart_section_of_a_facet) {
   // The plane z = 0.2 in the frame (e_x, e_y): Σ ∩ Π is the circle of radius √0.96, whose tangent
   // t = ∇E × e_z is orthogonal to ∇E's in-plane part.  With w = e_x the functional is 2x: zero on

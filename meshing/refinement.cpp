@@ -287,11 +287,13 @@ void Refinement::remove(VertexId p) {
   const auto star = del_.incident_triangles(p);
   const auto edges = del_.incident_edges(p);
   const std::vector<VertexId> around = del_.neighbours(p);
+  // The cells around p grow into V_p only: their kept proofs are completed there (invalidate()).
+  const VoronoiCell cell = voronoi_cell(del_, p, oracle_.clip_box());
   del_.remove(p);
   ++seeds_deleted_;
   restricted_.forget(star, edges);
   restricted_.forget_cell(p);
-  restricted_.invalidate(around);
+  restricted_.invalidate(around, cell.valid ? &cell.domain : nullptr);
   queue_everything_within(around);
 }
 

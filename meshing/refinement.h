@@ -61,7 +61,9 @@
 //! facet certificate), and only a clean result is kept (an undecided region is a candidate
 //! witness, not a clean result; a face that gave a witness is queued again).  A deletion (seed deletion,
 //! Lemma 5.4) grows faces, so after deleting p every face dual to a simplex within N(p) is
-//! checked again; so is everything when the change is not local (dimension < 3).
+//! checked again (a kept Silhouette proof of a cell V_q, q ∈ N(p), is completed on V_q ∩ old V_p
+//! only: V_q grew into the old V_p and nowhere else; RestrictedDelaunay::invalidate()); so is
+//! everything when the change is not local (dimension < 3).
 //! RecheckPolicy::changed_faces re-queues the shrunk faces too, for the new_faces and
 //! restricted_star rows (for testing the lemma).
 //!

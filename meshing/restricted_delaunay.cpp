@@ -397,7 +397,11 @@ bool RestrictedDelaunay::certify_cell(VertexId p, const std::vector<VertexId>& f
   using State = CellCertificate::State;
   if (static_cast<std::size_t>(p) >= cells_.size()) cells_.resize(static_cast<std::size_t>(p) + 1);
   CellCertificate& c = cells_[p];
-  if (c.state == State::proved) return true;
+  if (covers_cell(c)) return true;
+  if (c.state == State::proved) {
+    const VoronoiCell cell = build_cell();
+    if (cell.valid && complete_grown_cell(p, c, cell)) return true;
+  }
   if (failure_kept(c)) return false;
   c = CellCertificate{};
   const Vec3 n = oracle_.normal(del_.point(p));
@@ -436,6 +440,63 @@ bool RestrictedDelaunay::certify_cell(VertexId p, const std::vector<VertexId>& f
   c.vertices = del_.size();
   c.silhouette_point = answer.vanishing_point;
   return false;
+}
+
+namespace {
+
+//! The domain a ∩ b (same dimension): the boxes met, the half-spaces of both.
+Domain intersection(const Domain& a, const Domain& b) {
+  Domain d = a;
+  for (std::size_t j = 0; j < d.dimension(); ++j) {
+    d.box.bounds[j][0] = std::max(a.box.bounds[j][0], b.box.bounds[j][0]);
+    d.box.bounds[j][1] = std::min(a.box.bounds[j][1], b.box.bounds[j][1]);
+  }
+  d.half_spaces.insert(d.half_spaces.end(), b.half_spaces.begin(), b.half_spaces.end());
+  return d;
+}
+
+}  // namespace
+
+bool RestrictedDelaunay::complete_grown_cell(VertexId p, CellCertificate& c, const VoronoiCell& cell) {
+  const Vec3 n = oracle_.normal(del_.point(p));
+  if (!(norm(n) > 0)) return false;
+  double slope = c.slope;
+  std::optional<std::array<Vec3, 2>> surface_box = c.surface_box;
+  for (const Domain& grown : c.grown) {
+    const Domain part = intersection(cell.domain, grown);
+    bool empty = false;
+    for (const auto& side : part.box.bounds) empty = empty || !(side[0] < side[1]);
+    if (empty) continue;  // V_p did not grow into this part (up to a flat side: no interior)
+    SurfaceOracle::ConeAnswer answer;
+    if (c.slope > 0) {
+      answer = oracle_.gradient_cone_slope(AffineChart::identity(), part, n, c.slope);
+      if (!(answer.slope > 0)) return false;
+      slope = std::min(slope, answer.slope);
+    } else {
+      answer = oracle_.prove_gradient_cone(AffineChart::identity(), part, n);
+      if (!answer.proved) {
+        // A failure on a part of V_p is one on V_p, kept as certify_cell() keeps its own: the
+        // point that refuted it, if any, is a point of J_{n_p} in V_p.
+        c = CellCertificate{};
+        c.state = CellCertificate::State::failed;
+        c.vertices = del_.size();
+        c.silhouette_point = answer.vanishing_point;
+        return false;
+      }
+    }
+    if (surface_box && answer.surface_box) {
+      for (int k = 0; k < 3; ++k) {
+        (*surface_box)[0][k] = std::min((*surface_box)[0][k], (*answer.surface_box)[0][k]);
+        (*surface_box)[1][k] = std::max((*surface_box)[1][k], (*answer.surface_box)[1][k]);
+      }
+    } else {
+      surface_box.reset();
+    }
+  }
+  c.slope = slope;
+  c.surface_box = surface_box;
+  c.grown.clear();
+  return true;
 }
 
 std::optional<Vec3> RestrictedDelaunay::cell_silhouette_point(VertexId p) const {
@@ -484,7 +545,7 @@ RestrictedDelaunay::SectionProof RestrictedDelaunay::certify_by_cell(const EdgeK
   for (VertexId v : e) {
     if (static_cast<std::size_t>(v) >= cells_.size()) continue;
     const CellCertificate& c = cells_[v];
-    if (c.state != CellCertificate::State::proved) continue;
+    if (!covers_cell(c)) continue;
     if (plane_within_slope(c.w, p, q, c.slope) || (c.surface_box && plane_misses_box(p, q, *c.surface_box)))
       return SectionProof::by_cell;
   }
@@ -641,10 +702,15 @@ VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::a
   return finish();
 }
 
-void RestrictedDelaunay::invalidate(const std::vector<VertexId>& vertices) {
+void RestrictedDelaunay::invalidate(const std::vector<VertexId>& vertices, const Domain* grown_into) {
   auto in = [&](VertexId v) { return std::binary_search(vertices.begin(), vertices.end(), v); };
   for (VertexId v : vertices) {
-    forget_cell(v);
+    const bool proved = static_cast<std::size_t>(v) < cells_.size() &&
+                        cells_[v].state == CellCertificate::State::proved;
+    if (grown_into && proved)
+      cells_[v].grown.push_back(*grown_into);
+    else
+      forget_cell(v);
     if (!del_.contains(v)) continue;
     for (const auto& t : del_.incident_triangles(v))
       if (t[0] == v && in(t[1]) && in(t[2])) erase_record(t);

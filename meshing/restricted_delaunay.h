@@ -243,8 +243,17 @@ class RestrictedDelaunay {
   VoronoiFacet rotated_facet(const EdgeKey& e, int attempt) const;
 
   //! Forgets the cached record of every current Delaunay triangle and edge all of whose vertices
-  //! are in `vertices` (sorted ascending), and the cell certificates of those vertices.
-  void invalidate(const std::vector<VertexId>& vertices);
+  //! are in `vertices` (sorted ascending), and the cell certificates of those vertices, except
+  //! that, given `grown_into` (a domain that holds every part of Vor S the cells of `vertices`
+  //! may have grown into: the cell of a removed vertex, taken before its removal), a proved cell
+  //! certificate is kept with that domain added to its grown parts: cell_certified() then has
+  //! only to prove the cone on the cell's part inside each grown part.  Why that suffices: when a
+  //! site s is removed, a point y of the new V_p outside the old V_s is closer to some remaining
+  //! site than to s, and closest to p among the sites other than s, hence closest to p among all
+  //! of them: y is in the old V_p.  So V_p ⊆ (old V_p) ∪ (V_p ∩ old V_s), and, by induction over
+  //! removals and the insertions between them (which only shrink V_p), V_p lies in the cell of
+  //! the proof together with its grown parts.
+  void invalidate(const std::vector<VertexId>& vertices, const Domain* grown_into = nullptr);
   //! Forgets the records of these simplices (e.g. the star of a vertex about to be removed).
   void forget(const std::vector<TriangleKey>& triangles, const std::vector<EdgeKey>& edges);
   //! Applies an insertion's change: destroyed simplices are forgotten, shrunk facets keep only a
@@ -347,10 +356,23 @@ class RestrictedDelaunay {
     //! A box that holds Σ ∩ V_p, from the proof, if the oracle gives one
     //! (SurfaceOracle::ConeAnswer::surface_box).
     std::optional<std::array<Vec3, 2>> surface_box;
+    //! Domains V_p may have grown into since its proof (invalidate()): while there are any, the
+    //! proof covers only the rest of V_p, and nothing follows from it until they are proved.
+    std::vector<Domain> grown;
     std::size_t vertices = 0;   //!< |S| when a failure was found
     std::optional<Vec3> silhouette_point;  //!< the point of J_{n_p} ∩ V_p that refuted it, if any
   };
   std::vector<CellCertificate> cells_;
+  //! Completes the kept proof c of V_p (`cell`) on V_p's parts in c.grown, with the same cone
+  //! direction n_p, towards the same slope when it has one (the least slope of the parts is the
+  //! slope of the whole; the union of their boxes around Σ its box); true if every part is
+  //! proved, and then c covers all of V_p.  A failure without a slope is kept as a failure on V_p
+  //! (with the refuting point, if any); with a slope c is left as it was, for a proof anew.
+  bool complete_grown_cell(VertexId p, CellCertificate& c, const VoronoiCell& cell);
+  //! A certificate that covers all of the current V_p.
+  static bool covers_cell(const CellCertificate& c) {
+    return c.state == CellCertificate::State::proved && c.grown.empty();
+  }
   //! Whether c is a failure found on the current Del S (so it still stands).
   bool failure_kept(const CellCertificate& c) const {
     return c.state == CellCertificate::State::failed && c.vertices == del_.size();

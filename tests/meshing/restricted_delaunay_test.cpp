@@ -194,6 +194,35 @@ BOOST_AUTO_TEST_CASE(a_facet_off_the_cells_surface_box_follows_from_the_cell) {
   BOOST_TEST(f.restricted.facets_built() == built_before);  // nor its geometry
 }
 
+// A kept cell proof whose cell may have grown (a neighbour removed) is completed on the grown
+// part only: on the octahedron, V_p of the north pole is proved, then said to have grown into a
+// box about the centre, which Σ misses: the proof stands after fewer boxes than the whole cell
+// took.
+BOOST_AUTO_TEST_CASE(a_grown_cell_proof_is_completed_on_the_grown_part) {
+  CheckFixture f(test::unit_sphere, 1.5, {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
+  const VertexId pole = 4;
+  const auto boxes = [&] { return f.oracle.statistics_json()["cone_certificates"]["boxes"].get<std::size_t>(); };
+  std::size_t before = boxes();
+  BOOST_TEST_REQUIRE(f.restricted.cell_certified(pole));
+  const std::size_t whole = boxes() - before;
+  auto around = f.del.neighbours(pole);
+  std::sort(around.begin(), around.end());
+  around.push_back(pole);
+  std::sort(around.begin(), around.end());
+  const Domain centre = Domain::from_box({{-0.2, 0.2}, {-0.2, 0.2}, {-0.2, 0.2}});
+  f.restricted.invalidate(around, &centre);
+  BOOST_TEST(!f.restricted.cell_silhouette_point(pole).has_value());
+  before = boxes();
+  BOOST_TEST(f.restricted.cell_certified(pole));
+  const std::size_t part = boxes() - before;
+  BOOST_TEST(part >= 1u);
+  BOOST_TEST(part < whole);
+  // Proved again on all of V_p: nothing more to do.
+  before = boxes();
+  BOOST_TEST(f.restricted.cell_certified(pole));
+  BOOST_TEST(boxes() == before);
+}
+
 BOOST_AUTO_TEST_CASE(seeded_uniform_is_deterministic_and_in_range) {
   BOOST_TEST(seeded_uniform(3, 1, 2, 3) == seeded_uniform(3, 1, 2, 3));
   BOOST_TEST(seeded_uniform(3, 1, 2, 3) != seeded_uniform(4, 1, 2, 3));

@@ -466,7 +466,10 @@ bool RestrictedDelaunay::complete_grown_cell(VertexId p, CellCertificate& c, con
     const Domain part = intersection(cell.domain, grown);
     bool empty = false;
     for (const auto& side : part.box.bounds) empty = empty || !(side[0] < side[1]);
-    if (empty) continue;  // V_p did not grow into this part (up to a flat side: no interior)
+    // No interior: then V_p gained nothing here.  A point y of V_p outside the old V_p is
+    // strictly closer to the removed site s than to p, and so are the points of V_p near y,
+    // which include interior points of the convex V_p: what V_p gained has interior.
+    if (empty) continue;
     SurfaceOracle::ConeAnswer answer;
     if (c.slope > 0) {
       answer = oracle_.gradient_cone_slope(AffineChart::identity(), part, n, c.slope);

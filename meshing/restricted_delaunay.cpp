@@ -398,10 +398,13 @@ bool RestrictedDelaunay::certify_cell(VertexId p, const std::vector<VertexId>& f
   if (static_cast<std::size_t>(p) >= cells_.size()) cells_.resize(static_cast<std::size_t>(p) + 1);
   CellCertificate& c = cells_[p];
   if (covers_cell(c)) return true;
-  if (c.state == State::proved) {
-    const VoronoiCell cell = build_cell();
-    if (cell.valid && complete_grown_cell(p, c, cell)) return true;
-  }
+  // V_p, built once whichever attempt asks for it first.
+  std::optional<VoronoiCell> built;
+  auto cell_of_p = [&]() -> const VoronoiCell& {
+    if (!built) built = build_cell();
+    return *built;
+  };
+  if (c.state == State::proved && cell_of_p().valid && complete_grown_cell(c, cell_of_p())) return true;
   if (failure_kept(c)) return false;
   c = CellCertificate{};
   const Vec3 n = oracle_.normal(del_.point(p));
@@ -418,14 +421,14 @@ bool RestrictedDelaunay::certify_cell(VertexId p, const std::vector<VertexId>& f
   target *= tolerances::cell_slope_margin;
   // No facet would follow (or the oracle bounds no slopes): Silhouette's turn.
   if (!facet_sites.empty() && (!(target > 0) || !oracle_.bounds_cone_slopes())) return false;
-  const VoronoiCell cell = build_cell();
+  const VoronoiCell& cell = cell_of_p();
   if (!cell.valid) return false;
+  c.w = n;
   if (target > 0) {
     // For the facets, within the smaller budget; a failure is not kept.
     const SurfaceOracle::ConeAnswer answer = oracle_.gradient_cone_slope(AffineChart::identity(), cell.domain, n, target);
     if (!(answer.slope > 0)) return false;
     c.state = State::proved;
-    c.w = n;
     c.slope = answer.slope;
     c.surface_box = answer.surface_box;
     return true;
@@ -457,9 +460,8 @@ Domain intersection(const Domain& a, const Domain& b) {
 
 }  // namespace
 
-bool RestrictedDelaunay::complete_grown_cell(VertexId p, CellCertificate& c, const VoronoiCell& cell) {
-  const Vec3 n = oracle_.normal(del_.point(p));
-  if (!(norm(n) > 0)) return false;
+bool RestrictedDelaunay::complete_grown_cell(CellCertificate& c, const VoronoiCell& cell) {
+  const Vec3 n = c.w;
   double slope = c.slope;
   std::optional<std::array<Vec3, 2>> surface_box = c.surface_box;
   for (const Domain& grown : c.grown) {

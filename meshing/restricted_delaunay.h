@@ -364,11 +364,11 @@ class RestrictedDelaunay {
   };
   std::vector<CellCertificate> cells_;
   //! Completes the kept proof c of V_p (`cell`) on V_p's parts in c.grown, with the same cone
-  //! direction n_p, towards the same slope when it has one (the least slope of the parts is the
+  //! direction c.w = n_p, towards the same slope when it has one (the least slope of the parts is the
   //! slope of the whole; the union of their boxes around Σ its box); true if every part is
   //! proved, and then c covers all of V_p.  A failure without a slope is kept as a failure on V_p
   //! (with the refuting point, if any); with a slope c is left as it was, for a proof anew.
-  bool complete_grown_cell(VertexId p, CellCertificate& c, const VoronoiCell& cell);
+  bool complete_grown_cell(CellCertificate& c, const VoronoiCell& cell);
   //! A certificate that covers all of the current V_p.
   static bool covers_cell(const CellCertificate& c) {
     return c.state == CellCertificate::State::proved && c.grown.empty();

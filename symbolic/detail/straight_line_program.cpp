@@ -483,7 +483,9 @@ void StraightLineProgram::evaluate(const T* in_first, std::size_t n_first, const
     load_constants(r + n_inputs_);
     s.program = serial_;
   }
-  for (std::size_t i = 0; i < n_inputs_; ++i) Tr::assign(r[i], i < n_first ? in_first[i] : in_rest[i - n_first]);
+  const std::size_t n_in_first = std::min(n_first, n_inputs_);
+  for (std::size_t i = 0; i < n_in_first; ++i) Tr::assign(r[i], in_first[i]);
+  for (std::size_t i = n_in_first; i < n_inputs_; ++i) Tr::assign(r[i], in_rest[i - n_first]);
 
   T* const out = r + n_inputs_ + n_c;
   const Instruction* const code = code_.data();
@@ -512,10 +514,10 @@ void StraightLineProgram::evaluate(const T* in_first, std::size_t n_first, const
     }
 #undef DELMESH_SLP_RUN
   }
-  for (std::size_t j = 0; j < outputs_.size(); ++j) {
-    T& target = j < n_out_first ? out_first[j] : out_rest[j - n_out_first];
-    target = r[outputs_[j]];
-  }
+  const std::int32_t* const output = outputs_.data();
+  const std::size_t n_outputs = outputs_.size(), n_first_outputs = std::min(n_out_first, n_outputs);
+  for (std::size_t j = 0; j < n_first_outputs; ++j) out_first[j] = r[output[j]];
+  for (std::size_t j = n_first_outputs; j < n_outputs; ++j) out_rest[j - n_out_first] = r[output[j]];
 }
 
 bool StraightLineProgram::is_polynomial_program() const {

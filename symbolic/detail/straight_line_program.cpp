@@ -28,7 +28,9 @@ std::string to_text(const GiNaC::ex& e) {
 }
 
 //! True for the opcodes whose operand b is a register (for pow, b is the exponent).
-bool is_binary(OpCode op) { return op == OpCode::add || op == OpCode::sub || op == OpCode::mul || op == OpCode::div; }
+bool is_binary(OpCode op) {
+  return op == OpCode::add || op == OpCode::sub || op == OpCode::mul || op == OpCode::div || op == OpCode::scale;
+}
 
 std::atomic<std::uint64_t> next_serial{1};
 
@@ -355,8 +357,6 @@ StraightLineProgram::StraightLineProgram(const std::vector<GiNaC::ex>& outputs,
   output_refs.reserve(outputs.size());
   for (const GiNaC::ex& e : outputs) output_refs.push_back(compiler.compile(e));
   compiler.finish(output_refs);
-  schedule();
-
   for (const Constant& c : constants_) {
     double d;
     Interval i;
@@ -374,6 +374,23 @@ StraightLineProgram::StraightLineProgram(const std::vector<GiNaC::ex>& outputs,
     constants_interval_.push_back(i);
     constants_complex_.push_back(z);
   }
+  mark_scalings();
+  schedule();
+}
+
+void StraightLineProgram::mark_scalings() {
+  const std::int32_t first = static_cast<std::int32_t>(n_inputs_);
+  const std::int32_t end = first + static_cast<std::int32_t>(constants_.size());
+  auto exact_constant = [&](std::int32_t reg) {
+    if (reg < first || reg >= end) return false;
+    const Interval& c = constants_interval_[reg - first];
+    return c.inf() == c.sup() && c.inf() != 0;
+  };
+  for (Instruction& ins : code_) {
+    if (ins.op != OpCode::mul) continue;
+    if (exact_constant(ins.a)) std::swap(ins.a, ins.b);
+    if (exact_constant(ins.b)) ins.op = OpCode::scale;
+  }
 }
 
 void StraightLineProgram::schedule() {
@@ -381,7 +398,7 @@ void StraightLineProgram::schedule() {
   // opcode with the most ready instructions (ties: the smaller opcode).  Deterministic.
   const std::size_t n = code_.size();
   const std::int32_t base = static_cast<std::int32_t>(n_inputs_ + constants_.size());
-  constexpr int n_ops = static_cast<int>(OpCode::cos) + 1;
+  constexpr int n_ops = static_cast<int>(OpCode::scale) + 1;
   std::vector<int> pending(n, 0);
   std::vector<std::vector<std::int32_t>> users(n);
   std::vector<std::deque<std::int32_t>> ready(n_ops);
@@ -511,6 +528,14 @@ void StraightLineProgram::evaluate(const T* in_first, std::size_t n_first, const
       case OpCode::sqrt: DELMESH_SLP_RUN(Tr::sqrt(out[k], r[ins.a]))
       case OpCode::sin: DELMESH_SLP_RUN(Tr::sin(out[k], r[ins.a]))
       case OpCode::cos: DELMESH_SLP_RUN(Tr::cos(out[k], r[ins.a]))
+      case OpCode::scale:
+        // By the double itself for Interval: the same correctly rounded end products as the
+        // product with the point interval, without the other two pairs.
+        if constexpr (std::is_same_v<T, Interval>) {
+          DELMESH_SLP_RUN(out[k] = r[ins.b].inf() * r[ins.a])
+        } else {
+          DELMESH_SLP_RUN(Tr::mul(out[k], r[ins.a], r[ins.b]))
+        }
     }
 #undef DELMESH_SLP_RUN
   }
@@ -526,6 +551,7 @@ bool StraightLineProgram::is_polynomial_program() const {
       case OpCode::add:
       case OpCode::sub:
       case OpCode::mul:
+      case OpCode::scale:
       case OpCode::neg:
       case OpCode::square: break;
       case OpCode::pow:
@@ -607,7 +633,8 @@ bool StraightLineProgram::evaluate_along_line(const T* point, const T* direction
         d = da;
         for (std::size_t i = 0; i <= d; ++i) out[i] = -a[i];
         break;
-      case OpCode::mul: d = multiply_truncated(a, da, reg(ins.b), degree[ins.b], n, out); break;
+      case OpCode::mul:
+      case OpCode::scale: d = multiply_truncated(a, da, reg(ins.b), degree[ins.b], n, out); break;
       case OpCode::square: d = multiply_truncated(a, da, a, da, n, out); break;
       case OpCode::pow: {
         // Square-and-multiply on truncated series: out = a^e (out starts as the series 1).

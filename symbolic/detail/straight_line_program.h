@@ -10,7 +10,9 @@
 //! products (with negative powers collected into one division), integer powers (x² as square),
 //! half-integer powers (via sqrt), exp, log, sin, cos.  Anything else — a symbol that is not an
 //! input, a floating-point or complex number, another constant or function, another exponent —
-//! throws PreconditionViolation.
+//! throws PreconditionViolation.  A product by a constant that is exactly a non-zero double is
+//! emitted as `scale`, which Interval evaluates as the product by that double (the same enclosure
+//! as the product with the point interval, at half the multiplications).
 //!
 //! Register layout of an evaluation: [inputs | constants | one register per instruction].
 
@@ -27,13 +29,15 @@
 
 namespace delmesh::detail {
 
-enum class OpCode : std::uint8_t { add, sub, mul, div, neg, inv, square, pow, exp, log, sqrt, sin, cos };
+//! scale is a mul whose b is a constant register holding a non-zero rational that is exactly a
+//! double (so that Interval may multiply by the double itself, which gives the same enclosure).
+enum class OpCode : std::uint8_t { add, sub, mul, div, neg, inv, square, pow, exp, log, sqrt, sin, cos, scale };
 constexpr auto enum_names(OpCode) {
   return name_table<OpCode>("OpCode", {{OpCode::add, "add"}, {OpCode::sub, "sub"}, {OpCode::mul, "mul"},
                                        {OpCode::div, "div"}, {OpCode::neg, "neg"}, {OpCode::inv, "inv"},
                                        {OpCode::square, "square"}, {OpCode::pow, "pow"}, {OpCode::exp, "exp"},
                                        {OpCode::log, "log"}, {OpCode::sqrt, "sqrt"}, {OpCode::sin, "sin"},
-                                       {OpCode::cos, "cos"}});
+                                       {OpCode::cos, "cos"}, {OpCode::scale, "scale"}});
 }
 inline std::ostream& operator<<(std::ostream& out, OpCode op) { return write_enum(out, op); }
 
@@ -117,6 +121,9 @@ class StraightLineProgram {
 
   template <class T>
   void load_constants(T* registers) const;
+  //! Turns each mul by a constant that is exactly a non-zero double into a scale (its operand
+  //! first, the constant second).  Needs constants_interval_.
+  void mark_scalings();
   //! Reorders code_ (a topological order that groups equal opcodes) and fills blocks_.
   void schedule();
 };

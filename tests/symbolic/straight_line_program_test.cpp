@@ -70,6 +70,30 @@ BOOST_AUTO_TEST_CASE(squares_are_tight_over_intervals) {
   BOOST_CHECK_EQUAL(out[2].sup(), 9.0);
 }
 
+// A product by a constant that is exactly a double is a scale, evaluated over intervals by the
+// double: the enclosure is bit for bit the product with the point interval.  A constant that is
+// not a double (1/3) keeps the product of intervals.
+BOOST_AUTO_TEST_CASE(products_by_exact_constants_scale_with_the_same_enclosure) {
+  GiNaC::symbol x("x"), y("y");
+  const StraightLineProgram p({3 * x, GiNaC::numeric(-5, 4) * x * y, x / 3}, {x, y});
+  BOOST_CHECK_EQUAL(count_op(p, OpCode::scale), 2u);
+  BOOST_CHECK_EQUAL(count_op(p, OpCode::mul), 2u);  // x·y and x·(1/3)
+  RoundingGuard guard;
+  const Interval in[2] = {Interval(-1.1, 0.7), Interval(0.3, 2.9)};
+  Interval out[3];
+  p.evaluate(in, out);
+  const Interval expected[2] = {Interval(3) * in[0], -(Interval(1.25) * (in[0] * in[1]))};
+  for (int i = 0; i < 2; ++i) {
+    BOOST_CHECK_EQUAL(out[i].inf(), expected[i].inf());
+    BOOST_CHECK_EQUAL(out[i].sup(), expected[i].sup());
+  }
+  BOOST_TEST((out[2].inf() <= -1.1 / 3 && 0.7 / 3 <= out[2].sup()));
+  const double point[2] = {-1.1, 0.3};
+  double value[3];
+  p.evaluate(point, value);
+  BOOST_CHECK_EQUAL(value[0], 3 * -1.1);
+}
+
 BOOST_AUTO_TEST_CASE(every_operation_agrees_with_evalf) {
   GiNaC::symbol x("x"), y("y"), z("z");
   const std::vector<GiNaC::ex> outputs = {

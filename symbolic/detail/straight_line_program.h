@@ -12,7 +12,7 @@
 //! input, a floating-point or complex number, another constant or function, another exponent —
 //! throws PreconditionViolation.  A product by a constant that is exactly a non-zero double is
 //! emitted as `scale`, which Interval evaluates as the product by that double (the same enclosure
-//! as the product with the point interval, at half the multiplications).
+//! as the product with the point interval, with one vector multiplication instead of four).
 //!
 //! Register layout of an evaluation: [inputs | constants | one register per instruction].
 

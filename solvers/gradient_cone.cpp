@@ -148,21 +148,29 @@ class SliceKrawczyk {
   }
 
   //! K on the unknowns `pair`, the centre's value on the other coordinate; nothing if mid J is
-  //! singular (or not finite).
+  //! singular (or not finite), or, with `only_inside`, when K is not inside the interior of U:
+  //! K = N + (I − C J)(Y − y) with N = y − C f(y) and 0 ∈ Y − y, so K ⊇ N, and K ⊄ int Y as soon
+  //! as N ⊄ int Y, which is tested first.
   std::optional<std::array<Interval, 3>> image(const std::array<std::size_t, 2>& pair, const std::array<Interval, 3>& u,
                                                const Interval* centre, const Interval& centre_value,
-                                               const Interval* centre_gradient) const {
+                                               const Interval* centre_gradient, bool only_inside = false) const {
     const std::size_t a = pair[0], b = pair[1];
     const double det = minor(a, b);
     if (!(std::abs(det) > 0) || !std::isfinite(det)) return std::nullopt;
     // C = (mid J)⁻¹ (any matrix serves; only its quality matters).
     const double C[2][2] = {{mid(J_[1][b]) / det, -mid(J_[0][b]) / det}, {-mid(J_[1][a]) / det, mid(J_[0][a]) / det}};
     const Interval f[2] = {centre_value, inner(centre_gradient, w_)};
+    Interval newton[2];
+    for (int r = 0; r < 2; ++r) {
+      newton[r] = centre[pair[r]] - (C[r][0] * f[0] + C[r][1] * f[1]);
+      if (only_inside && !(u[pair[r]].inf() < newton[r].inf() && newton[r].sup() < u[pair[r]].sup()))
+        return std::nullopt;
+    }
     const Interval offset[2] = {u[a] - centre[a], u[b] - centre[b]};
     std::array<Interval, 3> k;
     for (std::size_t j = 0; j < n_; ++j) k[j] = centre[j];
     for (int r = 0; r < 2; ++r) {
-      Interval kr = centre[pair[r]] - (C[r][0] * f[0] + C[r][1] * f[1]);
+      Interval kr = newton[r];
       for (int c = 0; c < 2; ++c) {
         const Interval identity(r == c ? 1.0 : 0.0);
         kr += (identity - (C[r][0] * J_[0][pair[c]] + C[r][1] * J_[1][pair[c]])) * offset[c];
@@ -417,7 +425,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
       towards = predicted_zero(map, n, w, centre, centre_value, centre_gradient, hessian);
       const SliceKrawczyk krawczyk(map, n, w, gradient, hessian);
       const auto pair = krawczyk.unknowns();
-      const auto zero = krawczyk.image(pair, u, centre, centre_value, centre_gradient);
+      const auto zero = krawczyk.image(pair, u, centre, centre_value, centre_gradient, true);
       bool inside_box = zero.has_value();
       for (std::size_t j : pair)
         inside_box = inside_box && u[j].inf() < (*zero)[j].inf() && (*zero)[j].sup() < u[j].sup();

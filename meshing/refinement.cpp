@@ -24,9 +24,11 @@ std::vector<Refinement::Step> Refinement::make_table() {
   return table;
 }
 
-bool Refinement::current(const TriangleKey& t) const {
-  return restricted_.cached_record(t) != nullptr || del_.is_triangle(t);
-}
+// Every current triangle has a record whenever the loop asks (the constructor's promise to
+// RestrictedDelaunay: insert() and remove() record each new or changed triangle before they
+// return), and only current triangles have one (cached_record()'s invariant), so the record
+// decides without looking for the triangle in Del S.
+bool Refinement::current(const TriangleKey& t) const { return restricted_.cached_record(t) != nullptr; }
 
 bool Refinement::current(const EdgeKey& e) const { return restricted_.has_facet(e) || del_.is_edge(e); }
 

@@ -297,7 +297,9 @@ class Refinement {
   //! (`records`, prepare_star()'s answer for `star`); returns the neighbours q, ascending.
   std::vector<VertexId> prepare_new_edges(VertexId x, const std::vector<Delaunay::StarTriangle>& star,
                                           const std::vector<RestrictedDelaunay::StarRecord>& records);
-  //! Whether t / e is in Del S now (a cached record or facet proves it: see restricted_delaunay.h).
+  //! Whether t / e is in Del S now: t exactly when it has a record (every current triangle has
+  //! one here, and only those); e when it has a cached facet (see restricted_delaunay.h), else
+  //! Del S is asked.
   bool current(const TriangleKey& t) const;
   bool current(const EdgeKey& e) const;
   //! Whether a queued vertex, edge or triangle is in Del S now.

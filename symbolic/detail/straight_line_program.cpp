@@ -529,8 +529,7 @@ void StraightLineProgram::evaluate(const T* in_first, std::size_t n_first, const
       case OpCode::sin: DELMESH_SLP_RUN(Tr::sin(out[k], r[ins.a]))
       case OpCode::cos: DELMESH_SLP_RUN(Tr::cos(out[k], r[ins.a]))
       case OpCode::scale:
-        // By the double itself for Interval: the same correctly rounded end products as the
-        // product with the point interval, without the other two pairs.
+        // Interval multiplies by the double itself (see the header).
         if constexpr (std::is_same_v<T, Interval>) {
           DELMESH_SLP_RUN(out[k] = r[ins.b].inf() * r[ins.a])
         } else {

@@ -1,10 +1,14 @@
 #include "symbolic/compiled_system.h"
 
+#include <algorithm>
+#include <optional>
 #include <string>
 
 #include "common/errors.h"
 #include "symbolic/detail/straight_line_program.h"
+#include "symbolic/monomial_basis.h"
 #include "symbolic/polynomial_form.h"
+#include "symbolic/scalar_traits.h"
 #include "common/tolerances.h"
 
 namespace delmesh {
@@ -15,6 +19,60 @@ std::vector<GiNaC::symbol> concatenate(const std::vector<GiNaC::symbol>& a, cons
   std::vector<GiNaC::symbol> all(a);
   all.insert(all.end(), b.begin(), b.end());
   return all;
+}
+
+// CompiledSystem::coefficient_lower_bound_on_a_line() for the program of the equations.
+std::optional<std::size_t> lower_bound_on_a_line(const detail::StraightLineProgram& program, std::size_t n_unknowns,
+                                                 std::size_t n_parameters) {
+  using detail::OpCode;
+  if (n_unknowns < 1 || n_unknowns > MonomialBasis::max_unknowns || !program.is_polynomial_program())
+    return std::nullopt;
+  // Degrees in the unknowns the registers can reach: [inputs | constants | instructions].
+  const std::size_t n_inputs = n_unknowns + n_parameters, base = n_inputs + program.n_constants();
+  std::vector<long> degree(base + program.instruction_count(), 0);
+  for (std::size_t j = 0; j < n_unknowns; ++j) degree[j] = 1;
+  constexpr long cap = 64;  // MonomialBasis's largest degree
+  for (std::size_t k = 0; k < program.instruction_count(); ++k) {
+    const detail::Instruction& ins = program.code()[k];
+    const long a = degree[ins.a];
+    long d = a;
+    switch (ins.op) {
+      case OpCode::add:
+      case OpCode::sub: d = std::max(a, degree[ins.b]); break;
+      case OpCode::mul:
+      case OpCode::scale: d = a + degree[ins.b]; break;
+      case OpCode::square: d = 2 * a; break;
+      case OpCode::pow: d = a * ins.b; break;
+      default: break;  // neg
+    }
+    degree[base + k] = std::min(d, cap + 1);
+  }
+  // The truncation order: the largest degree of any register, so of every output.
+  const long order = *std::max_element(degree.begin(), degree.end());
+  if (order > cap) return std::nullopt;
+  // A line in general position (arbitrary coordinates): only the bound's tightness depends on it.
+  RoundingGuard guard;
+  std::vector<Interval> point(n_inputs), direction(n_inputs, Interval(0));
+  for (std::size_t j = 0; j < n_unknowns; ++j) {
+    point[j] = Interval(0.3 + 0.1234 * static_cast<double>(j));
+    direction[j] = Interval(0.7 - 0.2718 * static_cast<double>(j));
+  }
+  for (std::size_t k = 0; k < n_parameters; ++k) point[n_unknowns + k] = Interval(static_cast<double>(k + 2));
+  const std::size_t width = static_cast<std::size_t>(order) + 1;
+  std::vector<Interval> coefficients(program.n_outputs() * width);
+  if (!program.evaluate_along_line(point.data(), direction.data(), static_cast<int>(order), coefficients.data()))
+    return std::nullopt;
+  std::size_t bound = 0;
+  for (std::size_t i = 0; i < program.n_outputs(); ++i) {
+    int top = 0;
+    for (std::size_t k = width; k-- > 1;)
+      if (certainly_nonzero(coefficients[i * width + k])) {
+        top = static_cast<int>(k);
+        break;
+      }
+    bound += MonomialBasis(n_unknowns, top).size();
+  }
+  return bound;
 }
 
 //! Equations followed by the row-major m × n Jacobian.
@@ -100,10 +158,16 @@ void CompiledSystem::build_polynomial_form(const std::vector<GiNaC::ex>& equatio
   // instructions < ratio · (a lower bound on the coefficients) ≤ ratio · n_coefficients: the rule
   // of taylor_forms_pay() fails whatever the form, so it need not be built.
   const double instructions = static_cast<double>(instruction_count());
-  if (forms == PolynomialFormBuild::if_it_pays &&
-      instructions < tolerances::taylor_form_instruction_ratio *
-                         static_cast<double>(PolynomialForm::coefficient_lower_bound(equations, unknowns, parameters)))
-    return;
+  // The bound on a line is never above the expansion's, so it is tried first: when it already
+  // decides, the expansion is not needed.
+  auto too_few_instructions = [&](std::size_t coefficients) {
+    return instructions < tolerances::taylor_form_instruction_ratio * static_cast<double>(coefficients);
+  };
+  if (forms == PolynomialFormBuild::if_it_pays) {
+    const std::optional<std::size_t> on_a_line = coefficient_lower_bound_on_a_line();
+    if (on_a_line && too_few_instructions(*on_a_line)) return;
+    if (too_few_instructions(PolynomialForm::coefficient_lower_bound(equations, unknowns, parameters))) return;
+  }
   // A coefficient program proved longer than the compiled one fails the rule's second condition.
   if (forms == PolynomialFormBuild::if_it_pays &&
       instructions < static_cast<double>(PolynomialForm::instruction_lower_bound(
@@ -120,6 +184,10 @@ void CompiledSystem::build_polynomial_form(const std::vector<GiNaC::ex>& equatio
 CompiledSystem::~CompiledSystem() = default;
 CompiledSystem::CompiledSystem(CompiledSystem&&) noexcept = default;
 CompiledSystem& CompiledSystem::operator=(CompiledSystem&&) noexcept = default;
+
+std::optional<std::size_t> CompiledSystem::coefficient_lower_bound_on_a_line() const {
+  return lower_bound_on_a_line(*values_, n_unknowns_, n_parameters_);
+}
 
 std::size_t CompiledSystem::instruction_count() const { return values_and_jacobian_->instruction_count(); }
 

@@ -23,6 +23,7 @@
 //! same CompiledSystem concurrently.
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <ginac/ginac.h>
@@ -87,6 +88,20 @@ class CompiledSystem {
   //! PolynomialForm::instruction_lower_bound() the coefficient program too long, so the answer
   //! is the same as with PolynomialFormBuild::always.
   bool taylor_forms_pay() const { return taylor_forms_pay_; }
+  //! A bound below PolynomialForm::coefficient_lower_bound(), from the compiled equations instead
+  //! of their expansion (what PolynomialFormBuild::if_it_pays tries first), or nothing when the
+  //! program is not polynomial (then the expansion decides).  With the parameters q_k replaced by
+  //! the same numbers (2, 3, 4, ...), each equation f_i is restricted to a fixed line u = a + t b
+  //! of the unknowns by the Taylor evaluation along a line, over intervals; k_i is the highest
+  //! power of t whose coefficient excludes 0, and the bound is Σ_i C(n + k_i, n).  Proof:
+  //! truncated series keep the exact coefficients up to the truncation, so that coefficient of
+  //! the restriction is non-zero; a restriction to a line has at most the total degree d′_i of
+  //! the specialised f_i, so k_i ≤ d′_i, which is at most the degree of the full expansion (as in
+  //! PolynomialForm::coefficient_lower_bound()), and C(n + d, n) grows with d.  The truncation
+  //! order is the largest degree the program's registers can reach (sums the larger, products
+  //! the sum, powers the multiple).  For a line in general position, and coefficients that the
+  //! interval evaluation separates from 0, k_i = d′_i and the bound is the expansion's.
+  std::optional<std::size_t> coefficient_lower_bound_on_a_line() const;
   //! Number of arithmetic instructions of the values+Jacobian program (a size measure for reports).
   std::size_t instruction_count() const;
 

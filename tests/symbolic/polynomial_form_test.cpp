@@ -1,5 +1,6 @@
 #include "symbolic/polynomial_form.h"
 
+#include <optional>
 #include <random>
 
 #include <boost/test/unit_test.hpp>
@@ -135,9 +136,10 @@ BOOST_AUTO_TEST_CASE(expansion_term_bound_holds_the_expanded_terms) {
 // program's on the plane primitives.  With
 // PolynomialFormBuild::if_it_pays a system keeps a form exactly when taylor_forms_pay() holds, and
 // that answer is the one PolynomialFormBuild::always gives (a Kostlan system, where Taylor forms
-// pay, is among them).
+// pay, is among them).  The bound read off the compiled program on a line never exceeds the
+// expansion's, and equals it on most polynomial programs here.
 BOOST_AUTO_TEST_CASE(coefficient_lower_bound_and_the_forms_built_only_if_they_pay) {
-  int exact_bounds = 0, paying = 0, skipped = 0, long_programs = 0;
+  int exact_bounds = 0, paying = 0, skipped = 0, long_programs = 0, bounds_on_a_line = 0, equal_on_a_line = 0;
   std::vector<Surface> surfaces;
   for (const std::string name : {"torus", "genus2", "tanglecube", "thin_handle", "metaball"})
     surfaces.push_back(catalog_entry(name).surface());
@@ -160,6 +162,11 @@ BOOST_AUTO_TEST_CASE(coefficient_lower_bound_and_the_forms_built_only_if_they_pa
       }
       BOOST_TEST(if_it_pays.taylor_forms_pay() == always.taylor_forms_pay(), surface.text() << " " << info.name);
       BOOST_TEST(static_cast<bool>(if_it_pays.polynomial_form()) == always.taylor_forms_pay());
+      if (const std::optional<std::size_t> on_a_line = never.coefficient_lower_bound_on_a_line()) {
+        BOOST_TEST(*on_a_line <= bound, surface.text() << " " << info.name);
+        ++bounds_on_a_line;
+        equal_on_a_line += *on_a_line == bound ? 1 : 0;
+      }
       BOOST_TEST(!never.polynomial_form());
       BOOST_TEST(!never.taylor_forms_pay());
       paying += always.taylor_forms_pay() ? 1 : 0;
@@ -167,6 +174,8 @@ BOOST_AUTO_TEST_CASE(coefficient_lower_bound_and_the_forms_built_only_if_they_pa
     }
   }
   BOOST_TEST(exact_bounds >= 20);
+  BOOST_TEST(bounds_on_a_line >= 20);
+  BOOST_TEST(equal_on_a_line >= bounds_on_a_line - 4);
   BOOST_TEST(long_programs >= 10);  // the plane primitives, skipped without their forms
   BOOST_TEST(paying >= 1);
   BOOST_TEST(skipped >= 12);

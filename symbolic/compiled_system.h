@@ -84,9 +84,9 @@ class CompiledSystem {
   //! the form exists, the values+Jacobian program has at least tolerances::taylor_form_instruction_ratio
   //! instructions per Taylor coefficient, and the coefficient program is no longer than it.
   //! With PolynomialFormBuild::if_it_pays the form is skipped without being built when
-  //! PolynomialForm::coefficient_lower_bound() already shows the ratio too small or
-  //! PolynomialForm::instruction_lower_bound() the coefficient program too long, so the answer
-  //! is the same as with PolynomialFormBuild::always.
+  //! coefficient_lower_bound_on_a_line() or PolynomialForm::coefficient_lower_bound() already
+  //! shows the ratio too small or PolynomialForm::instruction_lower_bound() the coefficient
+  //! program too long, so the answer is the same as with PolynomialFormBuild::always.
   bool taylor_forms_pay() const { return taylor_forms_pay_; }
   //! A bound below PolynomialForm::coefficient_lower_bound(), from the compiled equations instead
   //! of their expansion (what PolynomialFormBuild::if_it_pays tries first), or nothing when the

@@ -24,32 +24,12 @@ std::vector<GiNaC::symbol> concatenate(const std::vector<GiNaC::symbol>& a, cons
 // CompiledSystem::coefficient_lower_bound_on_a_line() for the program of the equations.
 std::optional<std::size_t> lower_bound_on_a_line(const detail::StraightLineProgram& program, std::size_t n_unknowns,
                                                  std::size_t n_parameters) {
-  using detail::OpCode;
-  if (n_unknowns < 1 || n_unknowns > MonomialBasis::max_unknowns || !program.is_polynomial_program())
-    return std::nullopt;
-  // Degrees in the unknowns the registers can reach: [inputs | constants | instructions].
-  const std::size_t n_inputs = n_unknowns + n_parameters, base = n_inputs + program.n_constants();
-  std::vector<long> degree(base + program.instruction_count(), 0);
-  for (std::size_t j = 0; j < n_unknowns; ++j) degree[j] = 1;
-  constexpr long cap = 64;  // MonomialBasis's largest degree
-  for (std::size_t k = 0; k < program.instruction_count(); ++k) {
-    const detail::Instruction& ins = program.code()[k];
-    const long a = degree[ins.a];
-    long d = a;
-    switch (ins.op) {
-      case OpCode::add:
-      case OpCode::sub: d = std::max(a, degree[ins.b]); break;
-      case OpCode::mul:
-      case OpCode::scale: d = a + degree[ins.b]; break;
-      case OpCode::square: d = 2 * a; break;
-      case OpCode::pow: d = a * ins.b; break;
-      default: break;  // neg
-    }
-    degree[base + k] = std::min(d, cap + 1);
-  }
-  // The truncation order: the largest degree of any register, so of every output.
-  const long order = *std::max_element(degree.begin(), degree.end());
-  if (order > cap) return std::nullopt;
+  if (n_unknowns < 1 || n_unknowns > MonomialBasis::max_unknowns) return std::nullopt;
+  // The truncation order: a bound of every output's degree (nothing for a program that is not
+  // polynomial).
+  const std::optional<int> order = program.degree_bound(n_unknowns);
+  if (!order || *order > MonomialBasis::max_degree) return std::nullopt;
+  const std::size_t n_inputs = n_unknowns + n_parameters;
   // A line in general position (arbitrary coordinates): only the bound's tightness depends on it.
   RoundingGuard guard;
   std::vector<Interval> point(n_inputs), direction(n_inputs, Interval(0));
@@ -58,9 +38,9 @@ std::optional<std::size_t> lower_bound_on_a_line(const detail::StraightLineProgr
     direction[j] = Interval(0.7 - 0.2718 * static_cast<double>(j));
   }
   for (std::size_t k = 0; k < n_parameters; ++k) point[n_unknowns + k] = Interval(static_cast<double>(k + 2));
-  const std::size_t width = static_cast<std::size_t>(order) + 1;
+  const std::size_t width = static_cast<std::size_t>(*order) + 1;
   std::vector<Interval> coefficients(program.n_outputs() * width);
-  if (!program.evaluate_along_line(point.data(), direction.data(), static_cast<int>(order), coefficients.data()))
+  if (!program.evaluate_along_line(point.data(), direction.data(), *order, coefficients.data()))
     return std::nullopt;
   std::size_t bound = 0;
   for (std::size_t i = 0; i < program.n_outputs(); ++i) {

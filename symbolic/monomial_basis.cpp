@@ -27,7 +27,7 @@ void append_degree(std::size_t n, int total, std::size_t k, MonomialBasis::Expon
 }  // namespace
 
 MonomialBasis::MonomialBasis(std::size_t n, int degree) : n_(n), degree_(degree) {
-  if (n < 1 || n > max_unknowns || degree < 0 || degree > 64)
+  if (n < 1 || n > max_unknowns || degree < 0 || degree > max_degree)
     throw PreconditionViolation("MonomialBasis: " + std::to_string(n) + " unknowns, degree " + std::to_string(degree) +
                                 " (need 1 ≤ n ≤ 3, 0 ≤ degree ≤ 64)");
   Exponent alpha{};

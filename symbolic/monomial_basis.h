@@ -15,9 +15,10 @@ namespace delmesh {
 class MonomialBasis {
  public:
   static constexpr std::size_t max_unknowns = 3;
+  static constexpr int max_degree = 64;
   using Exponent = std::array<int, max_unknowns>;
 
-  //! Precondition: 1 ≤ n ≤ 3 and 0 ≤ degree ≤ 64 (else PreconditionViolation).
+  //! Precondition: 1 ≤ n ≤ max_unknowns and 0 ≤ degree ≤ max_degree (else PreconditionViolation).
   MonomialBasis(std::size_t n, int degree);
 
   std::size_t n_unknowns() const { return n_; }

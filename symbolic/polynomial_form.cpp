@@ -154,7 +154,7 @@ std::size_t PolynomialForm::coefficient_lower_bound(const std::vector<GiNaC::ex>
         for (const auto& u : unknowns) total += term.degree(u);
         degree = std::max(degree, total);
       }
-      if (degree > 64) return 0;
+      if (degree > MonomialBasis::max_degree) return 0;
       bound += MonomialBasis(n, degree).size();
     }
   } catch (const std::exception&) {
@@ -204,7 +204,7 @@ std::unique_ptr<PolynomialForm> PolynomialForm::try_build(const std::vector<GiNa
         total += alpha[k];
         coefficient = coefficient.coeff(unknowns[k], alpha[k]);
       }
-      if (total > 64) return nullptr;
+      if (total > MonomialBasis::max_degree) return nullptr;
       degree = std::max(degree, total);
       monomials.emplace_back(alpha, coefficient);
     }

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <deque>
 #include <functional>
+#include <limits>
 #include <map>
 #include <ostream>
 #include <sstream>
@@ -560,6 +561,30 @@ bool StraightLineProgram::is_polynomial_program() const {
     }
   }
   return true;
+}
+
+std::optional<int> StraightLineProgram::degree_bound(std::size_t n_variables) const {
+  if (!is_polynomial_program()) return std::nullopt;
+  constexpr long saturated = std::numeric_limits<int>::max();
+  const std::size_t first = n_inputs_ + constants_.size();
+  std::vector<long> degree(first + code_.size(), 0);
+  for (std::size_t j = 0; j < std::min(n_variables, n_inputs_); ++j) degree[j] = 1;
+  for (std::size_t k = 0; k < code_.size(); ++k) {
+    const Instruction& ins = code_[k];
+    const long a = degree[ins.a];
+    long d = a;  // neg
+    switch (ins.op) {
+      case OpCode::add:
+      case OpCode::sub: d = std::max(a, degree[ins.b]); break;
+      case OpCode::mul:
+      case OpCode::scale: d = a + degree[ins.b]; break;
+      case OpCode::square: d = 2 * a; break;
+      case OpCode::pow: d = a * ins.b; break;
+      default: break;
+    }
+    degree[first + k] = std::min(d, saturated);
+  }
+  return static_cast<int>(*std::max_element(degree.begin(), degree.end()));
 }
 
 namespace {

@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iosfwd>
+#include <optional>
 #include <vector>
 
 #include <ginac/ginac.h>
@@ -96,6 +97,11 @@ class StraightLineProgram {
   bool evaluate_along_line(const T* point, const T* direction, int order, T* outputs) const;
   //! Whether evaluate_along_line() supports this program.
   bool is_polynomial_program() const;
+  //! For a polynomial program: an upper bound of the total degree of every register, so of every
+  //! output, in the first n_variables inputs (the other inputs and the constants have degree 0):
+  //! a sum has the larger degree of its terms, a product their sum, a power the multiple.
+  //! Saturated at INT_MAX.  Nothing when the program is not polynomial.
+  std::optional<int> degree_bound(std::size_t n_variables) const;
 
  private:
   class Compiler;

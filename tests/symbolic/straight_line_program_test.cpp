@@ -94,6 +94,17 @@ BOOST_AUTO_TEST_CASE(products_by_exact_constants_scale_with_the_same_enclosure) 
   BOOST_CHECK_EQUAL(value[0], 3 * -1.1);
 }
 
+// The degree bound follows the operations: (x² + y)³·q has degree 6 in (x, y) and 7 in (x, y, q);
+// a program with a division has none.
+BOOST_AUTO_TEST_CASE(degree_bound_of_a_polynomial_program) {
+  GiNaC::symbol x("x"), y("y"), q("q");
+  const StraightLineProgram p({GiNaC::pow(GiNaC::pow(x, 2) + y, 3) * q, x * y - 2}, {x, y, q});
+  BOOST_CHECK_EQUAL(p.degree_bound(2).value_or(-1), 6);
+  BOOST_CHECK_EQUAL(p.degree_bound(3).value_or(-1), 7);
+  BOOST_CHECK_EQUAL(p.degree_bound(0).value_or(-1), 0);
+  BOOST_TEST(!StraightLineProgram({x / y}, {x, y}).degree_bound(2));
+}
+
 BOOST_AUTO_TEST_CASE(every_operation_agrees_with_evalf) {
   GiNaC::symbol x("x"), y("y"), z("z");
   const std::vector<GiNaC::ex> outputs = {

@@ -49,7 +49,7 @@ SurfaceMesh output_mesh(Refinement& refinement, std::size_t& flipped_inconsisten
   for (const auto& t : triangles) {
     const Vec3 &p = del.point(t[0]), &q = del.point(t[1]), &r = del.point(t[2]);
     const Vec3 n = cross(q - p, r - p);
-    const Vec3 g = refinement.oracle().gradient(restricted.voronoi_edge_record(t).dual_point);
+    const Vec3 g = refinement.oracle().gradient(restricted.voronoi_edge_record(t).dual_point());
     std::array<VertexId, 3> f = dot(n, g) >= 0 ? std::array<VertexId, 3>{t[0], t[1], t[2]}
                                                 : std::array<VertexId, 3>{t[0], t[2], t[1]};
     oriented.push_back(f);

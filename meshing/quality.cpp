@@ -31,15 +31,15 @@ std::optional<Witness> quality_witness(RestrictedDelaunay& restricted, const Tri
   // The vertex of the shortest edge inserted last (larger id), as in Theorem 6.1's proof.
   const double a = distance(q, r), b = distance(p, r), c = distance(p, q);
   const VertexId from = (c <= a && c <= b) ? t[1] : t[2];
-  return Witness{rec.dual_point, CheckKind::quality, from, false};
+  return Witness{rec.dual_point(), CheckKind::quality, from, false};
 }
 
 std::optional<Witness> size_witness(RestrictedDelaunay& restricted, const TriangleKey& t, double size_bound) {
   const auto& rec = restricted.voronoi_edge_record(t);
   if (!rec.restricted) return std::nullopt;
   const auto& del = restricted.delaunay();
-  if (distance(rec.dual_point, del.point(t[0])) <= size_bound) return std::nullopt;
-  return Witness{rec.dual_point, CheckKind::size, t[0], false};
+  if (distance(rec.dual_point(), del.point(t[0])) <= size_bound) return std::nullopt;
+  return Witness{rec.dual_point(), CheckKind::size, t[0], false};
 }
 
 }  // namespace delmesh

@@ -218,7 +218,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
     const auto& before = records[i];
     const bool status_changed = !before.had_record || before.was_restricted != r.restricted;
     if (status_changed) star_change(t);
-    if (status_changed || before.old_dual_point != r.dual_point)
+    if (status_changed || before.old_dual_point != r.dual_point())
       queue_triangle(t, policy_ == RecheckPolicy::changed_faces, r);
     else if (policy_ == RecheckPolicy::changed_faces)
       queue(t, FaceKind::triangle, Dirtied::new_faces);

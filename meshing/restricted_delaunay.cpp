@@ -14,6 +14,8 @@
 
 namespace delmesh {
 
+static_assert(sizeof(VoronoiEdgeRecord) <= 96, "a record per Delaunay triangle: keep it small");
+
 namespace {
 
 // The number of entries of a lists block with these counts (unresolved, crossings, candidates).
@@ -48,7 +50,6 @@ VoronoiEdgeRecord& VoronoiEdgeRecord::operator=(const VoronoiEdgeRecord& other) 
   if (this != &other) {
     restricted = other.restricted;
     shrunk = other.shrunk;
-    dual_point = other.dual_point;
     edge = other.edge;
     lists_ = copy(other);
   }
@@ -212,7 +213,7 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
     if (!cached->shrunk) {
       out[i].had_record = true;
       out[i].was_restricted = cached->restricted;
-      out[i].old_dual_point = cached->dual_point;
+      out[i].old_dual_point = cached->dual_point();
     }
     if (misses_surface(*cached)) {
       // e ∩ Σ = ∅ on a valid edge e, so e′ ∩ Σ = ∅ for e′ ⊆ e: the record stays as it is
@@ -347,7 +348,6 @@ std::optional<VoronoiEdgeRecord> RestrictedDelaunay::restrict_record(const Voron
   r.set_lists(lists);
   // No crossing is at a Voronoi vertex of e′, so the §5.1 rule keeps every crossing.
   r.restricted = !lists.crossings.empty();
-  if (r.restricted) r.dual_point = lists.crossings.front();
   return r;
 }
 
@@ -703,7 +703,6 @@ VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::a
   const bool lone_excluded_vertex =
       lists.crossings.size() == 1 && vertex_root_excluded.size() == 1 && vertex_root_excluded[0];
   r.restricted = !lists.crossings.empty() && !lone_excluded_vertex;
-  if (r.restricted) r.dual_point = lists.crossings.front();
   return finish();
 }
 

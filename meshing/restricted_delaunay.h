@@ -82,18 +82,16 @@ struct VoronoiEdgeLists {
 
 //! The Voronoi edge of one Delaunay triangle and its intersections with Σ.  The lists live in one
 //! block of their own, allocated only when one of them is not empty (most edges miss Σ), so that
-//! the records of a large triangulation stay small.
+//! the records of a large triangulation stay small: 96 bytes each, one per Delaunay triangle.
 class VoronoiEdgeRecord {
  public:
   bool restricted = false;  //!< the triangle is in Tri S|Σ (with the §5.1 rule)
   bool shrunk = false;      //!< the dual edge shrank since: restrict or solve again on use
-  Vec3 dual_point{};        //!< a counted point of e ∩ Σ when restricted
   VoronoiEdge edge;
 
   VoronoiEdgeRecord() = default;
   VoronoiEdgeRecord(const VoronoiEdgeRecord& other)
-      : restricted(other.restricted), shrunk(other.shrunk), dual_point(other.dual_point), edge(other.edge),
-        lists_(copy(other)) {}
+      : restricted(other.restricted), shrunk(other.shrunk), edge(other.edge), lists_(copy(other)) {}
   VoronoiEdgeRecord& operator=(const VoronoiEdgeRecord& other);
   VoronoiEdgeRecord(VoronoiEdgeRecord&&) noexcept = default;
   VoronoiEdgeRecord& operator=(VoronoiEdgeRecord&&) noexcept = default;
@@ -106,6 +104,9 @@ class VoronoiEdgeRecord {
   RecordPoints crossings() const { return list(1); }
   //! Projected undecided regions (tangency candidates).
   RecordPoints candidates() const { return list(2); }
+  //! The counted point of e ∩ Σ of a restricted triangle, its first crossing (the origin when
+  //! the triangle is not restricted).
+  Vec3 dual_point() const { return restricted ? crossings().front() : Vec3{}; }
   //! The solver's enclosure [t_lo, t_hi] on the edge's line of each crossing and each candidate,
   //! as the first two coordinates of each entry (the third is 0).
   RecordPoints crossing_range() const { return list(3); }

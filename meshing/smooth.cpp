@@ -15,7 +15,7 @@ Vec3 outward_normal(RestrictedDelaunay& restricted, const TriangleKey& t) {
   const Vec3 &p = del.point(t[0]), &q = del.point(t[1]), &r = del.point(t[2]);
   Vec3 n = normalized(cross(q - p, r - p));
   const auto& rec = restricted.voronoi_edge_record(t);
-  if (dot(n, restricted.oracle().gradient(rec.dual_point)) < 0) n = (-1.0) * n;
+  if (dot(n, restricted.oracle().gradient(rec.dual_point())) < 0) n = (-1.0) * n;
   return n;
 }
 

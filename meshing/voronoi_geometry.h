@@ -57,11 +57,12 @@ namespace delmesh {
 Vec3 voronoi_vertex(const Delaunay& del, std::array<VertexId, 4> cell);
 
 //! The Voronoi edge dual to a Delaunay triangle: {point + t·direction : t ∈ [t0, t1]}.
+//! (The members are ordered so that the ids and flags share the last 16 bytes: 80 in all.)
 struct VoronoiEdge {
-  TriangleKey triangle{};
   Vec3 point{};          //!< circumcentre of the triangle
   Vec3 direction{};      //!< unit normal of the triangle
   double t0 = 0, t1 = 0;
+  TriangleKey triangle{};
   bool at_vertex0 = false, at_vertex1 = false;  //!< endpoint is a Voronoi vertex (not on ∂B)
   bool valid = false;    //!< false if the clipped edge is empty
   //! The edge is inside B but its computed ends cross (t0 ≥ t1 before clipping): numerically a

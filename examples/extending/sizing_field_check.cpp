@@ -25,7 +25,7 @@ CheckResult sizing_field_witness(const CheckContext& context, const DelaunayFace
   const TriangleKey t = face;
   const VoronoiEdgeRecord& record = context.restricted.voronoi_edge_record(t);
   if (!record.restricted) return {};
-  const Vec3& c = record.dual_point;
+  const Vec3 c = record.dual_point();
   const double r = detail::distance(c, context.restricted.delaunay().point(t[0]));
   if (r <= mid_plane_field(c, context.restricted.oracle().box())) return {};
   CheckResult result;

@@ -104,7 +104,7 @@ BOOST_AUTO_TEST_CASE(fires_exactly_where_the_ball_exceeds_the_field) {
       ++unrestricted;
       continue;
     }
-    const Vec3& c = record.dual_point;
+    const Vec3 c = record.dual_point();
     const double r = detail::distance(c, f.del.point(t[0]));
     const bool must_fire = r > field(c, f.box);
     BOOST_TEST_REQUIRE(result.witnesses.size() == (must_fire ? 1u : 0u),

@@ -154,9 +154,9 @@ BOOST_AUTO_TEST_CASE(size_bound_holds_for_every_surface_delaunay_ball) {
   for (const auto& t : triangles) {
     const auto& rec = restricted.voronoi_edge_record(t);
     BOOST_TEST_REQUIRE(rec.restricted);
-    const double radius = detail::distance(rec.dual_point, refinement.delaunay().point(t[0]));
+    const double radius = detail::distance(rec.dual_point(), refinement.delaunay().point(t[0]));
     for (int k = 1; k < 3; ++k)  // the dual point is on the Voronoi edge: equidistant
-      BOOST_TEST(detail::distance(rec.dual_point, refinement.delaunay().point(t[k])) == radius,
+      BOOST_TEST(detail::distance(rec.dual_point(), refinement.delaunay().point(t[k])) == radius,
                  boost::test_tools::tolerance(1e-9));
     largest = std::max(largest, radius);
   }

@@ -16,6 +16,13 @@ Domain Domain::from_box(std::vector<std::array<double, 2>> bounds) {
   return domain;
 }
 
+HalfSpaceNormal::HalfSpaceNormal(std::initializer_list<double> entries) : size_(entries.size()) {
+  if (size_ > capacity)
+    throw PreconditionViolation("HalfSpaceNormal: " + std::to_string(size_) + " entries, at most " +
+                                std::to_string(capacity) + " are held");
+  std::copy(entries.begin(), entries.end(), entries_.begin());
+}
+
 void Domain::validate() const {
   if (box.bounds.empty()) throw PreconditionViolation("solver domain: the box has no sides");
   for (std::size_t i = 0; i < box.bounds.size(); ++i) {

@@ -3,7 +3,10 @@
 //! Solver domains: an axis-aligned box in the unknowns intersected with half-spaces, i.e. a convex
 //! polytope (a Voronoi facet polygon in plane coordinates (u, v); a clipped Voronoi cell in x, y, z).
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <ostream>
 #include <vector>
 
@@ -13,9 +16,31 @@
 
 namespace delmesh {
 
+//! The normal of a half-space: at most `capacity` entries (the dimension of the geometric
+//! domains: facets in two unknowns, cells in three), held in place rather than on the heap,
+//! since a Voronoi cell's domain has one half-space per neighbour and cells are built at every
+//! insertion.  Constructing one with more entries throws PreconditionViolation.
+class HalfSpaceNormal {
+ public:
+  static constexpr std::size_t capacity = 3;
+  HalfSpaceNormal() = default;
+  HalfSpaceNormal(std::initializer_list<double> entries);
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  const double* data() const { return entries_.data(); }
+  const double* begin() const { return entries_.data(); }
+  const double* end() const { return entries_.data() + size_; }
+  double operator[](std::size_t i) const { return entries_[i]; }
+  double& operator[](std::size_t i) { return entries_[i]; }
+
+ private:
+  std::array<double, capacity> entries_{};
+  std::size_t size_ = 0;
+};
+
 //! {u : ⟨normal, u⟩ ≤ offset} in the solver's unknowns.
 struct HalfSpace {
-  std::vector<double> normal;
+  HalfSpaceNormal normal;
   double offset = 0;
 };
 

@@ -27,6 +27,14 @@ BOOST_AUTO_TEST_CASE(from_box_validates) {
   BOOST_CHECK_THROW(bad.validate(), PreconditionViolation);
 }
 
+BOOST_AUTO_TEST_CASE(half_space_normals_hold_up_to_three_entries) {
+  const HalfSpaceNormal n{0.5, -2, 3};
+  BOOST_TEST(n.size() == 3u);
+  BOOST_TEST(std::vector<double>(n.begin(), n.end()) == (std::vector<double>{0.5, -2, 3}), boost::test_tools::per_element());
+  BOOST_TEST(HalfSpaceNormal{}.empty());
+  BOOST_CHECK_THROW((HalfSpaceNormal{1, 2, 3, 4}), PreconditionViolation);
+}
+
 BOOST_AUTO_TEST_CASE(classify_against_box_faces_and_half_spaces) {
   // The triangle u ≥ 0, v ≥ 0, u + v ≤ 1 as the unit box cut by one half-space.
   Domain d = Domain::from_box({{0, 1}, {0, 1}});

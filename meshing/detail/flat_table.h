@@ -4,8 +4,8 @@
 //! Delaunay records that are looked up, added and dropped at every insertion.
 //!
 //! The keys live in one flat array with open addressing (linear probing; deletion by backward
-//! shift, so no tombstones), each with the index of its value in a pool; the values live in a
-//! std::deque whose slots are reused.  A lookup touches one or two cache lines of the key array
+//! shift, so no tombstones), each with the index of its value in a pool; the values live in
+//! blocks of 1024 whose slots are reused.  A lookup touches one or two cache lines of the key array
 //! and then the value, where a node-based std::unordered_map follows a bucket pointer and a list.
 //!
 //! Contract: references to values stay valid until that key is erased or the table cleared (the
@@ -16,7 +16,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <deque>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -34,7 +34,7 @@ class FlatTable {
     for (std::size_t i = home(key);; i = (i + 1) & mask_) {
       const Entry& e = entries_[i];
       if (e.key[0] < 0) return nullptr;
-      if (same(e.key, key)) return &pool_[e.index];
+      if (same(e.key, key)) return &value(e.index);
     }
   }
   const Value* find(const Key& key) const { return const_cast<FlatTable*>(this)->find(key); }
@@ -54,19 +54,19 @@ class FlatTable {
     for (;; i = (i + 1) & mask_) {
       Entry& e = entries_[i];
       if (e.key[0] < 0) break;
-      if (same(e.key, key)) return {&pool_[e.index], false};
+      if (same(e.key, key)) return {&value(e.index), false};
     }
     std::uint32_t index;
     if (!free_.empty()) {
       index = free_.back();
       free_.pop_back();
     } else {
-      index = static_cast<std::uint32_t>(pool_.size());
-      pool_.emplace_back();
+      if (pool_size_ == blocks_.size() * block_size) blocks_.emplace_back(new Value[block_size]);
+      index = static_cast<std::uint32_t>(pool_size_++);
     }
     entries_[i] = Entry{key, index};
     ++size_;
-    return {&pool_[index], true};
+    return {&value(index), true};
   }
 
   //! Removes key if present; returns whether it was.
@@ -81,7 +81,7 @@ class FlatTable {
       if (entries_[i].key[0] < 0) return nullptr;
       if (same(entries_[i].key, key)) break;
     }
-    Value* value = &pool_[entries_[i].index];
+    Value* taken = &value(entries_[i].index);
     free_.push_back(entries_[i].index);
     --size_;
     // Backward shift: move later entries of the probe run into the hole when their home allows.
@@ -96,12 +96,13 @@ class FlatTable {
       i = j;
     }
     entries_[i].key[0] = -1;
-    return value;
+    return taken;
   }
 
   void clear() {
     entries_.clear();
-    pool_.clear();
+    blocks_.clear();
+    pool_size_ = 0;
     free_.clear();
     size_ = 0;
     mask_ = 0;
@@ -111,7 +112,7 @@ class FlatTable {
   template <class F>
   void for_each(F&& f) const {
     for (const Entry& e : entries_)
-      if (e.key[0] >= 0) f(e.key, pool_[e.index]);
+      if (e.key[0] >= 0) f(e.key, value(e.index));
   }
 
  private:
@@ -159,7 +160,13 @@ class FlatTable {
   std::vector<Entry> entries_;  // size a power of two, at most half full
   std::size_t mask_ = 0;
   std::size_t size_ = 0;
-  std::deque<Value> pool_;
+  //! The values, in blocks of block_size allocated one at a time and never moved; value i is
+  //! entry i % block_size of block i / block_size.
+  static constexpr std::size_t block_size = 1024;
+  std::vector<std::unique_ptr<Value[]>> blocks_;
+  std::size_t pool_size_ = 0;
+  Value& value(std::uint32_t i) { return blocks_[i / block_size][i % block_size]; }
+  const Value& value(std::uint32_t i) const { return blocks_[i / block_size][i % block_size]; }
   std::vector<std::uint32_t> free_;
 };
 

@@ -375,6 +375,12 @@ std::vector<EdgeKey> Delaunay::incident_edges(VertexId id) const {
   return out;
 }
 
+std::size_t Delaunay::triangle_count() const {
+  const auto& dt = impl_->dt;
+  if (dt.dimension() == 3) return dt.number_of_finite_facets();
+  return dt.dimension() == 2 ? triangles().size() : 0;
+}
+
 std::vector<TriangleKey> Delaunay::triangles() const {
   std::vector<TriangleKey> out;
   const auto& dt = impl_->dt;

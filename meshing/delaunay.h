@@ -123,6 +123,9 @@ class Delaunay {
   std::vector<EdgeKey> incident_edges(VertexId id) const;
   //! All Delaunay triangles (ascending).
   std::vector<TriangleKey> triangles() const;
+  //! The number of Delaunay triangles, triangles().size(), counted without listing them in
+  //! dimension 3.
+  std::size_t triangle_count() const;
   bool is_triangle(const TriangleKey& t) const;
   bool is_edge(const EdgeKey& e) const;
   //! The vertex nearest to x and its distance (the search starts at `hint` if it is a current

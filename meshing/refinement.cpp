@@ -450,6 +450,11 @@ Certification Refinement::certify(MeshStatus run_status, bool output_defective) 
   const auto unresolved = restricted_.unresolved_regions();
   c.unresolved_edge_regions = unresolved.size();
   for (const auto& [t, x] : unresolved) c.unsettled.push_back({CheckKind::vor_edge, UnsettledReason::unresolved_crossing, x});
+  // current(t) skips the queued checks of a triangle without a record, on the promise that every
+  // current triangle has one and only current ones do; if the promise was broken and not mended
+  // by the end, the counts differ.
+  if (restricted_.record_count() != del_.triangle_count())
+    c.unsettled.push_back({CheckKind::vor_edge, UnsettledReason::record_count_mismatch, {}});
   c.status = run_status;
   if (run_status == MeshStatus::complete && (!c.unsettled.empty() || output_defective)) c.status = MeshStatus::uncertified;
   return c;

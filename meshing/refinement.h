@@ -211,7 +211,8 @@ class Refinement {
   //! means every check of every current face came out clean.
   std::vector<Unsettled> unsettled() const;
   //! The final judgement: `run_status` unless it is complete and either something is unsettled
-  //! (unsettled(), or an unresolved region on a current Voronoi edge) or the output has a defect
+  //! (unsettled(), an unresolved region on a current Voronoi edge, or records that are not one per
+  //! Delaunay triangle, UnsettledReason::record_count_mismatch) or the output has a defect
   //! (`output_defective`: Tri S|Σ is not a closed, consistently oriented 2-manifold); then
   //! uncertified.  Precondition: no insertion since the last run().
   Certification certify(MeshStatus run_status, bool output_defective) const;

@@ -281,6 +281,10 @@ class RestrictedDelaunay {
   //! once).  star() then reads the restricted stars kept up to date with the records instead of
   //! walking Del S.
   void assume_every_triangle_recorded() { every_triangle_recorded_ = true; }
+  //! The number of cached records.  While the invariant of cached_record() holds and, after
+  //! assume_every_triangle_recorded(), every current triangle has its record, it equals
+  //! Delaunay::triangle_count().
+  std::size_t record_count() const { return edges_.size(); }
   //! All of Tri S|Σ, ascending.  After assume_every_triangle_recorded(), read from the
   //! restricted stars (precondition: every record up to date, i.e. no insertion since the last
   //! prepare_star()); otherwise every Delaunay triangle's record is looked up or solved.

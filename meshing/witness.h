@@ -45,7 +45,8 @@ enum class UnsettledReason {
   degenerate_face,       //!< the Voronoi face is numerically degenerate and Σ may meet it
   rejected_witness,      //!< every witness found lies within the duplicate tolerance of a sample
   no_witness,            //!< the check's condition fails but it found no point of Σ to insert
-  unresolved_crossing    //!< an undecided region on a Voronoi edge that is neither a crossing nor a candidate
+  unresolved_crossing,   //!< an undecided region on a Voronoi edge that is neither a crossing nor a candidate
+  record_count_mismatch  //!< the Voronoi-edge records are not one per Delaunay triangle (no location)
 };
 constexpr auto enum_names(UnsettledReason) {
   return name_table<UnsettledReason>("UnsettledReason", {{UnsettledReason::unprojectable_region, "unprojectable_region"},
@@ -53,7 +54,8 @@ constexpr auto enum_names(UnsettledReason) {
                                                          {UnsettledReason::degenerate_face, "degenerate_face"},
                                                          {UnsettledReason::rejected_witness, "rejected_witness"},
                                                          {UnsettledReason::no_witness, "no_witness"},
-                                                         {UnsettledReason::unresolved_crossing, "unresolved_crossing"}});
+                                                         {UnsettledReason::unresolved_crossing, "unresolved_crossing"},
+                                                         {UnsettledReason::record_count_mismatch, "record_count_mismatch"}});
 }
 inline std::ostream& operator<<(std::ostream& out, UnsettledReason reason) { return write_enum(out, reason); }
 

@@ -146,6 +146,16 @@ BOOST_AUTO_TEST_CASE(clean_run_certifies_complete) {
   // A defective output alone makes it uncertified; a limit status is never upgraded.
   BOOST_TEST(run.topology.certify(run.status, true).status == MeshStatus::uncertified);
   BOOST_TEST(run.topology.certify(MeshStatus::point_limit, true).status == MeshStatus::point_limit);
+  // The driver skips the queued checks of triangles without a record; records that are not one
+  // per Delaunay triangle at the end (here one dropped by hand) keep the run from complete.
+  const auto& del = run.topology.delaunay();
+  BOOST_TEST_REQUIRE(run.topology.restricted().record_count() == del.triangle_count());
+  BOOST_TEST(del.triangle_count() == del.triangles().size());
+  run.topology.restricted().forget({del.triangles().front()}, {});
+  const Certification broken = run.topology.certify(run.status, false);
+  BOOST_TEST(broken.status == MeshStatus::uncertified);
+  BOOST_TEST_REQUIRE(broken.unsettled.size() == 1u);
+  BOOST_TEST(broken.unsettled.front().reason == UnsettledReason::record_count_mismatch);
 }
 
 // Witnesses within 15 % of the box diagonal of a sample count as duplicates: the checks' witnesses

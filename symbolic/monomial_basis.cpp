@@ -29,7 +29,8 @@ void append_degree(std::size_t n, int total, std::size_t k, MonomialBasis::Expon
 MonomialBasis::MonomialBasis(std::size_t n, int degree) : n_(n), degree_(degree) {
   if (n < 1 || n > max_unknowns || degree < 0 || degree > max_degree)
     throw PreconditionViolation("MonomialBasis: " + std::to_string(n) + " unknowns, degree " + std::to_string(degree) +
-                                " (need 1 ≤ n ≤ 3, 0 ≤ degree ≤ 64)");
+                                " (need 1 ≤ n ≤ " + std::to_string(max_unknowns) + ", 0 ≤ degree ≤ " +
+                                std::to_string(max_degree) + ")");
   Exponent alpha{};
   for (int t = 0; t <= degree; ++t) append_degree(n, t, 0, alpha, exponents_);
   std::size_t table = 1;

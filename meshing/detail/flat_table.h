@@ -61,7 +61,7 @@ class FlatTable {
       index = free_.back();
       free_.pop_back();
     } else {
-      if (pool_size_ == blocks_.size() * block_size) blocks_.emplace_back(new Value[block_size]);
+      if (pool_size_ == blocks_.size() * block_size) blocks_.push_back(std::make_unique<Value[]>(block_size));
       index = static_cast<std::uint32_t>(pool_size_++);
     }
     entries_[i] = Entry{key, index};

@@ -9,7 +9,11 @@
 //!     --repeat K each case runs K rounds of Mesh_3 then delmesh (Surface_mesher in the first
 //!     only), every run a CSV row with its round; each round's ratio pairs two runs made one
 //!     after the other, so a slow phase of a shared machine tends to hit both, and the summary
-//!     gives the median, least and greatest ratio over the rounds;
+//!     gives the median, least and greatest ratio over the rounds.  With --threads-compare N each
+//!     round also runs delmesh with N threads right after the --threads run: the summary then
+//!     gives that run's ratio to Mesh_3, its wall time over the --threads run's (paired per
+//!     round: the speed-up of N threads, as a time ratio) and whether the two meshes were
+//!     identical in every round (they must be: the output does not depend on the thread count);
 //!  2. coarsest: delmesh at λ = 0.06 without size bound against CGAL at the coarsest of a ladder of
 //!     settings that still gives the right topology;
 //!  3. demo: CGAL at coarse settings on thin_handle / two_blobs / near_sheets, where it loses a
@@ -175,6 +179,11 @@ Run run_mesh_3(const CompiledE& E, const std::array<double, 3>& centre, double s
 }
 
 // --- delmesh -------------------------------------------------------------------------------------
+//! The number of threads a delmesh run used (its statistics' count; `requested` if it has none).
+std::string threads_used(const Run& run, int requested) {
+  return field(run.statistics.is_object() ? run.statistics.value("threads", requested) : requested);
+}
+
 Run run_delmesh(const CatalogEntry& entry, double lambda, std::optional<double> size_bound,
                 const DelMeshOptions& base) {
   Run run;
@@ -199,9 +208,11 @@ Run run_delmesh(const CatalogEntry& entry, double lambda, std::optional<double> 
     status << result.status;
     run.status = status.str();
     run.statistics = result.statistics;
+    run.parameters += ";threads=" + threads_used(run, options.threads);
     mesh_to_soup(result.mesh, run.soup.points, run.soup.triangles);
   } catch (const std::exception& e) {
     run.seconds = clock.seconds();
+    run.parameters += ";threads=" + field(options.threads);
     run.status = std::string("error: ") + e.what();
     for (char& c : run.status)
       if (c == ',' || c == '\n') c = ';';
@@ -278,6 +289,20 @@ double median(const std::vector<double>& values) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+//! Whether two runs wrote the same mesh: the same points (bit for bit) and triangles, in order.
+bool same_mesh(const Run& a, const Run& b) {
+  return a.soup.points == b.soup.points && a.soup.triangles == b.soup.triangles;
+}
+
+//! " (median of K rounds, least L, greatest G)" for more than one number, else "".
+std::string spread(const std::vector<double>& values) {
+  const auto range = sorted_numbers(values);
+  if (range.size() < 2) return "";
+  std::ostringstream out;
+  out << " (median of " << range.size() << " rounds, least " << range.front() << ", greatest " << range.back() << ")";
+  return out.str();
+}
+
 std::string field_list(const std::vector<double>& values) {
   std::string text;
   for (double v : values) text += (text.empty() ? "" : ";") + field(v);
@@ -330,6 +355,12 @@ int main(int argc, char** argv) {
   app.add_option("--seed", base.seed, "delmesh seed")->capture_default_str();
   base.threads = 1;
   app.add_option("--threads", base.threads, "delmesh threads (0: every hardware thread)")->capture_default_str();
+  std::optional<int> threads_compare;
+  app.add_option("--threads-compare", threads_compare,
+                 "benchmark only: in each round also run delmesh with N threads (0: every hardware thread) right "
+                 "after the --threads run, and report its ratio to Mesh_3, its wall time over the --threads run's "
+                 "(the speed-up, paired per round) and whether the two meshes are identical")
+      ->check(CLI::Range(0, 1024));
   app.add_option("--cgal-seed", cgal_seed, "seed of CGAL's default random generator")->capture_default_str();
   app.add_option("--time-limit", base.time_limit_seconds, "delmesh time limit per run (s), 0 none")
       ->capture_default_str();
@@ -347,6 +378,7 @@ int main(int argc, char** argv) {
                   {{"lambda", field(lambda)},
                    {"benchmark_cases", cases},
                    {"threads", field(base.threads)},
+                   {"threads_compare", threads_compare ? field(*threads_compare) : std::string("none")},
                    {"repeat", field(repeat)},
                    {"cgal_angle", field(cgal_angle)},
                    {"cgal_error_bound", field(cgal_error_bound)},
@@ -392,6 +424,11 @@ int main(int argc, char** argv) {
         record(context, "benchmark", *s.entry, sm, s.E);
         // Per round: Mesh_3's and delmesh's seconds per vertex, and their ratio.
         std::vector<double> m3_per_vertex, dm_per_vertex, ratios;
+        // With --threads-compare: the other thread count's ratios to Mesh_3, its wall time over the
+        // --threads run's, and the rounds whose two meshes were identical.
+        std::vector<double> other_per_vertex, other_ratios, time_ratios;
+        int identical_rounds = 0;
+        std::string base_threads, other_threads;
         nlohmann::json statistics;
         std::size_t vertices = 0;
         for (int round = 1; round <= repeat; ++round) {
@@ -410,6 +447,18 @@ int main(int argc, char** argv) {
           if (round > 1 && report.vertices != vertices)
             std::cout << "benchmark " << name << " H=" << h << " round " << round << ": delmesh made " << report.vertices
                       << " vertices, round 1 " << vertices << " (not reproducible)" << std::endl;
+          if (threads_compare) {
+            DelMeshOptions other = base;
+            other.threads = *threads_compare;
+            Run dt = run_delmesh(*s.entry, lambda, h, other);
+            record(context, "benchmark", *s.entry, dt, s.E, round);
+            base_threads = threads_used(dm, base.threads);
+            other_threads = threads_used(dt, other.threads);
+            other_per_vertex.push_back(seconds_per_vertex(dt));
+            other_ratios.push_back(other_per_vertex.back() / m3_per_vertex.back());
+            time_ratios.push_back(dt.seconds / dm.seconds);
+            identical_rounds += same_mesh(dm, dt) ? 1 : 0;
+          }
           statistics = std::move(dm.statistics);
           vertices = report.vertices;
         }
@@ -417,13 +466,16 @@ int main(int argc, char** argv) {
         const double per_vertex = median(dm_per_vertex);
         const auto [first, inserted] = first_per_vertex.emplace(name, per_vertex);
         std::cout << "benchmark " << name << " H=" << h << ": delmesh " << per_vertex * 1e6
-                  << " us/vertex, Mesh_3 " << median(m3_per_vertex) * 1e6 << " us/vertex, ratio " << median(ratios);
-        if (const auto range = sorted_numbers(ratios); repeat > 1 && !range.empty())
-          std::cout << " (median of " << range.size() << " rounds, least " << range.front() << ", greatest "
-                    << range.back() << "; seconds per vertex: medians)";
-        std::cout << " (target <= 3)";
+                  << " us/vertex, Mesh_3 " << median(m3_per_vertex) * 1e6 << " us/vertex, ratio " << median(ratios)
+                  << spread(ratios) << " (seconds per vertex: medians; target <= 3)";
         if (!inserted) std::cout << ", delmesh us/vertex relative to the first " << name << " case " << per_vertex / first->second;
         std::cout << std::endl;
+        if (threads_compare)
+          std::cout << "benchmark " << name << " H=" << h << " threads=" << other_threads << ": delmesh "
+                    << median(other_per_vertex) * 1e6 << " us/vertex, ratio to Mesh_3 " << median(other_ratios)
+                    << spread(other_ratios) << "; wall time over the threads=" << base_threads
+                    << " run's " << median(time_ratios) << spread(time_ratios) << "; identical meshes in "
+                    << identical_rounds << " of " << repeat << " rounds" << std::endl;
         if (!statistics.is_null() && vertices) {
           const double n = static_cast<double>(vertices);
           std::cout << "  solver calls per vertex:";

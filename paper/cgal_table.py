@@ -40,26 +40,30 @@ def main():
                       str(r["expected_genus"]), "ok" if r["topology_correct"] == 1 else "**wrong**",
                       fmt(float(r["seconds"]), 3), fmt(float(per_vertex) * 1e6, 3)])
     ratios = []
-    # benchmark: each case is a Surface_mesher row, then per round a Mesh_3 and a delmesh row; the
-    # rounds of a case follow one another (round 1 starts a case).
+    # benchmark: each case is a Surface_mesher row, then per round a Mesh_3 row and one delmesh row
+    # per thread count (compare_cgal --threads-compare adds a second); the rounds of a case follow
+    # one another (round 1 starts a case).  Ratios are kept per thread count.
     last_m3 = None
-    rounds = []  # the current case's ratios
+    rounds = {}  # the current case's ratios, by delmesh's thread count
     for r in rows + [None]:
         if r is None or (r["experiment"] == "benchmark" and r["method"] == "mesh_3" and int(r.get("round", 1)) == 1):
-            if rounds:
-                values = sorted(rounds)
+            for threads, values in rounds.items():
+                values = sorted(values)
                 n = len(values)
                 middle = values[n // 2] if n % 2 else 0.5 * (values[n // 2 - 1] + values[n // 2])
                 spread = f" (median of {n} rounds, {values[0]:.2f}–{values[-1]:.2f})" if n > 1 else ""
-                ratios.append(("benchmark", case[0], case[1], middle, spread))
-            rounds = []
+                label = case[1] + (f"; delmesh threads={threads}" if threads is not None else "")
+                ratios.append(("benchmark", case[0], label, middle, spread))
+            rounds = {}
         if r is None or r["experiment"] != "benchmark":
             continue
         if r["method"] == "mesh_3":
             last_m3 = r
             case = (r["surface"], r["parameters"])
         elif r["method"] == "delmesh" and r["vertices"] and last_m3 and last_m3["vertices"]:
-            rounds.append(float(r["seconds_per_vertex"]) / float(last_m3["seconds_per_vertex"]))
+            threads = next((p.split("=", 1)[1] for p in str(r["parameters"]).split(";")
+                            if p.startswith("threads=")), None)
+            rounds.setdefault(threads, []).append(float(r["seconds_per_vertex"]) / float(last_m3["seconds_per_vertex"]))
     for experiment in ("coarsest",):
         for surface in sorted({r["surface"] for r in rows if r["experiment"] == experiment}):
             sel = [r for r in rows if r["experiment"] == experiment and r["surface"] == surface]

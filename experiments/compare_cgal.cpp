@@ -368,7 +368,7 @@ int main(int argc, char** argv) {
   app.add_option("--out-dir", out_dir, "output directory")->capture_default_str();
   app.add_flag("--no-meshes", no_meshes, "do not write the meshes");
   app.add_flag("--skip-delmesh", skip_delmesh, "run only the CGAL meshers");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = parse_command_line(app, argc, argv)) return *code;
 
   return run_guarded([&] {
     Context context;

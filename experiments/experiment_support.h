@@ -18,10 +18,13 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <CLI/CLI.hpp>
 
 #include "common/errors.h"
 #include "meshing/mesh_checker.h"
@@ -114,6 +117,20 @@ int run_guarded(Body&& body) {
     return 1;
   }
   return 0;
+}
+
+//! Parses the command line.  A usage error (an unknown option, a value out of range, …) prints
+//! one line `error: …` on stderr and gives exit code 2, as `delmesh` does; --help prints the help
+//! and gives 0.  Returns the code main() should return then, or nothing when the run goes on.
+inline std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::cerr << "error: " << e.what() << std::endl;
+    return 2;
+  }
+  return std::nullopt;
 }
 
 //! The non-empty items of a comma-separated list ("torus,genus2" → {"torus", "genus2"}).

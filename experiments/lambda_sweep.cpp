@@ -348,7 +348,7 @@ int main(int argc, char** argv) {
   app.add_flag("--no-eps-samples", no_eps, "no epsilon-samples (lambda_sweep.csv only)");
   app.add_option("--out-dir", out_dir, "output directory")->capture_default_str();
   app.add_flag("--no-meshes", no_meshes, "do not write the meshes");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = parse_command_line(app, argc, argv)) return *code;
 
   return run_guarded([&] {
     // The surfaces: the catalog names (all of --surfaces, or none if only --expr is given) and --expr.

@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
   app.add_option("--time-limit", base.time_limit_seconds, "time limit per run (s), 0 none")->capture_default_str();
   app.add_option("--max-points", base.max_points, "point limit per run")->capture_default_str();
   app.add_option("--out-dir", out_dir, "output directory")->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = parse_command_line(app, argc, argv)) return *code;
 
   return run_guarded([&] {
     const fs::path dir = fs::path(out_dir) / "remesh";

@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
   app.add_option("--repeats", repeats, "measurements per rate (the median is reported)");
   app.add_option("--evalf-points", evalf_points, "points per GiNaC evalf measurement");
   app.add_option("--csv", csv, "also write the table as CSV to this file");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = experiments::parse_command_line(app, argc, argv)) return *code;
 
   std::printf("bench_evaluators (git %s, %s): values + Jacobian per second, median of %d\n\n",
               experiments::git_revision().c_str(), experiments::utc_now().c_str(), repeats);

@@ -21,6 +21,7 @@
 #define FMT_HEADER_ONLY  // experiments do not link libfmt
 #include <fmt/format.h>
 
+#include "experiments/experiment_support.h"
 #include "solvers/homotopy_solver.h"
 #include "solvers/kostlan_system.h"
 #include "solvers/query_geometry.h"
@@ -132,7 +133,7 @@ int main(int argc, char** argv) {
   app.add_option("--surfaces", surfaces, "catalog surfaces for surface_critical");
   app.add_option("--csv", csv_path, "write a CSV file");
   app.add_option("--repository", repository, "the delmesh git checkout (for the revision recorded)");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = experiments::parse_command_line(app, argc, argv)) return *code;
 
   const std::string revision = git_revision(repository);
   std::ofstream csv_file;

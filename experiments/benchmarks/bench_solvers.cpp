@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
   app.add_option("--side", side, "side of the Voronoi-cell-sized domain");
   app.add_option("--seed", seed, "random seed");
   app.add_option("--csv", csv, "also write the table as CSV");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = experiments::parse_command_line(app, argc, argv)) return *code;
 
   cpu_set_t set;
   CPU_ZERO(&set);

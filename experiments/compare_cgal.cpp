@@ -208,15 +208,14 @@ Run run_delmesh(const CatalogEntry& entry, double lambda, std::optional<double> 
     status << result.status;
     run.status = status.str();
     run.statistics = result.statistics;
-    run.parameters += ";threads=" + threads_used(run, options.threads);
     mesh_to_soup(result.mesh, run.soup.points, run.soup.triangles);
   } catch (const std::exception& e) {
     run.seconds = clock.seconds();
-    run.parameters += ";threads=" + field(options.threads);
     run.status = std::string("error: ") + e.what();
     for (char& c : run.status)
       if (c == ',' || c == '\n') c = ';';
   }
+  run.parameters += ";threads=" + threads_used(run, options.threads);
   return run;
 }
 

@@ -236,7 +236,10 @@ SurfaceOracle::ConeAnswer ImplicitOracle::gradient_cone_slope(const AffineChart&
 
 SurfaceOracle::ConeAnswer ImplicitOracle::answer(const GradientConeResult& r) {
   ConeAnswer a{r.proved, r.vanishing_point, r.slope, std::nullopt};
-  if (r.proved) a.surface_box = std::array<Vec3, 2>{r.surface_lo, r.surface_hi};
+  if (r.proved) {
+    a.surface_box = std::array<Vec3, 2>{r.surface_lo, r.surface_hi};
+    a.orientation = r.orientation;
+  }
   return a;
 }
 

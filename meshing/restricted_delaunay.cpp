@@ -392,6 +392,47 @@ bool RestrictedDelaunay::certify_new_cell(VertexId x, const std::vector<std::arr
   return certify_cell(x, neighbours, [&] { return voronoi_cell(del_, x, oracle_.clip_box(), cells, neighbours); });
 }
 
+namespace {
+
+//! Whether the bisector plane {y : ⟨y − (p + q)/2, q − p⟩ = 0} of p and q misses the box
+//! [lo, hi] (true for an empty box), by one interval evaluation over the box.
+bool plane_misses_box(const Vec3& p, const Vec3& q, const std::array<Vec3, 2>& box) {
+  for (int k = 0; k < 3; ++k)
+    if (box[0][k] > box[1][k]) return true;
+  RoundingGuard guard;
+  Interval side(0);
+  for (int k = 0; k < 3; ++k) {
+    const Interval normal = Interval(q[k]) - Interval(p[k]);
+    const Interval middle = (Interval(q[k]) + Interval(p[k])) / 2;
+    side += normal * (Interval(box[0][k], box[1][k]) - middle);
+  }
+  return certainly_nonzero(side);
+}
+
+//! Whether ⟨q − p, u⟩ and ⟨q − p, v⟩ are proved (by interval arithmetic) to be non-zero and of
+//! opposite signs.
+bool normal_between_cones(const Vec3& p, const Vec3& q, const Vec3& u, const Vec3& v) {
+  RoundingGuard guard;
+  Interval m[3];
+  for (int k = 0; k < 3; ++k) m[k] = Interval(q[k]) - Interval(p[k]);
+  const Interval a = m[0] * u[0] + m[1] * u[1] + m[2] * u[2];
+  const Interval b = m[0] * v[0] + m[1] * v[1] + m[2] * v[2];
+  return (a.inf() > 0 && b.sup() < 0) || (a.sup() < 0 && b.inf() > 0);
+}
+
+//! Whether |⟨w, q − p⟩| / |q − p| < slope, with q − p and the quotient enclosed by intervals.
+bool plane_within_slope(const Vec3& w, const Vec3& p, const Vec3& q, double slope) {
+  RoundingGuard guard;
+  Interval m[3];
+  for (int k = 0; k < 3; ++k) m[k] = Interval(q[k]) - Interval(p[k]);
+  const Interval along = m[0] * w[0] + m[1] * w[1] + m[2] * w[2];
+  const Interval length = CGAL::sqrt(CGAL::square(m[0]) + CGAL::square(m[1]) + CGAL::square(m[2]));
+  if (!(length.inf() > 0)) return false;
+  return (CGAL::abs(along) / length).sup() < slope;
+}
+
+}  // namespace
+
 bool RestrictedDelaunay::certify_cell(VertexId p, const std::vector<VertexId>& facet_sites,
                                       const std::function<VoronoiCell()>& build_cell) {
   using State = CellCertificate::State;
@@ -410,17 +451,25 @@ bool RestrictedDelaunay::certify_cell(VertexId p, const std::vector<VertexId>& f
   const Vec3 n = oracle_.normal(del_.point(p));
   if (!(norm(n) > 0)) return false;
   // With facets to certify: the slope that certifies every facet pq a slope up to the cap can,
-  // leaving out the facets that q's kept certificate already certifies.
+  // leaving out the facets that q's kept certificate already certifies, alone or with a proof
+  // over V_p of ⟨∇E, n_p⟩ > 0 (the usual sign on a small cell, around p where it is |∇E(p)|).
   double target = 0;
   for (VertexId q : facet_sites) {
     if (certify_by_cell(make_edge_key(p, q)) == SectionProof::by_cell) continue;
+    if (static_cast<std::size_t>(q) < cells_.size()) {
+      const CellCertificate& cq = cells_[q];
+      if (covers_cell(cq) && cq.orientation != 0 &&
+          normal_between_cones(del_.point(p), del_.point(q), n, cq.orientation * cq.w))
+        continue;
+    }
     const Vec3 m = del_.point(q) - del_.point(p);
     const double along = std::abs(dot(m, n)) / norm(m);
     if (along <= tolerances::cell_slope_cap) target = std::max(target, along);
   }
   target *= tolerances::cell_slope_margin;
-  // No facet would follow (or the oracle bounds no slopes): Silhouette's turn.
-  if (!facet_sites.empty() && (!(target > 0) || !oracle_.bounds_cone_slopes())) return false;
+  // The oracle bounds no slopes (nor signs): Silhouette's turn.  Otherwise a proof without a
+  // slope when no facet wants one: its sign may still certify facets with q's (certify_by_cell).
+  if (!facet_sites.empty() && !oracle_.bounds_cone_slopes()) return false;
   const VoronoiCell& cell = cell_of_p();
   if (!cell.valid) return false;
   c.w = n;
@@ -431,12 +480,14 @@ bool RestrictedDelaunay::certify_cell(VertexId p, const std::vector<VertexId>& f
     c.state = State::proved;
     c.slope = answer.slope;
     c.surface_box = answer.surface_box;
+    c.orientation = answer.orientation;
     return true;
   }
   SurfaceOracle::ConeAnswer answer = oracle_.prove_gradient_cone(AffineChart::identity(), cell.domain, n);
   if (answer.proved) {
     c.state = State::proved;  // without a slope
     c.surface_box = answer.surface_box;
+    c.orientation = answer.orientation;
     return true;
   }
   c.state = State::failed;
@@ -464,6 +515,7 @@ bool RestrictedDelaunay::complete_grown_cell(CellCertificate& c, const VoronoiCe
   const Vec3 n = c.w;
   double slope = c.slope;
   std::optional<std::array<Vec3, 2>> surface_box = c.surface_box;
+  int orientation = c.orientation;
   for (const Domain& grown : c.grown) {
     const Domain part = intersection(cell.domain, grown);
     bool empty = false;
@@ -489,6 +541,9 @@ bool RestrictedDelaunay::complete_grown_cell(CellCertificate& c, const VoronoiCe
         return false;
       }
     }
+    // One sign on every part that meets Σ is the sign on their union.
+    const bool meets_surface = !answer.surface_box || (*answer.surface_box)[0][0] <= (*answer.surface_box)[1][0];
+    if (meets_surface && answer.orientation != orientation) orientation = 0;
     if (surface_box && answer.surface_box) {
       for (int k = 0; k < 3; ++k) {
         (*surface_box)[0][k] = std::min((*surface_box)[0][k], (*answer.surface_box)[0][k]);
@@ -500,6 +555,7 @@ bool RestrictedDelaunay::complete_grown_cell(CellCertificate& c, const VoronoiCe
   }
   c.slope = slope;
   c.surface_box = surface_box;
+  c.orientation = orientation;
   c.grown.clear();
   return true;
 }
@@ -514,35 +570,6 @@ void RestrictedDelaunay::forget_cell(VertexId p) {
   if (static_cast<std::size_t>(p) < cells_.size()) cells_[p] = CellCertificate{};
 }
 
-namespace {
-
-//! Whether the bisector plane {y : ⟨y − (p + q)/2, q − p⟩ = 0} of p and q misses the box
-//! [lo, hi] (true for an empty box), by one interval evaluation over the box.
-bool plane_misses_box(const Vec3& p, const Vec3& q, const std::array<Vec3, 2>& box) {
-  for (int k = 0; k < 3; ++k)
-    if (box[0][k] > box[1][k]) return true;
-  RoundingGuard guard;
-  Interval side(0);
-  for (int k = 0; k < 3; ++k) {
-    const Interval normal = Interval(q[k]) - Interval(p[k]);
-    const Interval middle = (Interval(q[k]) + Interval(p[k])) / 2;
-    side += normal * (Interval(box[0][k], box[1][k]) - middle);
-  }
-  return certainly_nonzero(side);
-}
-
-//! Whether |⟨w, q − p⟩| / |q − p| < slope, with q − p and the quotient enclosed by intervals.
-bool plane_within_slope(const Vec3& w, const Vec3& p, const Vec3& q, double slope) {
-  RoundingGuard guard;
-  Interval m[3];
-  for (int k = 0; k < 3; ++k) m[k] = Interval(q[k]) - Interval(p[k]);
-  const Interval along = m[0] * w[0] + m[1] * w[1] + m[2] * w[2];
-  const Interval length = CGAL::sqrt(CGAL::square(m[0]) + CGAL::square(m[1]) + CGAL::square(m[2]));
-  if (!(length.inf() > 0)) return false;
-  return (CGAL::abs(along) / length).sup() < slope;
-}
-
-}  // namespace
 
 RestrictedDelaunay::SectionProof RestrictedDelaunay::certify_by_cell(const EdgeKey& e) const {
   const Vec3& p = del_.point(e[0]);
@@ -554,6 +581,12 @@ RestrictedDelaunay::SectionProof RestrictedDelaunay::certify_by_cell(const EdgeK
     if (plane_within_slope(c.w, p, q, c.slope) || (c.surface_box && plane_misses_box(p, q, *c.surface_box)))
       return SectionProof::by_cell;
   }
+  if (static_cast<std::size_t>(std::max(e[0], e[1])) >= cells_.size()) return SectionProof::none;
+  const CellCertificate& cp = cells_[e[0]];
+  const CellCertificate& cq = cells_[e[1]];
+  if (covers_cell(cp) && covers_cell(cq) && cp.orientation != 0 && cq.orientation != 0 &&
+      normal_between_cones(p, q, cp.orientation * cp.w, cq.orientation * cq.w))
+    return SectionProof::by_cell;
   return SectionProof::none;
 }
 

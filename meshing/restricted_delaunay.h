@@ -199,8 +199,16 @@ class RestrictedDelaunay {
   //! without a slope) came with a box holding Σ ∩ V_p (SurfaceOracle::ConeAnswer::surface_box)
   //! that the plane of F, the bisector of p and q, misses (one interval evaluation over the box):
   //! then Σ ∩ F ⊆ Σ ∩ V_p lies off F's plane, so Σ ∩ F = ∅ and FacetContact and FacetCycle have
-  //! nothing to look at.  V_p only shrinks while the proof is kept, so both routes hold for the
-  //! facets of the current V_p.  They rest on what the cell's proof rests on:
+  //! nothing to look at.  Nor when both V_p and V_q are certified with a sign, whatever their
+  //! slopes: u = σ_p n_p and v = σ_q n_q with ⟨∇E, u⟩ > 0 on Σ ∩ V_p and ⟨∇E, v⟩ > 0 on Σ ∩ V_q
+  //! (CellCertificate::orientation), and with M = q − p, ⟨M, u⟩ and ⟨M, v⟩ proved non-zero and of
+  //! opposite signs (interval arithmetic).  Then w′ = |⟨M, v⟩| u + |⟨M, u⟩| v is parallel to F's
+  //! plane (⟨w′, M⟩ = 0 by the opposite signs) and, at every x ∈ Σ ∩ F ⊆ Σ ∩ V_p ∩ V_q,
+  //! ⟨∇E(x), w′⟩ > 0 as a sum of two positive terms: the certificate of F with
+  //! the in-plane direction w′.  (On a smooth surface the normals at the ends of a short chord
+  //! tilt to opposite sides of it, so this holds for most facets across Σ, where the slope needs
+  //! |⟨n_p, M⟩| / |M| below ρ_p and that can exceed any slope a cover proves.)  V_p only shrinks
+  //! while the proof is kept, so the three routes hold for the facets of the current V_p.  They rest on what the cell's proof rests on:
   //! that the cell's domain holds V_p ∩ B (voronoi_geometry.h), which the faces of one computed
   //! diagram do up to tolerances::face_membership_relative_tolerance.  Counted
   //! (facets_certified_by_cell()).  This route reads no geometry of F, and holds whether F ∩ B is
@@ -216,8 +224,10 @@ class RestrictedDelaunay {
   //! (SlopeRefinement) towards the least slope that certifies those of them with
   //! |⟨n_p, q − p⟩| / |q − p| ≤ tolerances::cell_slope_cap, within
   //! tolerances::cell_slope_box_budget extra boxes.  Facets that q's kept certificate already
-  //! certifies (facet_section_certified()'s route through the cells) do not raise that slope;
-  //! when they are all the facets, nothing is tried (Silhouette's turn, as without facets).
+  //! certifies (facet_section_certified()'s routes through the cells), or would with a proof of
+  //! ⟨∇E, n_p⟩ > 0 over V_p (the sign of the two-cell route), do not raise that slope; when they
+  //! are all the facets, V_p is proved without a slope (for the sign).  When the oracle bounds
+  //! no slopes, nothing is tried with facet sites (Silhouette's turn, as without facets).
   bool cell_certified(VertexId p, const std::vector<VertexId>& facet_sites = {});
   //! cell_certified(x, neighbours) for a vertex x just inserted: the facets of every new edge xq
   //! are the facet sites, and V_x is built from x's Delaunay cells `cells` and neighbours
@@ -358,6 +368,9 @@ class RestrictedDelaunay {
     enum class State : signed char { none, proved, failed } state = State::none;
     Vec3 w{};                   //!< n_p, the cone's direction
     double slope = 0;           //!< the proof's slope (0: none)
+    //! σ = ±1 if the proof gives ⟨∇E, σ n_p⟩ > 0 on all of Σ ∩ V_p, 0 if it does not
+    //! (SurfaceOracle::ConeAnswer::orientation).
+    int orientation = 0;
     //! A box that holds Σ ∩ V_p, from the proof, if the oracle gives one
     //! (SurfaceOracle::ConeAnswer::surface_box).
     std::optional<std::array<Vec3, 2>> surface_box;

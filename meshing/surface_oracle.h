@@ -113,6 +113,9 @@ class SurfaceOracle {
     //! holds Σ ∩ P, empty (lo[k] > hi[k] for some k) when Σ ∩ P = ∅ is proved
     //! (GradientConeResult::surface_lo, surface_hi).
     std::optional<std::array<Vec3, 2>> surface_box;
+    //! When proved, if the implementation bounds it: +1 if ⟨∇E, w⟩ > 0 on all of Σ ∩ P, −1 if
+    //! < 0 there; 0 if not known (GradientConeResult::orientation).
+    int orientation = 0;
   };
   //! Tries to prove ⟨∇E, w⟩ ≠ 0 on Σ ∩ P, P = domain in the chart (an implementation may never
   //! prove).

@@ -62,13 +62,31 @@ Interval meet(const Interval& a, const Interval& b) {
   return lo <= hi ? Interval(lo, hi) : b;
 }
 
-// A lower bound of min |φ| / max |g| over the enclosures φ ∌ 0 of ⟨∇E, w⟩ and g of ∇E on a box
-// (upward rounding: the quotient is taken as an interval and its lower end kept).
-double box_slope(const Interval& functional, const Interval* gradient) {
+// A lower bound of |⟨g, w⟩| / |g| over a box, from enclosures φ ∌ 0 of ⟨∇E, w⟩ and G of ∇E on
+// it (upward rounding: each quotient is taken as an interval and its lower end kept), the larger
+// of two bounds that hold for every g ∈ G with ⟨g, w⟩ ∈ φ:
+//  - min |φ| / max |G|;
+//  - |w| cos θ, θ the angle between g and the line of w: |g × w| = |g| |w| sin θ and
+//    |⟨g, w⟩| = |g| |w| cos θ, so tan θ ≤ τ / α with α = min |φ| and τ ≥ |g × w| the norm of the
+//    componentwise maxima of the enclosure G × w, and |⟨g, w⟩| / |g| = |w| cos θ
+//    ≥ |w| α / √(α² + τ²).
+// The first loses the whole variation of |∇E| over the box (min |φ| against max |G|); the second
+// only the variation of the direction, which is what a slope bounds.
+double box_slope(const Interval& functional, const Interval* gradient, const std::array<double, 3>& w) {
   const double least = functional.inf() > 0 ? functional.inf() : -functional.sup();
   const Interval norm_squared = CGAL::square(gradient[0]) + CGAL::square(gradient[1]) + CGAL::square(gradient[2]);
   const double largest = CGAL::sqrt(norm_squared).sup();
-  return (Interval(least) / Interval(largest)).inf();
+  const double by_norm = (Interval(least) / Interval(largest)).inf();
+  Interval across_squared(0);
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    across_squared += CGAL::square(gradient[i] * w[j] - gradient[j] * w[i]);
+  }
+  const Interval alpha(least);
+  const Interval w_norm = CGAL::sqrt(CGAL::square(Interval(w[0])) + CGAL::square(Interval(w[1])) + CGAL::square(Interval(w[2])));
+  const Interval by_angle =
+      Interval(w_norm.inf()) * alpha / CGAL::sqrt(CGAL::square(alpha) + Interval(across_squared.sup()));
+  return std::max(by_norm, by_angle.inf());
 }
 
 // A guess, in chart coordinates, at a zero of f(u) = (E(x(u)), ⟨∇E(x(u)), w⟩) near the centre c
@@ -285,6 +303,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     std::uint64_t active = 0;
   };
   std::size_t refining_boxes = 0, refining_created = 0;
+  bool positive_seen = false, negative_seen = false;  // signs of the functional on boxes (iii) dropped
   std::vector<Box> stack(1);
   stack.reserve(64);
   stack[0].active = all_half_spaces_active(domain);
@@ -345,6 +364,8 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
     if (certainly_nonzero(value)) continue;  // (ii), natural form
     // The box's slope bound once (iii) drops it (−1: not dropped).
     double box_bound = -1;
+    // The sign of the functional on the box once (iii) drops it.
+    int box_sign = 0;
     const Interval functional = inner(gradient, w);
     // The centre, and E and ∇E there, computed once a test needs them.
     Interval centre[3], centre_world[3], centre_value, centre_gradient[3];
@@ -375,14 +396,15 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
       }
     };
     if (certainly_nonzero(functional)) {
-      box_bound = refinement.target > 0 ? box_slope(functional, gradient) : 0;  // (iii), natural form
+      box_bound = refinement.target > 0 ? box_slope(functional, gradient, w) : 0;  // (iii), natural form
+      box_sign = functional.inf() > 0 ? 1 : -1;
       if (box_bound < refinement.target && with_hessians) {
         // A sharper bound from the mean-value forms, unless the box misses Σ.
         if (mean_value_excludes_zero()) continue;
         Interval g[3];
         centred_gradient(g);
         const Interval phi = meet(inner(g, w), functional);
-        if (certainly_nonzero(phi)) box_bound = std::max(box_bound, box_slope(phi, g));
+        if (certainly_nonzero(phi)) box_bound = std::max(box_bound, box_slope(phi, g, w));
       }
     } else {
       if (mean_value_excludes_zero()) continue;  // (ii), mean-value form
@@ -393,10 +415,11 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
         Interval mean_functional = inner(centre_gradient, w);
         for (std::size_t j = 0; j < n; ++j) mean_functional += map.along(hessian_w, j) * (u[j] - centre[j]);
         if (certainly_nonzero(mean_functional)) {
+          box_sign = mean_functional.inf() > 0 ? 1 : -1;
           if (refinement.target > 0) {
             Interval g[3];
             centred_gradient(g);
-            box_bound = box_slope(mean_functional, g);
+            box_bound = box_slope(mean_functional, g, w);
           } else {
             box_bound = 0;  // no slope asked for
           }
@@ -404,6 +427,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
       }
     }
     if (box_bound >= 0) {
+      (box_sign > 0 ? positive_seen : negative_seen) = true;
       box_bound = std::max(box_bound, box.refining ? box.parent_slope : 0.0);
       if (box_bound < refinement.target && refining_created + 2 <= refinement.box_budget &&
           split(box, side == DomainSide::inside, active, true, box_bound, gradient)) {
@@ -442,6 +466,7 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
   }
   result.proved = true;
   result.slope = refinement.target > 0 ? slope : 0;
+  result.orientation = positive_seen == negative_seen ? 0 : positive_seen ? 1 : -1;
   result.surface_lo = surface_lo;
   result.surface_hi = surface_hi;
   return result;

@@ -54,10 +54,17 @@
 //!    closed curve of Σ ∩ Π lies in F (it would have one).
 //!
 //! Slope.  A proof also bounds the angle between ∇E and the line of w: on a box dropped by (iii),
-//! with Φ ∌ 0 the enclosure of the functional that decided and G the natural enclosure of ∇E,
-//! every x in the box has |⟨∇E(x), w⟩| ≥ min |Φ| and |∇E(x)| ≤ max |G| (the Euclidean norm of
-//! the componentwise maxima), so |⟨∇E(x), w⟩| ≥ ρ_U |∇E(x)| with ρ_U = min |Φ| / max |G|
-//! (rounded down).  As every point of Σ ∩ P lies in such a box, the least ρ_U over them, the
+//! with Φ ∌ 0 the enclosure of the functional that decided and G an enclosure of ∇E (natural, or
+//! the centred form met with it), every x in the box has |⟨∇E(x), w⟩| ≥ ρ_U |∇E(x)| with ρ_U
+//! (rounded down) the larger of
+//!  - min |Φ| / max |G|: |⟨∇E(x), w⟩| ≥ min |Φ| and |∇E(x)| ≤ max |G| (the Euclidean norm of the
+//!    componentwise maxima);
+//!  - |w| α / √(α² + τ²), α = min |Φ| and τ the norm of the componentwise maxima of G × w: with θ
+//!    the angle between g = ∇E(x) and the line of w, |g × w| = |g| |w| sin θ ≤ τ and
+//!    |⟨g, w⟩| = |g| |w| cos θ ≥ α, so tan θ ≤ τ / α and |⟨g, w⟩| / |g| = |w| cos θ ≥ the bound.
+//!    It bounds the direction of ∇E only; the first also pays for the variation of |∇E| over the
+//!    box, which can make it small however well ∇E keeps its direction.
+//! As every point of Σ ∩ P lies in such a box, the least ρ_U over them, the
 //! slope ρ, satisfies |⟨∇E(x), w⟩| ≥ ρ |∇E(x)| > 0 on all of Σ ∩ P (ρ = +∞ if no box needed (iii):
 //! then Σ ∩ P = ∅).
 //!
@@ -105,6 +112,11 @@ struct GradientConeResult {
   //! not drop (every point of Σ ∩ P lies in one: the proof above).  Empty (surface_lo[k] >
   //! surface_hi[k] for every k) when there is none, i.e. Σ ∩ P = ∅ is proved.
   std::array<double, 3> surface_lo{}, surface_hi{};
+  //! When proved: +1 if ⟨∇E, w⟩ > 0 on all of Σ ∩ P, −1 if < 0 there, 0 if neither is proved
+  //! (the boxes that (iii) dropped did not all give the functional the same sign, or there were
+  //! none).  The sign is that of the enclosure that decided (iii) on each box; every point of
+  //! Σ ∩ P lies in such a box (the proof above), so a common sign is the functional's sign on Σ ∩ P.
+  int orientation = 0;
 };
 
 //! The slope, if asked for (target > 0), and extra subdivision to raise it: a box that (iii)

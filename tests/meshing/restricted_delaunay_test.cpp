@@ -194,6 +194,27 @@ BOOST_AUTO_TEST_CASE(a_facet_off_the_cells_surface_box_follows_from_the_cell) {
   BOOST_TEST(f.restricted.facets_built() == built_before);  // nor its geometry
 }
 
+// A facet across Σ follows from the signs of two certified cells, where no slope could certify
+// it.  On the octahedron inscribed in the unit sphere, p = (1, 0, 0) and q = (0, 1, 0): ⟨∇E, n_p⟩ =
+// 2x > 0 on Σ ∩ V_p and ⟨∇E, n_q⟩ = 2y > 0 on Σ ∩ V_q, while q − p has ⟨q − p, n_p⟩ = −1 and
+// ⟨q − p, n_q⟩ = +1.  A slope of V_p would have to exceed |⟨n_p, q − p⟩| / |q − p| = 1/√2, but the
+// true slope on Σ ∩ V_p is min x = 1/√3; and the plane x = y of the facet meets Σ ∩ V_p.
+BOOST_AUTO_TEST_CASE(a_facet_across_a_chord_follows_from_the_signs_of_both_cells) {
+  CheckFixture f(test::unit_sphere, 1.5, {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
+  const EdgeKey pq = make_edge_key(0, 2);
+  const auto around_p = f.del.neighbours(0);
+  BOOST_TEST_REQUIRE(std::count(around_p.begin(), around_p.end(), 2) == 1);
+  BOOST_TEST_REQUIRE(f.restricted.cell_certified(0));
+  BOOST_TEST_REQUIRE(f.restricted.cell_certified(2));
+  const auto attempts = [&] { return f.oracle.statistics_json()["cone_certificates"]["attempts"].get<std::size_t>(); };
+  const std::size_t attempts_before = attempts(), by_cell_before = f.restricted.facets_certified_by_cell(),
+                    built_before = f.restricted.facets_built();
+  BOOST_TEST(f.restricted.facet_section_certified(pq));
+  BOOST_TEST(attempts() == attempts_before);  // no cover of the facet
+  BOOST_TEST(f.restricted.facets_certified_by_cell() == by_cell_before + 1);
+  BOOST_TEST(f.restricted.facets_built() == built_before);  // nor its geometry
+}
+
 // A kept cell proof whose cell may have grown (a neighbour removed) is completed on the grown
 // part only: on the octahedron, V_p of the north pole is proved, then said to have grown into a
 // box about the centre, which Σ misses: the proof stands after fewer boxes than the whole cell

@@ -147,6 +147,28 @@ BOOST_AUTO_TEST_CASE(the_slope_bounds_the_angle_to_w_from_below) {
   BOOST_TEST(std::isinf(empty.slope));
 }
 
+BOOST_AUTO_TEST_CASE(the_slope_bounds_a_direction_not_a_magnitude) {
+  // On Σ = {(1 + x² + y²) z = 0} ∩ P, P = [−1, 1]² × [−0.05, 0.05], ∇E = (0, 0, 1 + x² + y²):
+  // its direction is e_z everywhere and its length runs from 1 to 3.  The whole of P is one box
+  // that (iii) drops (⟨∇E, e_z⟩ ∈ [1, 3] on it), where ∇E × e_z = (∂E/∂y, −∂E/∂x, 0) lies in
+  // [−0.1, 0.1]²: the slope is at least 1/√1.02 > 0.99 without a single refining box, where
+  // min ⟨∇E, e_z⟩ / max |∇E| would give 1/3 or less.  It never exceeds the true slope 1.
+  const GiNaC::symbol &x = coordinate_x(), &y = coordinate_y(), &z = coordinate_z();
+  const CompiledSystem E({(1 + x * x + y * y) * z}, {x, y, z}, {}, true);
+  const auto r = prove_gradient_cone(E, AffineChart::identity(), cube(-1, 1, -1, 1, -0.05, 0.05), {0, 0, 1}, 10, {0.9, 0});
+  BOOST_TEST(r.proved);
+  BOOST_TEST(r.boxes == 1u);
+  BOOST_TEST(r.slope > 0.99);
+  BOOST_TEST(r.slope <= 1.0);
+  // Tilted away from ∇E by the angle θ with cos θ = 0.8, the slope is at most 0.8, and refining
+  // brings it close.
+  const auto tilted = prove_gradient_cone(E, AffineChart::identity(), cube(-1, 1, -1, 1, -0.05, 0.05), {0.6, 0, 0.8},
+                                          10, {0.75, 20000});
+  BOOST_TEST(tilted.proved);
+  BOOST_TEST(tilted.slope >= 0.75);
+  BOOST_TEST(tilted.slope <= 0.8);
+}
+
 BOOST_AUTO_TEST_CASE(a_proved_zero_of_the_functional_refutes_the_certificate) {
   // With Hessians, a box inside P around a point of the equator z = 0 (where ⟨∇E, e_z⟩ = 2z
   // vanishes on the sphere) gets a Krawczyk proof of that zero: the attempt stops, refuted, long

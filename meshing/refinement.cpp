@@ -391,11 +391,15 @@ void Refinement::insert_partner(const Witness& w) {
   const double reach = tolerances::opposite_sheet_reach * witness.nearest_distance;
   const Vec3 n = oracle_.normal(w.point);
   if (!(reach > 0) || !(detail::norm(n) > 0)) return;
+  // A root this close is w's own (and a partner there would be rejected as a duplicate).
+  const double own = tolerances::duplicate_sample_relative_distance * oracle_.diagonal() / tolerances::opposite_sheet_spacing;
+  // No partner when E(w + t n) is strictly monotone in t on [−reach, reach] (⟨∇E, n⟩ of one sign
+  // along the segment) and changes sign on [−own, own]: its only zero there is w's own.
+  if (const int along = oracle_.gradient_sign(w.point + (-reach) * n, w.point + reach * n, n); along != 0)
+    if (oracle_.value_sign(w.point + (-own) * n) == -along && oracle_.value_sign(w.point + own * n) == along) return;
   // The nearest point of Σ on the normal line other than w itself, if the search settled it.
   const SolveResult line = oracle_.surface_line(w.point, n, -reach, reach);
   if (!line.undecided.empty()) return;
-  // A root this close is w's own (and a partner there would be rejected as a duplicate).
-  const double own = tolerances::duplicate_sample_relative_distance * oracle_.diagonal() / tolerances::opposite_sheet_spacing;
   std::optional<double> nearest_t;
   for (const auto& root : line.roots) {
     const auto& b = root.box.bounds[0];

@@ -96,7 +96,11 @@
 //! provided |⟨n(w), n(y)⟩| ≥
 //! c = tolerances::opposite_sheet_min_cosine and every sample is at least
 //! s·|w − y| from y, s = tolerances::opposite_sheet_spacing.  y is logged with partner_of = w
-//! and counted as `opposite_sheet`, not as a witness of the check.
+//! and counted as `opposite_sheet`, not as a witness of the check.  The search is skipped when
+//! three interval evaluations show that it has no y to find: ⟨∇E, n⟩ of one sign σ on the
+//! segment (SurfaceOracle::gradient_sign), so that E(w + t n) is strictly monotone in t there and
+//! has at most one zero, and E(w − δ n), E(w + δ n) of signs −σ and σ, δ the distance below which
+//! a root counts as w's own, so that its one zero is w's own.
 //!  - The guarantee does not change: y is a point of Σ (a certified root of SurfaceLine), and
 //!    the output theorem asks only that every check be clean on the final S, which the loop
 //!    establishes for whatever S it ends with.

@@ -349,6 +349,10 @@ inline constexpr double cell_slope_cap = 0.2;
 inline constexpr double cell_slope_margin = 1.05;
 inline constexpr std::size_t cell_slope_box_budget = 128;
 inline constexpr std::size_t cell_slope_cover_budget = 192;
+//! The relative margin by which a facet's slope test in doubles (meshing/restricted_delaunay.cpp)
+//! may fail before its interval test is skipped: more than the one rounding of that comparison
+//! that falls outside the interval enclosure, so the skipped test could not have passed.
+inline constexpr double slope_pretest_relative_margin = 1e-12;
 //! The least batch of an insertion's work that runs on several threads (detail::ParallelFor,
 //! `--threads`); a smaller one runs on the calling thread.  Handing a batch to TBB's threads and
 //! waiting for them costs tens of microseconds, while an edge record is about a microsecond (one

@@ -394,6 +394,13 @@ bool RestrictedDelaunay::certify_new_cell(VertexId x, const std::vector<std::arr
 
 namespace {
 
+// Two of the tests below first evaluate their expression in doubles, rounded to nearest: each
+// such operation's result lies between the lower and upper ends of the interval operation on
+// intervals holding its operands, so the double value lies in the interval enclosure, and when it
+// fails the test (with tolerances::slope_pretest_relative_margin for the one rounding outside the
+// enclosure, in the comparison of plane_within_slope) the enclosure fails it too.  The answer is then false without
+// switching the rounding mode, which costs more than the arithmetic; false proves nothing.
+
 //! Whether the bisector plane {y : ⟨y − (p + q)/2, q − p⟩ = 0} of p and q misses the box
 //! [lo, hi] (true for an empty box), by one interval evaluation over the box.
 bool plane_misses_box(const Vec3& p, const Vec3& q, const std::array<Vec3, 2>& box) {
@@ -412,6 +419,9 @@ bool plane_misses_box(const Vec3& p, const Vec3& q, const std::array<Vec3, 2>& b
 //! Whether ⟨q − p, u⟩ and ⟨q − p, v⟩ are proved (by interval arithmetic) to be non-zero and of
 //! opposite signs.
 bool normal_between_cones(const Vec3& p, const Vec3& q, const Vec3& u, const Vec3& v) {
+  const Vec3 d{q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+  const double a_near = d[0] * u[0] + d[1] * u[1] + d[2] * u[2], b_near = d[0] * v[0] + d[1] * v[1] + d[2] * v[2];
+  if (!((a_near > 0 && b_near < 0) || (a_near < 0 && b_near > 0))) return false;
   RoundingGuard guard;
   Interval m[3];
   for (int k = 0; k < 3; ++k) m[k] = Interval(q[k]) - Interval(p[k]);
@@ -422,6 +432,9 @@ bool normal_between_cones(const Vec3& p, const Vec3& q, const Vec3& u, const Vec
 
 //! Whether |⟨w, q − p⟩| / |q − p| < slope, with q − p and the quotient enclosed by intervals.
 bool plane_within_slope(const Vec3& w, const Vec3& p, const Vec3& q, double slope) {
+  const Vec3 d{q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+  const double along_near = std::abs(d[0] * w[0] + d[1] * w[1] + d[2] * w[2]);
+  if (!(along_near < slope * std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * (1 + tolerances::slope_pretest_relative_margin))) return false;
   RoundingGuard guard;
   Interval m[3];
   for (int k = 0; k < 3; ++k) m[k] = Interval(q[k]) - Interval(p[k]);
@@ -581,6 +594,7 @@ RestrictedDelaunay::SectionProof RestrictedDelaunay::certify_by_cell(const EdgeK
     if (plane_within_slope(c.w, p, q, c.slope) || (c.surface_box && plane_misses_box(p, q, *c.surface_box)))
       return SectionProof::by_cell;
   }
+  // Both cells certified with a sign, q − p between their cones (facet_section_certified()).
   if (static_cast<std::size_t>(std::max(e[0], e[1])) >= cells_.size()) return SectionProof::none;
   const CellCertificate& cp = cells_[e[0]];
   const CellCertificate& cq = cells_[e[1]];

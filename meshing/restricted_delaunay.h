@@ -328,9 +328,9 @@ class RestrictedDelaunay {
   //! How the section of a facet was certified, if it was.
   enum class SectionProof : signed char { none, by_cell, by_cover };
   //! The two certificates of facet_section_certified(), tried in this order; both are
-  //! thread-safe while no cell certificate is being added.  From a certified cell of p or q:
-  //! reads the cells and the sites only, not F's geometry (a proof over V_p holds on every
-  //! part of it, F ∩ B empty or degenerate included).
+  //! thread-safe while no cell certificate is being added.  From the certified cells of p and q
+  //! (one of them, or both with signs): reads the cells and the sites only, not F's geometry (a
+  //! proof over V_p holds on every part of it, F ∩ B empty or degenerate included).
   SectionProof certify_by_cell(const EdgeKey& e) const;
   //! The gradient cone over F (a valid or degenerate facet; none for an empty one).
   SectionProof certify_by_cover(const EdgeKey& e, const VoronoiFacet& f) const;

@@ -168,6 +168,18 @@ BOOST_AUTO_TEST_CASE(a_shrunk_facet_keeps_a_proved_section_certificate) {
   for (const auto& e : change.destroyed_edges) BOOST_TEST(!f.restricted.has_facet(e));
 }
 
+// The facet of e is certified from the cells alone: no cone attempt, one more facet counted as
+// certified by cell, and no facet geometry built.
+static void check_facet_follows_from_cells(CheckFixture& f, const EdgeKey& e) {
+  const auto attempts = [&] { return f.oracle.statistics_json()["cone_certificates"]["attempts"].get<std::size_t>(); };
+  const std::size_t attempts_before = attempts(), by_cell_before = f.restricted.facets_certified_by_cell(),
+                    built_before = f.restricted.facets_built();
+  BOOST_TEST(f.restricted.facet_section_certified(e));
+  BOOST_TEST(attempts() == attempts_before);
+  BOOST_TEST(f.restricted.facets_certified_by_cell() == by_cell_before + 1);
+  BOOST_TEST(f.restricted.facets_built() == built_before);
+}
+
 // A facet across Σ follows from a certified cell whose box around Σ ∩ V_p its plane misses.  On
 // the flat ellipsoid x² + y² + 100 z² = 1 (two sheets 0.2 apart), p and q are the poles and six
 // samples surround each.  The facet of pq lies in the plane z = 0, between the sheets, while
@@ -185,13 +197,7 @@ BOOST_AUTO_TEST_CASE(a_facet_off_the_cells_surface_box_follows_from_the_cell) {
   const auto around_p = f.del.neighbours(0);
   BOOST_TEST_REQUIRE(std::count(around_p.begin(), around_p.end(), 1) == 1);
   BOOST_TEST_REQUIRE(f.restricted.cell_certified(0));
-  const auto attempts = [&] { return f.oracle.statistics_json()["cone_certificates"]["attempts"].get<std::size_t>(); };
-  const std::size_t attempts_before = attempts(), by_cell_before = f.restricted.facets_certified_by_cell(),
-                    built_before = f.restricted.facets_built();
-  BOOST_TEST(f.restricted.facet_section_certified(pq));
-  BOOST_TEST(attempts() == attempts_before);  // no cover of the facet
-  BOOST_TEST(f.restricted.facets_certified_by_cell() == by_cell_before + 1);
-  BOOST_TEST(f.restricted.facets_built() == built_before);  // nor its geometry
+  check_facet_follows_from_cells(f, pq);
 }
 
 // A facet across Σ follows from the signs of two certified cells, where no slope could certify
@@ -206,13 +212,7 @@ BOOST_AUTO_TEST_CASE(a_facet_across_a_chord_follows_from_the_signs_of_both_cells
   BOOST_TEST_REQUIRE(std::count(around_p.begin(), around_p.end(), 2) == 1);
   BOOST_TEST_REQUIRE(f.restricted.cell_certified(0));
   BOOST_TEST_REQUIRE(f.restricted.cell_certified(2));
-  const auto attempts = [&] { return f.oracle.statistics_json()["cone_certificates"]["attempts"].get<std::size_t>(); };
-  const std::size_t attempts_before = attempts(), by_cell_before = f.restricted.facets_certified_by_cell(),
-                    built_before = f.restricted.facets_built();
-  BOOST_TEST(f.restricted.facet_section_certified(pq));
-  BOOST_TEST(attempts() == attempts_before);  // no cover of the facet
-  BOOST_TEST(f.restricted.facets_certified_by_cell() == by_cell_before + 1);
-  BOOST_TEST(f.restricted.facets_built() == built_before);  // nor its geometry
+  check_facet_follows_from_cells(f, pq);
 }
 
 // A kept cell proof whose cell may have grown (a neighbour removed) is completed on the grown

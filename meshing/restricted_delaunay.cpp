@@ -398,8 +398,9 @@ namespace {
 // such operation's result lies between the lower and upper ends of the interval operation on
 // intervals holding its operands, so the double value lies in the interval enclosure, and when it
 // fails the test (with tolerances::slope_pretest_relative_margin for the one rounding outside the
-// enclosure, in the comparison of plane_within_slope) the enclosure fails it too.  The answer is then false without
-// switching the rounding mode, which costs more than the arithmetic; false proves nothing.
+// enclosure, in the comparison of plane_within_slope) the enclosure fails it too.  The answer is
+// then false without switching the rounding mode, which costs more than the arithmetic; false
+// proves nothing.
 
 //! Whether the bisector plane {y : ⟨y − (p + q)/2, q − p⟩ = 0} of p and q misses the box
 //! [lo, hi] (true for an empty box), by one interval evaluation over the box.
@@ -434,7 +435,8 @@ bool normal_between_cones(const Vec3& p, const Vec3& q, const Vec3& u, const Vec
 bool plane_within_slope(const Vec3& w, const Vec3& p, const Vec3& q, double slope) {
   const Vec3 d{q[0] - p[0], q[1] - p[1], q[2] - p[2]};
   const double along_near = std::abs(d[0] * w[0] + d[1] * w[1] + d[2] * w[2]);
-  if (!(along_near < slope * std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * (1 + tolerances::slope_pretest_relative_margin))) return false;
+  const double length_near = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (!(along_near < slope * length_near * (1 + tolerances::slope_pretest_relative_margin))) return false;
   RoundingGuard guard;
   Interval m[3];
   for (int k = 0; k < 3; ++k) m[k] = Interval(q[k]) - Interval(p[k]);
@@ -445,6 +447,10 @@ bool plane_within_slope(const Vec3& w, const Vec3& p, const Vec3& q, double slop
 }
 
 }  // namespace
+
+bool RestrictedDelaunay::signs_certify(const Vec3& p, const Vec3& q, const Vec3& u, const CellCertificate& cq) {
+  return covers_cell(cq) && cq.orientation != 0 && normal_between_cones(p, q, u, cq.orientation * cq.w);
+}
 
 bool RestrictedDelaunay::certify_cell(VertexId p, const std::vector<VertexId>& facet_sites,
                                       const std::function<VoronoiCell()>& build_cell) {
@@ -469,12 +475,8 @@ bool RestrictedDelaunay::certify_cell(VertexId p, const std::vector<VertexId>& f
   double target = 0;
   for (VertexId q : facet_sites) {
     if (certify_by_cell(make_edge_key(p, q)) == SectionProof::by_cell) continue;
-    if (static_cast<std::size_t>(q) < cells_.size()) {
-      const CellCertificate& cq = cells_[q];
-      if (covers_cell(cq) && cq.orientation != 0 &&
-          normal_between_cones(del_.point(p), del_.point(q), n, cq.orientation * cq.w))
-        continue;
-    }
+    if (static_cast<std::size_t>(q) < cells_.size() && signs_certify(del_.point(p), del_.point(q), n, cells_[q]))
+      continue;
     const Vec3 m = del_.point(q) - del_.point(p);
     const double along = std::abs(dot(m, n)) / norm(m);
     if (along <= tolerances::cell_slope_cap) target = std::max(target, along);
@@ -583,7 +585,6 @@ void RestrictedDelaunay::forget_cell(VertexId p) {
   if (static_cast<std::size_t>(p) < cells_.size()) cells_[p] = CellCertificate{};
 }
 
-
 RestrictedDelaunay::SectionProof RestrictedDelaunay::certify_by_cell(const EdgeKey& e) const {
   const Vec3& p = del_.point(e[0]);
   const Vec3& q = del_.point(e[1]);
@@ -597,9 +598,7 @@ RestrictedDelaunay::SectionProof RestrictedDelaunay::certify_by_cell(const EdgeK
   // Both cells certified with a sign, q − p between their cones (facet_section_certified()).
   if (static_cast<std::size_t>(std::max(e[0], e[1])) >= cells_.size()) return SectionProof::none;
   const CellCertificate& cp = cells_[e[0]];
-  const CellCertificate& cq = cells_[e[1]];
-  if (covers_cell(cp) && covers_cell(cq) && cp.orientation != 0 && cq.orientation != 0 &&
-      normal_between_cones(p, q, cp.orientation * cp.w, cq.orientation * cq.w))
+  if (covers_cell(cp) && cp.orientation != 0 && signs_certify(p, q, cp.orientation * cp.w, cells_[e[1]]))
     return SectionProof::by_cell;
   return SectionProof::none;
 }

@@ -391,6 +391,10 @@ class RestrictedDelaunay {
   static bool covers_cell(const CellCertificate& c) {
     return c.state == CellCertificate::State::proved && c.grown.empty();
   }
+  //! The two-cell route of facet_section_certified() for the facet of pq, given u = σ_p n_p (the
+  //! signed direction of a proof over V_p) and q's certificate cq: whether cq covers V_q with a
+  //! sign and q − p is proved to have inner products of opposite signs with u and σ_q n_q.
+  static bool signs_certify(const Vec3& p, const Vec3& q, const Vec3& u, const CellCertificate& cq);
   //! Whether c is a failure found on the current Del S (so it still stands).
   bool failure_kept(const CellCertificate& c) const {
     return c.state == CellCertificate::State::failed && c.vertices == del_.size();

@@ -316,21 +316,37 @@ std::optional<MeshStatus> Refinement::limit_reached(std::chrono::steady_clock::t
 }
 
 MeshStatus Refinement::run() {
-  // One clock reading per check: it ends the check's time and is the time the limits are
-  // tested against.
+  // The clock is read when a run of checks of one row ends (another row's check comes, or a
+  // check found a witness), and after every tolerances::checks_per_clock_reading checks of a
+  // run: the time since the previous reading goes to that row, all of it spent in its checks
+  // (and in recording their clean results), so the per-row sums are those of one reading per
+  // check.  The limits are tested against the latest reading.
   auto now = std::chrono::steady_clock::now();
+  int timed_kind = -1;       // the row of the checks since `now`
+  std::size_t untimed = 0;   // how many
+  auto read_clock = [&] {
+    const auto t = std::chrono::steady_clock::now();
+    if (untimed > 0) seconds_[timed_kind] += std::chrono::duration<double>(t - now).count();
+    now = t;
+    untimed = 0;
+  };
   while (true) {
-    if (auto status = limit_reached(now)) return *status;
+    if (auto status = limit_reached(now)) {
+      read_clock();
+      return *status;
+    }
     auto step = std::find_if(steps_.begin(), steps_.end(),
                              [](const Step& s) { return s.enabled && !s.queue.empty(); });
     if (step == steps_.end()) {
       if (requeue_unsettled()) continue;
+      read_clock();
       return MeshStatus::complete;
     }
     const Simplex item = step->queue.pop();
     const int index = static_cast<int>(step - steps_.begin());
     const CheckInfo& row = *step->row;
     const auto k = static_cast<int>(row.kind);
+    if (untimed > 0 && (k != timed_kind || untimed >= tolerances::checks_per_clock_reading)) read_clock();
     // A face no longer in Del S has nothing to check.  A row with a generic choice whose witnesses
     // were all rejected runs again with the next choice (S is unchanged: the face is still current).
     const bool current_face = face_current(item);
@@ -343,11 +359,11 @@ MeshStatus Refinement::run() {
         // The last edge check of the edge: its facet's geometry is not kept.
         if (index == last_edge_step_ && result.clean()) restricted_.release_facet(as_edge(item));
       }
-      const auto checked = std::chrono::steady_clock::now();
-      seconds_[k] += std::chrono::duration<double>(checked - now).count();
       ++checks_[k];
-      now = checked;
+      timed_kind = k;
+      ++untimed;
       const bool had_witness = !result.witnesses.empty();
+      if (had_witness) read_clock();  // the insertion's time is its own
       inserted = settle(index, item, std::move(result));
       retry = !inserted && had_witness && row.generic_choice &&
               ++context.attempt < tolerances::generic_choice_attempts;

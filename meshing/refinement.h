@@ -155,7 +155,9 @@ struct InsertionRecord {
 
 struct RefinementLimits {
   std::size_t max_points = 200000;
-  //! Absolute deadline; none if empty.
+  //! Absolute deadline; none if empty.  run() tests it at its clock readings: after an
+  //! insertion, when the row of the checks changes, and at least every
+  //! tolerances::checks_per_clock_reading checks (the progress line likewise).
   std::optional<std::chrono::steady_clock::time_point> deadline;
   std::function<void(const std::string&)> progress;
   //! Stops the run (interrupted) when it reads true; none if null.
@@ -237,7 +239,8 @@ class Refinement {
   std::size_t generic_choice_retries() const { return retries_; }
   //! Opposite-sheet partners inserted (see above; not counted in insertions()).
   std::size_t opposite_sheet_partners() const { return partners_; }
-  //! Seconds spent in each check, and the number of items each step examined.
+  //! Seconds spent in each check (with the recording of its clean results), and the number of
+  //! items each step examined.
   double seconds(CheckKind kind) const { return seconds_[static_cast<int>(kind)]; }
   std::size_t checks(CheckKind kind) const { return checks_[static_cast<int>(kind)]; }
   //! Seconds spent inserting: updating Del S and the records and facets of the changed faces.

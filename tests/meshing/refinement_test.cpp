@@ -2,6 +2,7 @@
 // independent mesh checker (it reads only the mesh), and Lemma 5.1 is checked empirically.
 #include <boost/test/unit_test.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <map>
@@ -182,6 +183,34 @@ BOOST_AUTO_TEST_CASE(rejected_witnesses_leave_the_run_uncertified) {
     BOOST_TEST(std::abs(oracle.E(u.location)) < 1e-6);  // a witness: a point of Σ
   }
   BOOST_TEST(refinement.certify(status, false).status == MeshStatus::uncertified);
+}
+
+// The clock is read once per run of checks of one row (and every checks_per_clock_reading
+// checks): every row that examined an item is charged a positive time, and the checks' and the
+// insertions' times together do not exceed the run's.  A deadline already past stops run() at
+// its first reading, before any check.
+BOOST_AUTO_TEST_CASE(check_times_add_up_and_a_past_deadline_stops_the_run) {
+  const auto& entry = catalog_entry("torus");
+  ImplicitOracle oracle(entry.surface(), entry.box, SolverBackend::subdivision);
+  const auto start = std::chrono::steady_clock::now();
+  Refinement refinement(oracle, 1, RefinementLimits{});
+  BOOST_TEST_REQUIRE(sample_topology(refinement).status == MeshStatus::complete);
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  double charged = refinement.seconds_insertion();
+  for (int k = 0; k < check_kind_count(); ++k) {
+    const auto kind = static_cast<CheckKind>(k);
+    if (refinement.checks(kind) > 0) BOOST_TEST(refinement.seconds(kind) > 0);
+    BOOST_TEST(refinement.seconds(kind) >= 0);
+    charged += refinement.seconds(kind);
+  }
+  BOOST_TEST(charged <= elapsed);
+
+  RefinementLimits limits;
+  limits.deadline = std::chrono::steady_clock::now();
+  Refinement late(oracle, 1, limits);
+  BOOST_TEST_REQUIRE(late.insert(Witness{{1.4, 0, 0}, CheckKind::seed}).has_value());
+  BOOST_TEST(late.run() == MeshStatus::time_limit);
+  for (int k = 0; k < check_kind_count(); ++k) BOOST_TEST(late.checks(static_cast<CheckKind>(k)) == 0u);
 }
 
 // Six samples at the vertices of an octahedron centred at (1,0,0) ∈ Σ (the unit sphere) are

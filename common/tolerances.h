@@ -354,8 +354,8 @@ inline constexpr std::size_t cell_slope_cover_budget = 192;
 //! that falls outside the interval enclosure, so the skipped test could not have passed.
 inline constexpr double slope_pretest_relative_margin = 1e-12;
 //! The most checks of one row between two clock readings of the refinement loop (Refinement::run):
-//! a reading costs about as much as a cheap check, and the time and point limits and the
-//! progress line are tested at readings.
+//! a reading costs about as much as a cheap check, and the time limit and the progress line are
+//! tested at readings (the point limit and an interrupt before every check).
 inline constexpr std::size_t checks_per_clock_reading = 32;
 //! The least batch of an insertion's work that runs on several threads (detail::ParallelFor,
 //! `--threads`); a smaller one runs on the calling thread.  Handing a batch to TBB's threads and

@@ -318,9 +318,9 @@ std::optional<MeshStatus> Refinement::limit_reached(std::chrono::steady_clock::t
 MeshStatus Refinement::run() {
   // The clock is read when a run of checks of one row ends (another row's check comes, or a
   // check found a witness), and after every tolerances::checks_per_clock_reading checks of a
-  // run: the time since the previous reading goes to that row, all of it spent in its checks
-  // (and in recording their clean results), so the per-row sums are those of one reading per
-  // check.  The limits are tested against the latest reading.
+  // run: the time since the previous reading goes to that row, whose checks (with the loop's
+  // bookkeeping between them, and the recording of their clean results) filled it, as a
+  // reading after every check would give.  The time limit is tested against the latest reading.
   auto now = std::chrono::steady_clock::now();
   int timed_kind = -1;       // the row of the checks since `now`
   std::size_t untimed = 0;   // how many

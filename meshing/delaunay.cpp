@@ -12,13 +12,16 @@
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include "common/errors.h"
+#include "meshing/detail/key_order.h"
 
 namespace delmesh {
 
 TriangleKey make_triangle_key(VertexId a, VertexId b, VertexId c) {
-  TriangleKey t{a, b, c};
-  std::sort(t.begin(), t.end());
-  return t;
+  // Three compare-exchanges sort three entries.
+  if (b < a) std::swap(a, b);
+  if (c < b) std::swap(b, c);
+  if (b < a) std::swap(a, b);
+  return {a, b, c};
 }
 
 EdgeKey make_edge_key(VertexId a, VertexId b) { return a < b ? EdgeKey{a, b} : EdgeKey{b, a}; }
@@ -57,7 +60,7 @@ class CavityEdges {
                       static_cast<std::uint32_t>(e[1]);
     h *= 0x9E3779B97F4A7C15ULL;
     for (std::size_t i = static_cast<std::size_t>(h >> 32) & mask_;; i = (i + 1) & mask_) {
-      if (slots_[i] == e) return false;
+      if (slots_[i][0] == e[0] && slots_[i][1] == e[1]) return false;
       if (slots_[i][0] < 0) {
         slots_[i] = e;
         used_.push_back(i);
@@ -135,12 +138,6 @@ std::array<VertexId, 2> facet_apexes(const Dt& dt, typename Dt::Cell_handle c, i
   return {vertex_id(dt, c->vertex(i)), vertex_id(dt, other->vertex(other->index(c)))};
 }
 
-template <class Key>
-void sort_unique(std::vector<Key>& keys) {
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-}
-
 }  // namespace
 
 std::optional<VertexId> Delaunay::insert(const std::array<double, 3>& p, bool is_seed) {
@@ -191,10 +188,10 @@ std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, b
             for (const EdgeKey& e : {EdgeKey{(*t)[0], (*t)[1]}, EdgeKey{(*t)[0], (*t)[2]}, EdgeKey{(*t)[1], (*t)[2]}})
               if (seen.add(e)) edges.push_back(e);
           }
-      sort_unique(change->shrunk_triangles);
-      sort_unique(change->destroyed_triangles);
-      std::sort(change->shrunk_edges.begin(), change->shrunk_edges.end());
-      std::sort(change->destroyed_edges.begin(), change->destroyed_edges.end());
+      detail::sort_unique(change->shrunk_triangles);
+      detail::sort_unique(change->destroyed_triangles);
+      std::sort(change->shrunk_edges.begin(), change->shrunk_edges.end(), detail::KeyLess{});
+      std::sort(change->destroyed_edges.begin(), change->destroyed_edges.end(), detail::KeyLess{});
       change->local = true;
       v = dt.insert_in_hole(point, cavity.begin(), cavity.end(), boundary.front().first, boundary.front().second);
     } else {
@@ -277,8 +274,7 @@ std::vector<TriangleKey> Delaunay::incident_triangles(VertexId id) const {
                                       c->vertex(2)->info().id));
     }
   }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  detail::sort_unique(out);
   return out;
 }
 
@@ -318,7 +314,8 @@ std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x,
       out.push_back({*t, facet_apexes(dt, c, j), j != ix});
     }
   }
-  std::sort(out.begin(), out.end(), [](const StarTriangle& a, const StarTriangle& b) { return a.key < b.key; });
+  std::sort(out.begin(), out.end(),
+            [](const StarTriangle& a, const StarTriangle& b) { return detail::KeyLess{}(a.key, b.key); });
   return out;
 }
 
@@ -344,7 +341,7 @@ std::vector<TriangleKey> Delaunay::edge_triangles(const EdgeKey& e) const {
     for (const auto& t : incident_triangles(e[0]))
       if (std::find(t.begin(), t.end(), e[1]) != t.end()) out.push_back(t);
   }
-  sort_unique(out);
+  detail::sort_unique(out);
   return out;
 }
 
@@ -371,7 +368,7 @@ std::vector<Delaunay::RingTriangle> Delaunay::edge_ring(const EdgeKey& e) const 
 std::vector<EdgeKey> Delaunay::incident_edges(VertexId id) const {
   std::vector<EdgeKey> out;
   for (VertexId w : neighbours(id)) out.push_back(make_edge_key(id, w));
-  std::sort(out.begin(), out.end());
+  std::sort(out.begin(), out.end(), detail::KeyLess{});
   return out;
 }
 
@@ -399,8 +396,7 @@ std::vector<TriangleKey> Delaunay::triangles() const {
       out.insert(out.end(), star.begin(), star.end());
     }
   }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  detail::sort_unique(out);
   return out;
 }
 

@@ -6,6 +6,7 @@
 
 #include "common/errors.h"
 #include "common/tolerances.h"
+#include "meshing/detail/key_order.h"
 #include "meshing/detail/vec3.h"
 #include "meshing/theorem_bounds.h"
 
@@ -242,7 +243,7 @@ std::vector<VertexId> Refinement::prepare_new_edges(VertexId x, const std::vecto
   struct RingEntry {
     VertexId q, r;
     std::size_t index;  // of xqr in the star
-    bool operator<(const RingEntry& o) const { return std::tie(q, r) < std::tie(o.q, o.r); }
+    bool operator<(const RingEntry& o) const { return detail::pair_word(q, r) < detail::pair_word(o.q, o.r); }
   };
   std::vector<RingEntry> ring;  // (q, r) for each triangle xqr, both ways
   for (std::size_t i = 0; i < star.size(); ++i) {

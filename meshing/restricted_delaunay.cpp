@@ -7,6 +7,7 @@
 
 #include "common/errors.h"
 #include "common/tolerances.h"
+#include "meshing/detail/key_order.h"
 #include "meshing/detail/vec3.h"
 #include "solvers/query_geometry.h"
 #include "symbolic/scalar_traits.h"
@@ -804,7 +805,7 @@ std::vector<TriangleKey> RestrictedDelaunay::star(VertexId p) {
   std::vector<TriangleKey> out;
   if (every_triangle_recorded_) {
     if (static_cast<std::size_t>(p) < stars_.size()) out = stars_[p];
-    std::sort(out.begin(), out.end());
+    std::sort(out.begin(), out.end(), detail::KeyLess{});
     return out;
   }
   for (const auto& t : del_.incident_triangles(p))
@@ -848,7 +849,7 @@ std::vector<TriangleKey> RestrictedDelaunay::triangles() {
     for (std::size_t v = 0; v < stars_.size(); ++v)
       for (const auto& t : stars_[v])
         if (static_cast<std::size_t>(t[0]) == v) out.push_back(t);
-    std::sort(out.begin(), out.end());
+    std::sort(out.begin(), out.end(), detail::KeyLess{});
     return out;
   }
   for (const auto& t : del_.triangles())

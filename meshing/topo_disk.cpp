@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "meshing/detail/candidates.h"
+#include "meshing/detail/key_order.h"
 
 namespace delmesh {
 
@@ -25,7 +26,9 @@ bool is_topological_disk(const std::vector<TriangleKey>& star, VertexId p) {
     link.emplace_back(others[0], others[1]);
     link.emplace_back(others[1], others[0]);
   }
-  std::sort(link.begin(), link.end());
+  std::sort(link.begin(), link.end(), [](const std::pair<VertexId, VertexId>& a, const std::pair<VertexId, VertexId>& b) {
+    return detail::pair_word(a.first, a.second) < detail::pair_word(b.first, b.second);
+  });
   for (std::size_t i = 0; i < link.size(); i += 2) {
     const bool twice = link[i + 1].first == link[i].first;
     const bool thrice = i + 2 < link.size() && link[i + 2].first == link[i].first;

@@ -11,6 +11,7 @@
 #include "common/tolerances.h"
 #include "meshing/detail/convex_polytope.h"
 #include "meshing/detail/line_clip.h"
+#include "meshing/detail/key_order.h"
 #include "meshing/detail/vec3.h"
 #include "solvers/query_geometry.h"
 
@@ -555,7 +556,10 @@ std::optional<VoronoiCell> cell_from_dual(const Delaunay& del, VertexId site, co
     VertexId q, r;
     std::size_t cell;
     VertexId fourth;
-    bool operator<(const Side& o) const { return std::tie(q, r, cell) < std::tie(o.q, o.r, o.cell); }
+    bool operator<(const Side& o) const {
+      const std::uint64_t a = detail::pair_word(q, r), b = detail::pair_word(o.q, o.r);
+      return a < b || (a == b && cell < o.cell);
+    }
   };
   std::vector<Side> sides;
   sides.reserve(3 * cells.size());

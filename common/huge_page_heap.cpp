@@ -11,6 +11,7 @@
 #if defined(__linux__) && defined(__GLIBC__)
 #include <malloc.h>
 #include <sys/mman.h>
+#include <unistd.h>
 #define DELMESH_HUGE_PAGE_HEAP 1
 #endif
 #if defined(__SANITIZE_ADDRESS__)
@@ -42,6 +43,27 @@ bool back_heap_with_huge_pages(std::size_t bytes) {
   mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
   // A larger reservation would exceed the trim threshold and be handed back when freed.
   bytes = std::min<std::size_t>(bytes, std::numeric_limits<int>::max() - block);
+  // The huge pages wholly inside [lo, hi).
+  auto advise = [](std::uintptr_t lo, std::uintptr_t hi) {
+    const std::uintptr_t first = (lo + huge_page - 1) & ~(huge_page - 1), last = hi & ~(huge_page - 1);
+    return first < last && madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE) == 0;
+  };
+  // First, the heap grown once: one block asked for with a top pad of `bytes` makes glibc extend
+  // the heap by both in one step, so the chunk headers it writes at the new top touch one page,
+  // not one per block (each touch is a page fault, some microseconds each in a virtual machine).
+  // The block and the pad then lie between the block's address and the program break, where the
+  // heap ends: that range is advised.  The pad is set back to glibc's documented default.
+  if (mallopt(M_TOP_PAD, static_cast<int>(bytes)) == 1) {
+    void* first = std::malloc(block);
+    const auto lo = reinterpret_cast<std::uintptr_t>(first), hi = reinterpret_cast<std::uintptr_t>(sbrk(0));
+    mallopt(M_TOP_PAD, 128 * 1024);
+    // Unless glibc mapped the block elsewhere (the heap could not grow by that much).
+    const bool grown = first != nullptr && lo < hi && hi - lo >= bytes;
+    const bool advised = grown && advise(lo, hi);
+    std::free(first);
+    if (grown) return advised;
+  }
+  // Otherwise block by block.
   std::vector<void*> blocks;
   blocks.reserve(bytes / block + 1);
   for (std::size_t taken = 0; taken < bytes; taken += block) {
@@ -49,11 +71,6 @@ bool back_heap_with_huge_pages(std::size_t bytes) {
     if (!p) break;
     blocks.push_back(p);
   }
-  // The huge pages wholly inside [lo, hi).
-  auto advise = [](std::uintptr_t lo, std::uintptr_t hi) {
-    const std::uintptr_t first = (lo + huge_page - 1) & ~(huge_page - 1), last = hi & ~(huge_page - 1);
-    return first < last && madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE) == 0;
-  };
   // The blocks follow one another in the heap (each after the previous one's chunk header), and
   // are advised as one range; if the heap could not grow in one piece (glibc then maps further
   // blocks elsewhere), each block is advised on its own, so that nothing between them is.

@@ -12,10 +12,14 @@
 //! a few MiB (2 on both: the last huge page of the heap is backed in full).
 //!
 //! How.  On Linux with glibc: allocations of up to 32 MiB are kept in the heap (M_MMAP_THRESHOLD)
-//! and freed heap memory is never returned to the system (M_TRIM_THRESHOLD); blocks totalling
-//! `bytes` are allocated from the heap, their address range is advised MADV_HUGEPAGE, and they
-//! are freed again, so the heap's first `bytes` are advised and later allocations are carved
-//! from them.  Nothing is touched, so only the memory a run uses becomes resident.  The kernel
+//! and freed heap memory is never returned to the system (M_TRIM_THRESHOLD); one block is
+//! allocated with a top pad of `bytes` (M_TOP_PAD, then set back to its default), so that the
+//! heap grows by the whole reservation at once, the range from the block to the program break is
+//! advised MADV_HUGEPAGE, and the block is freed again: the heap's first `bytes` are advised and
+//! later allocations are carved from them.  (Where the heap cannot grow in one piece, blocks
+//! totalling `bytes` are allocated one by one and advised instead.)  Only the page of one chunk
+//! header is touched, so only the memory a run uses becomes resident, and the reservation costs
+//! about a millisecond.  The kernel
 //! honours the advice when transparent huge pages are `always` or `madvise`
 //! (/sys/kernel/mm/transparent_hugepage/enabled); with `never` it has no effect.  Elsewhere than
 //! Linux and glibc, under AddressSanitizer (its own allocator), and under strict overcommit

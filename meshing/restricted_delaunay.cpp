@@ -136,7 +136,7 @@ void RestrictedDelaunay::track(const TriangleKey& t, bool was_restricted, bool i
     if (is_restricted) {
       star.push_back(t);
     } else {
-      star.erase(std::find(star.begin(), star.end(), t));
+      star.erase(std::find_if(star.begin(), star.end(), [&](const TriangleKey& s) { return detail::KeyEqual{}(s, t); }));
     }
   }
 }

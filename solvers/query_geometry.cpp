@@ -23,14 +23,20 @@ double cross2(const std::array<double, 2>& o, const std::array<double, 2>& p,
   return (p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0]);
 }
 
-}  // namespace
-
-Vec3 unit_vector(const Vec3& d) {
+// |d|, or InvalidInput if d is zero or not finite.
+double direction_norm(const Vec3& d) {
   const double norm = std::sqrt(dot(d, d));
   if (!std::isfinite(norm) || norm == 0.0) {
     throw InvalidInput("direction (" + std::to_string(d[0]) + ", " + std::to_string(d[1]) + ", " +
                        std::to_string(d[2]) + ") is zero or not finite");
   }
+  return norm;
+}
+
+}  // namespace
+
+Vec3 unit_vector(const Vec3& d) {
+  const double norm = direction_norm(d);
   return {d[0] / norm, d[1] / norm, d[2] / norm};
 }
 
@@ -49,7 +55,7 @@ OrthonormalFrame orthonormal_frame(const Vec3& direction) {
 }
 
 std::optional<std::array<double, 2>> clip_line_to_box(const Vec3& p, const Vec3& v, const Box3& box) {
-  unit_vector(v);  // validates v
+  direction_norm(v);  // validates v
   double t0 = -std::numeric_limits<double>::infinity();
   double t1 = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 3; ++i) {

@@ -64,28 +64,6 @@ std::uint64_t all_half_spaces_active(const Domain& domain) {
   return k == classify_mask_bits ? ~std::uint64_t{0} : (std::uint64_t{1} << k) - 1;
 }
 
-namespace {
-
-// detail::half_space_excess() without its branches on the signs of the normal's entries, which
-// the many half-spaces of a Voronoi cell make hard to predict.  Under upward rounding a·hi and
-// a·lo are both rounded up and rounding is monotone, so the larger of the two is the product
-// half_space_excess() picks for the upper bound (a·hi when a > 0, a·lo when a < 0), and likewise
-// for the negated lower bound.  An entry a = 0, which half_space_excess() skips, adds 0 here
-// (not a·x: an unbounded side times 0 would be NaN), which changes no sum but the sign of a zero
-// one, and no comparison.  So the enclosure is the same.
-Interval branch_free_excess(const double* normal, double offset, const Interval* x, std::size_t n) {
-  double upper = -offset, negated_lower = offset;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double a = normal[i], lo = x[i].inf(), hi = x[i].sup();
-    const double up = std::max(a * hi, a * lo), down = std::max((-a) * lo, (-a) * hi);
-    upper += a != 0 ? up : 0.0;
-    negated_lower += a != 0 ? down : 0.0;
-  }
-  return Interval(-negated_lower, upper);
-}
-
-}  // namespace
-
 DomainSide classify(const Domain& domain, const Interval* box, std::uint64_t& active) {
   const std::size_t n = domain.dimension();
   bool inside = true;
@@ -100,7 +78,7 @@ DomainSide classify(const Domain& domain, const Interval* box, std::uint64_t& ac
     const bool masked = i < classify_mask_bits;
     if (masked && !(active >> i & 1)) continue;
     const HalfSpace& h = domain.half_spaces[i];
-    const Interval s = branch_free_excess(h.normal.data(), h.offset, box, n);
+    const Interval s = detail::half_space_excess(h.normal.data(), h.offset, box, n);
     if (s.inf() > 0) return DomainSide::outside;
     if (s.sup() < 0) {
       if (masked) contained |= std::uint64_t{1} << i;

@@ -44,18 +44,18 @@ inline Interval inflate(const Interval& a, double r) { return Interval(-(r - a.i
 //! sup < 0 strictly inside.
 //! Computed bound by bound with the guard's upward rounding: the upper bound sums a_i·x_i.sup
 //! (a_i ≥ 0) or a_i·x_i.inf (a_i < 0), rounded up; the lower bound is the negation of the same
-//! upper sum for −⟨normal, x⟩ + offset.  A zero coefficient contributes nothing (not 0·∞).
+//! upper sum for −⟨normal, x⟩ + offset.  A zero coefficient contributes nothing (not 0·∞, which
+//! is NaN for an unbounded side; it adds 0, which changes no sum but the sign of a zero one).
+//! The term is taken without a branch on the sign of a_i, which the many half-spaces of a Voronoi
+//! cell make hard to predict: a_i·x_i.sup and a_i·x_i.inf are both rounded up and rounding is
+//! monotone, so the larger of the two is the term that sign picks (likewise for the negation).
 inline Interval half_space_excess(const double* normal, double offset, const Interval* x, std::size_t n) {
   double upper = -offset, negated_lower = offset;
   for (std::size_t i = 0; i < n; ++i) {
-    const double a = normal[i];
-    if (a > 0) {
-      upper += a * x[i].sup();
-      negated_lower += (-a) * x[i].inf();
-    } else if (a < 0) {
-      upper += a * x[i].inf();
-      negated_lower += (-a) * x[i].sup();
-    }
+    const double a = normal[i], lo = x[i].inf(), hi = x[i].sup();
+    const double up = std::max(a * hi, a * lo), down = std::max((-a) * lo, (-a) * hi);
+    upper += a != 0 ? up : 0.0;
+    negated_lower += a != 0 ? down : 0.0;
   }
   return Interval(-negated_lower, upper);
 }

@@ -60,7 +60,7 @@ class CavityEdges {
                       static_cast<std::uint32_t>(e[1]);
     h *= 0x9E3779B97F4A7C15ULL;
     for (std::size_t i = static_cast<std::size_t>(h >> 32) & mask_;; i = (i + 1) & mask_) {
-      if (slots_[i][0] == e[0] && slots_[i][1] == e[1]) return false;
+      if (KeyEqual{}(slots_[i], e)) return false;
       if (slots_[i][0] < 0) {
         slots_[i] = e;
         used_.push_back(i);

@@ -153,9 +153,7 @@ Vec3 voronoi_vertex(const Delaunay& del, std::array<VertexId, 4> cell) {
   std::uint64_t hash = 0;
   for (VertexId v : cell) hash = (hash ^ static_cast<std::uint32_t>(v)) * 0x100000001b3ull;
   Memo& m = memo[(hash >> 20) % memo_size];
-  const bool same_cell =
-      ((m.cell[0] ^ cell[0]) | (m.cell[1] ^ cell[1]) | (m.cell[2] ^ cell[2]) | (m.cell[3] ^ cell[3])) == 0;
-  if (m.serial != del.serial() || !same_cell) {
+  if (m.serial != del.serial() || !detail::KeyEqual{}(m.cell, cell)) {
     m.serial = del.serial();
     m.cell = cell;
     m.centre = circumcentre(del.point(cell[0]), del.point(cell[1]), del.point(cell[2]), del.point(cell[3]));

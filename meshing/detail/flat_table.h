@@ -20,6 +20,8 @@
 #include <utility>
 #include <vector>
 
+#include "meshing/detail/key_order.h"
+
 namespace delmesh::detail {
 
 template <std::size_t N, class Value>
@@ -34,7 +36,7 @@ class FlatTable {
     for (std::size_t i = home(key);; i = (i + 1) & mask_) {
       const Entry& e = entries_[i];
       if (e.key[0] < 0) return nullptr;
-      if (same(e.key, key)) return &value(e.index);
+      if (KeyEqual{}(e.key, key)) return &value(e.index);
     }
   }
   const Value* find(const Key& key) const { return const_cast<FlatTable*>(this)->find(key); }
@@ -54,7 +56,7 @@ class FlatTable {
     for (;; i = (i + 1) & mask_) {
       Entry& e = entries_[i];
       if (e.key[0] < 0) break;
-      if (same(e.key, key)) return {&value(e.index), false};
+      if (KeyEqual{}(e.key, key)) return {&value(e.index), false};
     }
     std::uint32_t index;
     if (!free_.empty()) {
@@ -79,7 +81,7 @@ class FlatTable {
     std::size_t i = home(key);
     for (;; i = (i + 1) & mask_) {
       if (entries_[i].key[0] < 0) return nullptr;
-      if (same(entries_[i].key, key)) break;
+      if (KeyEqual{}(entries_[i].key, key)) break;
     }
     Value* taken = &value(entries_[i].index);
     free_.push_back(entries_[i].index);
@@ -121,12 +123,6 @@ class FlatTable {
     std::uint32_t index;
   };
 
-  //! Key equality, component by component (std::array's == becomes a memcmp call).
-  static bool same(const Key& a, const Key& b) {
-    for (std::size_t k = 0; k < N; ++k)
-      if (a[k] != b[k]) return false;
-    return true;
-  }
 
   std::size_t home(const Key& key) const {
     std::uint64_t h = 0x9E3779B97F4A7C15ULL;

@@ -13,6 +13,8 @@
 //! (and whatever order they fix downstream) are those of the standard operators.
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -35,11 +37,15 @@ struct KeyLess {
   }
 };
 
-//! std::array's operator== on edge and triangle keys, entry by entry.
+//! std::array's operator== on tuples of ids (edge and triangle keys, cells, hash-table keys):
+//! the entries' differences (xor) are combined and tested once, without a memcmp call or a branch
+//! per entry.
 struct KeyEqual {
-  bool operator()(const EdgeKey& x, const EdgeKey& y) const { return x[0] == y[0] && x[1] == y[1]; }
-  bool operator()(const TriangleKey& x, const TriangleKey& y) const {
-    return x[0] == y[0] && x[1] == y[1] && x[2] == y[2];
+  template <std::size_t N>
+  bool operator()(const std::array<VertexId, N>& x, const std::array<VertexId, N>& y) const {
+    VertexId differ = 0;
+    for (std::size_t k = 0; k < N; ++k) differ |= x[k] ^ y[k];
+    return differ == 0;
   }
 };
 

@@ -78,7 +78,9 @@ class CavityEdges {
 
 struct DelaunayImpl {
   Dt dt;
-  CavityEdges cavity_edges;  //!< scratch of insert_point()
+  CavityEdges cavity_edges;  //!< scratch of insert_point(), as are the three lists below
+  std::vector<Dt::Facet> cavity_boundary, cavity_internal;
+  std::vector<Dt::Cell_handle> cavity_cells;
   std::vector<Dt::Vertex_handle> handles;  // by id; null when removed
   std::vector<std::array<double, 3>> points;
   std::vector<char> seeds;
@@ -130,6 +132,44 @@ std::array<VertexId, 4> cell_vertices(const Dt& dt, typename Dt::Cell_handle c, 
           vertex_id(dt, c->vertex((ix + 3) & 3))};
 }
 
+// Scratch of star_cells(), one per thread: its vectors keep their capacity between calls.
+struct StarScratch {
+  std::vector<detail::Dt::Cell_handle> cells, stack;
+};
+
+StarScratch& star_scratch() {
+  thread_local StarScratch scratch;
+  return scratch;
+}
+
+// The cells of vertex v (dimension 3), in the order of CGAL's incident_cells(): depth first from
+// v->cell(), each cell listed when it is first reached.  Returns the thread's scratch list, valid
+// until the next call on this thread.  Like incident_cells(), it marks the cells it reaches (the
+// TDS's conflict flag) and clears the marks before it returns.
+const std::vector<detail::Dt::Cell_handle>& star_cells(detail::Dt::Vertex_handle v) {
+  StarScratch& s = star_scratch();
+  s.cells.clear();
+  s.stack.clear();
+  const auto first = v->cell();
+  first->tds_data().mark_in_conflict();
+  s.cells.push_back(first);
+  s.stack.push_back(first);
+  while (!s.stack.empty()) {
+    const auto c = s.stack.back();
+    s.stack.pop_back();
+    for (int i = 0; i < 4; ++i) {
+      if (c->vertex(i) == v) continue;
+      const auto next = c->neighbor(i);
+      if (!next->tds_data().is_clear()) continue;
+      next->tds_data().mark_in_conflict();
+      s.stack.push_back(next);
+      s.cells.push_back(next);
+    }
+  }
+  for (const auto& c : s.cells) c->tds_data().clear();
+  return s.cells;
+}
+
 // The apexes of facet (c, i): the vertex of c opposite it and that of the neighbour across it (−1
 // for the infinite vertex).
 template <class Dt>
@@ -167,8 +207,12 @@ std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, b
     if (change) {
       // The cavity (the cells in conflict with p): its internal facets are destroyed, its boundary
       // facets shrink, and p is starred from its boundary (Bowyer–Watson) without a second search.
-      std::vector<detail::Dt::Facet> boundary, internal;
-      std::vector<detail::Dt::Cell_handle> cavity;
+      auto& boundary = impl_->cavity_boundary;
+      auto& internal = impl_->cavity_internal;
+      auto& cavity = impl_->cavity_cells;
+      boundary.clear();
+      internal.clear();
+      cavity.clear();
       dt.find_conflicts(point, cell, std::back_inserter(boundary), std::back_inserter(cavity),
                         std::back_inserter(internal));
       // An edge of the cavity shrinks if it lies on a boundary facet and is destroyed otherwise:
@@ -241,7 +285,20 @@ std::vector<VertexId> Delaunay::vertices() const {
 std::vector<VertexId> Delaunay::neighbours(VertexId id) const {
   auto v = impl_->handle(id);
   std::vector<VertexId> out;
-  if (impl_->dt.dimension() < 1) return out;
+  const auto& dt = impl_->dt;
+  if (dt.dimension() == 3) {
+    const auto& cells = star_cells(v);
+    out.reserve(3 * cells.size());
+    for (const auto& c : cells)
+      for (int k = 0; k < 4; ++k) {
+        const auto w = c->vertex(k);
+        if (w != v && !dt.is_infinite(w)) out.push_back(w->info().id);
+      }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  if (dt.dimension() < 1) return out;
   std::vector<detail::Dt::Vertex_handle> adjacent;
   impl_->dt.finite_adjacent_vertices(v, std::back_inserter(adjacent));
   for (auto w : adjacent) out.push_back(w->info().id);
@@ -255,14 +312,12 @@ std::vector<TriangleKey> Delaunay::incident_triangles(VertexId id) const {
   std::vector<TriangleKey> out;
   const auto& dt = impl_->dt;
   if (dt.dimension() == 3) {
-    std::vector<detail::Dt::Facet> facets;
-    dt.finite_incident_facets(v, std::back_inserter(facets));
-    for (const auto& f : facets) {
-      const auto c = f.first;
-      const int i = f.second;
-      out.push_back(make_triangle_key(c->vertex((i + 1) & 3)->info().id,
-                                      c->vertex((i + 2) & 3)->info().id,
-                                      c->vertex((i + 3) & 3)->info().id));
+    // Each facet at v lies in two of v's cells: it is taken from both and made unique below.
+    for (const auto& c : star_cells(v)) {
+      const int iv = c->index(v);
+      for (int j = 0; j < 4; ++j)
+        if (j != iv)
+          if (const auto t = facet_key(dt, detail::Dt::Facet(c, j))) out.push_back(*t);
     }
   } else if (dt.dimension() == 2) {
     std::vector<detail::Dt::Cell_handle> cells;
@@ -297,8 +352,7 @@ std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x,
   const auto& dt = impl_->dt;
   if (dt.dimension() != 3) return out;
   const auto v = impl_->handle(x);
-  std::vector<detail::Dt::Cell_handle> cells;
-  dt.incident_cells(v, std::back_inserter(cells));
+  const auto& cells = star_cells(v);
   // Each cell has one facet opposite x and shares its three facets at x with other cells.
   out.reserve(cells.size() * 5 / 2 + 1);
   if (cell_ids) cell_ids->reserve(cells.size());
@@ -324,8 +378,7 @@ std::vector<std::array<VertexId, 4>> Delaunay::incident_cells(VertexId x) const 
   const auto& dt = impl_->dt;
   if (dt.dimension() != 3) return out;
   const auto v = impl_->handle(x);
-  std::vector<detail::Dt::Cell_handle> cells;
-  dt.incident_cells(v, std::back_inserter(cells));
+  const auto& cells = star_cells(v);
   out.reserve(cells.size());
   for (const auto& c : cells) out.push_back(cell_vertices(dt, c, c->index(v), x));
   return out;

@@ -12,11 +12,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <map>
-#include <set>
 #include <sstream>
 
 #include "common/errors.h"
+#include "meshing/detail/key_order.h"
 #include "meshing/detail/vec3.h"
 #include "meshing/input_validation.h"
 #include "meshing/mesh_checker.h"
@@ -36,16 +35,24 @@ SurfaceMesh output_mesh(Refinement& refinement, std::size_t& flipped_inconsisten
   auto& restricted = refinement.restricted();
   const auto& del = refinement.delaunay();
   const auto triangles = restricted.triangles();
-  std::set<VertexId> used;
-  for (const auto& t : triangles) used.insert(t.begin(), t.end());
+  std::vector<VertexId> used;
+  used.reserve(3 * triangles.size());
+  for (const auto& t : triangles) used.insert(used.end(), t.begin(), t.end());
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
   SurfaceMesh mesh;
-  std::map<VertexId, SurfaceMesh::Vertex_index> index;
+  mesh.reserve(used.size(), 3 * triangles.size() / 2, triangles.size());
+  std::vector<SurfaceMesh::Vertex_index> index(used.empty() ? 0 : static_cast<std::size_t>(used.back()) + 1);
   for (VertexId v : used) {
     const auto& p = del.point(v);
     index[v] = mesh.add_vertex(Point3(p[0], p[1], p[2]));
   }
-  std::map<std::pair<VertexId, VertexId>, int> directed;
+  // Each triangle turned so that its normal agrees with ∇E at its dual point; an edge that two
+  // triangles use in the same direction is counted (as pair_word()s, sorted, runs of equals).
+  std::vector<std::uint64_t> directed;
+  directed.reserve(3 * triangles.size());
   std::vector<std::array<VertexId, 3>> oriented;
+  oriented.reserve(triangles.size());
   for (const auto& t : triangles) {
     const Vec3 &p = del.point(t[0]), &q = del.point(t[1]), &r = del.point(t[2]);
     const Vec3 n = cross(q - p, r - p);
@@ -53,11 +60,12 @@ SurfaceMesh output_mesh(Refinement& refinement, std::size_t& flipped_inconsisten
     std::array<VertexId, 3> f = dot(n, g) >= 0 ? std::array<VertexId, 3>{t[0], t[1], t[2]}
                                                 : std::array<VertexId, 3>{t[0], t[2], t[1]};
     oriented.push_back(f);
-    for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
+    for (int k = 0; k < 3; ++k) directed.push_back(pair_word(f[k], f[(k + 1) % 3]));
   }
+  std::sort(directed.begin(), directed.end());
   flipped_inconsistent = 0;
-  for (const auto& [e, count] : directed)
-    if (count > 1) flipped_inconsistent += count - 1;
+  for (std::size_t i = 1; i < directed.size(); ++i)
+    if (directed[i] == directed[i - 1]) ++flipped_inconsistent;
   not_added = 0;
   for (const auto& f : oriented) {
     const auto face = mesh.add_face(index[f[0]], index[f[1]], index[f[2]]);

@@ -132,9 +132,9 @@ std::array<VertexId, 4> cell_vertices(const Dt& dt, typename Dt::Cell_handle c, 
           vertex_id(dt, c->vertex((ix + 3) & 3))};
 }
 
-// Scratch of star_cells(), one per thread: its vectors keep their capacity between calls.
+// Scratch of the star walks, one per thread: its vectors keep their capacity between calls.
 struct StarScratch {
-  std::vector<detail::Dt::Cell_handle> cells, stack;
+  std::vector<detail::Dt::Cell_handle> reached, stack;
 };
 
 StarScratch& star_scratch() {
@@ -142,32 +142,49 @@ StarScratch& star_scratch() {
   return scratch;
 }
 
-// The cells of vertex v (dimension 3), in the order of CGAL's incident_cells(): depth first from
-// v->cell(), each cell listed when it is first reached.  Returns the thread's scratch list, valid
-// until the next call on this thread.  Like incident_cells(), it marks the cells it reaches (the
-// TDS's conflict flag) and clears the marks before it returns.
-const std::vector<detail::Dt::Cell_handle>& star_cells(detail::Dt::Vertex_handle v) {
+// Visits the cells of vertex v (dimension 3) in the order of CGAL's incident_cells(): depth first
+// from v->cell(), each cell when it is first reached, until visit(c) returns true.  Returns that
+// cell, or a null handle if there is none.  Like incident_cells(), it marks the cells it reaches
+// (the TDS's conflict flag) and clears the marks before it returns.  CGAL's is_edge() and
+// is_facet() return the first cell of that order with the other vertices, so a visit that looks
+// for them finds the same cell.
+template <class Visit>
+detail::Dt::Cell_handle visit_star(detail::Dt::Vertex_handle v, Visit visit) {
   StarScratch& s = star_scratch();
-  s.cells.clear();
+  s.reached.clear();
   s.stack.clear();
-  const auto first = v->cell();
-  first->tds_data().mark_in_conflict();
-  s.cells.push_back(first);
-  s.stack.push_back(first);
-  while (!s.stack.empty()) {
-    const auto c = s.stack.back();
-    s.stack.pop_back();
-    for (int i = 0; i < 4; ++i) {
-      if (c->vertex(i) == v) continue;
-      const auto next = c->neighbor(i);
-      if (!next->tds_data().is_clear()) continue;
-      next->tds_data().mark_in_conflict();
-      s.stack.push_back(next);
-      s.cells.push_back(next);
+  detail::Dt::Cell_handle found;
+  auto reach = [&](detail::Dt::Cell_handle c) {
+    c->tds_data().mark_in_conflict();
+    s.reached.push_back(c);
+    if (visit(c)) {
+      found = c;
+      return true;
+    }
+    s.stack.push_back(c);
+    return false;
+  };
+  if (!reach(v->cell())) {
+    while (!s.stack.empty() && found == detail::Dt::Cell_handle()) {
+      const auto c = s.stack.back();
+      s.stack.pop_back();
+      for (int i = 0; i < 4; ++i) {
+        if (c->vertex(i) == v) continue;
+        const auto next = c->neighbor(i);
+        if (!next->tds_data().is_clear()) continue;
+        if (reach(next)) break;
+      }
     }
   }
-  for (const auto& c : s.cells) c->tds_data().clear();
-  return s.cells;
+  for (const auto& c : s.reached) c->tds_data().clear();
+  return found;
+}
+
+// The cells of vertex v (dimension 3) in the order of CGAL's incident_cells(): the thread's
+// scratch list, valid until the next walk on this thread.
+const std::vector<detail::Dt::Cell_handle>& star_cells(detail::Dt::Vertex_handle v) {
+  visit_star(v, [](detail::Dt::Cell_handle) { return false; });
+  return star_scratch().reached;
 }
 
 // The apexes of facet (c, i): the vertex of c opposite it and that of the neighbour across it (−1
@@ -338,11 +355,11 @@ std::optional<std::array<VertexId, 2>> Delaunay::triangle_apexes(const TriangleK
   if (dt.dimension() != 3) return std::nullopt;
   for (VertexId id : t)
     if (!contains(id)) return std::nullopt;
-  detail::Dt::Cell_handle c;
-  int i = 0, j = 0, k = 0;
-  if (!dt.is_facet(impl_->handles[t[0]], impl_->handles[t[1]], impl_->handles[t[2]], c, i, j, k))
-    return std::nullopt;
-  return facet_apexes(dt, c, 6 - i - j - k);
+  if (t[0] == t[1] || t[0] == t[2] || t[1] == t[2]) return {};  // as CGAL's is_facet()
+  const auto u = impl_->handles[t[0]], v = impl_->handles[t[1]], w = impl_->handles[t[2]];
+  const auto c = visit_star(u, [&](detail::Dt::Cell_handle d) { return d->has_vertex(v) && d->has_vertex(w); });
+  if (c == detail::Dt::Cell_handle()) return std::nullopt;
+  return facet_apexes(dt, c, 6 - c->index(u) - c->index(v) - c->index(w));
 }
 
 std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x,
@@ -402,9 +419,11 @@ std::vector<Delaunay::RingTriangle> Delaunay::edge_ring(const EdgeKey& e) const 
   std::vector<RingTriangle> out;
   const auto& dt = impl_->dt;
   if (dt.dimension() != 3 || !contains(e[0]) || !contains(e[1])) return out;
-  detail::Dt::Cell_handle c;
-  int i = 0, j = 0;
-  if (!dt.is_edge(impl_->handles[e[0]], impl_->handles[e[1]], c, i, j)) return out;
+  if (e[0] == e[1]) return {};  // as CGAL's is_edge()
+  const auto u = impl_->handles[e[0]], v = impl_->handles[e[1]];
+  const auto c = visit_star(u, [&](detail::Dt::Cell_handle d) { return d->has_vertex(v); });
+  if (c == detail::Dt::Cell_handle()) return out;
+  const int i = c->index(u), j = c->index(v);
   auto start = dt.incident_facets(detail::Dt::Edge(c, i, j));
   auto f = start;
   do {
@@ -458,9 +477,14 @@ bool Delaunay::is_triangle(const TriangleKey& t) const {
   if (dt.dimension() < 2) return false;
   for (VertexId id : t)
     if (!contains(id)) return false;
+  if (t[0] == t[1] || t[0] == t[2] || t[1] == t[2]) return {};  // as CGAL's is_facet()
+  const auto u = impl_->handles[t[0]], v = impl_->handles[t[1]], w = impl_->handles[t[2]];
+  if (dt.dimension() == 3)
+    return visit_star(u, [&](detail::Dt::Cell_handle d) { return d->has_vertex(v) && d->has_vertex(w); }) !=
+           detail::Dt::Cell_handle();
   detail::Dt::Cell_handle c;
   int i, j, k;
-  return dt.is_facet(impl_->handles[t[0]], impl_->handles[t[1]], impl_->handles[t[2]], c, i, j, k);
+  return dt.is_facet(u, v, w, c, i, j, k);
 }
 
 bool Delaunay::is_edge(const EdgeKey& e) const {
@@ -471,9 +495,13 @@ bool Delaunay::is_edge(const EdgeKey& e) const {
     const auto n = neighbours(e[0]);
     return std::binary_search(n.begin(), n.end(), e[1]);
   }
+  if (e[0] == e[1]) return {};  // as CGAL's is_edge()
+  const auto u = impl_->handles[e[0]], v = impl_->handles[e[1]];
+  if (dt.dimension() == 3)
+    return visit_star(u, [&](detail::Dt::Cell_handle d) { return d->has_vertex(v); }) != detail::Dt::Cell_handle();
   detail::Dt::Cell_handle c;
   int i, j;
-  return dt.is_edge(impl_->handles[e[0]], impl_->handles[e[1]], c, i, j);
+  return dt.is_edge(u, v, c, i, j);
 }
 
 std::pair<VertexId, double> Delaunay::nearest(const std::array<double, 3>& x, VertexId hint) const {

@@ -135,6 +135,7 @@
 #include "meshing/check_registry.h"
 #include "meshing/del_mesh.h"
 #include "meshing/delaunay.h"
+#include "meshing/detail/key_order.h"
 #include "meshing/restricted_delaunay.h"
 #include "meshing/surface_oracle.h"
 #include "meshing/witness.h"
@@ -263,17 +264,18 @@ class Refinement {
   //! Simplices taken smallest key first, each distinct simplex once however often it was queued
   //! (a binary heap; equal entries come out together and are merged).  The order depends only on
   //! what is queued, not on when, so re-queuing an item that waits changes nothing (the lemma's
-  //! test relies on this).
+  //! test relies on this).  The heap compares keys by detail::KeyLess, which orders them as
+  //! std::array's operator< does (key_order.h).
   class WorkQueue {
    public:
     void push(const Simplex& s) {
       heap_.push_back(s);
-      std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+      std::push_heap(heap_.begin(), heap_.end(), Later{});
     }
     Simplex pop() {
       const Simplex s = heap_.front();
-      while (!heap_.empty() && heap_.front() == s) {
-        std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
+      while (!heap_.empty() && detail::KeyEqual{}(heap_.front(), s)) {
+        std::pop_heap(heap_.begin(), heap_.end(), Later{});
         heap_.pop_back();
       }
       return s;
@@ -283,6 +285,10 @@ class Refinement {
     std::size_t size() const { return heap_.size(); }
 
    private:
+    //! The heap's order: a comes out after b (std::greater<> on the keys).
+    struct Later {
+      bool operator()(const Simplex& a, const Simplex& b) const { return detail::KeyLess{}(b, a); }
+    };
     std::vector<Simplex> heap_;
   };
   //! One step of the table: a row of the registry and its queue.

@@ -371,7 +371,9 @@ std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x,
   const auto v = impl_->handle(x);
   const auto& cells = star_cells(v);
   // Each cell has one facet opposite x and shares its three facets at x with other cells.
-  out.reserve(cells.size() * 5 / 2 + 1);
+  thread_local std::vector<StarTriangle> found;
+  found.clear();
+  found.reserve(cells.size() * 5 / 2 + 1);
   if (cell_ids) cell_ids->reserve(cells.size());
   for (const auto& c : cells) {
     const int ix = c->index(v);
@@ -382,11 +384,21 @@ std::vector<Delaunay::StarTriangle> Delaunay::closed_star(VertexId x,
       if (j != ix && &*c->neighbor(j) < &*c) continue;
       const auto t = facet_key(dt, detail::Dt::Facet(c, j));
       if (!t) continue;
-      out.push_back({*t, facet_apexes(dt, c, j), j != ix});
+      found.push_back({*t, facet_apexes(dt, c, j), j != ix});
     }
   }
-  std::sort(out.begin(), out.end(),
-            [](const StarTriangle& a, const StarTriangle& b) { return detail::KeyLess{}(a.key, b.key); });
+  // The keys are distinct, so every sort leaves them in the same sequence: they are sorted as
+  // 128-bit words, the key's order (key_order.h) above the triangle's index in `found`.
+  thread_local std::vector<unsigned __int128> order;
+  order.clear();
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    const TriangleKey& k = found[i].key;
+    order.push_back(static_cast<unsigned __int128>(detail::pair_word(k[0], k[1])) << 64 |
+                    detail::order_word(k[2]) << 32 | i);
+  }
+  std::sort(order.begin(), order.end());
+  out.reserve(found.size());
+  for (const unsigned __int128 w : order) out.push_back(found[static_cast<std::uint32_t>(w)]);
   return out;
 }
 

@@ -355,7 +355,7 @@ std::optional<std::array<VertexId, 2>> Delaunay::triangle_apexes(const TriangleK
   if (dt.dimension() != 3) return std::nullopt;
   for (VertexId id : t)
     if (!contains(id)) return std::nullopt;
-  if (t[0] == t[1] || t[0] == t[2] || t[1] == t[2]) return {};  // as CGAL's is_facet()
+  if (t[0] == t[1] || t[0] == t[2] || t[1] == t[2]) return std::nullopt;  // as CGAL's is_facet()
   const auto u = impl_->handles[t[0]], v = impl_->handles[t[1]], w = impl_->handles[t[2]];
   const auto c = visit_star(u, [&](detail::Dt::Cell_handle d) { return d->has_vertex(v) && d->has_vertex(w); });
   if (c == detail::Dt::Cell_handle()) return std::nullopt;
@@ -431,7 +431,7 @@ std::vector<Delaunay::RingTriangle> Delaunay::edge_ring(const EdgeKey& e) const 
   std::vector<RingTriangle> out;
   const auto& dt = impl_->dt;
   if (dt.dimension() != 3 || !contains(e[0]) || !contains(e[1])) return out;
-  if (e[0] == e[1]) return {};  // as CGAL's is_edge()
+  if (e[0] == e[1]) return out;  // as CGAL's is_edge()
   const auto u = impl_->handles[e[0]], v = impl_->handles[e[1]];
   const auto c = visit_star(u, [&](detail::Dt::Cell_handle d) { return d->has_vertex(v); });
   if (c == detail::Dt::Cell_handle()) return out;
@@ -489,7 +489,7 @@ bool Delaunay::is_triangle(const TriangleKey& t) const {
   if (dt.dimension() < 2) return false;
   for (VertexId id : t)
     if (!contains(id)) return false;
-  if (t[0] == t[1] || t[0] == t[2] || t[1] == t[2]) return {};  // as CGAL's is_facet()
+  if (t[0] == t[1] || t[0] == t[2] || t[1] == t[2]) return false;  // as CGAL's is_facet()
   const auto u = impl_->handles[t[0]], v = impl_->handles[t[1]], w = impl_->handles[t[2]];
   if (dt.dimension() == 3)
     return visit_star(u, [&](detail::Dt::Cell_handle d) { return d->has_vertex(v) && d->has_vertex(w); }) !=
@@ -507,7 +507,7 @@ bool Delaunay::is_edge(const EdgeKey& e) const {
     const auto n = neighbours(e[0]);
     return std::binary_search(n.begin(), n.end(), e[1]);
   }
-  if (e[0] == e[1]) return {};  // as CGAL's is_edge()
+  if (e[0] == e[1]) return false;  // as CGAL's is_edge()
   const auto u = impl_->handles[e[0]], v = impl_->handles[e[1]];
   if (dt.dimension() == 3)
     return visit_star(u, [&](detail::Dt::Cell_handle d) { return d->has_vertex(v); }) != detail::Dt::Cell_handle();

@@ -144,4 +144,70 @@ BOOST_AUTO_TEST_CASE(edge_triangles_are_the_triangles_around_an_edge) {
   BOOST_TEST(del.edge_triangles({0, 99}).empty());
 }
 
+// The queries that walk the star of a vertex (neighbours, incident triangles and edges, closed
+// star, is_edge, is_triangle, triangle_apexes, nearest) against the whole triangulation, listed
+// facet by facet, and against a search over all samples.
+BOOST_AUTO_TEST_CASE(star_queries_agree_with_the_whole_triangulation) {
+  Delaunay del;
+  std::vector<std::array<double, 3>> points;
+  for (int k = 0; k < 50; ++k) {
+    const double z = 1 - (2 * k + 1) / 50.0, r = std::sqrt(1 - z * z), phi = 2.399963 * k;
+    const double s = k % 4 == 0 ? 0.5 : 1.0;
+    points.push_back({s * r * std::cos(phi), s * r * std::sin(phi), s * z});
+    BOOST_TEST_REQUIRE(del.insert(points.back(), false).has_value());
+  }
+  BOOST_TEST_REQUIRE(del.dimension() == 3);
+  const auto triangles = del.triangles();
+  std::set<EdgeKey> edges;
+  for (const auto& t : triangles) {
+    edges.insert({t[0], t[1]});
+    edges.insert({t[0], t[2]});
+    edges.insert({t[1], t[2]});
+    BOOST_TEST(del.is_triangle(t));
+    const auto apexes = del.triangle_apexes(t);
+    BOOST_TEST_REQUIRE(apexes.has_value());
+    for (VertexId a : *apexes) BOOST_TEST((std::find(t.begin(), t.end(), a) == t.end()));
+  }
+  for (VertexId v : del.vertices()) {
+    std::vector<VertexId> neighbours;
+    std::vector<TriangleKey> incident;
+    for (const auto& e : edges)
+      if (e[0] == v || e[1] == v) neighbours.push_back(e[0] == v ? e[1] : e[0]);
+    std::sort(neighbours.begin(), neighbours.end());
+    for (const auto& t : triangles)
+      if (std::find(t.begin(), t.end(), v) != t.end()) incident.push_back(t);
+    BOOST_TEST((del.neighbours(v) == neighbours));
+    BOOST_TEST((del.incident_triangles(v) == incident));
+    const auto star = del.closed_star(v);
+    for (std::size_t i = 1; i < star.size(); ++i) BOOST_TEST((star[i - 1].key < star[i].key));
+    for (const auto& s : star) {
+      BOOST_TEST(std::binary_search(triangles.begin(), triangles.end(), s.key));
+      BOOST_TEST(s.contains_vertex == (std::find(s.key.begin(), s.key.end(), v) != s.key.end()));
+    }
+    for (VertexId w : del.vertices())
+      BOOST_TEST(del.is_edge(make_edge_key(v, w)) == (edges.count(make_edge_key(v, w)) > 0));
+    BOOST_TEST(!del.is_edge({v, v}));
+    BOOST_TEST(!del.is_triangle({v, v, neighbours.front()}));
+    BOOST_TEST(!del.triangle_apexes({v, v, neighbours.front()}).has_value());
+    BOOST_TEST(del.edge_ring({v, v}).empty());
+  }
+  // nearest(): a search over all samples, from every starting vertex.
+  for (int k = 0; k < 40; ++k) {
+    const std::array<double, 3> x{std::cos(1.7 * k) * 0.9, std::sin(2.3 * k) * 0.8, std::cos(0.9 * k) * 0.7};
+    std::size_t best = 0;
+    auto d2 = [&](std::size_t i) {
+      double s = 0;
+      for (int c = 0; c < 3; ++c) s += (points[i][c] - x[c]) * (points[i][c] - x[c]);
+      return s;
+    };
+    for (std::size_t i = 1; i < points.size(); ++i)
+      if (d2(i) < d2(best)) best = i;
+    for (VertexId hint : {-1, 0, 17, 49}) {
+      const auto [id, distance] = del.nearest(x, hint);
+      BOOST_TEST(id == static_cast<VertexId>(best));
+      BOOST_TEST(distance == std::sqrt(d2(best)), boost::test_tools::tolerance(1e-12));
+    }
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -145,9 +145,7 @@ StarScratch& star_scratch() {
 // Visits the cells of vertex v (dimension 3) in the order of CGAL's incident_cells(): depth first
 // from v->cell(), each cell when it is first reached, until visit(c) returns true.  Returns that
 // cell, or a null handle if there is none.  Like incident_cells(), it marks the cells it reaches
-// (the TDS's conflict flag) and clears the marks before it returns.  CGAL's is_edge() and
-// is_facet() return the first cell of that order with the other vertices, so a visit that looks
-// for them finds the same cell.
+// (the TDS's conflict flag) and clears the marks before it returns.
 template <class Visit>
 detail::Dt::Cell_handle visit_star(detail::Dt::Vertex_handle v, Visit visit) {
   StarScratch& s = star_scratch();
@@ -178,6 +176,16 @@ detail::Dt::Cell_handle visit_star(detail::Dt::Vertex_handle v, Visit visit) {
   }
   for (const auto& c : s.reached) c->tds_data().clear();
   return found;
+}
+
+// The first cell of u's star (dimension 3) with the vertex v and, unless w is null, the vertex w,
+// or a null handle: CGAL's is_edge(u, v) and is_facet(u, v, w) return the first cell of
+// incident_cells(u) with them, which is this one.
+detail::Dt::Cell_handle first_star_cell_with(detail::Dt::Vertex_handle u, detail::Dt::Vertex_handle v,
+                                             detail::Dt::Vertex_handle w = {}) {
+  return visit_star(u, [&](detail::Dt::Cell_handle c) {
+    return c->has_vertex(v) && (w == detail::Dt::Vertex_handle() || c->has_vertex(w));
+  });
 }
 
 // The cells of vertex v (dimension 3) in the order of CGAL's incident_cells(): the thread's
@@ -329,11 +337,12 @@ std::vector<TriangleKey> Delaunay::incident_triangles(VertexId id) const {
   std::vector<TriangleKey> out;
   const auto& dt = impl_->dt;
   if (dt.dimension() == 3) {
-    // Each facet at v lies in two of v's cells: it is taken from both and made unique below.
+    // Each facet at v lies in two of v's cells: it is taken from the one at the lower address,
+    // as closed_star() does.
     for (const auto& c : star_cells(v)) {
       const int iv = c->index(v);
       for (int j = 0; j < 4; ++j)
-        if (j != iv)
+        if (j != iv && &*c < &*c->neighbor(j))
           if (const auto t = facet_key(dt, detail::Dt::Facet(c, j))) out.push_back(*t);
     }
   } else if (dt.dimension() == 2) {
@@ -357,7 +366,7 @@ std::optional<std::array<VertexId, 2>> Delaunay::triangle_apexes(const TriangleK
     if (!contains(id)) return std::nullopt;
   if (t[0] == t[1] || t[0] == t[2] || t[1] == t[2]) return std::nullopt;  // as CGAL's is_facet()
   const auto u = impl_->handles[t[0]], v = impl_->handles[t[1]], w = impl_->handles[t[2]];
-  const auto c = visit_star(u, [&](detail::Dt::Cell_handle d) { return d->has_vertex(v) && d->has_vertex(w); });
+  const auto c = first_star_cell_with(u, v, w);
   if (c == detail::Dt::Cell_handle()) return std::nullopt;
   return facet_apexes(dt, c, 6 - c->index(u) - c->index(v) - c->index(w));
 }
@@ -433,7 +442,7 @@ std::vector<Delaunay::RingTriangle> Delaunay::edge_ring(const EdgeKey& e) const 
   if (dt.dimension() != 3 || !contains(e[0]) || !contains(e[1])) return out;
   if (e[0] == e[1]) return out;  // as CGAL's is_edge()
   const auto u = impl_->handles[e[0]], v = impl_->handles[e[1]];
-  const auto c = visit_star(u, [&](detail::Dt::Cell_handle d) { return d->has_vertex(v); });
+  const auto c = first_star_cell_with(u, v);
   if (c == detail::Dt::Cell_handle()) return out;
   const int i = c->index(u), j = c->index(v);
   auto start = dt.incident_facets(detail::Dt::Edge(c, i, j));
@@ -492,8 +501,7 @@ bool Delaunay::is_triangle(const TriangleKey& t) const {
   if (t[0] == t[1] || t[0] == t[2] || t[1] == t[2]) return false;  // as CGAL's is_facet()
   const auto u = impl_->handles[t[0]], v = impl_->handles[t[1]], w = impl_->handles[t[2]];
   if (dt.dimension() == 3)
-    return visit_star(u, [&](detail::Dt::Cell_handle d) { return d->has_vertex(v) && d->has_vertex(w); }) !=
-           detail::Dt::Cell_handle();
+    return first_star_cell_with(u, v, w) != detail::Dt::Cell_handle();
   detail::Dt::Cell_handle c;
   int i, j, k;
   return dt.is_facet(u, v, w, c, i, j, k);
@@ -510,7 +518,7 @@ bool Delaunay::is_edge(const EdgeKey& e) const {
   if (e[0] == e[1]) return false;  // as CGAL's is_edge()
   const auto u = impl_->handles[e[0]], v = impl_->handles[e[1]];
   if (dt.dimension() == 3)
-    return visit_star(u, [&](detail::Dt::Cell_handle d) { return d->has_vertex(v); }) != detail::Dt::Cell_handle();
+    return first_star_cell_with(u, v) != detail::Dt::Cell_handle();
   detail::Dt::Cell_handle c;
   int i, j;
   return dt.is_edge(u, v, c, i, j);

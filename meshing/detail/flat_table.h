@@ -123,7 +123,6 @@ class FlatTable {
     std::uint32_t index;
   };
 
-
   std::size_t home(const Key& key) const {
     std::uint64_t h = 0x9E3779B97F4A7C15ULL;
     for (int v : key) {

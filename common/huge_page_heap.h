@@ -26,6 +26,12 @@
 //! accounting (vm.overcommit_memory = 2, where untouched heap would still be charged) the call
 //! does nothing.  Memory beyond the reserved range is allocated as before, on 4 KiB pages.
 //!
+//! Under tcmalloc (linked into the meshing programs where it is found, CMakeLists.txt) mallopt()
+//! succeeds without effect, so the padded first block does not reach the reservation: it is
+//! taken block by block, which tcmalloc carves one after another from the program break; the
+//! range is advised as above, and the freed blocks go back to tcmalloc's page heap, from which
+//! its later spans are cut.
+//!
 //! What it changes: where memory lies, never what is computed (no result of delmesh depends on
 //! an address; the meshes are byte-identical with and without it).  Call it once, at the start
 //! of main(), before other threads exist.

@@ -11,6 +11,7 @@ packages=(
   libginac-dev libcln-dev
   libeigen3-dev
   libtbb-dev
+  libgoogle-perftools-dev  # tcmalloc_minimal for the meshing programs (CMakeLists.txt)
   libboost-dev libboost-test-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libbenchmark-dev

@@ -64,8 +64,14 @@ std::uint64_t all_half_spaces_active(const Domain& domain) {
   return k == classify_mask_bits ? ~std::uint64_t{0} : (std::uint64_t{1} << k) - 1;
 }
 
-DomainSide classify(const Domain& domain, const Interval* box, std::uint64_t& active) {
-  const std::size_t n = domain.dimension();
+namespace {
+
+// classify() in dimension N (0: the domain's, read at run time): the same tests in the same
+// order; a fixed N lets the compiler unroll the sums of half_space_excess().  The half-spaces
+// under the mask are visited by their set bits.
+template <std::size_t N>
+DomainSide classify_in(const Domain& domain, const Interval* box, std::uint64_t& active) {
+  const std::size_t n = N ? N : domain.dimension();
   bool inside = true;
   for (std::size_t i = 0; i < n; ++i) {
     const double lo = domain.box.bounds[i][0], hi = domain.box.bounds[i][1];
@@ -73,21 +79,42 @@ DomainSide classify(const Domain& domain, const Interval* box, std::uint64_t& ac
     if (!(box[i].inf() > lo && box[i].sup() < hi)) inside = false;
   }
   const std::size_t count = domain.half_spaces.size();
-  std::uint64_t contained = 0;
-  for (std::size_t i = 0; i < count; ++i) {
-    const bool masked = i < classify_mask_bits;
-    if (masked && !(active >> i & 1)) continue;
+  // -1: outside; otherwise whether the half-space strictly contains the box.
+  auto test = [&](std::size_t i) {
     const HalfSpace& h = domain.half_spaces[i];
     const Interval s = detail::half_space_excess(h.normal.data(), h.offset, box, n);
-    if (s.inf() > 0) return DomainSide::outside;
-    if (s.sup() < 0) {
-      if (masked) contained |= std::uint64_t{1} << i;
-    } else {
+    if (s.inf() > 0) return -1;
+    return s.sup() < 0 ? 1 : 0;
+  };
+  std::uint64_t contained = 0;
+  const std::uint64_t under_mask = count >= classify_mask_bits ? ~std::uint64_t{0}
+                                                                : (std::uint64_t{1} << count) - 1;
+  for (std::uint64_t bits = active & under_mask; bits != 0; bits &= bits - 1) {
+    const std::size_t i = static_cast<std::size_t>(__builtin_ctzll(bits));
+    const int t = test(i);
+    if (t < 0) return DomainSide::outside;
+    if (t > 0)
+      contained |= std::uint64_t{1} << i;
+    else
       inside = false;
-    }
+  }
+  for (std::size_t i = classify_mask_bits; i < count; ++i) {
+    const int t = test(i);
+    if (t < 0) return DomainSide::outside;
+    if (t == 0) inside = false;
   }
   active &= ~contained;
   return inside ? DomainSide::inside : DomainSide::boundary;
+}
+
+}  // namespace
+
+DomainSide classify(const Domain& domain, const Interval* box, std::uint64_t& active) {
+  switch (domain.dimension()) {
+    case 2: return classify_in<2>(domain, box, active);
+    case 3: return classify_in<3>(domain, box, active);
+    default: return classify_in<0>(domain, box, active);
+  }
 }
 
 }  // namespace delmesh

@@ -267,15 +267,15 @@ AffineChart AffineChart::identity() {
   return chart;
 }
 
-GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChart& chart, const Domain& domain,
-                                       const std::array<double, 3>& w, std::size_t box_budget,
-                                       const SlopeRefinement& refinement) {
-  const std::size_t n = domain.dimension();
-  if (chart.columns.size() != n || n < 1 || n > 3)
-    throw PreconditionViolation("prove_gradient_cone: the chart's columns must match the domain's dimension");
-  if (E.n_equations() != 1 || E.n_unknowns() != 3 || E.n_parameters() != 0)
-    throw PreconditionViolation("prove_gradient_cone: E must be one equation in (x, y, z) without parameters");
+namespace {
 
+// prove_gradient_cone() in dimension n = N, with the loops over the chart's coordinates of fixed
+// length.
+template <std::size_t N>
+GradientConeResult prove_cone_in(const CompiledSystem& E, const AffineChart& chart, const Domain& domain,
+                                 const std::array<double, 3>& w, std::size_t box_budget,
+                                 const SlopeRefinement& refinement) {
+  constexpr std::size_t n = N;
   RoundingGuard guard;
   const ChartMap map(chart);
   GradientConeResult result;
@@ -470,6 +470,23 @@ GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChar
   result.surface_lo = surface_lo;
   result.surface_hi = surface_hi;
   return result;
+}
+
+}  // namespace
+
+GradientConeResult prove_gradient_cone(const CompiledSystem& E, const AffineChart& chart, const Domain& domain,
+                                       const std::array<double, 3>& w, std::size_t box_budget,
+                                       const SlopeRefinement& refinement) {
+  const std::size_t n = domain.dimension();
+  if (chart.columns.size() != n || n < 1 || n > 3)
+    throw PreconditionViolation("prove_gradient_cone: the chart's columns must match the domain's dimension");
+  if (E.n_equations() != 1 || E.n_unknowns() != 3 || E.n_parameters() != 0)
+    throw PreconditionViolation("prove_gradient_cone: E must be one equation in (x, y, z) without parameters");
+  switch (n) {
+    case 1: return prove_cone_in<1>(E, chart, domain, w, box_budget, refinement);
+    case 2: return prove_cone_in<2>(E, chart, domain, w, box_budget, refinement);
+    default: return prove_cone_in<3>(E, chart, domain, w, box_budget, refinement);
+  }
 }
 
 namespace {

@@ -357,6 +357,14 @@ class Isolation {
   void run_bernstein(const LinePolynomial& polynomial) {
     const BernsteinRun run = start_bernstein(polynomial, bernstein_buffers());
     std::vector<BernsteinNode>& nodes = run.buffers.nodes;
+    // The first node, [t0, t1], is tried on the coefficients before their Bernstein form.
+    if (!may_take_node()) {
+      leaves_.push_back({t0_, t1_, progress_.unexplored_reason(), false});
+      return;
+    }
+    if (decided_on_segment(run)) return;
+    to_bernstein(run);
+    bernstein_step(run, {0.0, 1.0}, 0);
     while (!nodes.empty() && may_take_node()) {
       const BernsteinNode node = nodes.back();
       const std::size_t top = nodes.size() - 1;
@@ -371,8 +379,8 @@ class Isolation {
     nodes.clear();
   }
 
-  //! The coefficients c_k of E(p + t v) = Σ c_k t^k (enclosures and their midpoints) and the
-  //! Bernstein coefficients of E on [t0, t1], the work list's first node [0, 1].
+  //! The coefficients c_k of E(p + t v) = Σ c_k t^k (enclosures and their midpoints), and the
+  //! empty work list.
   BernsteinRun start_bernstein(const LinePolynomial& polynomial, BernsteinBuffers& buffers) const {
     const int d = polynomial.degree();
     const std::size_t block = static_cast<std::size_t>(d) + 1;
@@ -385,9 +393,43 @@ class Isolation {
                            Interval(t1_) - Interval(t0_)};
     buffers.nodes.clear();
     buffers.pool.resize(block * 64);
-    detail::bernstein_from_monomial(d, c.data(), t0_, run.h, buffers.pool.data(), buffers.scratch.data());
-    buffers.nodes.push_back({0.0, 1.0});
     return run;
+  }
+
+  //! The Bernstein coefficients of E on [t0, t1], those of the node [0, 1], at the start of the pool.
+  static void to_bernstein(const BernsteinRun& run) {
+    const BernsteinBuffers& buffers = run.buffers;
+    detail::bernstein_from_monomial(run.d, buffers.c.data(), run.t0, run.h, run.buffers.pool.data(),
+                                    run.buffers.scratch.data());
+  }
+
+  //! Decides the whole segment [t0, t1] from the monomial coefficients, when one of three tests
+  //! settles it, without their Bernstein form (which then is not computed).  With T = [t0, t1],
+  //! m its midpoint and E, E′ the Horner enclosures of E(p + t v) and its derivative in t:
+  //!  - 0 ∉ E(T), or 0 ∉ E(m) + E′(T)(T − m) (the mean-value theorem): no zero on T;
+  //!  - 0 ∉ E′(T) (E strictly monotone on T) and E(t0), E(t1) of certain signs: no zero if the
+  //!    signs agree, else exactly one (intermediate value theorem), isolated as a node of the
+  //!    Bernstein subdivision is (isolated()).
+  //! Each is a proof, like the Bernstein tests it replaces on this node; when none applies the
+  //! node goes to bernstein_step().  (On the catalog surfaces the node's Bernstein coefficients
+  //! decided it whenever these tests do, so the answers are the same.)
+  bool decided_on_segment(const BernsteinRun& run) {
+    const Interval T(t0_, t1_);
+    Interval f, df;
+    run.eval.value_and_derivative(T, f, df);
+    const double m = midpoint(T);
+    if (certainly_nonzero(f) || certainly_nonzero(run.eval.value(Interval(m)) + df * (T - Interval(m)))) {
+      ++counters_.exclusions;
+      return true;
+    }
+    if (!certainly_nonzero(df)) return false;
+    const int s0 = certain_sign(run.eval.value(Interval(t0_))), s1 = certain_sign(run.eval.value(Interval(t1_)));
+    if (s0 == 0 || s1 == 0) return false;
+    if (s0 == s1)
+      ++counters_.exclusions;
+    else
+      isolated(run, 0.0, 1.0, true);
+    return true;
   }
 
   //! One node of run_bernstein(), its Bernstein coefficients b at pool[top · block]: excluded (every

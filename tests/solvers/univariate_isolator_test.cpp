@@ -87,6 +87,20 @@ BOOST_AUTO_TEST_CASE(line_through_torus_four_two_zero_roots) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(monotone_segment_is_decided_on_its_first_node) {
+  const auto& S = sphere();
+  // E(p + t v) = (0.9 + t)² + 0.0125 − 1 is increasing on [0, 0.2], negative at 0 and positive at
+  // 0.2: exactly one zero, t* = √0.9875 − 0.9, decided without subdividing [0, 0.2].
+  const SolveResult crossing = isolate_line_roots(S.line, &S.polynomial, {0.9, 0.1, 0.05}, {1, 0, 0}, 0, 0.2);
+  check_roots(crossing, {std::sqrt(0.9875) - 0.9});
+  BOOST_TEST(crossing.counters.boxes == 1u);
+  // Outside the sphere all along [0, 0.3]: no zero, again on the first node.
+  const SolveResult missing = isolate_line_roots(S.line, &S.polynomial, {1.2, 0, 0}, {1, 0, 0}, 0, 0.3);
+  check_roots(missing, {});
+  BOOST_TEST(missing.counters.boxes == 1u);
+  BOOST_TEST(missing.counters.exclusions == 1u);
+}
+
 BOOST_AUTO_TEST_CASE(random_lines_bernstein_and_newton_agree) {
   const auto& T = torus();
   std::mt19937_64 rng(7);

@@ -35,7 +35,10 @@ struct UnivariateOptions {
 //!    certain sign with exactly one sign variation (Descartes' rule for the Bernstein basis), or
 //!    a derivative whose Bernstein coefficients have one certain sign with certain opposite end
 //!    values; coefficients are enclosed by evaluating `polynomial` over Interval and shifting to
-//!    [t0, t1] in interval arithmetic;
+//!    [t0, t1] in interval arithmetic.  The whole of [t0, t1] is first tried on the monomial
+//!    coefficients themselves (Horner enclosures): no zero when E or its mean-value form over
+//!    [t0, t1] excludes 0, and when E′ excludes 0 there, none or exactly one by the certain signs
+//!    of E(t0) and E(t1); the Bernstein form is computed only when these do not decide;
 //!  - (any E, polynomial == null or degree > 60) interval Newton on the compiled `line` system:
 //!    a derivative enclosure excluding 0 with certain opposite signs at the ends;
 //! and then narrowed to a tight interval around the Newton-refined zero, re-certified by a sign

@@ -15,14 +15,11 @@ std::vector<GiNaC::symbol> line_parameters() {
 }
 
 //! The coefficients of E(p + t v) in t, expanded, lowest degree first.
-std::vector<GiNaC::ex> expand_along_line(const Surface& surface, const std::vector<GiNaC::symbol>& pv) {
-  if (!surface.is_polynomial())
-    throw PreconditionViolation("LinePolynomial: E = " + surface.text() +
-                                " is not a polynomial with rational coefficients");
+std::vector<GiNaC::ex> expand_along_line(const GiNaC::ex& E, const std::vector<GiNaC::symbol>& pv) {
   const GiNaC::symbol t("t");
   const GiNaC::lst on_line{coordinate_x() == pv[0] + t * pv[3], coordinate_y() == pv[1] + t * pv[4],
                            coordinate_z() == pv[2] + t * pv[5]};
-  const GiNaC::ex along = surface.E().subs(on_line).expand();
+  const GiNaC::ex along = E.subs(on_line).expand();
   const int degree = along.degree(t);
   std::vector<GiNaC::ex> coefficients;
   coefficients.reserve(static_cast<std::size_t>(degree) + 1);
@@ -30,14 +27,30 @@ std::vector<GiNaC::ex> expand_along_line(const Surface& surface, const std::vect
   return coefficients;
 }
 
+//! The surface's E, checked to be a polynomial with rational coefficients.
+const GiNaC::ex& polynomial_E(const Surface& surface) {
+  if (!surface.is_polynomial())
+    throw PreconditionViolation("LinePolynomial: E = " + surface.text() +
+                                " is not a polynomial with rational coefficients");
+  return surface.E();
+}
+
 }  // namespace
 
 LinePolynomial::LinePolynomial(const Surface& surface)
-    : parameters_(line_parameters()),
-      coefficient_expressions_(expand_along_line(surface, parameters_)),
-      degree_(static_cast<int>(coefficient_expressions_.size()) - 1),
-      program_(coefficient_expressions_, {}, parameters_),
-      along_line_({surface.E()}, {coordinate_x(), coordinate_y(), coordinate_z()}) {}
+    : E_(polynomial_E(surface)),
+      parameters_(line_parameters()),
+      degree_(surface.degree()),
+      along_line_({E_}, {coordinate_x(), coordinate_y(), coordinate_z()}) {}
+
+const LinePolynomial::Expanded& LinePolynomial::expanded() const {
+  std::call_once(expanded_once_, [this] {
+    std::vector<GiNaC::ex> expressions = expand_along_line(E_, parameters_);
+    CompiledSystem program(expressions, {}, parameters_);
+    expanded_.reset(new Expanded{std::move(expressions), std::move(program)});
+  });
+  return *expanded_;
+}
 
 template <class T>
 void LinePolynomial::coefficients(const double* p_and_v, T* coefficients) const {
@@ -48,7 +61,7 @@ void LinePolynomial::coefficients(const double* p_and_v, T* coefficients) const 
   }
   std::array<T, 6> parameters;
   for (std::size_t i = 0; i < 6; ++i) parameters[i] = T(p_and_v[i]);
-  program_.values<T>(nullptr, parameters.data(), coefficients);
+  expanded().program.values<T>(nullptr, parameters.data(), coefficients);
 }
 
 #define DELMESH_DEFINE_LINE_POLYNOMIAL(T) \

@@ -5,6 +5,8 @@
 //! Evaluating the coefficients over Interval gives rigorous coefficient enclosures for the
 //! univariate isolator (SurfaceLine, VorEdge).
 
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "symbolic/compiled_system.h"
@@ -18,7 +20,8 @@ class LinePolynomial {
   //! Precondition: surface.is_polynomial().  Throws PreconditionViolation otherwise.
   explicit LinePolynomial(const Surface& surface);
 
-  //! Degree in t (= total degree of E, or lower for special E).
+  //! Degree in t: the total degree D of E (the coefficient of t^D is E's part of degree D at v,
+  //! a non-zero polynomial in v).
   int degree() const { return degree_; }
   //! coefficients[k] = c_k(p, v) with E(p + t v) = Σ_k c_k t^k; parameters are (p, v), 6 doubles.
   //! Output is degree()+1 values, lowest degree first.  Instantiated for double, Interval (needs a
@@ -33,14 +36,23 @@ class LinePolynomial {
   //! The parameter symbols p0 p1 p2 v0 v1 v2 of the coefficient expressions.
   const std::vector<GiNaC::symbol>& parameters() const { return parameters_; }
   //! c_k(p, v) as exact expanded polynomials in parameters(), lowest degree first.
-  const std::vector<GiNaC::ex>& coefficient_expressions() const { return coefficient_expressions_; }
+  const std::vector<GiNaC::ex>& coefficient_expressions() const { return expanded().expressions; }
 
  private:
-  std::vector<GiNaC::symbol> parameters_;          // p0 p1 p2 v0 v1 v2
-  std::vector<GiNaC::ex> coefficient_expressions_;  // c_0 … c_deg
+  //! The coefficients expanded and compiled, which the types other than double and Interval
+  //! evaluate.  The mesher asks only for those two, so this is built on first use (thread-safe).
+  struct Expanded {
+    std::vector<GiNaC::ex> expressions;  // c_0 … c_deg
+    CompiledSystem program;              // no unknowns; parameters (p, v); outputs c_0 … c_deg
+  };
+  const Expanded& expanded() const;
+
+  GiNaC::ex E_;
+  std::vector<GiNaC::symbol> parameters_;  // p0 p1 p2 v0 v1 v2
   int degree_ = 0;
-  CompiledSystem program_;  // no unknowns; parameters (p, v); outputs c_0 … c_deg
   detail::StraightLineProgram along_line_;  // E in (x, y, z), evaluated on series in t
+  mutable std::once_flag expanded_once_;
+  mutable std::unique_ptr<const Expanded> expanded_;
 };
 
 #define DELMESH_DECLARE_LINE_POLYNOMIAL(T) \

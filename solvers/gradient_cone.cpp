@@ -19,6 +19,11 @@ namespace {
 // ⟨g, v⟩ for an interval vector g and a point vector v of ℝ³.
 Interval inner(const Interval* g, const std::array<double, 3>& v) { return g[0] * v[0] + g[1] * v[1] + g[2] * v[2]; }
 
+// H w for an interval matrix H (rows H_k·) and a point vector w: the gradient of ⟨∇E, w⟩.
+void hessian_times(const Interval* hessian, const std::array<double, 3>& w, Interval* out) {
+  for (int k = 0; k < 3; ++k) out[k] = inner(hessian + 3 * k, w);
+}
+
 // The chart applied to points and covectors.  The identity chart of ℝ³ is read off directly: its
 // products with 0 and 1 and its sums with 0 are exact, so the enclosures are the ones the general
 // formulas give (for finite intervals), at none of their cost.
@@ -130,8 +135,8 @@ std::optional<std::array<double, 3>> predicted_zero(const ChartMap& chart, std::
 
 // The Krawczyk test for f(u) = (E(x(u)), ⟨∇E(x(u)), w⟩) on a box U in chart coordinates (n = 2
 // or 3; x the chart), in the slice u_k = c_k through the centre c along one coordinate k when
-// n = 3, the unknowns being the other two.  `centre_value` and `centre_gradient` enclose E and ∇E
-// at the centre c (a point), `gradient` and `hessian` (rows H_k·) enclose ∇E and H over the world
+// n = 3, the unknowns being the other two.  `centre_value` and `centre_functional` enclose E and
+// ⟨∇E, w⟩ at the centre c (a point), `gradient` and `hessian_w` enclose ∇E and H w over the world
 // box of U, which holds the slice.  The derivative of f in u_j is (⟨∇E, c_j⟩, ⟨H w, c_j⟩).  With Y
 // the slice's box in the two unknowns, y its centre, J the enclosure of f′ on Y and C ≈ (mid J)⁻¹:
 //     K = y − C f(y) + (I − C J)(Y − y).
@@ -139,12 +144,8 @@ std::optional<std::array<double, 3>> predicted_zero(const ChartMap& chart, std::
 // K ⊆ Y makes y − C f(y) a self-map of Y by the mean-value theorem, whose fixed point is a zero).
 class SliceKrawczyk {
  public:
-  //! `gradient` and `hessian` enclose ∇E and H over U's world box.
-  SliceKrawczyk(const ChartMap& chart, std::size_t n, const std::array<double, 3>& w, const Interval* gradient,
-                const Interval* hessian)
-      : n_(n), w_(w) {
-    Interval hessian_w[3];
-    for (int k = 0; k < 3; ++k) hessian_w[k] = inner(hessian + 3 * k, w);
+  //! `gradient` and `hessian_w` enclose ∇E and H w over U's world box.
+  SliceKrawczyk(const ChartMap& chart, std::size_t n, const Interval* gradient, const Interval* hessian_w) : n_(n) {
     for (std::size_t j = 0; j < n; ++j) {
       J_[0][j] = chart.along(gradient, j);
       J_[1][j] = chart.along(hessian_w, j);
@@ -171,13 +172,13 @@ class SliceKrawczyk {
   //! as N ⊄ int Y, which is tested first.
   std::optional<std::array<Interval, 3>> image(const std::array<std::size_t, 2>& pair, const std::array<Interval, 3>& u,
                                                const Interval* centre, const Interval& centre_value,
-                                               const Interval* centre_gradient, bool only_inside = false) const {
+                                               const Interval& centre_functional, bool only_inside = false) const {
     const std::size_t a = pair[0], b = pair[1];
     const double det = minor(a, b);
     if (!(std::abs(det) > 0) || !std::isfinite(det)) return std::nullopt;
     // C = (mid J)⁻¹ (any matrix serves; only its quality matters).
     const double C[2][2] = {{mid(J_[1][b]) / det, -mid(J_[0][b]) / det}, {-mid(J_[1][a]) / det, mid(J_[0][a]) / det}};
-    const Interval f[2] = {centre_value, inner(centre_gradient, w_)};
+    const Interval f[2] = {centre_value, centre_functional};
     Interval newton[2];
     for (int r = 0; r < 2; ++r) {
       newton[r] = centre[pair[r]] - (C[r][0] * f[0] + C[r][1] * f[1]);
@@ -205,7 +206,6 @@ class SliceKrawczyk {
   }
 
   std::size_t n_;
-  std::array<double, 3> w_;
   Interval J_[2][3];  //!< the enclosure of f′ on U: rows ∇E and H w along the chart's columns
 };
 
@@ -238,8 +238,10 @@ std::array<double, 3> narrowed_zero(const CompiledSystem& E, const ChartMap& cha
                                     std::array<Interval, 3> zero) {
   for (int step = 0; step < tolerances::vanishing_point_narrowing_steps; ++step) {
     const KrawczykData d = krawczyk_data(E, chart, n, zero);
-    const SliceKrawczyk krawczyk(chart, n, w, d.gradient(), d.hessian());
-    const auto k = krawczyk.image(pair, zero, d.centre, d.centre_value, d.centre_gradient);
+    Interval hessian_w[3];
+    hessian_times(d.hessian(), w, hessian_w);
+    const SliceKrawczyk krawczyk(chart, n, d.gradient(), hessian_w);
+    const auto k = krawczyk.image(pair, zero, d.centre, d.centre_value, inner(d.centre_gradient, w));
     if (!k) break;
     std::array<Interval, 3> next = zero;
     bool shrinks = false, meets = true;
@@ -367,6 +369,9 @@ GradientConeResult prove_cone_in(const CompiledSystem& E, const AffineChart& cha
     // The sign of the functional on the box once (iii) drops it.
     int box_sign = 0;
     const Interval functional = inner(gradient, w);
+    // H w over the box and ⟨∇E, w⟩ at the centre, computed by (iii′), which every box that
+    // reaches (iv) has been through (with Hessians, past the natural form of (iii)).
+    Interval hessian_w[3], centre_functional;
     // The centre, and E and ∇E there, computed once a test needs them.
     Interval centre[3], centre_world[3], centre_value, centre_gradient[3];
     bool have_centre = false;
@@ -410,9 +415,9 @@ GradientConeResult prove_cone_in(const CompiledSystem& E, const AffineChart& cha
       if (mean_value_excludes_zero()) continue;  // (ii), mean-value form
       if (with_hessians) {
         // (iii′) the functional's mean-value form: its gradient is H w.
-        Interval hessian_w[3];
-        for (int k = 0; k < 3; ++k) hessian_w[k] = inner(hessian + 3 * k, w);
-        Interval mean_functional = inner(centre_gradient, w);
+        hessian_times(hessian, w, hessian_w);
+        centre_functional = inner(centre_gradient, w);
+        Interval mean_functional = centre_functional;
         for (std::size_t j = 0; j < n; ++j) mean_functional += map.along(hessian_w, j) * (u[j] - centre[j]);
         if (certainly_nonzero(mean_functional)) {
           box_sign = mean_functional.inf() > 0 ? 1 : -1;
@@ -447,9 +452,9 @@ GradientConeResult prove_cone_in(const CompiledSystem& E, const AffineChart& cha
     std::optional<std::array<double, 3>> towards;
     if (with_hessians && have_centre && n >= 2) {
       towards = predicted_zero(map, n, w, centre, centre_value, centre_gradient, hessian);
-      const SliceKrawczyk krawczyk(map, n, w, gradient, hessian);
+      const SliceKrawczyk krawczyk(map, n, gradient, hessian_w);
       const auto pair = krawczyk.unknowns();
-      const auto zero = krawczyk.image(pair, u, centre, centre_value, centre_gradient, true);
+      const auto zero = krawczyk.image(pair, u, centre, centre_value, centre_functional, true);
       bool inside_box = zero.has_value();
       for (std::size_t j : pair)
         inside_box = inside_box && u[j].inf() < (*zero)[j].inf() && (*zero)[j].sup() < u[j].sup();

@@ -398,9 +398,8 @@ class Isolation {
 
   //! The Bernstein coefficients of E on [t0, t1], those of the node [0, 1], at the start of the pool.
   static void to_bernstein(const BernsteinRun& run) {
-    const BernsteinBuffers& buffers = run.buffers;
-    detail::bernstein_from_monomial(run.d, buffers.c.data(), run.t0, run.h, run.buffers.pool.data(),
-                                    run.buffers.scratch.data());
+    BernsteinBuffers& buffers = run.buffers;
+    detail::bernstein_from_monomial(run.d, buffers.c.data(), run.t0, run.h, buffers.pool.data(), buffers.scratch.data());
   }
 
   //! Decides the whole segment [t0, t1] from the monomial coefficients, when one of three tests
@@ -411,8 +410,8 @@ class Isolation {
   //!    signs agree, else exactly one (intermediate value theorem), isolated as a node of the
   //!    Bernstein subdivision is (isolated()).
   //! Each is a proof, like the Bernstein tests it replaces on this node; when none applies the
-  //! node goes to bernstein_step().  (On the catalog surfaces the node's Bernstein coefficients
-  //! decided it whenever these tests do, so the answers are the same.)
+  //! node goes to bernstein_step().  Where the node's Bernstein coefficients would decide it as
+  //! well, the answer is the same: no zero, or the one zero isolated() certifies from [t0, t1].
   bool decided_on_segment(const BernsteinRun& run) {
     const Interval T(t0_, t1_);
     Interval f, df;

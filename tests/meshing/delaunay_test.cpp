@@ -191,7 +191,7 @@ BOOST_AUTO_TEST_CASE(star_queries_agree_with_the_whole_triangulation) {
     BOOST_TEST(!del.triangle_apexes({v, v, neighbours.front()}).has_value());
     BOOST_TEST(del.edge_ring({v, v}).empty());
   }
-  // nearest(): a search over all samples, from every starting vertex.
+  // nearest(): a search over all samples, from four start hints (none, and three vertices).
   for (int k = 0; k < 40; ++k) {
     const std::array<double, 3> x{std::cos(1.7 * k) * 0.9, std::sin(2.3 * k) * 0.8, std::cos(0.9 * k) * 0.7};
     std::size_t best = 0;

@@ -25,7 +25,10 @@
 
 namespace delmesh {
 
+bool (*detail::heap_reservation)(std::size_t) = nullptr;
+
 bool back_heap_with_huge_pages(std::size_t bytes) {
+  if (detail::heap_reservation) return detail::heap_reservation(bytes);
 #ifdef DELMESH_HUGE_PAGE_HEAP
   // glibc's largest M_MMAP_THRESHOLD on 64-bit systems; blocks of half of it stay in the heap.
   constexpr std::size_t heap_threshold = std::size_t(32) << 20;

@@ -26,11 +26,13 @@
 //! accounting (vm.overcommit_memory = 2, where untouched heap would still be charged) the call
 //! does nothing.  Memory beyond the reserved range is allocated as before, on 4 KiB pages.
 //!
-//! Under tcmalloc (linked into the meshing programs where it is found, CMakeLists.txt) mallopt()
-//! succeeds without effect, so the padded first block does not reach the reservation: it is
-//! taken block by block, which tcmalloc carves one after another from the program break; the
-//! range is advised as above, and the freed blocks go back to tcmalloc's page heap, from which
-//! its later spans are cut.
+//! Under tcmalloc (linked into the meshing programs where it is found, CMakeLists.txt) the
+//! programs also link common/tcmalloc/huge_page_system_allocator.cpp, which sets
+//! detail::heap_reservation before main(): the call then maps `bytes` of address space
+//! (MAP_NORESERVE) advised MADV_HUGEPAGE and makes it tcmalloc's system allocator, from which
+//! tcmalloc cuts its spans in order, falling back to its own allocator when the range is used
+//! up.  That costs one mmap() and one madvise(); asking tcmalloc for the reservation as blocks
+//! costs it several milliseconds (each block becomes a span registered page by page).
 //!
 //! What it changes: where memory lies, never what is computed (no result of delmesh depends on
 //! an address; the meshes are byte-identical with and without it).  Call it once, at the start
@@ -48,5 +50,12 @@ inline constexpr std::size_t huge_page_heap_default_bytes = std::size_t(7) << 28
 //! See the file comment.  Returns whether the range was advised (false where the call does
 //! nothing, or the kernel refused the advice).
 bool back_heap_with_huge_pages(std::size_t bytes = huge_page_heap_default_bytes);
+
+namespace detail {
+//! The reservation for a malloc other than glibc's, in place of the glibc one; null unless a
+//! program links such a reservation (common/tcmalloc/), which sets it during static
+//! initialisation.  Returns what back_heap_with_huge_pages() returns.
+extern bool (*heap_reservation)(std::size_t bytes);
+}  // namespace detail
 
 }  // namespace delmesh

@@ -1,52 +1,25 @@
 #include "common/huge_page_heap.h"
 
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include <boost/test/unit_test.hpp>
 
+#include "tests/kernel_memory.h"
+
 namespace {
 
-// The kernel's transparent huge page mode: "always", "madvise" or "never" (empty if unknown).
-std::string huge_page_mode() {
-  std::ifstream in("/sys/kernel/mm/transparent_hugepage/enabled");
-  std::string line;
-  std::getline(in, line);
-  const auto open = line.find('['), close = line.find(']');
-  return open == std::string::npos || close == std::string::npos ? "" : line.substr(open + 1, close - open - 1);
-}
+using delmesh::test::huge_page_mode;
+using delmesh::test::strict_overcommit;
 
-// The kB of anonymous huge pages in this process's heap mapping (/proc/self/smaps: a mapping's
-// header line, then "Field: value" lines).
+// The kB of anonymous huge pages in this process's heap mapping.
 long heap_huge_page_kb() {
-  std::ifstream in("/proc/self/smaps");
-  std::string line;
-  bool in_heap = false;
   long kb = 0;
-  while (std::getline(in, line)) {
-    std::istringstream fields(line);
-    std::string first;
-    fields >> first;
-    if (first.empty()) continue;
-    if (first.back() != ':') {
-      in_heap = line.find("[heap]") != std::string::npos;
-    } else if (in_heap && first == "AnonHugePages:") {
-      long value = 0;
-      fields >> value;
-      kb += value;
-    }
-  }
+  for (const auto& m : delmesh::test::mappings())
+    if (m.header.find("[heap]") != std::string::npos) kb += m.huge_kb;
   return kb;
 }
 
-// Whether the kernel charges untouched address space (vm.overcommit_memory = 2).
-bool strict_overcommit() {
-  std::ifstream in("/proc/sys/vm/overcommit_memory");
-  int mode = 0;
-  return in >> mode && mode == 2;
-}
 
 bool address_sanitizer() {
 #if defined(__SANITIZE_ADDRESS__)

@@ -2,66 +2,25 @@
 // is linked with tcmalloc and that object, as the meshing programs are.
 #include <cstdint>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <boost/test/unit_test.hpp>
 
 #include "common/huge_page_heap.h"
+#include "tests/kernel_memory.h"
 
 namespace {
 
-std::string huge_page_mode() {
-  std::ifstream in("/sys/kernel/mm/transparent_hugepage/enabled");
-  std::string line;
-  std::getline(in, line);
-  const auto open = line.find('['), close = line.find(']');
-  return open == std::string::npos || close == std::string::npos ? "" : line.substr(open + 1, close - open - 1);
-}
+using delmesh::test::huge_page_mode;
+using delmesh::test::strict_overcommit;
 
-bool strict_overcommit() {
-  std::ifstream in("/proc/sys/vm/overcommit_memory");
-  int mode = 0;
-  return in >> mode && mode == 2;
-}
-
-// The mapping of /proc/self/smaps that holds `address`: whether it is advised MADV_HUGEPAGE
-// (VmFlags "hg") and its kB of anonymous huge pages.
-struct Mapping {
-  bool found = false, advised = false;
-  long huge_kb = 0;
-};
-
-Mapping mapping_of(const void* address) {
+// The mapping that holds `address` (a default Mapping, lo = hi = 0, if none does).
+delmesh::test::Mapping mapping_of(const void* address) {
   const auto a = reinterpret_cast<std::uintptr_t>(address);
-  std::ifstream in("/proc/self/smaps");
-  std::string line;
-  Mapping m;
-  bool inside = false;
-  while (std::getline(in, line)) {
-    std::istringstream fields(line);
-    std::string first;
-    fields >> first;
-    if (first.empty()) continue;
-    if (first.back() != ':') {
-      // A header "lo-hi perms ...": the fields of the mapping follow.
-      if (m.found) break;
-      const auto dash = first.find('-');
-      if (dash == std::string::npos) continue;
-      const std::uintptr_t lo = std::stoull(first.substr(0, dash), nullptr, 16);
-      const std::uintptr_t hi = std::stoull(first.substr(dash + 1), nullptr, 16);
-      inside = lo <= a && a < hi;
-      m.found = inside;
-    } else if (inside && first == "AnonHugePages:") {
-      fields >> m.huge_kb;
-    } else if (inside && first == "VmFlags:") {
-      std::string flag;
-      while (fields >> flag) m.advised = m.advised || flag == "hg";
-    }
-  }
-  return m;
+  for (const auto& m : delmesh::test::mappings())
+    if (m.lo <= a && a < m.hi) return m;
+  return {};
 }
 
 // Writes every byte of [p, p + n) and reads it back.
@@ -95,8 +54,8 @@ BOOST_AUTO_TEST_CASE(tcmalloc_cuts_its_heap_from_the_advised_range_then_from_its
     auto* p = static_cast<unsigned char*>(std::malloc(block));
     BOOST_REQUIRE(p != nullptr);
     BOOST_TEST(written_and_read(p, block));
-    const Mapping m = mapping_of(p);
-    BOOST_TEST(m.found);
+    const delmesh::test::Mapping m = mapping_of(p);
+    BOOST_TEST(m.lo < m.hi);
     if (m.advised) {
       ++advised;
       huge_kb = std::max(huge_kb, m.huge_kb);

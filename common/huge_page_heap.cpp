@@ -28,19 +28,20 @@ namespace delmesh {
 bool (*detail::heap_reservation)(std::size_t) = nullptr;
 
 bool back_heap_with_huge_pages(std::size_t bytes) {
+  // Under strict overcommit accounting (vm.overcommit_memory = 2) reserved address space is
+  // charged whether touched or not, so a reservation could starve later allocations: none then,
+  // whichever malloc reserves.
+  {
+    std::ifstream overcommit("/proc/sys/vm/overcommit_memory");
+    int mode = 0;
+    if (overcommit >> mode && mode == 2) return false;
+  }
   if (detail::heap_reservation) return detail::heap_reservation(bytes);
 #ifdef DELMESH_HUGE_PAGE_HEAP
   // glibc's largest M_MMAP_THRESHOLD on 64-bit systems; blocks of half of it stay in the heap.
   constexpr std::size_t heap_threshold = std::size_t(32) << 20;
   constexpr std::size_t block = heap_threshold / 2;
   constexpr std::uintptr_t huge_page = std::uintptr_t(2) << 20;
-  // Under strict overcommit accounting (vm.overcommit_memory = 2) heap address space is charged
-  // whether touched or not, so a reservation could starve later allocations: none then.
-  {
-    std::ifstream overcommit("/proc/sys/vm/overcommit_memory");
-    int mode = 0;
-    if (overcommit >> mode && mode == 2) return false;
-  }
   if (mallopt(M_MMAP_THRESHOLD, static_cast<int>(heap_threshold)) != 1) return false;
   // The heap is never trimmed: trimming would hand the advised range back to the system.
   mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());

@@ -16,7 +16,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <fstream>
 #include <mutex>
 #include <new>
 
@@ -64,12 +63,6 @@ bool reserve(std::size_t bytes) {
   // Once: a second call finds the allocator replaced.
   static bool reserved = false;
   if (reserved) return false;
-  // Under strict overcommit accounting the mapping would be charged in full (huge_page_heap.h).
-  {
-    std::ifstream overcommit("/proc/sys/vm/overcommit_memory");
-    int mode = 0;
-    if (overcommit >> mode && mode == 2) return false;
-  }
   // A mapping one huge page longer than asked, so that `bytes` of it start on a huge page.
   const std::size_t length = bytes + huge_page;
   void* mapping = mmap(nullptr, length, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);

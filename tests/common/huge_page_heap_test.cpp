@@ -20,7 +20,6 @@ long heap_huge_page_kb() {
   return kb;
 }
 
-
 bool address_sanitizer() {
 #if defined(__SANITIZE_ADDRESS__)
   return true;

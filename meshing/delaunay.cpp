@@ -12,6 +12,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include "common/errors.h"
+#include "meshing/detail/id_marks.h"
 #include "meshing/detail/key_order.h"
 
 namespace delmesh {
@@ -319,8 +320,7 @@ std::vector<VertexId> Delaunay::neighbours(VertexId id) const {
         const auto w = c->vertex(k);
         if (w != v && !dt.is_infinite(w)) out.push_back(w->info().id);
       }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    detail::sort_distinct_ids(out);
     return out;
   }
   if (dt.dimension() < 1) return out;

@@ -6,6 +6,7 @@
 
 #include "common/errors.h"
 #include "common/tolerances.h"
+#include "meshing/detail/id_marks.h"
 #include "meshing/detail/key_order.h"
 #include "meshing/detail/vec3.h"
 #include "meshing/theorem_bounds.h"
@@ -200,8 +201,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
       if (s.contains_vertex)
         for (VertexId v : s.key)
           if (v != x) neighbours.push_back(v);
-    std::sort(neighbours.begin(), neighbours.end());
-    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+    detail::sort_distinct_ids(neighbours);
     parallel_.invoke([&] { restricted_.certify_new_cell(x, cells, neighbours); }, prepare_records);
   } else {
     prepare_records();
@@ -225,8 +225,9 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
       queue(t, FaceKind::triangle, Dirtied::new_faces);
   }
   const std::vector<VertexId> neighbours = prepare_new_edges(x, star, records);
-  std::sort(star_changed.begin(), star_changed.end());
-  star_changed.erase(std::unique(star_changed.begin(), star_changed.end()), star_changed.end());
+  // The queues' order does not depend on the order of the pushes (WorkQueue): repeats go, the
+  // order stays.
+  detail::drop_repeated_ids(star_changed);
   for (VertexId v : star_changed) queue_vertex(v, v == x);
   if (policy_ == RecheckPolicy::changed_faces) {
     for (const auto& e : change.shrunk_edges) queue_edge(e);

@@ -33,7 +33,12 @@ double angle_between(const Vec& u, const Vec& v) { return std::atan2(norm(cross(
 
 class UnionFind {
  public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  explicit UnionFind(std::size_t n = 0) { reset(n); }
+  //! n singletons.
+  void reset(std::size_t n) {
+    parent_.resize(n);
+    std::iota(parent_.begin(), parent_.end(), 0);
+  }
   std::size_t find(std::size_t i) {
     while (parent_[i] != i) {
       parent_[i] = parent_[parent_[i]];
@@ -61,9 +66,16 @@ struct EdgeUse {
 //! vertex of a manifold with boundary), or anything else.
 enum class LinkKind { cycle, path, other };
 
-LinkKind link_kind(std::vector<std::pair<std::size_t, std::size_t>>& link) {
+//! The buffers of link_kind(), kept from one vertex to the next.
+struct LinkScratch {
   std::vector<std::size_t> nodes;
-  nodes.reserve(2 * link.size());
+  std::vector<int> degree;
+  UnionFind pieces;
+};
+
+LinkKind link_kind(const std::vector<std::pair<std::size_t, std::size_t>>& link, LinkScratch& scratch) {
+  std::vector<std::size_t>& nodes = scratch.nodes;
+  nodes.clear();
   for (const auto& [a, b] : link) {
     nodes.push_back(a);
     nodes.push_back(b);
@@ -73,8 +85,10 @@ LinkKind link_kind(std::vector<std::pair<std::size_t, std::size_t>>& link) {
   auto local = [&nodes](std::size_t v) {
     return static_cast<std::size_t>(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin());
   };
-  std::vector<int> degree(nodes.size(), 0);
-  UnionFind pieces(nodes.size());
+  std::vector<int>& degree = scratch.degree;
+  degree.assign(nodes.size(), 0);
+  UnionFind& pieces = scratch.pieces;
+  pieces.reset(nodes.size());
   for (const auto& [a, b] : link) {
     const std::size_t la = local(a), lb = local(b);
     ++degree[la];
@@ -204,53 +218,64 @@ class SoupCheck {
     orientable_.assign(components_.size(), 1);
   }
 
+  //! The edges in the order of their keys {lo, hi}, each with its uses in the order of their
+  //! triangles: at each vertex lo in turn, the uses by its incident triangles of the edges to
+  //! vertices hi > lo, sorted by (hi, triangle) (a few per vertex, not all 3F at once).
   void scan_edges() {
-    std::vector<EdgeUse> uses;
-    uses.reserve(3 * n_triangles_);
-    for (std::size_t t = 0; t < n_triangles_; ++t) {
-      for (int k = 0; k < 3; ++k) {
-        const std::size_t a = triangles_[t][k], b = triangles_[t][(k + 1) % 3];
-        uses.push_back({std::min(a, b), std::max(a, b), t, a < b});
-      }
-    }
-    std::sort(uses.begin(), uses.end(), [](const EdgeUse& u, const EdgeUse& w) {
-      return std::tie(u.lo, u.hi, u.triangle) < std::tie(w.lo, w.hi, w.triangle);
-    });
-    across_.assign(n_triangles_, {});
     normal_.resize(n_triangles_);
     for (std::size_t t = 0; t < n_triangles_; ++t) {
       const Vec& a = p_[triangles_[t][0]];
       normal_[t] = cross(p_[triangles_[t][1]] - a, p_[triangles_[t][2]] - a);
     }
+    across_.assign(n_triangles_, {});
     boundary_graph_ = std::make_unique<UnionFind>(n_points_);
     on_boundary_.assign(n_points_, 0);
     bool oriented = true;
     report_.min_edge_length = std::numeric_limits<double>::infinity();
     report_.max_edge_length = 0;
-    for (std::size_t begin = 0; begin < uses.size();) {
-      std::size_t end = begin;
-      while (end < uses.size() && uses[end].lo == uses[begin].lo && uses[end].hi == uses[begin].hi) ++end;
-      const std::size_t count = end - begin;
-      const EdgeUse& u = uses[begin];
-      const int c = component_of_[u.triangle];
-      ++report_.edges;
-      ++components_[c].edges;
-      const double length = norm(p_[u.hi] - p_[u.lo]);
-      report_.min_edge_length = std::min(report_.min_edge_length, length);
-      report_.max_edge_length = std::max(report_.max_edge_length, length);
-      if (count == 2) {
-        oriented = pair_edge(u, uses[begin + 1]) && oriented;
-      } else {
-        closed_[c] = 0;
-        if (count == 1) boundary_edge(u, c);
-        if (count >= 3) {
-          nonmanifold_edge(u, c);
-          oriented = false;
-        }
+    std::vector<EdgeUse> uses;
+    for (std::size_t lo = 0; lo < n_points_; ++lo) {
+      uses.clear();
+      for (std::size_t k = first_[lo]; k < first_[lo + 1]; ++k) {
+        const std::size_t t = incident_[k];
+        const Triangle& tri = triangles_[t];
+        const int at = tri[0] == lo ? 0 : (tri[1] == lo ? 1 : 2);
+        // t runs lo → next and previous → lo.
+        const std::size_t next = tri[(at + 1) % 3], previous = tri[(at + 2) % 3];
+        if (next > lo) uses.push_back({lo, next, t, true});
+        if (previous > lo) uses.push_back({lo, previous, t, false});
       }
-      begin = end;
+      std::sort(uses.begin(), uses.end(), [](const EdgeUse& u, const EdgeUse& w) {
+        return u.hi < w.hi || (u.hi == w.hi && u.triangle < w.triangle);
+      });
+      for (std::size_t begin = 0; begin < uses.size();) {
+        std::size_t end = begin;
+        while (end < uses.size() && uses[end].hi == uses[begin].hi) ++end;
+        oriented = edge(uses.data() + begin, end - begin) && oriented;
+        begin = end;
+      }
     }
     report_.oriented = oriented;
+  }
+
+  //! One edge and its `count` uses, in the order of their triangles.  \return false if it is a
+  //! non-manifold edge or two triangles traverse it the same way.
+  bool edge(const EdgeUse* uses, std::size_t count) {
+    const EdgeUse& u = uses[0];
+    const int c = component_of_[u.triangle];
+    ++report_.edges;
+    ++components_[c].edges;
+    const double length = norm(p_[u.hi] - p_[u.lo]);
+    report_.min_edge_length = std::min(report_.min_edge_length, length);
+    report_.max_edge_length = std::max(report_.max_edge_length, length);
+    if (count == 2) return pair_edge(u, uses[1]);
+    closed_[c] = 0;
+    if (count == 1) boundary_edge(u, c);
+    if (count >= 3) {
+      nonmanifold_edge(u, c);
+      return false;
+    }
+    return true;
   }
 
   //! An edge of two triangles u and w: adjacency for the orientation search and roughness.
@@ -261,8 +286,8 @@ class SoupCheck {
       ++report_.misoriented_edges;
       if (!report_.first_misoriented_edge) report_.first_misoriented_edge = {{u.lo, u.hi}};
     }
-    across_[u.triangle].push_back({w.triangle, same});
-    across_[w.triangle].push_back({u.triangle, same});
+    across_[u.triangle].add({w.triangle, same});
+    across_[w.triangle].add({u.triangle, same});
     // Roughness: the angle between the normals of the consistently oriented pair.
     const Vec& nu = normal_[u.triangle];
     Vec nw = normal_[w.triangle];
@@ -309,7 +334,9 @@ class SoupCheck {
       while (!queue.empty()) {
         const std::size_t t = queue.front();
         queue.pop();
-        for (const Neighbour& nb : across_[t]) {
+        const Across& across = across_[t];
+        for (std::size_t k = 0; k < across.count; ++k) {
+          const Neighbour& nb = across.neighbours[k];
           // Consistent iff the effective directions differ: flip_nb = flip_t XOR same_direction.
           const signed char wanted = static_cast<signed char>(flip[t] ^ (nb.same_direction ? 1 : 0));
           if (flip[nb.triangle] < 0) {
@@ -325,6 +352,7 @@ class SoupCheck {
 
   void check_vertex_links() {
     std::vector<std::pair<std::size_t, std::size_t>> link;
+    LinkScratch scratch;
     for (std::size_t v = 0; v < n_points_; ++v) {
       if (first_[v + 1] == first_[v]) continue;
       link.clear();
@@ -333,7 +361,7 @@ class SoupCheck {
         const int at = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
         link.emplace_back(tri[(at + 1) % 3], tri[(at + 2) % 3]);
       }
-      const LinkKind kind = link_kind(link);
+      const LinkKind kind = link_kind(link, scratch);
       if (kind == LinkKind::other) {
         if (!report_.first_nonmanifold_vertex) report_.first_nonmanifold_vertex = v;
         ++report_.nonmanifold_vertices;
@@ -401,7 +429,13 @@ class SoupCheck {
   std::vector<int> component_of_;            //!< triangle → index into components_
   std::vector<ComponentReport> components_;
   std::vector<char> closed_, manifold_, orientable_;  //!< per component
-  std::vector<std::vector<Neighbour>> across_;        //!< per triangle, across its manifold edges
+  //! The neighbours of a triangle across its edges of two triangles (one per edge, so at most 3).
+  struct Across {
+    std::array<Neighbour, 3> neighbours;
+    unsigned char count = 0;
+    void add(const Neighbour& n) { neighbours[count++] = n; }
+  };
+  std::vector<Across> across_;                        //!< per triangle
   std::vector<Vec> normal_;                  //!< per triangle, twice its area in length
   std::unique_ptr<UnionFind> boundary_graph_;         //!< over the vertices, by boundary edges
   std::vector<char> on_boundary_;

@@ -186,6 +186,13 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
   // up to date now, and a triangle whose dual point changed goes to Quality and Smooth again.
   std::vector<std::array<VertexId, 4>> cells;  // x's Delaunay cells, read in the same walk
   const auto star = del_.closed_star(x, geometry_enabled_ ? &cells : nullptr);
+  // x's neighbours q, ascending: the edges xq of the star.
+  std::vector<VertexId> neighbours;
+  for (const auto& s : star)
+    if (s.contains_vertex)
+      for (VertexId v : s.key)
+        if (v != x) neighbours.push_back(v);
+  detail::sort_distinct_ids(neighbours);
   std::vector<RestrictedDelaunay::StarRecord> records;
   auto prepare_records = [&] { records = restricted_.prepare_star(star, parallel_); };
   if (geometry_enabled_) {
@@ -195,13 +202,6 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
     // from its Delaunay cells, read here with the star, without a walk of Del S on the other
     // thread.  Not while only the topology checks run: their cells are large and their
     // certificates often fail, and a failure here would be paid again by Silhouette.
-    std::vector<VertexId> neighbours;
-    neighbours.reserve(cells.size() + 2);
-    for (const auto& s : star)
-      if (s.contains_vertex)
-        for (VertexId v : s.key)
-          if (v != x) neighbours.push_back(v);
-    detail::sort_distinct_ids(neighbours);
     parallel_.invoke([&] { restricted_.certify_new_cell(x, cells, neighbours); }, prepare_records);
   } else {
     prepare_records();
@@ -224,7 +224,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
     else if (policy_ == RecheckPolicy::changed_faces)
       queue(t, FaceKind::triangle, Dirtied::new_faces);
   }
-  const std::vector<VertexId> neighbours = prepare_new_edges(x, star, records);
+  prepare_new_edges(x, star, records, neighbours);
   // The queues' order does not depend on the order of the pushes (WorkQueue): repeats go, the
   // order stays.
   detail::drop_repeated_ids(star_changed);
@@ -236,39 +236,54 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
   return id;
 }
 
-std::vector<VertexId> Refinement::prepare_new_edges(VertexId x, const std::vector<Delaunay::StarTriangle>& star,
-                                                    const std::vector<RestrictedDelaunay::StarRecord>& records) {
+void Refinement::prepare_new_edges(VertexId x, const std::vector<Delaunay::StarTriangle>& star,
+                                   const std::vector<RestrictedDelaunay::StarRecord>& records,
+                                   const std::vector<VertexId>& neighbours) {
   // The facet of a new edge xq is cut by the third vertices r of the triangles xqr, all of which
   // are in the star with their apexes, and bounded by their Voronoi edges, whose records are up
-  // to date.
+  // to date.  The pairs (q, r) for each triangle xqr, both ways, are put in the order of (q, r):
+  // counted into one bucket per neighbour q, each bucket sorted by r (distinct within a bucket,
+  // as the triangles are).
+  // The bucket of each neighbour, by id (the entries of other ids are stale, and never read).
+  thread_local std::vector<std::uint32_t> bucket_of;
+  if (!neighbours.empty() && static_cast<std::size_t>(neighbours.back()) >= bucket_of.size())
+    bucket_of.resize(2 * static_cast<std::size_t>(neighbours.back()) + 1);
+  for (std::size_t k = 0; k < neighbours.size(); ++k) bucket_of[neighbours[k]] = static_cast<std::uint32_t>(k);
+  auto slot = [&](VertexId q) -> std::size_t { return bucket_of[q]; };
   struct RingEntry {
-    VertexId q, r;
+    VertexId r;
     std::size_t index;  // of xqr in the star
-    bool operator<(const RingEntry& o) const { return detail::pair_word(q, r) < detail::pair_word(o.q, o.r); }
   };
-  std::vector<RingEntry> ring;  // (q, r) for each triangle xqr, both ways
-  for (std::size_t i = 0; i < star.size(); ++i) {
-    const auto& s = star[i];
-    if (!s.contains_vertex) continue;
-    VertexId q = -1, r = -1;
-    for (VertexId v : s.key)
-      if (v != x) (q < 0 ? q : r) = v;
-    ring.push_back({q, r, i});
-    ring.push_back({r, q, i});
+  std::vector<std::size_t> first(neighbours.size() + 1, 0);
+  for (const auto& s : star)
+    if (s.contains_vertex)
+      for (VertexId v : s.key)
+        if (v != x) ++first[slot(v) + 1];
+  for (std::size_t k = 0; k < neighbours.size(); ++k) first[k + 1] += first[k];
+  std::vector<RingEntry> ring(first.back());
+  {
+    std::vector<std::size_t> fill(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < star.size(); ++i) {
+      const auto& s = star[i];
+      if (!s.contains_vertex) continue;
+      VertexId q = -1, r = -1;
+      for (VertexId v : s.key)
+        if (v != x) (q < 0 ? q : r) = v;
+      ring[fill[slot(q)]++] = {r, i};
+      ring[fill[slot(r)]++] = {q, i};
+    }
   }
-  std::sort(ring.begin(), ring.end());
-  std::vector<VertexId> neighbours;
+  for (std::size_t k = 0; k < neighbours.size(); ++k)
+    std::sort(ring.begin() + static_cast<std::ptrdiff_t>(first[k]), ring.begin() + static_cast<std::ptrdiff_t>(first[k + 1]),
+              [](const RingEntry& a, const RingEntry& b) { return a.r < b.r; });
   std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>> new_edges;
   std::vector<const VoronoiEdgeRecord*> boundary;
-  for (std::size_t i = 0; i < ring.size();) {
-    const VertexId q = ring[i].q;
-    neighbours.push_back(q);
-    std::size_t end = i;
-    while (end < ring.size() && ring[end].q == q) ++end;
+  for (std::size_t k = 0; k < neighbours.size(); ++k) {
+    const VertexId q = neighbours[k];
     std::vector<Delaunay::RingTriangle> thirds;
-    thirds.reserve(end - i);
+    thirds.reserve(first[k + 1] - first[k]);
     boundary.clear();
-    for (; i < end; ++i) {
+    for (std::size_t i = first[k]; i < first[k + 1]; ++i) {
       thirds.push_back({ring[i].r, star[ring[i].index].apexes});
       boundary.push_back(records[ring[i].index].record);
     }
@@ -283,7 +298,6 @@ std::vector<VertexId> Refinement::prepare_new_edges(VertexId x, const std::vecto
   }
   restricted_.prepare_facets(new_edges, parallel_);
   for (const auto& e : new_edges) queue_edge(e.first);
-  return neighbours;
 }
 
 void Refinement::remove(VertexId p) {

@@ -308,9 +308,10 @@ class Refinement {
   std::optional<VertexId> insert_and_queue(const Witness& witness, VertexId partner_of);
   //! Builds the facets of the edges xq of x's closed star and queues their checks, except for
   //! facets proved to miss Σ from the records and third vertices of the triangles xqr
-  //! (`records`, prepare_star()'s answer for `star`); returns the neighbours q, ascending.
-  std::vector<VertexId> prepare_new_edges(VertexId x, const std::vector<Delaunay::StarTriangle>& star,
-                                          const std::vector<RestrictedDelaunay::StarRecord>& records);
+  //! (`records`, prepare_star()'s answer for `star`); `neighbours` are the q, ascending.
+  void prepare_new_edges(VertexId x, const std::vector<Delaunay::StarTriangle>& star,
+                         const std::vector<RestrictedDelaunay::StarRecord>& records,
+                         const std::vector<VertexId>& neighbours);
   //! Whether t / e is in Del S now: t exactly when it has a record (every current triangle has
   //! one here, and only those); e when it has a cached facet (see restricted_delaunay.h), else
   //! Del S is asked.

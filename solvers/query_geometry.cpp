@@ -55,7 +55,10 @@ OrthonormalFrame orthonormal_frame(const Vec3& direction) {
 }
 
 std::optional<std::array<double, 2>> clip_line_to_box(const Vec3& p, const Vec3& v, const Box3& box) {
-  direction_norm(v);  // validates v
+  // v is validated as direction_norm() does, on |v|² (√ is finite and non-zero exactly when its
+  // argument is, for an argument ≥ 0), without the square root.
+  const double norm_squared = dot(v, v);
+  if (!std::isfinite(norm_squared) || norm_squared == 0.0) direction_norm(v);  // throws
   double t0 = -std::numeric_limits<double>::infinity();
   double t1 = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 3; ++i) {

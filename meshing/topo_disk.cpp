@@ -15,8 +15,8 @@ bool is_topological_disk(const std::vector<TriangleKey>& star, VertexId p) {
   if (star.empty()) return false;
   // The link as directed half-edges (q, r) and (r, q) of each triangle pqr, sorted by q: every
   // link vertex must have exactly two entries, which are then its two link neighbours.
-  std::vector<std::pair<VertexId, VertexId>> link;
-  link.reserve(2 * star.size());
+  thread_local std::vector<std::pair<VertexId, VertexId>> link;
+  link.clear();
   for (const auto& t : star) {
     std::array<VertexId, 2> others{};
     std::size_t count = 0;

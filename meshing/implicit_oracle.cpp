@@ -105,10 +105,9 @@ void ImplicitOracle::count_fallback(std::size_t primitive) {
 SolveResult ImplicitOracle::finish(std::size_t primitive, const std::vector<double>& parameters, SolveResult result,
                                   std::chrono::steady_clock::time_point start) {
   // Only roots inside the domain count; the solver classifies them.
-  std::vector<CertifiedRoot> inside;
-  for (auto& r : result.roots)
-    if (r.inside_domain) inside.push_back(std::move(r));
-  result.roots = std::move(inside);
+  result.roots.erase(std::remove_if(result.roots.begin(), result.roots.end(),
+                                    [](const CertifiedRoot& r) { return !r.inside_domain; }),
+                     result.roots.end());
   drop_spurious_roots(impl_->primitives[primitive], parameters, result);
   const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
   auto& s = stats_[primitive];
@@ -179,8 +178,12 @@ SolveResult ImplicitOracle::surface_line(const Vec3& p, const Vec3& v, double t0
   options.box_budget = tolerances::mesher_box_budget_1d;
   options.time_limit_seconds = seconds_left();
   const std::size_t index = impl_->surface_line;
-  auto r = isolate_line_roots(impl_->primitives[index].compiled, impl_->line_polynomial.get(), p, v, t0, t1, options);
-  return finish(index, {p[0], p[1], p[2], v[0], v[1], v[2]}, std::move(r), start);
+  const CompiledPrimitive& primitive = impl_->primitives[index];
+  auto r = isolate_line_roots(primitive.compiled, impl_->line_polynomial.get(), p, v, t0, t1, options);
+  // The parameters are read only by side conditions (drop_spurious_roots()): none, none built.
+  std::vector<double> parameters;
+  if (primitive.side_conditions) parameters = {p[0], p[1], p[2], v[0], v[1], v[2]};
+  return finish(index, parameters, std::move(r), start);
 }
 
 SolveResult ImplicitOracle::surface_critical(const Vec3& d, const Domain& domain, std::size_t box_budget) {

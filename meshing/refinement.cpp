@@ -180,6 +180,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
   // TopoDisk(p) depends only on the restricted star of p: it is queued for x and for the
   // vertices of every triangle that entered or left Tri S|Σ (a triangle never solved counts).
   std::vector<VertexId> star_changed{x};
+  star_changed.reserve(3 * change.destroyed_triangles.size() + 64);
   auto star_change = [&](const TriangleKey& t) { star_changed.insert(star_changed.end(), t.begin(), t.end()); };
   for (const auto& t : restricted_.forget_destroyed(change)) star_change(t);
   // Shrunk faces keep their clean results (the lemma in refinement.h); their records are brought
@@ -188,6 +189,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
   const auto star = del_.closed_star(x, geometry_enabled_ ? &cells : nullptr);
   // x's neighbours q, ascending: the edges xq of the star.
   std::vector<VertexId> neighbours;
+  neighbours.reserve(2 * star.size());
   for (const auto& s : star)
     if (s.contains_vertex)
       for (VertexId v : s.key)
@@ -254,15 +256,18 @@ void Refinement::prepare_new_edges(VertexId x, const std::vector<Delaunay::StarT
     VertexId r;
     std::size_t index;  // of xqr in the star
   };
-  std::vector<std::size_t> first(neighbours.size() + 1, 0);
+  // The buckets' bounds and contents, kept per thread between insertions.
+  thread_local std::vector<std::size_t> first, fill;
+  thread_local std::vector<RingEntry> ring;
+  first.assign(neighbours.size() + 1, 0);
   for (const auto& s : star)
     if (s.contains_vertex)
       for (VertexId v : s.key)
         if (v != x) ++first[slot(v) + 1];
   for (std::size_t k = 0; k < neighbours.size(); ++k) first[k + 1] += first[k];
-  std::vector<RingEntry> ring(first.back());
+  ring.resize(first.back());
   {
-    std::vector<std::size_t> fill(first.begin(), first.end() - 1);
+    fill.assign(first.begin(), first.end() - 1);
     for (std::size_t i = 0; i < star.size(); ++i) {
       const auto& s = star[i];
       if (!s.contains_vertex) continue;
@@ -277,7 +282,8 @@ void Refinement::prepare_new_edges(VertexId x, const std::vector<Delaunay::StarT
     std::sort(ring.begin() + static_cast<std::ptrdiff_t>(first[k]), ring.begin() + static_cast<std::ptrdiff_t>(first[k + 1]),
               [](const RingEntry& a, const RingEntry& b) { return a.r < b.r; });
   std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>> new_edges;
-  std::vector<const VoronoiEdgeRecord*> boundary;
+  new_edges.reserve(neighbours.size());
+  thread_local std::vector<const VoronoiEdgeRecord*> boundary;
   for (std::size_t k = 0; k < neighbours.size(); ++k) {
     const VertexId q = neighbours[k];
     std::vector<Delaunay::RingTriangle> thirds;

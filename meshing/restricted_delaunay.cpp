@@ -184,6 +184,7 @@ const VoronoiEdgeRecord& RestrictedDelaunay::voronoi_edge_record(const TriangleK
 
 std::vector<TriangleKey> RestrictedDelaunay::forget_destroyed(const InsertionChange& change) {
   std::vector<TriangleKey> left;
+  left.reserve(change.destroyed_triangles.size());
   for (const auto& t : change.destroyed_triangles) edges_.prefetch(t);
   for (const auto& t : change.destroyed_triangles) {
     const VoronoiEdgeRecord* r = edges_.take(t);
@@ -202,6 +203,7 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
   // table survive later insertions into it.)
   std::vector<StarRecord> out(star.size());
   std::vector<std::size_t> to_solve;
+  to_solve.reserve(star.size());
   for (const auto& s : star) edges_.prefetch(s.key);
   for (std::size_t i = 0; i < star.size(); ++i) {
     const auto& s = star[i];
@@ -811,6 +813,17 @@ std::vector<TriangleKey> RestrictedDelaunay::star(VertexId p) {
   for (const auto& t : del_.incident_triangles(p))
     if (voronoi_edge_record(t).restricted) out.push_back(t);
   return out;
+}
+
+const std::vector<TriangleKey>& RestrictedDelaunay::star_unordered(VertexId p) {
+  thread_local std::vector<TriangleKey> computed;
+  if (!every_triangle_recorded_) {
+    computed = star(p);
+    return computed;
+  }
+  if (static_cast<std::size_t>(p) < stars_.size()) return stars_[p];
+  computed.clear();
+  return computed;
 }
 
 std::optional<std::array<TriangleKey, 2>> RestrictedDelaunay::restricted_pair(const EdgeKey& e) {

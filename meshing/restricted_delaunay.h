@@ -282,6 +282,9 @@ class RestrictedDelaunay {
 
   //! Restricted triangles incident to p (current Delaunay triangles only), ascending.
   std::vector<TriangleKey> star(VertexId p);
+  //! The same triangles in no particular order, without a copy when every current triangle has
+  //! its record (the kept star of p); valid until the next call or the next change of Del S.
+  const std::vector<TriangleKey>& star_unordered(VertexId p);
   //! The restricted triangles that contain the edge e, ascending, if there are exactly two (e is
   //! then an interior edge of the surface Tri S|Σ around it); nothing otherwise.  The same as
   //! filtering star(e[0]), without copying the star.

@@ -54,7 +54,7 @@ bool is_topological_disk(const std::vector<TriangleKey>& star, VertexId p) {
 }
 
 CheckResult topo_disk_witness(RestrictedDelaunay& restricted, VertexId p) {
-  if (is_topological_disk(restricted.star(p), p)) return {};
+  if (is_topological_disk(restricted.star_unordered(p), p)) return {};
   detail::WitnessCollector collector(CheckKind::topo_disk, p, restricted.delaunay().point(p));
   for (const auto& t : restricted.delaunay().incident_triangles(p))
     for (const auto& x : restricted.voronoi_edge_record(t).crossings()) collector.add(x);

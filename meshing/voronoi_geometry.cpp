@@ -485,6 +485,7 @@ std::optional<VoronoiCell> cell_in_bounds(const Delaunay& del, VertexId site, co
                                           std::vector<VertexId> neighbours) {
   points.enlarge(tolerances::face_membership_relative_tolerance * box.diagonal());
   std::vector<std::array<double, 2>> bounds;
+  bounds.reserve(3);
   for (int k = 0; k < 3; ++k) {
     bounds.push_back({std::max(points.lo[k], box.lo[k]), std::min(points.hi[k], box.hi[k])});
     if (!(bounds[k][0] < bounds[k][1])) return std::nullopt;

@@ -113,8 +113,10 @@ std::optional<PlaneSection> plane_box_section(const Vec3& origin, const Orthonor
   PlaneSection section;
   section.origin = origin;
   section.frame = frame;
+  const std::vector<Vec3> corners = plane_box_edge_points(origin, section.frame.d, box);
   std::vector<std::array<double, 2>> points;
-  for (const Vec3& x : plane_box_edge_points(origin, section.frame.d, box)) {
+  points.reserve(corners.size());
+  for (const Vec3& x : corners) {
     const Vec3 w{x[0] - origin[0], x[1] - origin[1], x[2] - origin[2]};
     points.push_back({dot(w, section.frame.a), dot(w, section.frame.b)});
   }

@@ -116,6 +116,23 @@ BOOST_AUTO_TEST_CASE(restricted_pair_is_the_filtered_star) {
   BOOST_TEST(faces.size() == 8u);
 }
 
+// star_unordered(p) holds the triangles of star(p), in some order, with and without kept stars:
+// on the octahedron the four faces at each vertex.
+BOOST_AUTO_TEST_CASE(unordered_star_has_the_triangles_of_the_star) {
+  CheckFixture f(test::unit_sphere, 1.5, {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
+  (void)f.restricted.triangles();  // every record computed, so the kept stars are complete
+  for (bool recorded : {false, true}) {
+    if (recorded) f.restricted.assume_every_triangle_recorded();
+    for (VertexId p = 0; p < 6; ++p) {
+      const auto sorted = f.restricted.star(p);
+      auto unordered = f.restricted.star_unordered(p);
+      std::sort(unordered.begin(), unordered.end());
+      BOOST_TEST(sorted.size() == 4u);
+      BOOST_TEST(unordered == sorted);
+    }
+  }
+}
+
 // An insertion shrinks the dual edges of its cavity's boundary; their records are restricted from
 // the old ones (no SurfaceLine solve) and agree with records solved from scratch.
 BOOST_AUTO_TEST_CASE(shrunk_records_equal_solved_records) {

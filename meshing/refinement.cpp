@@ -180,13 +180,14 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
   // TopoDisk(p) depends only on the restricted star of p: it is queued for x and for the
   // vertices of every triangle that entered or left Tri S|Σ (a triangle never solved counts).
   std::vector<VertexId> star_changed{x};
-  star_changed.reserve(3 * change.destroyed_triangles.size() + 64);
+  star_changed.reserve(1 + 3 * change.destroyed_triangles.size());
   auto star_change = [&](const TriangleKey& t) { star_changed.insert(star_changed.end(), t.begin(), t.end()); };
   for (const auto& t : restricted_.forget_destroyed(change)) star_change(t);
   // Shrunk faces keep their clean results (the lemma in refinement.h); their records are brought
   // up to date now, and a triangle whose dual point changed goes to Quality and Smooth again.
   std::vector<std::array<VertexId, 4>> cells;  // x's Delaunay cells, read in the same walk
   const auto star = del_.closed_star(x, geometry_enabled_ ? &cells : nullptr);
+  star_changed.reserve(star_changed.size() + 3 * star.size());  // at most three per star triangle
   // x's neighbours q, ascending: the edges xq of the star.
   std::vector<VertexId> neighbours;
   neighbours.reserve(2 * star.size());

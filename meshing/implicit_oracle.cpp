@@ -103,7 +103,7 @@ void ImplicitOracle::count_fallback(std::size_t primitive) {
 }
 
 SolveResult ImplicitOracle::finish(std::size_t primitive, const std::vector<double>& parameters, SolveResult result,
-                                  std::chrono::steady_clock::time_point start) {
+                                  std::chrono::steady_clock::time_point start, std::optional<double> seconds) {
   // Only roots inside the domain count; the solver classifies them.
   result.roots.erase(std::remove_if(result.roots.begin(), result.roots.end(),
                                     [](const CertifiedRoot& r) { return !r.inside_domain; }),
@@ -116,7 +116,7 @@ SolveResult ImplicitOracle::finish(std::size_t primitive, const std::vector<doub
   s.undecided += result.undecided.size();
   s.boxes += result.counters.boxes;
   if (result.status == SolveStatus::time_limit) ++s.time_limited;
-  s.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  s.seconds += seconds ? *seconds : std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 
@@ -177,13 +177,15 @@ SolveResult ImplicitOracle::surface_line(const Vec3& p, const Vec3& v, double t0
   UnivariateOptions options;
   options.box_budget = tolerances::mesher_box_budget_1d;
   options.time_limit_seconds = seconds_left();
+  options.start = start;  // the isolator times the call from here: no second pair of readings
   const std::size_t index = impl_->surface_line;
   const CompiledPrimitive& primitive = impl_->primitives[index];
   auto r = isolate_line_roots(primitive.compiled, impl_->line_polynomial.get(), p, v, t0, t1, options);
   // The parameters are read only by side conditions (drop_spurious_roots()): none, none built.
   std::vector<double> parameters;
   if (primitive.side_conditions) parameters = {p[0], p[1], p[2], v[0], v[1], v[2]};
-  return finish(index, parameters, std::move(r), start);
+  const double seconds = r.counters.seconds;
+  return finish(index, parameters, std::move(r), start, seconds);
 }
 
 SolveResult ImplicitOracle::surface_critical(const Vec3& d, const Domain& domain, std::size_t box_budget) {

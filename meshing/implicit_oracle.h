@@ -149,9 +149,10 @@ class ImplicitOracle final : public SurfaceOracle {
   nlohmann::json statistics_json() const override;
 
  private:
-  //! Keeps the roots inside the domain that no side condition disproves, and counts the call.
+  //! Keeps the roots inside the domain that no side condition disproves, and counts the call: its
+  //! seconds since `start`, or `seconds` when the solver measured them from `start`.
   SolveResult finish(std::size_t primitive, const std::vector<double>& parameters, SolveResult result,
-                     std::chrono::steady_clock::time_point start);
+                     std::chrono::steady_clock::time_point start, std::optional<double> seconds = std::nullopt);
   SolveResult solve_square(std::size_t primitive, const std::vector<double>& parameters, const Domain& domain,
                            std::size_t box_budget);
   SolveResult solve_over_determined(std::size_t primitive, const std::vector<double>& parameters,

@@ -878,7 +878,7 @@ SolveResult isolate_line_roots(const CompiledSystem& line, const LinePolynomial*
   if (!finite || !nonzero) throw PreconditionViolation("isolate_line_roots: p and v must be finite and v non-zero");
   if (!(options.time_limit_seconds >= 0) || !std::isfinite(options.time_limit_seconds))
     throw PreconditionViolation("isolate_line_roots: time_limit_seconds must be finite and >= 0");
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = options.start ? *options.start : std::chrono::steady_clock::now();
   RoundingGuard guard;
   Isolation isolation(line, p, v, t0, t1, options, start);
   SolveResult result = isolation.run(polynomial);

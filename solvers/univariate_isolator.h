@@ -8,6 +8,7 @@
 //! singular_root.
 
 #include <array>
+#include <chrono>
 #include <optional>
 
 #include "common/tolerances.h"
@@ -25,6 +26,9 @@ struct UnivariateOptions {
   //! unexplored interval, and every interval whose MPFI escalation had not been done, undecided
   //! with reason budget.
   double time_limit_seconds = 0;
+  //! The call's start, when the caller has just read the clock: the time limit and
+  //! counters.seconds count from it.  Without it the clock is read at the call.
+  std::optional<std::chrono::steady_clock::time_point> start;
 };
 
 //! The zeros of E(p + t v) for t in the closed interval [t0, t1], certified in the sense of

@@ -391,6 +391,22 @@ BOOST_AUTO_TEST_CASE(time_budget_returns_the_rest_as_undecided) {
   }
 }
 
+// A start given in the options is where the time limit and counters.seconds count from: one
+// second before the call, a one-second budget has already passed (the isolation stops at its
+// first look at the clock, after a few subintervals of the ≥ 40 the 20 zeros need), and the
+// reported seconds include that second.
+BOOST_AUTO_TEST_CASE(a_given_start_is_where_time_counts_from) {
+  const auto& P = twenty_roots();
+  UnivariateOptions options;
+  options.time_limit_seconds = 1;
+  options.start = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  const SolveResult r = isolate_line_roots(P.problem.line, &P.problem.polynomial, {0, 0, 0}, {1, 0, 0}, -1, 1, options);
+  BOOST_TEST(r.status == SolveStatus::time_limit);
+  BOOST_TEST(any_reason(r, UndecidedReason::budget));
+  BOOST_TEST(r.counters.seconds >= 1.0);
+  check_nothing_dropped(r, P.roots);
+}
+
 BOOST_AUTO_TEST_CASE(time_budget_also_stops_an_mpfi_escalation) {
   // Π_{i=1..8} (x − r_i), r_i = (2i − 9)/8, plus (x + 10⁸)² − 10¹⁶ − 2·10⁸ x − x² (≡ 0, but ~4
   // wide in double): interval Newton on the compiled expression is rounding-limited on all of

@@ -207,29 +207,45 @@ std::array<VertexId, 2> facet_apexes(const Dt& dt, typename Dt::Cell_handle c, i
 }  // namespace
 
 std::optional<VertexId> Delaunay::insert(const std::array<double, 3>& p, bool is_seed) {
-  return insert_point(p, is_seed, nullptr, -1);
+  return insert_point(p, is_seed, nullptr, nullptr, -1, nullptr);
 }
 
-Insertion Delaunay::insert_tracking(const std::array<double, 3>& p, bool is_seed, VertexId hint) {
+Insertion Delaunay::insert_tracking(const std::array<double, 3>& p, bool is_seed, VertexId hint,
+                                    const NearestTest& accept) {
   Insertion insertion;
-  insertion.id = insert_point(p, is_seed, &insertion.change, hint);
+  insertion.id = insert_point(p, is_seed, &insertion.change, &insertion.nearest, hint, accept ? &accept : nullptr);
   return insertion;
 }
 
 std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, bool is_seed,
-                                               InsertionChange* change, VertexId hint) {
+                                               InsertionChange* change, Nearest* nearest, VertexId hint,
+                                               const NearestTest* accept) {
   for (double c : p)
     if (!std::isfinite(c)) throw PreconditionViolation("Delaunay::insert: non-finite point");
   auto& dt = impl_->dt;
   const Point3 point(p[0], p[1], p[2]);
   if (change) *change = InsertionChange{};
+  if (nearest) *nearest = Nearest{};
+  auto squared_distance = [&](const detail::Dt::Vertex_handle& u) {
+    const auto& q = impl_->points[u->info().id];
+    return (q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) + (q[2] - p[2]) * (q[2] - p[2]);
+  };
+  // Reports u (at squared distance d2) as p's nearest sample; false if p is not to be inserted.
+  auto report_nearest = [&](const detail::Dt::Vertex_handle& u, double d2) {
+    const Nearest n{u->info().id, std::sqrt(d2)};
+    if (nearest) *nearest = n;
+    return !accept || (*accept)(n);
+  };
   detail::Dt::Vertex_handle v;
   if (dt.dimension() == 3) {
     detail::Dt::Locate_type lt;
     int li = 0, lj = 0;
     const auto cell = contains(hint) ? dt.locate(point, lt, li, lj, impl_->handles[hint]->cell())
                                      : dt.locate(point, lt, li, lj);
-    if (lt == detail::Dt::VERTEX) return std::nullopt;
+    if (lt == detail::Dt::VERTEX) {
+      if (nearest || accept) report_nearest(cell->vertex(li), 0);
+      return std::nullopt;
+    }
     if (change) {
       // The cavity (the cells in conflict with p): its internal facets are destroyed, its boundary
       // facets shrink, and p is starred from its boundary (Bowyer–Watson) without a second search.
@@ -241,6 +257,23 @@ std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, b
       cavity.clear();
       dt.find_conflicts(point, cell, std::back_inserter(boundary), std::back_inserter(cavity),
                         std::back_inserter(internal));
+      if (nearest || accept) {
+        // p's nearest sample is a vertex of the cavity (insert_tracking() in the header).
+        detail::Dt::Vertex_handle best;
+        double best_d2 = 0;
+        for (const auto& c : cavity)
+          for (int k = 0; k < 4; ++k) {
+            const auto u = c->vertex(k);
+            if (dt.is_infinite(u)) continue;
+            const double d2 = squared_distance(u);
+            if (best == detail::Dt::Vertex_handle() || d2 < best_d2 ||
+                (d2 == best_d2 && u->info().id < best->info().id)) {
+              best = u;
+              best_d2 = d2;
+            }
+          }
+        if (!report_nearest(best, best_d2)) return std::nullopt;
+      }
       // An edge of the cavity shrinks if it lies on a boundary facet and is destroyed otherwise:
       // the boundary facets' edges are taken first, each edge once.
       detail::CavityEdges& seen = impl_->cavity_edges;
@@ -265,9 +298,13 @@ std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, b
       change->local = true;
       v = dt.insert_in_hole(point, cavity.begin(), cavity.end(), boundary.front().first, boundary.front().second);
     } else {
-      v = dt.insert(point, lt, cell, li, lj);
+      v = dt.insert(point, lt, cell, li, lj);  // insert(): no nearest sample asked for
     }
   } else {
+    if ((nearest || accept) && impl_->alive > 0) {
+      const auto u = dt.nearest_vertex(point);
+      if (!report_nearest(u, squared_distance(u))) return std::nullopt;
+    }
     const std::size_t before = dt.number_of_vertices();
     v = dt.insert(point);
     if (dt.number_of_vertices() == before) return std::nullopt;  // coincides with a vertex

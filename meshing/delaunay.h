@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -43,11 +44,22 @@ struct InsertionChange {
   std::vector<EdgeKey> destroyed_edges, shrunk_edges;
 };
 
+//! A sample nearest to a point and its distance |point − sample| (id −1 when there is no sample).
+struct Nearest {
+  VertexId id = -1;
+  double distance = 0;
+};
+
+//! Decides from the sample nearest to a point whether the point is inserted.
+using NearestTest = std::function<bool(const Nearest&)>;
+
 //! What Delaunay::insert_tracking() returns: the new vertex's id (nothing if the point coincides
-//! with a vertex; `change` is then empty) and what the insertion changed.
+//! with a vertex or was refused; `change` is then empty), what the insertion changed, and the
+//! sample nearest to the point before the insertion.
 struct Insertion {
   std::optional<VertexId> id;
   InsertionChange change;
+  Nearest nearest;
 };
 
 namespace detail {
@@ -63,10 +75,19 @@ class Delaunay {
 
   //! Inserts p.  Returns the new vertex id, or nothing if p coincides with an existing vertex.
   std::optional<VertexId> insert(const std::array<double, 3>& p, bool is_seed);
-  //! The same, and what the insertion changed (see InsertionChange).  `hint`, if a current vertex
-  //! near p, starts the point location there (the result does not depend on it; the cost of the
-  //! walk does).
-  Insertion insert_tracking(const std::array<double, 3>& p, bool is_seed, VertexId hint = -1);
+  //! The same, and what the insertion changed (see InsertionChange) and p's nearest sample before
+  //! it.  `hint`, if a current vertex near p, starts the point location there (the result does
+  //! not depend on it; the cost of the walk does).  If `accept` is given and S is not empty, p is
+  //! inserted only if accept(nearest) holds; otherwise Del S is left as it was.
+  //! In dimension 3 the nearest sample q costs no search of its own: it is a vertex of a cell in
+  //! conflict with p, read off the cavity that the insertion computes anyway.  Proof: a point r of
+  //! the closed ball with diameter pq other than p and q sees pq at an angle of at least π/2, so
+  //! |pr|² ≤ |pq|² − |rq|² < |pq|²; as no sample is closer to p than q, that ball holds no other
+  //! sample, pq is an edge of every Delaunay triangulation of S ∪ {p}, and every edge at p joins
+  //! it to a vertex of the cavity's boundary.  Among samples at the same distance (in floating
+  //! point) the least id is taken.
+  Insertion insert_tracking(const std::array<double, 3>& p, bool is_seed, VertexId hint = -1,
+                            const NearestTest& accept = {});
   //! Removes the vertex; its id is never reused.  Precondition: contains(id).
   void remove(VertexId id);
 
@@ -133,8 +154,10 @@ class Delaunay {
   std::pair<VertexId, double> nearest(const std::array<double, 3>& x, VertexId hint = -1) const;
 
  private:
+  //! insert() and insert_tracking(): `change` and `nearest` are filled when given, and `accept`
+  //! (if given) is asked before anything changes.
   std::optional<VertexId> insert_point(const std::array<double, 3>& p, bool is_seed, InsertionChange* change,
-                                       VertexId hint);
+                                       Nearest* nearest, VertexId hint, const NearestTest* accept);
 
   [[noreturn]] static void bad_point_id();
 

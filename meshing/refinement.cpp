@@ -145,26 +145,28 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
   record.kind = w.kind;
   record.from_undecided = w.from_undecided;
   record.partner_of = partner_of;
-  if (del_.size() > 0) {
-    const auto [nearest, d] = del_.nearest(w.point, w.measured_from);
-    record.nearest = nearest;
-    record.nearest_distance = d;
-    if (d <= limits_.duplicate_relative_distance * oracle_.diagonal()) {
+  // The nearest sample comes with the insertion's own search (Delaunay::insert_tracking()); a
+  // point too close to it is refused before Del S changes.
+  bool refused = false;
+  const NearestTest accept = [&](const Nearest& nearest) {
+    if (nearest.distance <= limits_.duplicate_relative_distance * oracle_.diagonal()) {
       ++rejected_;
-      return std::nullopt;
-    }
-    if (d < floor_for(w.kind)) {
+      refused = true;
+    } else if (nearest.distance < floor_for(w.kind)) {
       // The termination floor: recorded, not inserted.
       ++floor_hits_;
       if (floor_locations_.size() < tolerances::floor_locations_listed &&
           std::find(floor_locations_.begin(), floor_locations_.end(), w.point) == floor_locations_.end())
         floor_locations_.push_back(w.point);
-      return std::nullopt;
+      refused = true;
     }
-  }
-  auto [id, change] = del_.insert_tracking(w.point, w.kind == CheckKind::seed, record.nearest);
+    return !refused;
+  };
+  auto [id, change, nearest] = del_.insert_tracking(w.point, w.kind == CheckKind::seed, w.measured_from, accept);
+  record.nearest = nearest.id;
+  record.nearest_distance = nearest.distance;
   if (!id) {
-    ++rejected_;
+    if (!refused) ++rejected_;
     return std::nullopt;
   }
   const VertexId x = *id;

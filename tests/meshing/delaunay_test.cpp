@@ -89,8 +89,18 @@ BOOST_AUTO_TEST_CASE(insertion_change_is_the_cavity) {
     const auto before_triangles = as_set(del.triangles());
     const auto before_edges = all_edges(del);
     const int dimension = del.dimension();
-    const auto [x, change] = del.insert_tracking({s * r * std::cos(phi), s * r * std::sin(phi), s * z}, false, k > 0 ? 0 : -1);
+    const std::array<double, 3> p{s * r * std::cos(phi), s * r * std::sin(phi), s * z};
+    // p's nearest sample, by a search over all of them.
+    Nearest expected;
+    for (VertexId v : del.vertices()) {
+      const auto& q = del.point(v);
+      const double d = std::sqrt((q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) + (q[2] - p[2]) * (q[2] - p[2]));
+      if (expected.id < 0 || d < expected.distance) expected = {v, d};
+    }
+    const auto [x, change, nearest] = del.insert_tracking(p, false, k > 0 ? 0 : -1);
     BOOST_TEST_REQUIRE(x.has_value());
+    BOOST_TEST(nearest.id == expected.id);
+    BOOST_TEST(nearest.distance == expected.distance);
     BOOST_TEST(change.local == (dimension == 3));
     if (!change.local) continue;
     const auto after_triangles = as_set(del.triangles());
@@ -127,6 +137,49 @@ BOOST_AUTO_TEST_CASE(insertion_change_is_the_cavity) {
     BOOST_TEST((cells == del.incident_cells(*x)));
     for (const auto& t : change.shrunk_triangles) BOOST_TEST(before_triangles.count(t));
   }
+}
+
+// A point that the test refuses is not inserted and leaves Del S as it was; the test sees p's
+// nearest sample, in dimension 3 (read off the cavity) and below.
+BOOST_AUTO_TEST_CASE(a_refused_insertion_changes_nothing) {
+  Delaunay del;
+  for (const auto& p : std::vector<std::array<double, 3>>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}})
+    BOOST_TEST_REQUIRE(del.insert(p, false).has_value());
+  const NearestTest refuse_near = [](const Nearest& n) { return n.distance > 0.25; };
+  auto [none, unchanged, nearest] = del.insert_tracking({0.9, 0.1, 0}, false, -1, refuse_near);
+  BOOST_TEST(!none.has_value());
+  BOOST_TEST(nearest.id == 1);
+  BOOST_TEST(nearest.distance == std::sqrt(0.02), boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(del.dimension() == 2);
+  for (const auto& p : std::vector<std::array<double, 3>>{{0, 0, 1}, {1, 1, 1}, {-1, 0.2, 0.3}, {0.4, -1, 0.2}})
+    BOOST_TEST_REQUIRE(del.insert(p, false).has_value());
+  const auto triangles = del.triangles();
+  const std::size_t size = del.size();
+  std::vector<Nearest> seen;
+  const NearestTest record_and_refuse = [&](const Nearest& n) {
+    seen.push_back(n);
+    return n.distance > 0.25;
+  };
+  for (const std::array<double, 3>& p : {std::array<double, 3>{0.95, 0.95, 1.05}, {0.1, 0.05, 0.9}}) {
+    const auto [id, change, n] = del.insert_tracking(p, false, 0, record_and_refuse);
+    BOOST_TEST(!id.has_value());
+    BOOST_TEST(change.destroyed_triangles.empty());
+    BOOST_TEST(change.shrunk_triangles.empty());
+  }
+  BOOST_TEST(del.size() == size);
+  BOOST_TEST((del.triangles() == triangles));
+  BOOST_TEST_REQUIRE(seen.size() == 2u);
+  BOOST_TEST(seen[0].id == 4);  // (1, 1, 1)
+  BOOST_TEST(seen[1].id == 3);  // (0, 0, 1)
+  // A point on a sample is refused with distance 0; one far enough is inserted.
+  const auto on_sample = del.insert_tracking({1, 1, 1}, false, 2, record_and_refuse);
+  BOOST_TEST(!on_sample.id.has_value());
+  BOOST_TEST(on_sample.nearest.id == 4);
+  BOOST_TEST(on_sample.nearest.distance == 0);
+  const auto far = del.insert_tracking({0.5, 0.5, 0.5}, false, 0, record_and_refuse);
+  BOOST_TEST(far.id.has_value());
+  BOOST_TEST(far.nearest.id == 0);  // five samples at distance √3/2: the least id
+  BOOST_TEST(del.size() == size + 1);
 }
 
 BOOST_AUTO_TEST_CASE(edge_triangles_are_the_triangles_around_an_edge) {

@@ -138,7 +138,7 @@ BOOST_AUTO_TEST_CASE(unordered_star_has_the_triangles_of_the_star) {
 BOOST_AUTO_TEST_CASE(shrunk_records_equal_solved_records) {
   CheckFixture f(test::unit_sphere, 1.5, {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
   (void)f.restricted.triangles();
-  const auto [x, change] = f.del.insert_tracking({0.6, 0.6, 0.5291502622129181}, false);
+  const auto [x, change, nearest] = f.del.insert_tracking({0.6, 0.6, 0.5291502622129181}, false);
   BOOST_TEST_REQUIRE(x.has_value());
   BOOST_TEST_REQUIRE(change.local);
   BOOST_TEST_REQUIRE(!change.shrunk_triangles.empty());
@@ -165,7 +165,7 @@ BOOST_AUTO_TEST_CASE(a_shrunk_facet_keeps_a_proved_section_certificate) {
   for (VertexId p : f.del.vertices())
     for (VertexId q : f.del.neighbours(p))
       if (p < q) before[make_edge_key(p, q)] = f.restricted.facet_section_certified(make_edge_key(p, q));
-  const auto [x, change] = f.del.insert_tracking({0.6, 0.6, 0.5291502622129181}, false);
+  const auto [x, change, nearest] = f.del.insert_tracking({0.6, 0.6, 0.5291502622129181}, false);
   BOOST_TEST_REQUIRE(x.has_value());
   BOOST_TEST_REQUIRE(change.local);
   f.restricted.shrink(change);

@@ -291,10 +291,6 @@ std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, b
             for (const EdgeKey& e : {EdgeKey{(*t)[0], (*t)[1]}, EdgeKey{(*t)[0], (*t)[2]}, EdgeKey{(*t)[1], (*t)[2]}})
               if (seen.add(e)) edges.push_back(e);
           }
-      detail::sort_unique(change->shrunk_triangles);
-      detail::sort_unique(change->destroyed_triangles);
-      std::sort(change->shrunk_edges.begin(), change->shrunk_edges.end(), detail::KeyLess{});
-      std::sort(change->destroyed_edges.begin(), change->destroyed_edges.end(), detail::KeyLess{});
       change->local = true;
       v = dt.insert_in_hole(point, cavity.begin(), cavity.end(), boundary.front().first, boundary.front().second);
     } else {

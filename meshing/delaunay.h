@@ -35,7 +35,8 @@ EdgeKey make_edge_key(VertexId a, VertexId b);
 //! - shrunk: the triangles and edges on the cavity boundary; they stay in Del S, and their dual
 //!   Voronoi edges and facets are now subsets of what they were (V_x took a part of them).
 //! - every triangle and edge containing x is new.
-//! Every other simplex keeps its dual Voronoi face unchanged.  `local` is false when this could not
+//! Every other simplex keeps its dual Voronoi face unchanged.  Each list holds distinct keys in no
+//! particular order (that of CGAL's search of the cavity).  `local` is false when this could not
 //! be described locally (Del S had dimension < 3 before or after the insertion): then every dual
 //! face may have changed.
 struct InsertionChange {

@@ -616,10 +616,20 @@ bool StraightLineProgram::evaluate_along_line(const T* point, const T* direction
   const std::size_t n_registers = n_inputs_ + n_c + code_.size();
   // degree[r] bounds the degree in t of register r: 1 for an input, 0 for a constant, and what
   // the instruction makes of its operands' bounds (capped at the order); every coefficient above
-  // it is zero, so it is neither computed nor read.
+  // it is zero, so it is not computed (an addition reads the shorter operand's zeros).
+  // The bounds depend on the program and the order only, and every instruction writes all the
+  // coefficients of its register up to the bound and none above it, before any later one reads
+  // them.  So the zeros above the bounds, once written, stay: the registers are zeroed only when
+  // the program or the order differs from this thread's previous call.
   thread_local std::vector<T> registers, power, product;
   thread_local std::vector<std::size_t> degree;
-  registers.assign(n_registers * n, T(0));
+  thread_local std::uint64_t zeroed_for_program = 0;
+  thread_local std::size_t zeroed_for_order = 0;
+  if (zeroed_for_program != serial_ || zeroed_for_order != n || registers.size() != n_registers * n) {
+    registers.assign(n_registers * n, T(0));
+    zeroed_for_program = serial_;
+    zeroed_for_order = n;
+  }
   degree.assign(n_registers, 0);
   power.resize(n);
   product.resize(n);

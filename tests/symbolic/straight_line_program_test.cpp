@@ -1,5 +1,6 @@
 #include "symbolic/detail/straight_line_program.h"
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -341,6 +342,21 @@ BOOST_AUTO_TEST_CASE(evaluation_along_a_line_is_exact_above_and_below_the_degree
     for (int k = 0; k <= order; ++k)
       BOOST_TEST(coefficients[k] == GiNaC::ex_to<GiNaC::numeric>(along.coeff(t, k)).to_double(),
                  "order " << order << ", coefficient " << k);
+  }
+  // The same program again and again, at other lines and orders (the scratch series are then
+  // reused without being cleared): still exact, and zero above the degree.
+  const std::array<std::array<double, 6>, 4> lines{{{0, 1, 2, 1, 1, -1}, {-1, 0, 3, 2, 0, 1}, {2, 2, 0, 0, -1, 1},
+                                                   {1, -3, 1, 1, 2, 0}}};
+  for (int order : {9, 9, 3, 9, 9}) {
+    for (const auto& l : lines) {
+      const GiNaC::ex on_line =
+          f.subs(GiNaC::lst{x == l[0] + l[3] * t, y == l[1] + l[4] * t, z == l[2] + l[5] * t}).expand();
+      std::vector<double> coefficients(static_cast<std::size_t>(order) + 1, 7.0);
+      BOOST_TEST_REQUIRE(program.evaluate_along_line(l.data(), l.data() + 3, order, coefficients.data()));
+      for (int k = 0; k <= order; ++k)
+        BOOST_TEST(coefficients[k] == GiNaC::ex_to<GiNaC::numeric>(on_line.coeff(t, k)).to_double(),
+                   "order " << order << ", coefficient " << k);
+    }
   }
 }
 

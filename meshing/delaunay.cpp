@@ -14,6 +14,7 @@
 #include "common/errors.h"
 #include "meshing/detail/id_marks.h"
 #include "meshing/detail/key_order.h"
+#include "meshing/detail/vec3.h"
 
 namespace delmesh {
 
@@ -227,8 +228,9 @@ std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, b
   if (change) *change = InsertionChange{};
   if (nearest) *nearest = Nearest{};
   auto squared_distance = [&](const detail::Dt::Vertex_handle& u) {
-    const auto& q = impl_->points[u->info().id];
-    return (q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) + (q[2] - p[2]) * (q[2] - p[2]);
+    using detail::operator-;
+    const auto d = impl_->points[u->info().id] - p;
+    return detail::dot(d, d);
   };
   // Reports u (at squared distance d2) as p's nearest sample; false if p is not to be inserted.
   auto report_nearest = [&](const detail::Dt::Vertex_handle& u, double d2) {
@@ -562,10 +564,7 @@ std::pair<VertexId, double> Delaunay::nearest(const std::array<double, 3>& x, Ve
   const Point3 point(x[0], x[1], x[2]);
   auto v = contains(hint) ? impl_->dt.nearest_vertex(point, impl_->handles[hint]->cell())
                           : impl_->dt.nearest_vertex(point);
-  const auto& p = impl_->points[v->info().id];
-  const double d = std::sqrt((p[0] - x[0]) * (p[0] - x[0]) + (p[1] - x[1]) * (p[1] - x[1]) +
-                             (p[2] - x[2]) * (p[2] - x[2]));
-  return {v->info().id, d};
+  return {v->info().id, detail::distance(impl_->points[v->info().id], x)};
 }
 
 }  // namespace delmesh

@@ -11,6 +11,7 @@
 #include <string>
 #include <tuple>
 #include <type_traits>
+#include <unordered_map>
 
 #include "common/errors.h"
 
@@ -342,9 +343,9 @@ class StraightLineProgram::Compiler {
 
   StraightLineProgram& program_;
   bool share_;
-  std::map<GiNaC::ex, int, GiNaC::ex_is_less> symbols_;
-  std::map<GiNaC::ex, SignedRef, GiNaC::ex_is_less> memo_;
-  std::map<GiNaC::ex, Canon, GiNaC::ex_is_less> canon_;
+  std::unordered_map<GiNaC::ex, int, std::hash<GiNaC::ex>, GiNaC::ex_is_equal> symbols_;
+  std::unordered_map<GiNaC::ex, SignedRef, std::hash<GiNaC::ex>, GiNaC::ex_is_equal> memo_;
+  std::unordered_map<GiNaC::ex, Canon, std::hash<GiNaC::ex>, GiNaC::ex_is_equal> canon_;
   std::map<GiNaC::numeric, int, GiNaC::ex_is_less> constant_refs_;
   std::map<std::tuple<int, int, int>, int> instructions_;
 };

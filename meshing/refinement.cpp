@@ -202,7 +202,7 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
   auto prepare_records = [&] { records = restricted_.prepare_star(star, parallel_); };
   if (geometry_enabled_) {
     // V_x's certificate, towards the slope that certifies the facets of all the new edges xq
-    // (they lie in V_x; prepare_new_edges() takes those it certifies from it), alongside the
+    // (they lie in V_x; facet_section_certified() takes those it certifies from it), alongside the
     // records: neither reads what the other writes (restricted_delaunay.h), and V_x is built
     // from its Delaunay cells, read here with the star, without a walk of Del S on the other
     // thread.  Not while only the topology checks run: their cells are large and their
@@ -246,9 +246,8 @@ void Refinement::prepare_new_edges(VertexId x, const std::vector<Delaunay::StarT
                                    const std::vector<VertexId>& neighbours) {
   // The facet of a new edge xq is cut by the third vertices r of the triangles xqr, all of which
   // are in the star with their apexes, and bounded by their Voronoi edges, whose records are up
-  // to date.  The pairs (q, r) for each triangle xqr, both ways, are put in the order of (q, r):
-  // counted into one bucket per neighbour q, each bucket sorted by r (distinct within a bucket,
-  // as the triangles are).
+  // to date.  The pairs (q, r) for each triangle xqr, both ways, are counted into one bucket per
+  // neighbour q (facet_misses_surface() reads a ring in any order).
   // The bucket of each neighbour, by id (the entries of other ids are stale, and never read).
   thread_local std::vector<std::uint32_t> bucket_of;
   if (!neighbours.empty() && static_cast<std::size_t>(neighbours.back()) >= bucket_of.size())
@@ -281,16 +280,13 @@ void Refinement::prepare_new_edges(VertexId x, const std::vector<Delaunay::StarT
       ring[fill[slot(r)]++] = {q, i};
     }
   }
-  for (std::size_t k = 0; k < neighbours.size(); ++k)
-    std::sort(ring.begin() + static_cast<std::ptrdiff_t>(first[k]), ring.begin() + static_cast<std::ptrdiff_t>(first[k + 1]),
-              [](const RingEntry& a, const RingEntry& b) { return a.r < b.r; });
-  std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>> new_edges;
+  std::vector<EdgeKey> new_edges;
   new_edges.reserve(neighbours.size());
+  thread_local std::vector<Delaunay::RingTriangle> thirds;
   thread_local std::vector<const VoronoiEdgeRecord*> boundary;
   for (std::size_t k = 0; k < neighbours.size(); ++k) {
     const VertexId q = neighbours[k];
-    std::vector<Delaunay::RingTriangle> thirds;
-    thirds.reserve(first[k + 1] - first[k]);
+    thirds.clear();
     boundary.clear();
     for (std::size_t i = first[k]; i < first[k + 1]; ++i) {
       thirds.push_back({ring[i].r, star[ring[i].index].apexes});
@@ -303,10 +299,10 @@ void Refinement::prepare_new_edges(VertexId x, const std::vector<Delaunay::StarT
       queue_edge(xq, true);
       continue;
     }
-    new_edges.push_back({xq, std::move(thirds)});
+    new_edges.push_back(xq);
   }
-  restricted_.prepare_facets(new_edges, parallel_);
-  for (const auto& e : new_edges) queue_edge(e.first);
+  restricted_.add_facets(new_edges);
+  for (const EdgeKey& e : new_edges) queue_edge(e);
 }
 
 void Refinement::remove(VertexId p) {

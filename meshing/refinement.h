@@ -67,12 +67,13 @@
 //! RecheckPolicy::changed_faces re-queues the shrunk faces too, for the new_faces and
 //! restricted_star rows (for testing the lemma).
 //!
-//! Threads.  Each insertion's new and shrunk triangles get their records, and its new edges their
-//! facets and section certificates, on several threads (RestrictedDelaunay::prepare and
-//! prepare_facets): each item is computed on its own from the current Del S and installed in a
-//! fixed order, so the run does the same work and writes the same mesh for every thread count.
-//! The checks themselves run one at a time, in the table's order.  The facet of an edge is kept
-//! from the insertion that made the edge until the last enabled edge row finds the edge clean.
+//! Threads.  Each insertion's new and shrunk triangles get their records on several threads
+//! (RestrictedDelaunay::prepare_star), alongside the new vertex's cell certificate: each item is
+//! computed on its own from the current Del S and installed in a fixed order, so the run does the
+//! same work and writes the same mesh for every thread count.  The checks themselves run one at a
+//! time, in the table's order.  The facet of a new edge, and its section certificate, are
+//! computed when its first check asks (RestrictedDelaunay::add_facets), and kept until the last
+//! enabled edge row finds the edge clean.
 //!
 //! Witnesses within tolerances::duplicate_sample_relative_distance of an existing sample are not
 //! inserted (counted as `rejected_witnesses`), so the loop cannot cycle on a degenerate answer.
@@ -306,9 +307,10 @@ class Refinement {
   //! sample; the time goes to seconds_insertion().
   std::optional<VertexId> timed_insert(const Witness& witness, VertexId partner_of);
   std::optional<VertexId> insert_and_queue(const Witness& witness, VertexId partner_of);
-  //! Builds the facets of the edges xq of x's closed star and queues their checks, except for
-  //! facets proved to miss Σ from the records and third vertices of the triangles xqr
-  //! (`records`, prepare_star()'s answer for `star`); `neighbours` are the q, ascending.
+  //! Enters the facets of the edges xq of x's closed star (RestrictedDelaunay::add_facets) and
+  //! queues their checks, except for facets proved to miss Σ from the records and third vertices
+  //! of the triangles xqr (`records`, prepare_star()'s answer for `star`); `neighbours` are the
+  //! q, ascending.
   void prepare_new_edges(VertexId x, const std::vector<Delaunay::StarTriangle>& star,
                          const std::vector<RestrictedDelaunay::StarRecord>& records,
                          const std::vector<VertexId>& neighbours);

@@ -243,25 +243,8 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
   return out;
 }
 
-void RestrictedDelaunay::prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>>& edges,
-                                        const detail::ParallelFor& parallel) {
-  // A facet that follows from a certified cell needs no geometry: it is built only if some
-  // check asks for it later (facet()).
-  std::vector<FacetEntry> built(edges.size());
-  std::vector<SectionProof> proofs(edges.size());
-  parallel.run(edges.size(), [&](std::size_t i) {
-    const auto& [e, ring] = edges[i];
-    proofs[i] = certify_by_cell(e);
-    if (proofs[i] != SectionProof::none) return;
-    built[i].facet = voronoi_facet(del_, e, oracle_.clip_box(), facet_rotation(e), &ring);
-    built[i].built = true;
-    proofs[i] = certify_by_cover(e, built[i].facet);
-  }, tolerances::parallel_least_facets);
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    facets_built_ += built[i].built;
-    record_section(built[i].section_certified, proofs[i]);
-    *facets_.try_emplace(edges[i].first).first = std::move(built[i]);
-  }
+void RestrictedDelaunay::add_facets(const std::vector<EdgeKey>& edges) {
+  for (const EdgeKey& e : edges) facet_entry(e);
 }
 
 bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>& ring,

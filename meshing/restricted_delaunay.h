@@ -157,11 +157,13 @@ class RestrictedDelaunay {
   //! the records are forgotten.
   std::vector<StarRecord> prepare_star(const std::vector<Delaunay::StarTriangle>& star,
                                        const detail::ParallelFor& parallel);
-  //! The section certificates of these edges' facets (with the triangles around them, as
-  //! Delaunay::edge_ring), on `parallel`'s threads: from a certified cell where one certifies the
-  //! facet (its geometry is then not built), else from the facet's own cover, built for it.
-  void prepare_facets(const std::vector<std::pair<EdgeKey, std::vector<Delaunay::RingTriangle>>>& edges,
-                      const detail::ParallelFor& parallel);
+  //! Enters the facets of new Delaunay edges, empty: their geometry (facet()) and their section
+  //! certificates (facet_section_certified()) are computed when a check first asks for them, on
+  //! the Del S of that moment.  An edge that a later insertion destroys before its checks run
+  //! then costs nothing, and one it shrinks is certified on its smaller facet, where the cell
+  //! certificates made in between may already certify it.  (A facet's certificate holds on
+  //! every subset of the facet, so computing it later certifies the same facets or more.)
+  void add_facets(const std::vector<EdgeKey>& edges);
   //! Whether Σ misses the facet F of the Delaunay edge e = pq, proved from `boundary`, the current
   //! records of all the triangles pqr, and `ring`, those triangles (as Delaunay::edge_ring(e), in
   //! any order; only their third vertices r are read).  F ∩ B is a convex polygon
@@ -213,7 +215,7 @@ class RestrictedDelaunay {
   //! diagram do up to tolerances::face_membership_relative_tolerance.  Counted
   //! (facets_certified_by_cell()).  This route reads no geometry of F, and holds whether F ∩ B is
   //! a polygon, degenerate or empty; it is tried first, and a facet it certifies is not built
-  //! (here nor by prepare_facets()) until facet() is asked for it.
+  //! until facet() is asked for it.
   bool facet_section_certified(const EdgeKey& e);
   //! The Silhouette certificate of V_p (silhouette.h): the gradient cone with w = n_p =
   //! ∇E(p)/|∇E(p)| over voronoi_cell(p), its slope kept.  A proof is kept until V_p may have grown

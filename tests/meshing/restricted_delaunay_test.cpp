@@ -185,6 +185,28 @@ BOOST_AUTO_TEST_CASE(a_shrunk_facet_keeps_a_proved_section_certificate) {
   for (const auto& e : change.destroyed_edges) BOOST_TEST(!f.restricted.has_facet(e));
 }
 
+// add_facets() enters the facets of new edges without building or certifying anything; each
+// facet's section certificate is made when first asked, and is the one a fresh table makes.
+BOOST_AUTO_TEST_CASE(added_facets_are_certified_when_first_asked) {
+  CheckFixture f(test::unit_sphere, 1.5, {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
+  std::vector<EdgeKey> edges;
+  for (VertexId p : f.del.vertices())
+    for (VertexId q : f.del.neighbours(p))
+      if (p < q) edges.push_back(make_edge_key(p, q));
+  BOOST_TEST_REQUIRE(edges.size() >= 12u);  // the octahedron's, and a diagonal inside it
+  const auto attempts = [&] { return f.oracle.statistics_json()["cone_certificates"]["attempts"].get<std::size_t>(); };
+  const std::size_t attempts_before = attempts(), built_before = f.restricted.facets_built();
+  f.restricted.add_facets(edges);
+  for (const auto& e : edges) BOOST_TEST(f.restricted.has_facet(e));
+  BOOST_TEST(attempts() == attempts_before);
+  BOOST_TEST(f.restricted.facets_built() == built_before);
+  std::vector<bool> certified;
+  for (const auto& e : edges) certified.push_back(f.restricted.facet_section_certified(e));
+  BOOST_TEST(attempts() > attempts_before);  // the covers were made when asked for
+  RestrictedDelaunay fresh(f.del, f.oracle, 1);
+  for (std::size_t i = 0; i < edges.size(); ++i) BOOST_TEST(certified[i] == fresh.facet_section_certified(edges[i]));
+}
+
 // The facet of e is certified from the cells alone: no cone attempt, one more facet counted as
 // certified by cell, and no facet geometry built.
 static void check_facet_follows_from_cells(CheckFixture& f, const EdgeKey& e) {

@@ -357,17 +357,16 @@ inline constexpr double slope_pretest_relative_margin = 1e-12;
 //! a reading costs about as much as a cheap check, and the time limit and the progress line are
 //! tested at readings (the point limit and an interrupt before every check).
 inline constexpr std::size_t checks_per_clock_reading = 32;
-//! The least batch of an insertion's work that runs on several threads (detail::ParallelFor,
-//! `--threads`); a smaller one runs on the calling thread.  Handing a batch to TBB's threads and
-//! waiting for them costs tens of microseconds, while an edge record is about a microsecond (one
-//! interval evaluation, or a SurfaceLine solve) and a facet certificate some tens.  Measured on
-//! 2 cores, torus at size bound 0.05 (Release, 8 paired whole runs, 2 threads over 1): every batch
-//! of 2 or more on the threads took 1.10 times the wall time and 2.0 times the CPU time; the
-//! facets alone on the threads (batches of 2 or more) 1.04 and 1.7; no batch on the threads
-//! (these values: an insertion's batches stay below them) 1.02–1.04 and 1.02–1.04.  Batches this
-//! large come from wide invalidations only.
+//! The least batch of edge records that an insertion computes on several threads
+//! (detail::ParallelFor, `--threads`); a smaller one runs on the calling thread.  Handing a batch
+//! to TBB's threads and waiting for them costs tens of microseconds, while an edge record is about
+//! a microsecond (one interval evaluation, or a SurfaceLine solve).  Measured on 2 cores, torus at
+//! size bound 0.05 (Release, 8 paired whole runs, 2 threads over 1), when the new edges' facets
+//! were also certified at insertion: every batch of 2 or more on the threads took 1.10 times the
+//! wall time and 2.0 times the CPU time; no batch on the threads (this value: an insertion's
+//! batches stay below it) 1.02–1.04 and 1.02–1.04.  Batches this large come from wide
+//! invalidations only.
 inline constexpr std::size_t parallel_least_records = 256;
-inline constexpr std::size_t parallel_least_facets = 64;
 //! Interval subdivision of a box face to certify E ≠ 0 on it: maximal depth of the quadtree.
 inline constexpr int box_face_max_depth = 14;
 //! Input validation (meshing/input_validation.h): a box of the regularity check narrower than this

@@ -544,8 +544,9 @@ SolveResult MeshOracle::curve_critical(const Vec3& o, const Vec3& a, const Vec3&
     const Vec3& x = at.at(e);
     const auto uv = plane.uv(x);
     if (!in_domain(domain, uv, m.face_margin)) continue;
-    // The heights of the neighbours relative to e's, exactly (a tie counts both ways).
-    auto relative_height = [&](const SectionGraph::Edge& g) {
+    // The heights of the neighbours relative to e's, exactly (a tie counts both ways).  e is bound by
+    // an init-capture: C++17 lambdas cannot capture a structured binding.
+    auto relative_height = [&, &e = e](const SectionGraph::Edge& g) {
       return crossing_height_sign(plane, m.points[g.first], m.points[g.second], m.points[e.first],
                                   m.points[e.second], a);
     };

@@ -28,8 +28,28 @@ Vec cross(const Vec& a, const Vec& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 double norm(const Vec& a) { return std::sqrt(dot(a, a)); }
-//! The angle between u and v in [0, π], accurate also near 0 and π.
-double angle_between(const Vec& u, const Vec& v) { return std::atan2(norm(cross(u, v)), dot(u, v)); }
+
+//! The exponent e of the largest component of v in magnitude (2^e ≤ max |v_i| < 2^(e+1)); 0 for
+//! v = 0.
+int exponent_of(const Vec& v) {
+  const double m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  return m > 0 ? std::ilogb(m) : 0;
+}
+//! v · 2^-e, exact while the result stays in the normal range (a power-of-two scaling rounds
+//! nothing), so that the squares and products of the measures below neither overflow nor
+//! underflow at any scale of the mesh.
+Vec scaled(const Vec& v, int e) { return {std::scalbn(v.x, -e), std::scalbn(v.y, -e), std::scalbn(v.z, -e)}; }
+//! |v|, computed on v scaled to a largest component in [1, 2): no square overflows or underflows.
+double length(const Vec& v) {
+  const int e = exponent_of(v);
+  return std::scalbn(norm(scaled(v, e)), e);
+}
+//! The angle between u and v in [0, π], accurate also near 0 and π, and independent of the
+//! lengths of u and v (each is first scaled by a power of two to a largest component in [1, 2)).
+double angle_between(const Vec& u, const Vec& v) {
+  const Vec su = scaled(u, exponent_of(u)), sv = scaled(v, exponent_of(v));
+  return std::atan2(norm(cross(su, sv)), dot(su, sv));
+}
 
 class UnionFind {
  public:
@@ -223,9 +243,12 @@ class SoupCheck {
   //! vertices hi > lo, sorted by (hi, triangle) (a few per vertex, not all 3F at once).
   void scan_edges() {
     normal_.resize(n_triangles_);
+    frame_exponent_.resize(n_triangles_);
     for (std::size_t t = 0; t < n_triangles_; ++t) {
       const Vec& a = p_[triangles_[t][0]];
-      normal_[t] = cross(p_[triangles_[t][1]] - a, p_[triangles_[t][2]] - a);
+      const Vec u = p_[triangles_[t][1]] - a, v = p_[triangles_[t][2]] - a;
+      frame_exponent_[t] = std::max(exponent_of(u), exponent_of(v));
+      normal_[t] = cross(scaled(u, frame_exponent_[t]), scaled(v, frame_exponent_[t]));
     }
     across_.assign(n_triangles_, {});
     boundary_graph_ = std::make_unique<UnionFind>(n_points_);
@@ -265,9 +288,9 @@ class SoupCheck {
     const int c = component_of_[u.triangle];
     ++report_.edges;
     ++components_[c].edges;
-    const double length = norm(p_[u.hi] - p_[u.lo]);
-    report_.min_edge_length = std::min(report_.min_edge_length, length);
-    report_.max_edge_length = std::max(report_.max_edge_length, length);
+    const double edge_length = length(p_[u.hi] - p_[u.lo]);
+    report_.min_edge_length = std::min(report_.min_edge_length, edge_length);
+    report_.max_edge_length = std::max(report_.max_edge_length, edge_length);
     if (count == 2) return pair_edge(u, uses[1]);
     closed_[c] = 0;
     if (count == 1) boundary_edge(u, c);
@@ -377,9 +400,12 @@ class SoupCheck {
       const Vec& a = p_[triangles_[t][0]];
       const Vec& b = p_[triangles_[t][1]];
       const Vec& c = p_[triangles_[t][2]];
+      // Lengths and the area in the triangle's frame scaled by 2^-frame_exponent_[t]: the
+      // ratio and the angles do not depend on the scale, and no product overflows or underflows.
+      const int e = frame_exponent_[t];
       const double twice_area = norm(normal_[t]);
       report_.signed_volume += dot(a, cross(b, c)) / 6.0;
-      const double ab = norm(b - a), bc = norm(c - b), ca = norm(a - c);
+      const double ab = norm(scaled(b - a, e)), bc = norm(scaled(c - b, e)), ca = norm(scaled(a - c, e));
       double smallest_angle = 0, ratio = std::numeric_limits<double>::infinity();
       if (twice_area > 0) {
         smallest_angle = std::min({angle_between(b - a, c - a), angle_between(c - b, a - b),
@@ -436,7 +462,11 @@ class SoupCheck {
     void add(const Neighbour& n) { neighbours[count++] = n; }
   };
   std::vector<Across> across_;                        //!< per triangle
-  std::vector<Vec> normal_;                  //!< per triangle, twice its area in length
+  //! Per triangle t = abc: (b − a) × (c − a) scaled by 2^(−2 frame_exponent_[t]), i.e. twice its
+  //! area in length in the triangle's frame scaled by 2^(−frame_exponent_[t]).
+  std::vector<Vec> normal_;
+  //! Per triangle, the exponent of the largest component of b − a and c − a.
+  std::vector<int> frame_exponent_;
   std::unique_ptr<UnionFind> boundary_graph_;         //!< over the vertices, by boundary edges
   std::vector<char> on_boundary_;
 };

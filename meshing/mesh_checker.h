@@ -27,6 +27,11 @@
 //! - Angles and ratios of a triangle with zero area: min angle 0, radius-edge ratio +∞.
 //! - roughness of an edge shared by exactly two triangles (§6.1): π − internal dihedral angle,
 //!   i.e. the angle between the two triangle normals after orienting the pair consistently.
+//! - Angles, radius-edge ratios, roughness and edge lengths are computed on vectors first scaled
+//!   by a power of two (exact) to a largest component in [1, 2) (per triangle for its area and
+//!   ratio), so they do not depend on the mesh's scale: a mesh scaled by 1e200 or 1e-300 gets the
+//!   measures of the unscaled one up to rounding.  signed_volume is the plain sum (it overflows
+//!   or underflows where the cube of the scale does).
 
 #include <array>
 #include <cstddef>

@@ -9,17 +9,39 @@ namespace delmesh {
 
 using namespace detail;
 
+namespace {
+
+//! The exponent of the largest coordinate difference among p, q, r (0 if they coincide).
+int frame_exponent(const Vec3& p, const Vec3& q, const Vec3& r) {
+  double m = 0;
+  for (int k = 0; k < 3; ++k) m = std::max({m, std::abs(q[k] - p[k]), std::abs(r[k] - p[k])});
+  return m > 0 ? std::ilogb(m) : 0;
+}
+
+//! x · 2^-e (exact while the result stays in the normal range).
+Vec3 scaled(const Vec3& x, int e) { return {std::scalbn(x[0], -e), std::scalbn(x[1], -e), std::scalbn(x[2], -e)}; }
+
+}  // namespace
+
 double circumradius(const Vec3& p, const Vec3& q, const Vec3& r) {
-  const double a = distance(q, r), b = distance(p, r), c = distance(p, q);
-  const double area2 = norm(cross(q - p, r - p));  // twice the area
+  // In the frame scaled by 2^-e, the lengths are about 1: no product overflows or underflows.
+  const int e = frame_exponent(p, q, r);
+  const Vec3 u = scaled(q - p, e), v = scaled(r - p, e), w = scaled(r - q, e);
+  const double a = norm(w), b = norm(v), c = norm(u);
+  const double area2 = norm(cross(u, v));  // twice the area
   if (!(area2 > 0)) return std::numeric_limits<double>::infinity();
-  return a * b * c / (2 * area2);
+  return std::scalbn(a * b * c / (2 * area2), e);
 }
 
 double radius_edge_ratio(const Vec3& p, const Vec3& q, const Vec3& r) {
-  const double shortest = std::min({distance(q, r), distance(p, r), distance(p, q)});
+  const int e = frame_exponent(p, q, r);
+  const Vec3 u = scaled(q - p, e), v = scaled(r - p, e), w = scaled(r - q, e);
+  const double a = norm(w), b = norm(v), c = norm(u);
+  const double shortest = std::min({a, b, c});
   if (!(shortest > 0)) return std::numeric_limits<double>::infinity();
-  return circumradius(p, q, r) / shortest;
+  const double area2 = norm(cross(u, v));
+  if (!(area2 > 0)) return std::numeric_limits<double>::infinity();
+  return a * b * c / (2 * area2) / shortest;
 }
 
 std::optional<Witness> quality_witness(RestrictedDelaunay& restricted, const TriangleKey& t, double lambda) {

@@ -9,9 +9,10 @@
 
 namespace delmesh {
 
-//! Circumradius of the triangle pqr.
+//! Circumradius of the triangle pqr (+∞ if degenerate).  Computed on the edge vectors scaled by a
+//! power of two to lengths about 1, so it neither overflows nor underflows at any scale.
 double circumradius(const Vec3& p, const Vec3& q, const Vec3& r);
-//! ρ(t) = circumradius / shortest edge.
+//! ρ(t) = circumradius / shortest edge (+∞ if degenerate); scale-free like circumradius.
 double radius_edge_ratio(const Vec3& p, const Vec3& q, const Vec3& r);
 
 //! If t ∈ Tri S|Σ has ρ(t) > 1 + λ, a point of Σ on t's dual Voronoi edge (the first certified

@@ -44,10 +44,16 @@ SeedReport insert_seeds(Refinement& refinement) {
       else
         refinement.report_unsettled({CheckKind::seed, UnsettledReason::unprojectable_region, u.world});
     }
-    if (points.empty())
+    // No critical point and no undecided region: Σ is empty in the box.  Undecided regions that
+    // could not be projected are not a proof of emptiness: they stay unsettled (reported above)
+    // and the run goes on without seeds, to end uncertified.
+    if (points.empty() && result.undecided.empty())
       throw InvalidInput("the surface is empty in the box: no critical point of E = 0 was found");
-    for (const auto& x : points)
+    for (const auto& x : points) {
+      // A stop here leaves run() to report the limit.
+      if (refinement.limit_passed()) break;
       if (refinement.insert(Witness{x, CheckKind::seed, -1, false})) ++report.seeds;
+    }
     return report;
   }
   throw InvalidInput("cannot find a generic height direction: every direction tried gave non-isolated critical points");

@@ -28,8 +28,11 @@ struct SeedReport {
 //! The k-th seeded generic unit direction (k = 0, 1, …).
 Vec3 generic_direction(std::uint64_t seed, int k);
 
-//! Step 1: inserts the seeds into S.  Throws InvalidInput if Σ is empty in the box (no
-//! critical point) or no generic height direction is found.  If the run's deadline
+//! Step 1: inserts the seeds into S.  Throws InvalidInput if Σ is empty in the box (the seed
+//! solve found no critical point and left no undecided region) or no generic height direction
+//! is found.  An undecided region that cannot be projected onto Σ is reported unsettled
+//! (CheckKind::seed, unprojectable_region) and inserts nothing; if every region is such, no seed
+//! is inserted and the run ends uncertified, never "empty".  If the run's deadline
 //! (SurfaceOracle::set_run_controls) stops the seed solve, inserts nothing and says so.
 SeedReport insert_seeds(Refinement& refinement);
 

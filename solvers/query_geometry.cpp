@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -23,21 +25,44 @@ double cross2(const std::array<double, 2>& o, const std::array<double, 2>& p,
   return (p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0]);
 }
 
-// |d|, or InvalidInput if d is zero or not finite.
-double direction_norm(const Vec3& d) {
-  const double norm = std::sqrt(dot(d, d));
-  if (!std::isfinite(norm) || norm == 0.0) {
-    throw InvalidInput("direction (" + std::to_string(d[0]) + ", " + std::to_string(d[1]) + ", " +
-                       std::to_string(d[2]) + ") is zero or not finite");
+// The shortest decimal text that reads back as exactly x.
+std::string shortest(double x) {
+  if (x == 0) return "0";
+  char buffer[64];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
+    if (std::strtod(buffer, nullptr) == x) return buffer;
   }
-  return norm;
+  return buffer;
+}
+
+// d scaled by a power of two (exact) so that its largest component lies in [1, 2): then |d|²
+// neither overflows nor underflows.  InvalidInput if d is zero or not finite.
+Vec3 scaled_direction(const Vec3& d) {
+  const std::string text = "direction (" + shortest(d[0]) + ", " + shortest(d[1]) + ", " + shortest(d[2]) + ")";
+  double largest = 0;
+  for (double c : d) {
+    if (!std::isfinite(c)) throw InvalidInput(text + " is not finite");
+    largest = std::max(largest, std::abs(c));
+  }
+  if (largest == 0) throw InvalidInput(text + " is zero");
+  const int e = std::ilogb(largest);
+  return {std::scalbn(d[0], -e), std::scalbn(d[1], -e), std::scalbn(d[2], -e)};
 }
 
 }  // namespace
 
 Vec3 unit_vector(const Vec3& d) {
-  const double norm = direction_norm(d);
-  return {d[0] / norm, d[1] / norm, d[2] / norm};
+  // The plain quotient where |d|² is a normal double; otherwise on d scaled by a power of two
+  // (a direction of length 1e308 or 1e-320 has the same unit vector).
+  const double norm_squared = dot(d, d);
+  if (std::isfinite(norm_squared) && norm_squared >= std::numeric_limits<double>::min()) {
+    const double norm = std::sqrt(norm_squared);
+    return {d[0] / norm, d[1] / norm, d[2] / norm};
+  }
+  const Vec3 s = scaled_direction(d);
+  const double norm = std::sqrt(dot(s, s));
+  return {s[0] / norm, s[1] / norm, s[2] / norm};
 }
 
 OrthonormalFrame orthonormal_frame(const Vec3& direction) {
@@ -55,10 +80,7 @@ OrthonormalFrame orthonormal_frame(const Vec3& direction) {
 }
 
 std::optional<std::array<double, 2>> clip_line_to_box(const Vec3& p, const Vec3& v, const Box3& box) {
-  // v is validated as direction_norm() does, on |v|² (√ is finite and non-zero exactly when its
-  // argument is, for an argument ≥ 0), without the square root.
-  const double norm_squared = dot(v, v);
-  if (!std::isfinite(norm_squared) || norm_squared == 0.0) direction_norm(v);  // throws
+  (void)scaled_direction(v);  // throws if v is zero or not finite
   double t0 = -std::numeric_limits<double>::infinity();
   double t1 = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 3; ++i) {

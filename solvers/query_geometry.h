@@ -27,7 +27,9 @@ struct OrthonormalFrame {
 //! and b = d × a.  Throws InvalidInput if d is zero or not finite.
 OrthonormalFrame orthonormal_frame(const Vec3& direction);
 
-//! d / |d|.  Throws InvalidInput if d is zero or not finite.
+//! d / |d|, for any finite non-zero d (|d|² may overflow or underflow: d is then first scaled by a
+//! power of two).  Throws InvalidInput if d is zero or not finite ("direction (…) is zero", "…
+//! is not finite", the components in shortest form).
 Vec3 unit_vector(const Vec3& d);
 
 //! The parameter interval [t0, t1] (t0 < t1) of the points p + t v that lie in the closed box,

@@ -135,9 +135,6 @@ ExitCode run_check(const CheckOptions& o) {
   if (!o.certify && o.surface.given())
     throw InvalidInput("--surface and --expr are used only with --certify (the certificate of the mesh for that surface)");
   if (!o.certify && o.seed_option->count() > 0) throw InvalidInput("--seed is used only with --certify");
-  // Installed before the mesh is read: a signal that arrives while the mesh is read or the surface
-  // compiled then stops the certificate at its first step instead of ending the process.
-  if (o.certify) install_interrupt_handlers();
   // Read as a soup: open, non-manifold and non-orientable meshes are reported, not refused.
   const TriangleSoup soup = read_triangle_soup(o.mesh);
   const CheckVerdict verdict = check_verdict(check_mesh(soup.points, soup.triangles),
@@ -231,7 +228,8 @@ Command add_check_command(CLI::App& parent) {
       "Exit codes: 0 checked (and with --lambda every bound holds, with --certify the certificate is certified "
       "and the mesh is Tri S|Sigma), 1 some bound or the certificate fails, "
               "2 invalid input (missing or corrupt file, lambda out of range, a bad surface), 3 interrupted "
-              "(SIGINT/SIGTERM) during the certificate, 4 internal error.");
+              "by a signal (SIGINT, SIGTERM, ...; during the certificate it stops, otherwise the report is "
+              "finished first), 4 internal error, 6 the report could not be written to standard output.");
   sub->add_option("MESH", o->mesh, "The mesh file (.off, .ply or .obj)")->required();
   o->lambda_option = sub->add_option("--lambda", o->lambda,
                                      "lambda in (0, 1/6): compare with min angle >= asin(1/(2+2 lambda)), "

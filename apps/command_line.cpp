@@ -1,7 +1,5 @@
 #include "apps/command_line.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -178,59 +176,6 @@ std::string extension_of(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
-}
-
-void require_writable_location(const std::string& path, const std::string& option) {
-  if (path == "-") return;
-  if (path.empty()) throw InvalidInput(option + ": empty file name");
-  const std::filesystem::path p(path);
-  std::error_code ec;
-  if (std::filesystem::is_directory(p, ec)) throw InvalidInput(option + ": " + path + " is a directory");
-  const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
-  if (!std::filesystem::is_directory(dir, ec)) {
-    throw InvalidInput(option + ": directory " + dir.string() + " does not exist");
-  }
-  if (::access(dir.c_str(), W_OK) != 0) {
-    throw InvalidInput(option + ": directory " + dir.string() + " is not writable");
-  }
-}
-
-void write_text_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  if (path == "-") {
-    write(std::cout);
-    std::cout.flush();
-    return;
-  }
-  const std::filesystem::path target(path);
-  const std::filesystem::path temporary =
-      (target.has_parent_path() ? target.parent_path() : std::filesystem::path(".")) /
-      ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw InvalidInput("cannot write " + path + ": " + std::strerror(errno));
-    try {
-      write(out);
-    } catch (...) {
-      out.close();
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw;
-    }
-    out.flush();
-    if (!out) {
-      out.close();
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw InvalidInput("cannot write " + path + ": write failed");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, target, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw InvalidInput("cannot write " + path + ": " + ec.message());
-  }
 }
 
 void print_json(std::ostream& out, const nlohmann::ordered_json& object) {

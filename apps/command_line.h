@@ -1,15 +1,19 @@
 #pragma once
 //! \file command_line.h
 //! What the subcommands of `delmesh` share: the exit-code policy, the surface options
-//! (--surface | --expr with --box), parsing of vectors, and atomic output files.
+//! (--surface | --expr with --box), parsing of vectors, and messages.  Output files are
+//! apps/output_files.h, signals apps/interrupt.h.
 //!
 //! Exit codes (the program's contract, also listed in the README):
 //!   0  complete;
 //!   1  `delmesh check --lambda L` ran and some bound of Theorem 6.1 failed;
 //!   2  invalid input or usage: exactly one line on stderr, beginning `error:`;
-//!   3  stopped by a limit (--max-points, --time-limit): the partial mesh and statistics are written;
+//!   3  stopped by a limit (--max-points, --time-limit) or a signal (apps/interrupt.h): the partial
+//!      mesh and statistics are written; a subcommand without outputs to stop finishes first;
 //!   4  internal error (an unexpected exception): one line `error: internal: …` on stderr;
-//!   5  uncertified: the run ended but something was not settled; mesh and statistics are written.
+//!   5  uncertified: the run ended but something was not settled; mesh and statistics are written;
+//!   6  an output could not be written (disk full, permission denied, closed pipe; OutputError of
+//!      apps/output_files.h): one line `error:` on stderr; existing output files are left as they were.
 
 #include <array>
 #include <functional>
@@ -32,7 +36,8 @@ enum class ExitCode : int {
   invalid_input = 2,
   limit_reached = 3,
   internal_error = 4,
-  uncertified = 5
+  uncertified = 5,
+  io_error = 6
 };
 constexpr auto enum_names(ExitCode) {
   return name_table<ExitCode>("ExitCode", {{ExitCode::complete, "complete"},
@@ -40,7 +45,8 @@ constexpr auto enum_names(ExitCode) {
                                            {ExitCode::invalid_input, "invalid_input"},
                                            {ExitCode::limit_reached, "limit_reached"},
                                            {ExitCode::internal_error, "internal_error"},
-                                           {ExitCode::uncertified, "uncertified"}});
+                                           {ExitCode::uncertified, "uncertified"},
+                                           {ExitCode::io_error, "io_error"}});
 }
 inline std::ostream& operator<<(std::ostream& out, ExitCode code) { return write_enum(out, code); }
 
@@ -126,14 +132,6 @@ std::string format_box(const Box3& box);
 
 //! Lower-case extension of path including the dot ("" if none).
 std::string extension_of(const std::string& path);
-
-//! Throws InvalidInput unless the directory that would hold `path` exists.
-void require_writable_location(const std::string& path, const std::string& option);
-
-//! Writes the text produced by `write` to path through a temporary file in the same directory,
-//! renamed over path only when complete: an existing file is never truncated or left half
-//! written.  "-" writes to stdout.  Throws InvalidInput if the file cannot be written.
-void write_text_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 //! Prints a JSON object with one top-level key per line, each value on one line (readable and
 //! still valid JSON); other values as one line.

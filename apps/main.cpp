@@ -1,7 +1,10 @@
 //! \file main.cpp
 //! The `delmesh` command line: subcommands surfaces, solve, mesh, check.  See command_line.h for
 //! the exit codes.  Every failure ends as one `error:` line and an exit code: the program never
-//! dies by a signal or an abort (SIGPIPE is ignored, std::terminate is intercepted).
+//! dies by a signal or an abort.  The signal handlers (apps/interrupt.h) are installed before
+//! anything else, SIGPIPE is ignored (a closed pipe is a write error), std::terminate is
+//! intercepted, and every write to standard output is checked at the end (exit code 6 if one
+//! failed).
 
 #include <csignal>
 #include <cstdlib>
@@ -13,6 +16,8 @@
 #include <CLI/CLI.hpp>
 
 #include "apps/command_line.h"
+#include "apps/interrupt.h"
+#include "apps/output_files.h"
 #include "common/errors.h"
 #include "common/huge_page_heap.h"
 
@@ -21,26 +26,49 @@ namespace {
 using delmesh::app::ExitCode;
 
 [[noreturn]] void on_terminate() {
+  delmesh::app::remove_registered_temporaries();
   std::cerr << "error: internal: unexpected termination" << std::endl;
   std::_Exit(static_cast<int>(ExitCode::internal_error));
 }
 
 int code(ExitCode c) { return static_cast<int>(c); }
 
+//! The exit code of a command that returned `result`: an I/O error if a write to standard output
+//! failed, else limit_reached if a signal arrived while it ran (it finished its output first).
+int finish(ExitCode result) {
+  try {
+    delmesh::app::finish_standard_output();
+  } catch (const delmesh::app::OutputError& e) {
+    delmesh::app::print_error(e.what());
+    return code(ExitCode::io_error);
+  }
+  if (delmesh::app::interrupt_flag().load() &&
+      (result == ExitCode::complete || result == ExitCode::check_failed || result == ExitCode::uncertified)) {
+    delmesh::app::print_warning("interrupted by " + delmesh::app::interrupt_signal_name() +
+                                " (status interrupted): the output above is complete");
+    return code(ExitCode::limit_reached);
+  }
+  return code(result);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  delmesh::app::install_interrupt_handlers();
   delmesh::back_heap_with_huge_pages();
-  std::signal(SIGPIPE, SIG_IGN);
   std::set_terminate(on_terminate);
   std::ios::sync_with_stdio(true);
+  delmesh::app::route_standard_output();
 
   CLI::App app{
       "delmesh: meshes a smooth closed implicit surface E(x,y,z) = 0 with DelMesh (Cheng, Dey, Ramos,\n"
       "Ray), with guaranteed topology (homeomorphic to the surface) and guaranteed triangle quality.\n"
       "Exit codes: 0 complete; 1 `check --lambda` found a bound violated; 2 invalid input or usage\n"
       "(one line `error: ...` on stderr); 3 stopped by a limit (partial output written); 4 internal\n"
-      "error; 5 `mesh` ended uncertified (output written, see \"unsettled\" in the statistics).",
+      "error; 5 `mesh` ended uncertified (output written, see \"unsettled\" in the statistics); 6 an\n"
+      "output could not be written (disk full, permission, closed pipe; existing files untouched).\n"
+      "Signals: a first SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGXCPU, SIGUSR1, SIGUSR2 or SIGALRM stops\n"
+      "the run like a limit (exit code 3); a second one removes temporary files and exits with 3.",
       "delmesh"};
   app.set_version_flag("--version", "delmesh 0.1.0");
   app.require_subcommand(1);
@@ -61,7 +89,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --help-all, --version
+    if (e.get_exit_code() == 0) return finish(static_cast<ExitCode>(app.exit(e)));  // --help, --help-all, --version
     delmesh::app::print_error(e.what());
     return code(ExitCode::invalid_input);
   } catch (const std::exception& e) {
@@ -71,13 +99,16 @@ int main(int argc, char** argv) {
 
   try {
     for (auto& command : commands) {
-      if (command.subcommand->parsed()) return code(command.run());
+      if (command.subcommand->parsed()) return finish(command.run());
     }
     delmesh::app::print_error("no subcommand given (try --help)");
     return code(ExitCode::invalid_input);
   } catch (const delmesh::InvalidInput& e) {
     delmesh::app::print_error(e.what());
     return code(ExitCode::invalid_input);
+  } catch (const delmesh::app::OutputError& e) {
+    delmesh::app::print_error(e.what());
+    return code(ExitCode::io_error);
   } catch (const std::invalid_argument& e) {
     delmesh::app::print_error(e.what());
     return code(ExitCode::invalid_input);

@@ -1,8 +1,9 @@
 //! \file mesh_command.cpp
 //! `delmesh mesh`: DelMesh (meshing/del_mesh.h) on a catalog surface or an expression; writes the
 //! mesh (OFF/PLY/OBJ by extension) and the statistics JSON.  Exit code 3 when a limit stopped the
-//! run, 5 when it ended uncertified: the mesh and statistics are still written.  Outputs are replaced atomically, only
-//! once the new file is complete; a failing run leaves existing files untouched.
+//! run, 5 when it ended uncertified: the mesh and statistics are still written.  The two outputs are
+//! written as a group (apps/output_files.h): both replace the old files once both are complete, or
+//! neither does (exit code 2 or 6), and existing files are left untouched.
 
 #include <chrono>
 #include <cmath>
@@ -19,6 +20,7 @@
 #include "apps/command_line.h"
 #include "apps/commands.h"
 #include "apps/interrupt.h"
+#include "apps/output_files.h"
 #include "common/enum_names.h"
 #include "common/errors.h"
 #include "meshing/certificate.h"
@@ -266,18 +268,18 @@ MeshRun plan_run(const MeshOptions& o) {
   return run;
 }
 
-//! The mesh and statistics files (defaults from the input's name), checked writable and distinct.
-std::pair<std::string, std::string> output_files(const MeshOptions& o, const std::string& name) {
+//! The mesh and statistics files (defaults from the input's name), added to `outputs` in this
+//! order (so checked writable and distinct: apps/output_files.h).
+std::pair<std::string, std::string> output_files(const MeshOptions& o, const std::string& name, OutputSet& outputs) {
   const std::string out = o.out_option->count() > 0 ? o.out : name + ".off";
   const std::string stats = o.stats_option->count() > 0 ? o.stats : name + ".json";
   const std::string extension = extension_of(out);
   if (extension != ".off" && extension != ".ply" && extension != ".obj") {
     throw InvalidInput("--out: the extension must be .off, .ply or .obj, got '" + out + "'");
   }
-  require_writable_location(out, "--out");
-  require_writable_location(stats, "--stats");
   if (out == "-") throw InvalidInput("--out: a mesh file name is required (\"-\" is only for --stats)");
-  if (stats == out) throw InvalidInput("--stats and --out name the same file " + out);
+  outputs.add("--out", out);
+  outputs.add("--stats", stats);
   return {out, stats};
 }
 
@@ -360,7 +362,8 @@ ExitCode run_mesh(const MeshOptions& o) {
   // input mesh read then stops the run at its first check instead of ending the process.
   install_interrupt_handlers();
   MeshRun run = plan_run(o);
-  const std::pair<std::string, std::string> files = output_files(o, run.name());
+  OutputSet outputs;
+  const std::pair<std::string, std::string> files = output_files(o, run.name(), outputs);
   const std::string& out = files.first;
   const std::string& stats = files.second;
   for (const std::string& warning : run.warnings()) print_warning(warning);
@@ -380,14 +383,10 @@ ExitCode run_mesh(const MeshOptions& o) {
     statistics["status"] = to_text(MeshStatus::interrupted);
   }
 
-  try {
-    write_mesh(result.mesh, out);
-  } catch (const InvalidInput&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw InvalidInput(std::string("--out: ") + e.what());
-  }
-  write_text_atomically(stats, [&](std::ostream& s) { s << statistics.dump(2) << "\n"; });
+  // Both files or neither: a file that cannot be written leaves the other one as it was.
+  const MeshFormat format = mesh_format(out);
+  outputs.write({[&](std::ostream& s) { write_mesh(result.mesh, s, format); },
+                 [&](std::ostream& s) { s << statistics.dump(2) << "\n"; }});
 
   if (!o.quiet) {
     std::cerr << "delmesh: " << result.status << ": wrote " << out << " (" << result.mesh.number_of_vertices()
@@ -412,11 +411,14 @@ Command add_mesh_command(CLI::App& parent) {
       "the surface, every triangle has radius-edge ratio <= 1+lambda and every edge roughness <= 2 beta(lambda) "
       "(Theorem 6.1). Writes the mesh and a statistics JSON." "\n\n"
       "Exit codes: 0 complete; 2 invalid input (one `error:` line; existing output files are left "
-              "untouched); 3 stopped by --max-points, --time-limit, or a first SIGINT/SIGTERM (status "
-              "interrupted; a second one ends the process at once): the partial mesh and the statistics are "
-              "written; 4 internal error; 5 uncertified: the run ended but some check, solver region or "
-              "output defect was not settled (listed under \"unsettled\" in the statistics; mesh and statistics "
-              "written, without the guarantee).");
+              "untouched); 3 stopped by --max-points, --time-limit, or a first SIGINT, SIGTERM, SIGHUP, SIGQUIT, "
+              "SIGXCPU, SIGUSR1, SIGUSR2 or SIGALRM (status interrupted; a second one removes the temporary files "
+              "and exits with 3 at once): the partial mesh and the statistics are written; 4 internal error; "
+              "5 uncertified: the run ended but some check, solver region or output defect was not settled (listed "
+              "under \"unsettled\" in the statistics; mesh and statistics written, without the guarantee); 6 an "
+              "output could not be written (disk full, permission, closed pipe): existing files are left untouched. "
+              "Both outputs are written to temporary files (devices, FIFOs and - in place; symbolic links are "
+              "followed) and renamed over their targets together, once both are complete.");
   o->surface.add_to(*sub);
   o->input_mesh_option = sub->add_option(
       "--input-mesh", o->input_mesh,

@@ -192,7 +192,9 @@ Command add_solve_command(CLI::App& parent) {
               "coordinates, and the regions it could neither exclude nor certify (undecided).\n\n"
               "Primitives (the registry, solvers/primitive_registry.h), their options and domains:\n" +
               primitive_table_text(primitive_registry()) +
-              "Exit codes: 0 solved (whatever the status), 2 invalid input, 4 internal error.");
+              "Exit codes: 0 solved (whatever the status), 2 invalid input, 3 interrupted by a signal "
+              "(SIGINT, SIGTERM, ...), 4 internal error, 6 the answer could not be "
+              "written to standard output.");
   o->surface.add_to(*sub);
   std::string names;
   for (const PrimitiveInfo& info : primitive_registry()) names += (names.empty() ? "" : "|") + info.name;

@@ -128,12 +128,44 @@ PolygonSoup read_obj(const std::string& path) {
 
 }  // namespace
 
-void write_triangle_soup(const TriangleSoup& soup, const std::string& path) {
-  const Format format = format_of(path);
+MeshFormat mesh_format(const std::string& path) {
+  switch (format_of(path)) {
+    case Format::off: return MeshFormat::off;
+    case Format::ply: return MeshFormat::ply;
+    case Format::obj: return MeshFormat::obj;
+  }
+  throw PreconditionViolation("mesh_format: unknown format");
+}
+
+void write_triangle_soup(const TriangleSoup& soup, std::ostream& out, MeshFormat format) {
   for (const auto& t : soup.triangles)
     for (std::size_t v : t)
       if (v >= soup.points.size()) throw PreconditionViolation("write_triangle_soup: vertex index out of range");
+  out.imbue(std::locale::classic());
+  out.precision(full_double_precision);
+  const auto np = CGAL::parameters::stream_precision(full_double_precision);
+  switch (format) {
+    case MeshFormat::off:
+      CGAL::IO::write_OFF(out, soup.points, soup.triangles, np);
+      break;
+    case MeshFormat::ply:
+      CGAL::IO::set_mode(out, CGAL::IO::ASCII);
+      CGAL::IO::write_PLY(out, soup.points, soup.triangles, np);
+      break;
+    case MeshFormat::obj:
+      CGAL::IO::write_OBJ(out, soup.points, soup.triangles, np);
+      break;
+  }
+}
 
+void write_mesh(const SurfaceMesh& mesh, std::ostream& out, MeshFormat format) {
+  TriangleSoup soup;
+  mesh_to_soup(mesh, soup.points, soup.triangles);
+  write_triangle_soup(soup, out, format);
+}
+
+void write_triangle_soup(const TriangleSoup& soup, const std::string& path) {
+  const MeshFormat format = mesh_format(path);
   const fs::path target(path);
   const fs::path temporary =
       target.parent_path() / (target.filename().string() + ".tmp" + std::to_string(::getpid()));
@@ -141,23 +173,16 @@ void write_triangle_soup(const TriangleSoup& soup, const std::string& path) {
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
-    out.imbue(std::locale::classic());
-    out.precision(full_double_precision);
-    const auto np = CGAL::parameters::stream_precision(full_double_precision);
-    switch (format) {
-      case Format::off:
-        ok = CGAL::IO::write_OFF(out, soup.points, soup.triangles, np);
-        break;
-      case Format::ply:
-        CGAL::IO::set_mode(out, CGAL::IO::ASCII);
-        ok = CGAL::IO::write_PLY(out, soup.points, soup.triangles, np);
-        break;
-      case Format::obj:
-        ok = CGAL::IO::write_OBJ(out, soup.points, soup.triangles, np);
-        break;
+    try {
+      write_triangle_soup(soup, out, format);
+    } catch (...) {
+      out.close();
+      std::error_code ignored;
+      fs::remove(temporary, ignored);
+      throw;
     }
     out.flush();
-    ok = ok && out.good();
+    ok = out.good();
   }
   std::error_code ignored;
   if (!ok) {
@@ -173,7 +198,7 @@ void write_triangle_soup(const TriangleSoup& soup, const std::string& path) {
 }
 
 void write_mesh(const SurfaceMesh& mesh, const std::string& path) {
-  format_of(path);  // reject an unknown extension before any work
+  mesh_format(path);  // reject an unknown extension before any work
   TriangleSoup soup;
   mesh_to_soup(mesh, soup.points, soup.triangles);
   write_triangle_soup(soup, path);

@@ -27,15 +27,56 @@ std::string trim(const std::string& s) {
   return s.substr(first, last - first + 1);
 }
 
-//! The whole of `text` as a finite double, if it is one.
-std::optional<double> finite_value(const std::string& text) {
-  if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return std::nullopt;
+//! How the whole of a text reads as a double.
+struct NumberReading {
+  enum Kind { number, not_a_number, not_finite, overflows, underflows } kind = not_a_number;
+  double value = 0;
+};
+
+//! Reads the whole of `text` (no surrounding spaces) as a double: a finite number (subnormal
+//! numbers included), text that is not a number, nan or inf, a number whose magnitude exceeds
+//! the largest double (overflows), or a nonzero number below the smallest subnormal double that
+//! would read as 0 (underflows).
+NumberReading read_number(const std::string& text) {
+  NumberReading r;
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return r;
   const char* begin = text.c_str();
   char* end = nullptr;
   errno = 0;
   const double value = std::strtod(begin, &end);
-  if (end != begin + text.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
+  if (end != begin + text.size()) return r;
+  r.value = value;
+  const bool range_error = errno == ERANGE;
+  if (std::isnan(value)) {
+    r.kind = NumberReading::not_finite;
+  } else if (std::isinf(value)) {
+    r.kind = range_error ? NumberReading::overflows : NumberReading::not_finite;
+  } else if (range_error && value == 0) {
+    r.kind = NumberReading::underflows;
+  } else {
+    r.kind = NumberReading::number;  // a subnormal result also sets ERANGE: it is a number
+  }
+  return r;
+}
+
+//! Why `text`, read as r, is not a finite double: "expected a finite number, got 'TEXT'" (with
+//! the reason for an overflow), or that it underflows.
+std::string number_problem(const std::string& text, const NumberReading& r) {
+  const std::string quoted = "'" + printable(text) + "'";
+  if (r.kind == NumberReading::underflows)
+    return quoted + " underflows double precision: it is nonzero, but its magnitude is below the smallest "
+                    "positive double 4.9406564584124654e-324, so it would read as 0";
+  std::string message = "expected a finite number, got " + quoted;
+  if (r.kind == NumberReading::overflows)
+    message += " (it overflows double precision: its magnitude exceeds 1.7976931348623157e308)";
+  return message;
+}
+
+//! The whole of `text` as a finite double, if it is one.
+std::optional<double> finite_value(const std::string& text) {
+  const NumberReading r = read_number(text);
+  if (r.kind != NumberReading::number) return std::nullopt;
+  return r.value;
 }
 
 }  // namespace
@@ -67,7 +108,8 @@ CLI::Validator whole_number(unsigned long long min, unsigned long long max) {
 CLI::Validator finite_number() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        if (!finite_value(text)) return "expected a finite number, got '" + text + "'";
+        const NumberReading r = read_number(text);
+        if (r.kind != NumberReading::number) return number_problem(text, r);
         return {};
       },
       "", "finite_number");
@@ -90,21 +132,15 @@ std::array<double, 3> parse_vector3(const std::string& text, const std::string& 
   std::string item;
   std::size_t count = 0;
   auto bad = [&]() {
-    return InvalidInput(option + ": expected three numbers \"a,b,c\", got \"" + text + "\"");
+    return InvalidInput(option + ": expected three numbers \"a,b,c\", got \"" + printable(text) + "\"");
   };
   while (std::getline(stream, item, ',')) {
     item = trim(item);
     if (count == 3 || item.empty()) throw bad();
-    std::size_t used = 0;
-    double value = 0;
-    try {
-      value = std::stod(item, &used);
-    } catch (const std::exception&) {
-      throw bad();
-    }
-    if (used != item.size()) throw bad();
-    if (!std::isfinite(value)) throw InvalidInput(option + ": \"" + item + "\" is not a finite number");
-    v[count++] = value;
+    const NumberReading r = read_number(item);
+    if (r.kind == NumberReading::not_a_number) throw bad();
+    if (r.kind != NumberReading::number) throw InvalidInput(option + ": " + number_problem(item, r));
+    v[count++] = r.value;
   }
   if (count != 3 || (!text.empty() && text.back() == ',')) throw bad();
   return v;
@@ -192,11 +228,27 @@ void print_json(std::ostream& out, const nlohmann::ordered_json& object) {
   out << "}" << std::endl;
 }
 
+std::string printable(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", u);
+      out += escaped;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 std::string one_line(std::string message) {
   std::replace(message.begin(), message.end(), '\n', ' ');
   std::replace(message.begin(), message.end(), '\r', ' ');
   while (!message.empty() && message.back() == ' ') message.pop_back();
-  return message;
+  return printable(message);
 }
 
 void print_error(const std::string& message) {

@@ -77,7 +77,10 @@ inline constexpr unsigned long long max_threads = 1024;
 //! before CLI11's conversion, so a negative count never wraps around to a huge unsigned one.
 CLI::Validator whole_number(unsigned long long min, unsigned long long max);
 //! A CLI11 validator for a real option: the whole text is a finite decimal number (not nan, not
-//! inf, not one that overflows to inf such as 1e400).  Range checks are the command's.
+//! inf, not one that overflows to inf such as 1e400, not a nonzero one that underflows to 0 such
+//! as 1e-400; subnormal numbers such as 5e-324 are finite and accepted).  The message says which:
+//! "expected a finite number, got '1e400' (it overflows double precision: …)", "'1e-400'
+//! underflows double precision: …".  Range checks are the command's.
 CLI::Validator finite_number();
 
 //! The checks of whole_number() and finite_number() on an option's text, for callers without a
@@ -87,7 +90,9 @@ void require_whole_number(const std::string& option, std::string text, unsigned 
                           unsigned long long max);
 void require_finite_number(const std::string& option, std::string text);
 
-//! Parses "a,b,c" into three finite doubles; throws InvalidInput naming `option` otherwise.
+//! Parses "a,b,c" into three finite doubles (subnormal numbers included); throws InvalidInput
+//! naming `option` otherwise: "expected three numbers" for text that is not three numbers, the
+//! messages of finite_number() for a number that is nan, inf, overflows or underflows to 0.
 std::array<double, 3> parse_vector3(const std::string& text, const std::string& option);
 
 //! A surface given on the command line, resolved: its name (catalog name, or "surface" for
@@ -137,7 +142,11 @@ std::string extension_of(const std::string& path);
 //! still valid JSON); other values as one line.
 void print_json(std::ostream& out, const nlohmann::ordered_json& object);
 
-//! `message` on one line: line breaks become spaces, trailing spaces go.
+//! `text` with every control character (bytes 0x00–0x1f and 0x7f, e.g. ESC) written as \xHH, so
+//! that echoing user text cannot drive the terminal.
+std::string printable(const std::string& text);
+//! `message` on one line: line breaks become spaces, trailing spaces go, other control
+//! characters are escaped (printable()).
 std::string one_line(std::string message);
 //! Prints `error: <message>` (newlines flattened) as a single line on stderr.
 void print_error(const std::string& message);

@@ -54,6 +54,15 @@ class Complaint {
   const std::vector<Point3>& points_;
 };
 
+//! |(a, b, c)|: the plain square root of the sum of squares where that sum is a normal double,
+//! std::hypot (which scales before squaring) where it overflows or underflows (a mesh of size
+//! 1e-200 or 1e160).
+double length_of(double a, double b, double c) {
+  const double sum = a * a + b * b + c * c;
+  if (std::isfinite(sum) && sum >= std::numeric_limits<double>::min()) return std::sqrt(sum);
+  return std::hypot(a, b, c);
+}
+
 //! "1 edge", "3 edges".
 std::string count_of(std::size_t n, const std::string& singular, const std::string& plural) {
   return std::to_string(n) + " " + (n == 1 ? singular : plural);
@@ -226,9 +235,8 @@ InputMesh validate_input_mesh(const std::vector<Point3>& points, const std::vect
   input.components_reversed = orient_outward(input.mesh);
   input.report = check_mesh(input.mesh);
   const CGAL::Bbox_3 bounds = CGAL::bbox_3(soup.points.begin(), soup.points.end());
-  input.bounding_box_diagonal = std::sqrt(CGAL::square(bounds.xmax() - bounds.xmin()) +
-                                          CGAL::square(bounds.ymax() - bounds.ymin()) +
-                                          CGAL::square(bounds.zmax() - bounds.zmin()));
+  input.bounding_box_diagonal =
+      length_of(bounds.xmax() - bounds.xmin(), bounds.ymax() - bounds.ymin(), bounds.zmax() - bounds.zmin());
   const double margin = tolerances::input_mesh_box_margin * input.bounding_box_diagonal;
   for (int i = 0; i < 3; ++i) {
     input.box.lo[i] = bounds.min(i) - margin;
@@ -236,9 +244,10 @@ InputMesh validate_input_mesh(const std::vector<Point3>& points, const std::vect
   }
   std::vector<double> lengths;
   lengths.reserve(input.mesh.number_of_edges());
-  for (SurfaceMesh::Edge_index e : input.mesh.edges())
-    lengths.push_back(std::sqrt(CGAL::to_double(
-        CGAL::squared_distance(input.mesh.point(input.mesh.vertex(e, 0)), input.mesh.point(input.mesh.vertex(e, 1))))));
+  for (SurfaceMesh::Edge_index e : input.mesh.edges()) {
+    const Point3 &p = input.mesh.point(input.mesh.vertex(e, 0)), &q = input.mesh.point(input.mesh.vertex(e, 1));
+    lengths.push_back(length_of(q.x() - p.x(), q.y() - p.y(), q.z() - p.z()));
+  }
   input.median_edge_length = lower_median(std::move(lengths));
   input.folded_vertices = folded_vertices(input.mesh);
   return input;

@@ -25,6 +25,7 @@
 #include "common/errors.h"
 #include "common/tolerances.h"
 #include "meshing/detail/vec3.h"
+#include "meshing/unit_scale.h"
 #include "meshing/voronoi_geometry.h"
 #include "solvers/query_geometry.h"
 
@@ -322,10 +323,16 @@ struct MeshOracle::Impl {
   }
 };
 
-MeshOracle::MeshOracle(const SurfaceMesh& mesh, const Box3& box) : box_(box), stats_(6) {
-  if (mesh.number_of_faces() == 0) throw PreconditionViolation("MeshOracle: the mesh has no face");
-  if (!CGAL::is_closed(mesh) || !CGAL::is_triangle_mesh(mesh))
+MeshOracle::MeshOracle(const SurfaceMesh& input, const Box3& input_box)
+    : box_(input_box), stats_(6), scale_exponent_(unit_scale_exponent(input_box)) {
+  if (input.number_of_faces() == 0) throw PreconditionViolation("MeshOracle: the mesh has no face");
+  if (!CGAL::is_closed(input) || !CGAL::is_triangle_mesh(input))
     throw PreconditionViolation("MeshOracle: the mesh is not a closed triangle mesh");
+  // At unit scale (meshing/unit_scale.h): the mesh and the box times 2^-k, exactly.
+  SurfaceMesh mesh = input;
+  scale_mesh(mesh, -scale_exponent_);
+  box_ = scaled_box(input_box, -scale_exponent_);
+  const Box3& box = box_;
   Box3 vertices{box.hi, box.lo};
   for (const Point3& p : mesh.points())
     for (int k = 0; k < 3; ++k) {

@@ -105,7 +105,14 @@ class MeshOracle final : public SurfaceOracle {
   //! Builds the AABB tree of `mesh` (copied).  Preconditions (PreconditionViolation otherwise):
   //! mesh is a non-empty closed triangle mesh; every vertex lies strictly inside `box`.  The
   //! caller guarantees the rest of the file comment's assumptions (validate_input_mesh).
+  //! The oracle works at unit scale (meshing/unit_scale.h): with k = unit_scale_exponent(box)
+  //! (0 unless the box's largest side is below 2^-32 or at least 2^32), its surface, box(),
+  //! clip_box() and every point, direction and domain of its questions and answers are the
+  //! input's times 2^-k — exactly the same surface, scaled.  A run on it takes its lengths
+  //! through unit_scale_options(…, k) and gives its results back through restore_scale(…, k).
   MeshOracle(const SurfaceMesh& mesh, const Box3& box);
+  //! The k above: the oracle's coordinates are the input's times 2^-k.
+  int scale_exponent() const { return scale_exponent_; }
   ~MeshOracle() override;
 
   //! Nothing to set: the oracle makes no random choice (ties are broken by index), and each
@@ -165,6 +172,7 @@ class MeshOracle final : public SurfaceOracle {
   };
   std::vector<Counts> stats_;
   std::size_t cone_attempts_ = 0, cone_proved_ = 0;
+  int scale_exponent_ = 0;
   mutable std::mutex statistics_mutex_;
 };
 

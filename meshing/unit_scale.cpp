@@ -1,0 +1,73 @@
+#include "meshing/unit_scale.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace delmesh {
+
+namespace {
+
+//! Every number of a JSON value (arrays and objects recursively) times 2^k.
+void scale_numbers(nlohmann::json& j, int k) {
+  if (j.is_number()) {
+    j = std::ldexp(j.get<double>(), k);
+  } else if (j.is_array() || j.is_object()) {
+    for (auto& item : j) scale_numbers(item, k);
+  }
+}
+
+//! The lengths and locations of a termination-floor record (Refinement::floor_json) times 2^k.
+void scale_floor(nlohmann::json& floor, int k) {
+  if (!floor.is_object()) return;
+  for (const char* key : {"value", "topology_value", "locations"})
+    if (floor.contains(key)) scale_numbers(floor[key], k);
+}
+
+}  // namespace
+
+int unit_scale_exponent(const Box3& box) {
+  double side = 0;
+  for (int i = 0; i < 3; ++i) side = std::max(side, box.hi[i] - box.lo[i]);
+  if (!(side > 0) || !std::isfinite(side)) return 0;
+  const int k = std::ilogb(side);
+  return (k >= -unit_scale_max_exponent && k < unit_scale_max_exponent) ? 0 : k;
+}
+
+void scale_mesh(SurfaceMesh& mesh, int e) {
+  if (e == 0) return;
+  for (auto v : mesh.vertices()) {
+    const Point3 p = mesh.point(v);
+    mesh.point(v) = Point3(std::ldexp(p.x(), e), std::ldexp(p.y(), e), std::ldexp(p.z(), e));
+  }
+}
+
+Box3 scaled_box(const Box3& box, int e) {
+  Box3 out = box;
+  for (int i = 0; i < 3; ++i) {
+    out.lo[i] = std::ldexp(box.lo[i], e);
+    out.hi[i] = std::ldexp(box.hi[i], e);
+  }
+  return out;
+}
+
+DelMeshOptions unit_scale_options(DelMeshOptions options, int k) {
+  options.min_spacing = std::ldexp(options.min_spacing, -k);
+  if (options.size_bound) options.size_bound = std::ldexp(*options.size_bound, -k);
+  return options;
+}
+
+void restore_scale(DelMeshResult& result, int k) {
+  auto& j = result.statistics;
+  j["unit_scale_exponent"] = k;
+  if (k == 0) return;
+  scale_mesh(result.mesh, k);
+  if (j.contains("clip_box")) scale_numbers(j["clip_box"], k);
+  if (j.contains("unsettled") && j["unsettled"].contains("regions"))
+    for (auto& region : j["unsettled"]["regions"])
+      if (region.contains("location")) scale_numbers(region["location"], k);
+  if (j.contains("min_spacing")) scale_floor(j["min_spacing"], k);
+  if (j.contains("topology_phase") && j["topology_phase"].contains("min_spacing"))
+    scale_floor(j["topology_phase"]["min_spacing"], k);
+}
+
+}  // namespace delmesh

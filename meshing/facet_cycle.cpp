@@ -55,14 +55,19 @@ CheckResult facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& p
   for (const auto& [ux, vx, undecided_start] : starts) {
     // ℓ_x ∩ F = {(ux + s, vx)} clipped by the polygon's half-planes and bounding box.
     const auto range = clip_line_to_facet(f, ux, vx);
-    if (!range) continue;
-    const auto line = oracle.surface_line(f.world(ux, vx), f.a, (*range)[0], (*range)[1]);
-    for (const auto& root : line.roots) collector.add(root.world, undecided_start);
-    for (const auto& u : line.undecided) collector.add_line_region(oracle, u);
-    // Two points of Σ on ℓ_x ∩ F: a witness (the furthest from p first).  Fewer: the line's
-    // points are no witness, but what it could not project stays unsettled.
-    if (collector.points() >= 2) return collector.take();
-    collector.drop_points();
+    if (range) {
+      const auto line = oracle.surface_line(f.world(ux, vx), f.a, (*range)[0], (*range)[1]);
+      for (const auto& root : line.roots) collector.add(root.world, undecided_start);
+      for (const auto& u : line.undecided) collector.add_line_region(oracle, u);
+      // Two points of Σ on ℓ_x ∩ F: a witness (the furthest from p first).  Fewer: the line's
+      // points are no witness, but what it could not project stays unsettled.
+      if (collector.points() >= 2) return collector.take();
+      collector.drop_points();
+    }
+    // Lemma 4.9 speaks of lines through critical points.  A line through the centre of an
+    // undecided region that meets Σ ∩ F in fewer than two points says nothing about a closed
+    // curve elsewhere in the region, so the region stays unsettled.
+    if (undecided_start) collector.add_unsettled(UnsettledReason::undecided_critical_region, f.world(ux, vx));
   }
   return collector.take();
 }

@@ -16,8 +16,11 @@ namespace delmesh {
 //! x parallel to d is clipped to F and SurfaceLine(Σ, ℓ_x ∩ F) is solved; if it has ≥ 2 points
 //! (undecided regions on ℓ_x count, projected onto Σ), the one furthest from p (the smaller id of
 //! pq) is returned, the others as fall-backs.  The witnesses of a line through the centre of an
-//! undecided region are marked from_undecided (that centre is not known to be critical).  An
-//! undecided region of SurfaceLine whose projection onto Σ fails is unsettled, never a witness.
+//! undecided region are marked from_undecided (that centre is not known to be critical); when
+//! that line has fewer than two points, the region is reported unsettled
+//! (undecided_critical_region, at its centre): a closed curve of Σ ∩ F inside the region may miss
+//! the line, so nothing is proved there.  An undecided region of SurfaceLine whose projection onto
+//! Σ fails is unsettled, never a witness.
 //! Precondition (the paper's): FacetContact(F) returned nothing.
 CheckResult facet_cycle_witness(RestrictedDelaunay& restricted, const EdgeKey& pq, int attempt = 0);
 

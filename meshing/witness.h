@@ -46,7 +46,9 @@ enum class UnsettledReason {
   rejected_witness,      //!< every witness found lies within the duplicate tolerance of a sample
   no_witness,            //!< the check's condition fails but it found no point of Σ to insert
   unresolved_crossing,   //!< an undecided region on a Voronoi edge that is neither a crossing nor a candidate
-  record_count_mismatch  //!< the Voronoi-edge records are not one per Delaunay triangle (no location)
+  record_count_mismatch,  //!< the Voronoi-edge records are not one per Delaunay triangle (no location)
+  //! an undecided CurveCritical region whose line gave no witness: a closed curve of Σ ∩ F may lie in it
+  undecided_critical_region
 };
 constexpr auto enum_names(UnsettledReason) {
   return name_table<UnsettledReason>("UnsettledReason", {{UnsettledReason::unprojectable_region, "unprojectable_region"},
@@ -55,7 +57,8 @@ constexpr auto enum_names(UnsettledReason) {
                                                          {UnsettledReason::rejected_witness, "rejected_witness"},
                                                          {UnsettledReason::no_witness, "no_witness"},
                                                          {UnsettledReason::unresolved_crossing, "unresolved_crossing"},
-                                                         {UnsettledReason::record_count_mismatch, "record_count_mismatch"}});
+                                                         {UnsettledReason::record_count_mismatch, "record_count_mismatch"},
+                                                         {UnsettledReason::undecided_critical_region, "undecided_critical_region"}});
 }
 inline std::ostream& operator<<(std::ostream& out, UnsettledReason reason) { return write_enum(out, reason); }
 

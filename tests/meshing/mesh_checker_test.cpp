@@ -67,6 +67,32 @@ BOOST_AUTO_TEST_CASE(regular_octahedron_closed_forms) {
   BOOST_TEST(r.max_edge_length == std::sqrt(2.0), boost::test_tools::tolerance(1e-12));
 }
 
+// The measures do not depend on the scale: an irregular octahedron scaled by 1e200, 1e-300 (whose
+// squared lengths overflow or underflow) and 2^-1000 gives the unscaled measures (to rounding;
+// exactly for the power of two).
+BOOST_AUTO_TEST_CASE(measures_do_not_depend_on_scale) {
+  Soup base = test::octahedron();
+  // Make it irregular, so every measure is a distinct number.
+  base.points[0] = Point3(1.3, 0.1, -0.2);
+  base.points[4] = Point3(0.2, -0.1, 0.7);
+  const MeshReport unscaled = check(base);
+  BOOST_REQUIRE(unscaled.has_topology({0}));
+  for (const double scale : {1e200, 1e-300, std::ldexp(1.0, -1000)}) {
+    BOOST_TEST_CONTEXT("scale " << scale) {
+      Soup s = base;
+      for (Point3& p : s.points) p = Point3(p.x() * scale, p.y() * scale, p.z() * scale);
+      const MeshReport r = check(s);
+      const double tolerance = scale == 1e200 || scale == 1e-300 ? 1e-12 : 0;
+      BOOST_TEST(r.has_topology({0}));
+      BOOST_TEST(std::abs(r.min_angle_deg - unscaled.min_angle_deg) <= tolerance * 60);
+      BOOST_TEST(std::abs(r.max_radius_edge_ratio - unscaled.max_radius_edge_ratio) <= tolerance);
+      BOOST_TEST(std::abs(r.max_roughness_rad - unscaled.max_roughness_rad) <= tolerance);
+      BOOST_TEST(std::abs(r.min_edge_length / scale - unscaled.min_edge_length) <= tolerance);
+      BOOST_TEST(std::abs(r.max_edge_length / scale - unscaled.max_edge_length) <= tolerance);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(reversed_octahedron_is_oriented_inward) {
   Soup s = test::octahedron();
   for (auto& t : s.triangles) std::swap(t[1], t[2]);

@@ -36,6 +36,17 @@ BOOST_AUTO_TEST_CASE(radius_edge_ratio_known_values) {
   BOOST_TEST(std::isinf(radius_edge_ratio({0, 0, 0}, {1, 0, 0}, {2, 0, 0})));
 }
 
+// Scale-free: the triangle scaled by 1e200 or 1e-300 (whose squared lengths overflow or
+// underflow) has the ratio of the unscaled one and the circumradius times the scale.
+BOOST_AUTO_TEST_CASE(radius_edge_ratio_at_extreme_scales) {
+  const Vec3 p{0.1, 0.2, 0.3}, q{1.3, -0.4, 0.2}, r{0.5, 0.9, -0.7};
+  const double ratio = radius_edge_ratio(p, q, r), radius = circumradius(p, q, r);
+  for (const double s : {1e200, 1e-300}) {
+    BOOST_TEST(std::abs(radius_edge_ratio(s * p, s * q, s * r) - ratio) < 1e-12 * ratio, "scale " << s);
+    BOOST_TEST(std::abs(circumradius(s * p, s * q, s * r) / s - radius) < 1e-12 * radius, "scale " << s);
+  }
+}
+
 // The octahedron with a seventh sample 0.2 away from its vertex (1, 0, 0): the hull faces at that
 // short edge are needles (ratio ≈ 3), the faces away from it equilateral (ratio 1/√3).  Quality
 // fires exactly on the triangles with ratio > 1 + λ, with the point where their dual edge meets

@@ -42,4 +42,23 @@ BOOST_AUTO_TEST_CASE(empty_surface_throws) {
   BOOST_CHECK_THROW(insert_seeds(topology), InvalidInput);
 }
 
+// E's values overflow double precision in the box (and no constant factor can be divided out of
+// the sum), so the seed solve leaves regions it can neither decide nor project onto Σ: they are
+// unsettled, no seed is inserted, and nothing claims that Σ is empty.
+BOOST_AUTO_TEST_CASE(unprojectable_seed_regions_are_unsettled_not_empty) {
+  const Box3 box = Box3::cube(2);
+  ImplicitOracle oracle(Surface::parse("1e200*(x^2+y^2+z^2-1)+1e-300*sin(x)"), box, SolverBackend::subdivision);
+  Refinement topology(oracle, 1, RefinementLimits{});
+  SeedReport report;
+  BOOST_REQUIRE_NO_THROW(report = insert_seeds(topology));
+  BOOST_TEST(report.seeds == 0u);
+  BOOST_TEST(report.undecided > 0u);
+  const auto unsettled = topology.unsettled();
+  BOOST_TEST(unsettled.size() == report.undecided);
+  for (const auto& u : unsettled) {
+    BOOST_TEST((u.check == CheckKind::seed));
+    BOOST_TEST((u.reason == UnsettledReason::unprojectable_region));
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

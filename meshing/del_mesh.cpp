@@ -221,6 +221,10 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
   const std::vector<std::string> defects = output_defects(report, inconsistent, not_added);
   const Certification certification = refinement.certify(status, !defects.empty());
   result.status = certification.status;
+  // Every check's answer must be certified for the run to be: answers of uncertified path
+  // tracking may have missed a point of Σ on a face that was then taken as clean.
+  const bool solver_certified = !oracle.gave_uncertified_answers();
+  if (!solver_certified && result.status == MeshStatus::complete) result.status = MeshStatus::uncertified;
 
   auto& j = result.statistics;
   j["status"] = text_of(result.status);
@@ -230,6 +234,7 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
   j["smooth_enabled"] = options.lambda < beta_lambda_bound;
   j["seed"] = options.seed;
   j["seconds_validation"] = seconds_validation;
+  j["solver_certified"] = solver_certified;
   const Box3& clip = oracle.clip_box();
   j["clip_box"] = {clip.lo[0], clip.hi[0], clip.lo[1], clip.hi[1], clip.lo[2], clip.hi[2]};
   add_output_statistics(j, report, inconsistent, not_added, options.lambda);

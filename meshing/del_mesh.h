@@ -28,10 +28,12 @@ constexpr auto enum_names(MeshPhase) {
 inline std::ostream& operator<<(std::ostream& out, MeshPhase phase) { return write_enum(out, phase); }
 
 //! complete: every check of §5.3 (and, with phase all, Quality, size and Smooth) ran clean on
-//! every face of the final Vor S, every solver region was decided or became a witness, and
-//! Tri S|Σ is a closed, consistently oriented 2-manifold.  uncertified: the run ended but
-//! something of that was not settled (listed under "unsettled" in the statistics); the mesh
-//! is written, without the guarantee.  point_limit / time_limit: stopped by a limit;
+//! every face of the final Vor S, every solver region was decided or became a witness, every
+//! answer of the oracle was certified (SurfaceOracle::gave_uncertified_answers() is false; the
+//! homotopy backend's path tracking is not certified, so a run that tracked a path is never
+//! complete), and Tri S|Σ is a closed, consistently oriented 2-manifold.  uncertified: the run
+//! ended but something of that was not settled (listed under "unsettled" in the statistics, or
+//! "solver_certified": false); the mesh is written, without the guarantee.  point_limit / time_limit: stopped by a limit;
 //! interrupted: stopped by DelMeshOptions::interrupt (e.g. Ctrl-C).
 enum class MeshStatus { complete, point_limit, time_limit, uncertified, interrupted };
 constexpr auto enum_names(MeshStatus) {

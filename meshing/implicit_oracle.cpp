@@ -310,6 +310,13 @@ const PrimitiveStatistics& ImplicitOracle::statistics(const std::string& primiti
   return stats_[static_cast<std::size_t>(&find_primitive(primitive) - primitive_registry().data())];
 }
 
+bool ImplicitOracle::gave_uncertified_answers() const {
+  const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
+  for (const auto& s : stats_)
+    if (s.homotopy_paths > 0) return true;
+  return false;
+}
+
 nlohmann::json ImplicitOracle::statistics_json() const {
   const auto counts = [](const PrimitiveStatistics& s) {
     return nlohmann::json{{"calls", s.calls},

@@ -147,6 +147,10 @@ class ImplicitOracle final : public SurfaceOracle {
   //!  {the same counts for that primitive}}, cone_certificates: {attempts, proved, boxes, seconds},
   //!  backend: "subdivision" or "homotopy"}
   nlohmann::json statistics_json() const override;
+  //! True once a homotopy solve has tracked a path (backend homotopy, not a fallback): the
+  //! endpoints are Krawczyk-certified, but path tracking is not, so a path that jumps can leave a
+  //! root of the domain unreported.
+  bool gave_uncertified_answers() const override;
 
  private:
   //! Keeps the roots inside the domain that no side condition disproves, and counts the call: its

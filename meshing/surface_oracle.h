@@ -146,6 +146,12 @@ class SurfaceOracle {
   //! A point of Σ near x (within the box), or nothing if the implementation cannot find one.
   virtual std::optional<Vec3> project(const Vec3& x) const = 0;
 
+  //! Whether some answer given so far rests on a computation that is not certified: then the
+  //! answers may miss a point of Σ on a face (a missed root is not reported as undecided), and a
+  //! run that used them cannot be `complete`.  False by default (every answer certified or reported
+  //! undecided, solve_result.h).
+  virtual bool gave_uncertified_answers() const { return false; }
+
   //! The oracle's work counters as JSON for the statistics (implementation-specific keys; every
   //! implementation has "systems", the number of primitive calls, and "backend").
   virtual nlohmann::json statistics_json() const = 0;

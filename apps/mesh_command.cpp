@@ -20,11 +20,15 @@
 #include "apps/command_line.h"
 #include "apps/commands.h"
 #include "apps/interrupt.h"
+#include "apps/phase_watchdog.h"
 #include "apps/output_files.h"
 #include "common/enum_names.h"
 #include "common/errors.h"
+#include "common/run_limits.h"
 #include "meshing/certificate.h"
 #include "meshing/del_mesh.h"
+#include "meshing/implicit_oracle.h"
+#include "meshing/input_validation.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/mesh_io.h"
 #include "meshing/mesh_oracle.h"
@@ -200,10 +204,11 @@ nlohmann::json folded_vertices_json(const InputMesh& m) {
 
 }  // namespace
 
-DelMeshResult remesh(const MeshInputPlan& plan, const DelMeshOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  MeshOracle oracle(plan.mesh.mesh, plan.mesh.box);
-  const double seconds_oracle = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+namespace {
+
+//! remesh() on the plan's oracle, built in `seconds_oracle` seconds.
+DelMeshResult remesh_on(const MeshInputPlan& plan, MeshOracle& oracle, double seconds_oracle,
+                        const DelMeshOptions& options) {
   DelMeshResult result = del_mesh(oracle, options);
   const InputMesh& m = plan.mesh;
   result.statistics["input_mesh"] = {{"file", plan.path},
@@ -220,6 +225,15 @@ DelMeshResult remesh(const MeshInputPlan& plan, const DelMeshOptions& options) {
                                      {"folded_vertices", folded_vertices_json(m)},
                                      {"seconds_oracle_build", seconds_oracle}};
   return result;
+}
+
+}  // namespace
+
+DelMeshResult remesh(const MeshInputPlan& plan, const DelMeshOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  MeshOracle oracle(plan.mesh.mesh, plan.mesh.box);
+  const double seconds_oracle = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return remesh_on(plan, oracle, seconds_oracle, options);
 }
 
 nlohmann::json run_statistics(const DelMeshResult& result, std::uint64_t seed, const std::optional<std::string>& mesh_file) {
@@ -305,9 +319,10 @@ void report_progress(const MeshOptions& o, MeshRun& run) {
 
 //! The certificate of the finished mesh (meshing/certificate.h), from the mesh alone, into the
 //! statistics; a run stopped by a limit or a signal, or without triangles, has none (null).
-//! \return whether a signal interrupted the certificate.
-bool certify_result(const MeshOptions& o, const MeshPlan& plan, const DelMeshResult& result,
-                    nlohmann::json& statistics) {
+//! \return how the certificate was stopped: interrupted by a signal, time_limit by the
+//! command's deadline; nothing if it ran to its end.
+std::optional<MeshStatus> certify_result(const MeshOptions& o, const MeshPlan& plan, const DelMeshResult& result,
+                                         const RunLimits& limits, nlohmann::json& statistics) {
   std::vector<Point3> points;
   std::vector<std::array<std::size_t, 3>> triangles;
   mesh_to_soup(result.mesh, points, triangles);
@@ -316,20 +331,23 @@ bool certify_result(const MeshOptions& o, const MeshPlan& plan, const DelMeshRes
     statistics["certificate"] = nullptr;
     print_warning(std::string("--certify: no certificate for a run that ") +
                   (ended ? "has no triangles" : "stopped before its end"));
-    return false;
+    return std::nullopt;
   }
   if (!o.quiet) std::cerr << "delmesh: certifying the mesh from scratch" << std::endl;
   CertificateOptions certificate_options;
   certificate_options.seed = o.seed;
   certificate_options.interrupt = &interrupt_flag();
+  certificate_options.deadline = limits.deadline();
   const Certificate certificate = certify_mesh(points, triangles, plan.input.surface, plan.input.box, certificate_options);
   statistics["certificate"] = to_json(certificate);
-  if (!certificate.interrupted &&
+  if (!certificate.interrupted && !certificate.time_limited &&
       (certificate.status != CertificateStatus::certified || !certificate.restricted_matches_mesh))
     print_warning("--certify: the certificate of the mesh is " + to_text(certificate.status) +
                   (certificate.restricted_matches_mesh ? "" : ", and Tri S|Sigma differs from the mesh") +
                   " (statistics: \"certificate\")");
-  return certificate.interrupted;
+  if (certificate.interrupted) return MeshStatus::interrupted;
+  if (certificate.time_limited) return MeshStatus::time_limit;
+  return std::nullopt;
 }
 
 //! The exit code of a finished run, with its warning.
@@ -355,13 +373,63 @@ ExitCode exit_code(MeshStatus status, const nlohmann::json& statistics, double m
   return ExitCode::limit_reached;
 }
 
+//! The time limit of del_mesh for the rest of the command's limits: the seconds left before the
+//! deadline (at least the least positive double, since 0 would mean none), or 0 without one.
+double seconds_left(const RunLimits& limits) {
+  const std::optional<double> left = limits.seconds_left();
+  return left ? std::max(*left, std::numeric_limits<double>::denorm_min()) : 0;
+}
+
+//! del_mesh on the plan's surface: validation and the oracle under the watchdog, then the run in
+//! the time left.  The statistics' "seconds" count from the validation, as del_mesh's own do.
+DelMeshResult mesh_surface(const MeshPlan& plan, DelMeshOptions options, PhaseWatchdog& watchdog,
+                           const RunLimits& limits) {
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<ValidationReport> validation;
+  std::optional<ImplicitOracle> oracle;
+  {
+    const PhaseWatchdog::Phase phase(watchdog, "validating the surface and building its oracle");
+    validation.emplace(validate_input(plan.input.surface, plan.input.box));
+    oracle.emplace(plan.input.surface, plan.input.box, options.solver);
+  }
+  options.time_limit_seconds = seconds_left(limits);
+  DelMeshResult result = del_mesh(*oracle, options, validation->seconds);
+  result.statistics["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+//! remesh() with the oracle built under the watchdog and the run in the time left.
+DelMeshResult remesh_input(const MeshInputPlan& plan, DelMeshOptions options, PhaseWatchdog& watchdog,
+                           const RunLimits& limits) {
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<MeshOracle> oracle;
+  {
+    const PhaseWatchdog::Phase phase(watchdog, "building the oracle of the input mesh");
+    oracle.emplace(plan.mesh.mesh, plan.mesh.box);
+  }
+  const double seconds_oracle = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  options.time_limit_seconds = seconds_left(limits);
+  return remesh_on(plan, *oracle, seconds_oracle, options);
+}
+
 //! The steps: plan the run and check its outputs (every option valid from then on, so a warning
 //! cannot precede an `error:` about them), mesh, certify if asked, write, and map the status.
 ExitCode run_mesh(const MeshOptions& o) {
   // Installed before the input is read: a signal that arrives while the surface is compiled or an
   // input mesh read then stops the run at its first check instead of ending the process.
   install_interrupt_handlers();
+  // One deadline for the whole command, from its start; the phases without steps of their own
+  // to test it between (parsing and compiling E, reading and validating the input, building the
+  // oracle) are held to it by the watchdog.
+  const RunLimits limits =
+      RunLimits::after(std::min(o.time_limit, max_time_limit_seconds), &interrupt_flag());
+  const RunLimits::Scope limits_scope(limits);
+  PhaseWatchdog watchdog(limits);
+  std::optional<PhaseWatchdog::Phase> preparing;
+  preparing.emplace(watchdog, o.input_mesh_option->count() > 0 ? "reading and validating the input mesh"
+                                                               : "parsing and compiling the expression");
   MeshRun run = plan_run(o);
+  preparing.reset();
   OutputSet outputs;
   const std::pair<std::string, std::string> files = output_files(o, run.name(), outputs);
   const std::string& out = files.first;
@@ -371,16 +439,18 @@ ExitCode run_mesh(const MeshOptions& o) {
 
   DelMeshOptions& options = run.options();
   options.interrupt = &interrupt_flag();
-  DelMeshResult result =
-      run.plan ? del_mesh(run.plan->input.surface, run.plan->input.box, options) : remesh(*run.mesh_plan, options);
+  DelMeshResult result = run.plan ? mesh_surface(*run.plan, options, watchdog, limits)
+                                  : remesh_input(*run.mesh_plan, options, watchdog, limits);
 
   nlohmann::json statistics =
       run.plan ? mesh_statistics(result, run.plan->input, o.seed, out) : run_statistics(result, o.seed, out);
-  const bool certificate_interrupted = o.certify && certify_result(o, *run.plan, result, statistics);
-  if (certificate_interrupted) {
-    // The run stopped at the signal like any limit; how the mesh itself ended stays on record.
+  const std::optional<MeshStatus> certificate_stopped =
+      o.certify ? certify_result(o, *run.plan, result, limits, statistics) : std::nullopt;
+  if (certificate_stopped) {
+    // The run stopped at the signal or the deadline like any limit; how the mesh itself ended
+    // stays on record.
     statistics["run_status"] = statistics["status"];
-    statistics["status"] = to_text(MeshStatus::interrupted);
+    statistics["status"] = to_text(*certificate_stopped);
   }
 
   // Both files or neither: a file that cannot be written leaves the other one as it was.
@@ -393,8 +463,10 @@ ExitCode run_mesh(const MeshOptions& o) {
               << " vertices, " << result.mesh.number_of_faces() << " triangles)"
               << (stats == "-" ? "" : " and " + stats) << std::endl;
   }
-  if (certificate_interrupted) {
-    print_warning("interrupted by a signal during the certificate: the mesh is written, its certificate is incomplete");
+  if (certificate_stopped) {
+    print_warning(std::string(*certificate_stopped == MeshStatus::interrupted ? "interrupted by a signal"
+                                                                              : "stopped by --time-limit") +
+                  " during the certificate: the mesh is written, its certificate is incomplete");
     return ExitCode::limit_reached;
   }
   return exit_code(result.status, statistics, options.min_spacing);

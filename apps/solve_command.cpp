@@ -8,16 +8,21 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "apps/command_line.h"
 #include "apps/commands.h"
+#include "apps/interrupt.h"
+#include "apps/phase_watchdog.h"
 #include "common/enum_names.h"
 #include "common/errors.h"
+#include "common/run_limits.h"
 #include "common/tolerances.h"
 #include "solvers/primitive_query.h"
 #include "solvers/primitive_registry.h"
@@ -119,6 +124,9 @@ SolveOutcome solve_primitive(const SolveRequest& o) {
   options.solver = solver;
   options.box_budget = o.max_boxes;
   options.time_limit_seconds = o.time_limit;
+  // Under a command's limits (RunLimits::current()) the time limit counts from the command's start.
+  if (const std::optional<double> left = RunLimits::current().seconds_left())
+    options.time_limit_seconds = std::max(*left, std::numeric_limits<double>::denorm_min());
   options.taylor_forms = taylor_forms;
 
   const auto start = std::chrono::steady_clock::now();
@@ -149,8 +157,22 @@ nlohmann::ordered_json SolveOutcome::to_json() const {
 
 namespace {
 
+//! solve_primitive() under the command's limits: the solver stops at the deadline with its
+//! partial result; parsing and compiling E, which cannot stop themselves, are ended by the
+//! watchdog, as is a solve still running PhaseWatchdog::solve_grace after the deadline.
+SolveOutcome limited_solve(const SolveRequest& request) {
+  const double seconds = std::min(request.time_limit, max_time_limit_seconds);
+  const auto start = RunLimits::Clock::now();
+  const RunLimits limits = RunLimits::after(seconds, &interrupt_flag(), start);
+  const RunLimits::Scope scope(limits);
+  PhaseWatchdog watchdog(
+      seconds > 0 ? RunLimits::after(seconds + PhaseWatchdog::solve_grace.count(), &interrupt_flag(), start) : limits);
+  const PhaseWatchdog::Phase phase(watchdog, "parsing, compiling and solving");
+  return solve_primitive(request);
+}
+
 ExitCode run_solve(const SolveOptions& options) {
-  const SolveOutcome outcome = solve_primitive(options.request_of());
+  const SolveOutcome outcome = limited_solve(options.request_of());
   const SolveRequest& o = options.request;
   const SurfaceInput& input = outcome.input;
   const SolveResult& result = outcome.result;

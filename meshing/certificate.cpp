@@ -25,6 +25,7 @@
 #include <sstream>
 
 #include "common/errors.h"
+#include "common/run_limits.h"
 #include "meshing/check_registry.h"
 #include "meshing/delaunay.h"
 #include "meshing/input_validation.h"
@@ -97,7 +98,7 @@ Certificate certify_mesh(const std::vector<Point3>& points, const std::vector<st
   c.seconds_validation = validate_input(surface, box).seconds;
 
   ImplicitOracle oracle(surface, box, SolverBackend::subdivision);
-  oracle.set_run_controls(options.seed, std::nullopt);
+  oracle.set_run_controls(options.seed, options.deadline);
   Delaunay del;
   std::vector<VertexId> id_of(points.size(), -1);
   std::vector<std::size_t> soup_index;  // Delaunay id → first soup index of the point
@@ -128,9 +129,14 @@ Certificate certify_mesh(const std::vector<Point3>& points, const std::vector<st
 
   RestrictedDelaunay restricted(del, oracle, options.seed);
   Findings findings(c, soup_index, static_cast<std::size_t>(del.size()));
+  const RunLimits limits(options.deadline, options.interrupt);
   auto stopped = [&] {
-    if (options.interrupt && options.interrupt->load(std::memory_order_relaxed)) c.interrupted = true;
-    return c.interrupted;
+    if (!c.interrupted && !c.time_limited) {
+      const StopReason reason = limits.expired();
+      c.interrupted = reason == StopReason::interrupted;
+      c.time_limited = reason == StopReason::time_limit;
+    }
+    return c.interrupted || c.time_limited;
   };
   // The topology rows of the check registry, by the kind of face they examine.
   std::array<std::vector<const CheckInfo*>, 3> rows_of;
@@ -222,14 +228,15 @@ Certificate certify_mesh(const std::vector<Point3>& points, const std::vector<st
   }
   for (const auto& t : restricted_set)
     if (!mesh_set.count(t)) ++c.restricted_not_in_mesh;
-  c.restricted_matches_mesh = !c.interrupted && c.coincident_vertices == 0 && c.repeated_mesh_triangles == 0 &&
+  c.restricted_matches_mesh = !c.interrupted && !c.time_limited && c.coincident_vertices == 0 &&
+                              c.repeated_mesh_triangles == 0 &&
                               c.mesh_not_restricted == 0 && c.restricted_not_in_mesh == 0;
 
   const bool proved_witness =
       std::any_of(c.witnesses.begin(), c.witnesses.end(), [](const CertificateWitness& w) { return w.proved; });
   if (proved_witness)
     c.status = CertificateStatus::violated;
-  else if (c.interrupted || !c.witnesses.empty() || !c.unsettled.empty())
+  else if (c.interrupted || c.time_limited || !c.witnesses.empty() || !c.unsettled.empty())
     c.status = CertificateStatus::undecided;
   else
     c.status = CertificateStatus::certified;
@@ -245,6 +252,7 @@ nlohmann::json to_json(const Certificate& c) {
   j["faces_checked"] = c.faces_checked();
   j["voronoi_faces"] = {{"edges", c.voronoi_edges}, {"facets", c.voronoi_facets}, {"cells", c.voronoi_cells}};
   j["interrupted"] = c.interrupted;
+  j["time_limited"] = c.time_limited;
   j["samples"] = c.samples;
   j["unreferenced_vertices"] = c.unreferenced_vertices;
   j["coincident_vertices"] = c.coincident_vertices;

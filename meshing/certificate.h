@@ -57,8 +57,10 @@
 
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <vector>
 
@@ -84,6 +86,10 @@ struct CertificateOptions {
   //! If given, the certificate stops at the first face after it becomes true (status
   //! undecided, `interrupted`); it is read between faces, so a signal handler may set it.
   const std::atomic<bool>* interrupt = nullptr;
+  //! If given, the certificate stops at the first face after it has passed (status undecided,
+  //! `time_limited`); its solves get it too (SurfaceOracle::set_run_controls), so one long solve
+  //! ends there as well (its region undecided).
+  std::optional<std::chrono::steady_clock::time_point> deadline;
 };
 
 //! A witness found by one check, on which Voronoi face, and whether it proves that the check's
@@ -104,6 +110,7 @@ struct CertificateUnsettled {
 struct [[nodiscard]] Certificate {
   CertificateStatus status = CertificateStatus::undecided;
   bool interrupted = false;
+  bool time_limited = false;  //!< CertificateOptions::deadline stopped it
   //! The soup's triangles are exactly Tri S|Σ (as vertex sets, each once, no coincident points).
   bool restricted_matches_mesh = false;
 
@@ -146,7 +153,7 @@ Certificate certify_mesh(const std::vector<Point3>& points, const std::vector<st
 //!  restricted_not_in_mesh, mesh_not_restricted, repeated_mesh_triangles, witnesses {count, proved,
 //!  by_check, listed: the first certificate_findings_listed, proved ones first, each {check, face,
 //!  point, proved}}, unsettled {count, by_reason, listed: each {check, reason, face, location}},
-//!  interrupted, max_vertex_distance_estimate, seed, seconds, seconds_validation,
+//!  interrupted, time_limited, max_vertex_distance_estimate, seed, seconds, seconds_validation,
 //!  seconds_per_check, solver}
 nlohmann::json to_json(const Certificate& certificate);
 

@@ -42,7 +42,8 @@ bool Refinement::face_current(const Simplex& s) const {
 
 Refinement::Refinement(SurfaceOracle& oracle, std::uint64_t seed, RefinementLimits limits, RecheckPolicy policy,
                        int threads, bool parallel_every_batch)
-    : oracle_(oracle), seed_(seed), limits_(std::move(limits)), policy_(policy), restricted_(del_, oracle, seed),
+    : oracle_(oracle), seed_(seed), limits_(std::move(limits)), run_limits_(limits_.deadline, limits_.interrupt),
+      policy_(policy), restricted_(del_, oracle, seed),
       steps_(make_table()), parallel_(threads, parallel_every_batch), insertions_(check_kind_count()),
       checks_(check_kind_count()), seconds_(check_kind_count()), last_progress_(std::chrono::steady_clock::now()) {
   // insert() and remove() compute the record of every new or changed triangle at once.
@@ -123,7 +124,11 @@ void Refinement::queue_everything_within(const std::vector<VertexId>& vs) {
   for (VertexId v : vs) {
     if (!del_.contains(v)) continue;
     for (const auto& t : del_.incident_triangles(v))
-      if (t[0] == v && in(t[1]) && in(t[2])) queue_triangle(t, true);
+      if (t[0] == v && in(t[1]) && in(t[2])) {
+        // A record is a solve: the clock reading costs nothing beside it.
+        if (limit_passed()) return;
+        queue_triangle(t, true);
+      }
     for (VertexId w : del_.neighbours(v))
       if (v < w && in(w)) queue_edge({v, w});
     queue_vertex(v, true);

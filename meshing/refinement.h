@@ -132,6 +132,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/run_limits.h"
 #include "common/tolerances.h"
 #include "meshing/check_registry.h"
 #include "meshing/del_mesh.h"
@@ -207,6 +208,10 @@ class Refinement {
   //! of them would examine (for Quality and Smooth: every restricted triangle).
   //! Precondition: 0 < lambda < 1/3, size_bound > 0 if given.
   void enable_geometry(double lambda, std::optional<double> size_bound);
+  //! True once the deadline has passed or the interrupt flag is set (the clock read now).  For
+  //! loops outside run() that insert or queue many faces (seed insertion); run() itself reads
+  //! them at its own clock readings.
+  bool limit_passed() const { return run_limits_.expired_now() != StopReason::none; }
   //! The threads in use (the constructor's request capped by the hardware).
   int threads() const { return parallel_.threads(); }
 
@@ -345,12 +350,16 @@ class Refinement {
   void queue_vertex(VertexId v, bool new_cell);
   //! Sets last_edge_step_ from the enabled steps.
   void set_last_edge_step();
+  //! Queues every face among `sorted_vertices`, computing the record of each triangle.  Stops
+  //! (leaving the rest unqueued and unrecorded) once limit_passed(): the run then ends at its next
+  //! limit test, with the limit's status.
   void queue_everything_within(const std::vector<VertexId>& sorted_vertices);
   std::optional<MeshStatus> limit_reached(std::chrono::steady_clock::time_point now);
 
   SurfaceOracle& oracle_;
   std::uint64_t seed_;
   RefinementLimits limits_;
+  RunLimits run_limits_;  //!< limits_'s deadline and interrupt, for the loops outside run()
   RecheckPolicy policy_;
   Delaunay del_;
   RestrictedDelaunay restricted_;

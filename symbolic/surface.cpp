@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "common/run_limits.h"
 
 namespace delmesh {
 
@@ -566,10 +567,19 @@ Surface::Surface(GiNaC::ex E, std::string text) {
     throw InvalidInput("constant expression " + abbreviated(text_) + " (= " + print(E_) +
                        ") does not define a surface; E must depend on x, y or z");
 
+  // Each GiNaC call runs to its end; the command's limits are tested between them.
+  const RunLimits& limits = RunLimits::current();
   const GiNaC::symbol* xyz[3] = {&x, &y, &z};
-  for (int i = 0; i < 3; ++i) gradient_[i] = E_.diff(*xyz[i]);
+  for (int i = 0; i < 3; ++i) {
+    limits.check("differentiating the expression", true);
+    gradient_[i] = E_.diff(*xyz[i]);
+  }
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) hessian_(i, j) = (j < i) ? hessian_(j, i) : gradient_[i].diff(*xyz[j]);
+    for (int j = 0; j < 3; ++j) {
+      if (j >= i) limits.check("differentiating the expression", true);
+      hessian_(i, j) = (j < i) ? hessian_(j, i) : gradient_[i].diff(*xyz[j]);
+    }
+  limits.check("expanding the expression", true);
 
   polynomial_ = E_.is_polynomial(coordinates()) && has_only_rational_polynomial_parts(E_.expand());
   if (polynomial_) {

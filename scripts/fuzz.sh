@@ -1,37 +1,41 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets of fuzz/ (clang++, AddressSanitizer, UndefinedBehaviorSanitizer, in
-# build-fuzz/) and runs each for SECONDS (default 60).  Usage:
+# Builds the libFuzzer targets of fuzz/ (clang++, AddressSanitizer, UndefinedBehaviorSanitizer) and
+# runs each for SECONDS (default 60).  Usage:
 #   scripts/fuzz.sh [SECONDS] [TARGET...]     targets: fuzz_expression fuzz_read_off fuzz_read_ply
-#                                             fuzz_read_obj fuzz_command_line (default: all)
+#                                             fuzz_read_obj fuzz_command_line fuzz_input_mesh
+#                                             fuzz_output_paths (default: all)
+# The build directory is the sanitized test build's (build-sanitize/, configured as
+# scripts/test.sh --sanitize does, so each reuses what the other built).
 # Each target starts from its seed corpus fuzz/corpus/<target>/ (read only) and the inputs found by
-# earlier runs, kept in build-fuzz/corpus/<target>/; it uses fuzz/<target>.dict if present and the
-# extra libFuzzer flags of fuzz/<target>.options if present (e.g. -max_len=...).  A crash, leak,
+# earlier runs, kept in build-sanitize/corpus/<target>/; it uses fuzz/<target>.dict if present and
+# the extra libFuzzer flags of fuzz/<target>.options if present (e.g. -max_len=...).  A crash, leak,
 # timeout (> DELMESH_FUZZ_TIMEOUT seconds for one input, default 10) or out-of-memory leaves the input
-# in build-fuzz/artifacts/<target>/; the script still runs the other targets, prints the executions
-# per target and exits non-zero.  Replay an input: build-fuzz/fuzz/<target> FILE.
+# in build-sanitize/artifacts/<target>/; the script still runs the other targets, prints the
+# executions per target and exits non-zero.  Replay an input: build-sanitize/fuzz/<target> FILE.
 # Leaks: LeakSanitizer checks the whole process when each target ends (a leak fails the run).
 # libFuzzer's check after every input that allocates more than it frees (-detect_leaks=1) stops
 # the process and scans its memory each time; GiNaC's and CGAL's caches make that most inputs, which
 # cut the expression target from ~7800 to ~600 executions per second, so it is off
 # (-detect_leaks=0).  To find the input behind a leak, replay the corpus with it on:
-#   build-fuzz/fuzz/<target> -detect_leaks=1 -runs=0 build-fuzz/corpus/<target>
-# Environment: DELMESH_FUZZ_BUILD_DIR (build-fuzz), DELMESH_JOBS (nproc), DELMESH_FUZZ_FLAGS (extra
-# libFuzzer flags for every target, e.g. -runs=1000000 to stop at that many executions), CXX
-# (clang++).
+#   build-sanitize/fuzz/<target> -detect_leaks=1 -runs=0 build-sanitize/corpus/<target>
+# Environment: DELMESH_FUZZ_BUILD_DIR (DELMESH_SANITIZE_BUILD_DIR, else build-sanitize), DELMESH_JOBS
+# (nproc), DELMESH_FUZZ_FLAGS (extra libFuzzer flags for every target, e.g. -runs=1000000 to stop at
+# that many executions), CXX (clang++).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
-all_targets=(fuzz_expression fuzz_read_off fuzz_read_ply fuzz_read_obj fuzz_command_line)
+all_targets=(fuzz_expression fuzz_read_off fuzz_read_ply fuzz_read_obj fuzz_command_line fuzz_input_mesh
+             fuzz_output_paths)
 if [ $# -gt 0 ]; then targets=("$@"); else targets=("${all_targets[@]}"); fi
-build=${DELMESH_FUZZ_BUILD_DIR:-build-fuzz}
+build=${DELMESH_FUZZ_BUILD_DIR:-${DELMESH_SANITIZE_BUILD_DIR:-build-sanitize}}
 jobs=${DELMESH_JOBS:-$(nproc)}
 timeout=${DELMESH_FUZZ_TIMEOUT:-10}
 
-# -O1 and the assertions on (no NDEBUG): a failed assertion on some input is a finding too.
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_CXX_COMPILER="${CXX:-clang++}" -DCMAKE_CXX_FLAGS_RELEASE="-O1 -gline-tables-only" \
-  -DDELMESH_BUILD_FUZZERS=ON -DDELMESH_BUILD_TESTS=OFF -DDELMESH_BUILD_EXPERIMENTS=OFF
+# The configuration of scripts/test.sh --sanitize (keep the two in step).
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER="${CXX:-clang++}" \
+  -DCMAKE_CXX_FLAGS_RELEASE="-O1 -gline-tables-only -DNDEBUG" -DDELMESH_BUILD_FUZZERS=ON \
+  -DDELMESH_BUILD_TESTS=ON -DDELMESH_BUILD_EXPERIMENTS=OFF
 cmake --build "$build" -j "$jobs" --target "${targets[@]}"
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1}
@@ -50,7 +54,7 @@ for target in "${targets[@]}"; do
          -artifact_prefix="$artifacts/")
   if [ -f "fuzz/$target.dict" ]; then flags+=(-dict="fuzz/$target.dict"); fi
   if [ -f "fuzz/$target.options" ]; then
-    read -r -a extra < <(grep -v '^#' "fuzz/$target.options" | tr '\n' ' ')
+    read -r -a extra < <(grep -v '^#' "fuzz/$target.options" | tr '\n' ' ') || true  # (no final newline)
     flags+=("${extra[@]}")
   fi
   if [ -n "${DELMESH_FUZZ_FLAGS:-}" ]; then read -r -a extra <<< "$DELMESH_FUZZ_FLAGS"; flags+=("${extra[@]}"); fi

@@ -3,9 +3,10 @@
 # topology, Theorem 6.1 at lambda 0.06 and 0.03 on every catalog surface, the recheck lemma).
 # Pass --fast to run the fast tier only.  Both then dry-run (snakemake -n) the full sweep workflow
 # experiments/Snakefile (every surface, λ and seed of its defaults) against the built lambda_sweep.
-# Pass --sanitize to build the libraries, the program and the test suites with AddressSanitizer and
-# UndefinedBehaviorSanitizer (-O1, in build-sanitize/, experiments left out) and run the fast tier
-# there; any sanitizer report fails the test that triggered it.
+# Pass --sanitize to build the libraries, the program, the test suites and the libFuzzer targets of
+# fuzz/ with clang++, AddressSanitizer and UndefinedBehaviorSanitizer (-O1, in build-sanitize/,
+# experiments left out) and run the fast tier there; any sanitizer report fails the test that
+# triggered it.  scripts/fuzz.sh runs the fuzz targets of the same build directory.
 # Pass --debug to build everything as Debug with assertions on (assert, CGAL's and Eigen's
 # preconditions, libstdc++'s checked containers via _GLIBCXX_ASSERTIONS; -O1 rather than -O0 for
 # the tests' run time; in build-debug/) and run the fast tier there; a failed assertion fails its test.
@@ -20,9 +21,13 @@ if [ "${1:-}" = "--debug" ]; then
 fi
 if [ "${1:-}" = "--sanitize" ]; then
   build=${DELMESH_SANITIZE_BUILD_DIR:-build-sanitize}
-  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -G Ninja -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
-    -DDELMESH_SANITIZE=ON -DDELMESH_BUILD_EXPERIMENTS=OFF
-  cmake --build "$build" -j "$(nproc)"
+  # The configuration of scripts/fuzz.sh (keep the two in step): one build serves both.  The
+  # libraries carry libFuzzer's coverage instrumentation (-fsanitize=fuzzer-no-link), whose
+  # callbacks ASan's runtime provides in the test programs.
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER="${CXX:-clang++}" \
+    -DCMAKE_CXX_FLAGS_RELEASE="-O1 -gline-tables-only -DNDEBUG" -DDELMESH_BUILD_FUZZERS=ON \
+    -DDELMESH_BUILD_TESTS=ON -DDELMESH_BUILD_EXPERIMENTS=OFF
+  cmake --build "$build" -j "${DELMESH_JOBS:-$(nproc)}"
   export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1}
   export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
   export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan.supp:print_suppressions=0}

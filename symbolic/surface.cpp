@@ -1,6 +1,7 @@
 #include "symbolic/surface.h"
 
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -50,19 +51,26 @@ Box3 Box3::parse(const std::string& text) {
   double values[6];
   for (int i = 0; i < 6; ++i) {
     const std::string& f = fields[i];
-    std::size_t used = 0;
-    bool ok = true;
-    try {
-      values[i] = std::stod(f, &used);
-    } catch (const std::exception&) {
-      ok = false;
-    }
+    const std::string field_name = "box \"" + text + "\": field " + std::to_string(i + 1) + " \"" + f + "\"";
+    std::size_t start = 0;
+    while (start < f.size() && std::isspace(static_cast<unsigned char>(f[start]))) ++start;
+    char* end = nullptr;
+    errno = 0;
+    values[i] = start < f.size() ? std::strtod(f.c_str() + start, &end) : 0;
+    const bool range_error = errno == ERANGE;
+    bool ok = start < f.size() && end != f.c_str() + start;
     if (ok)
-      for (std::size_t k = used; k < f.size(); ++k)
-        if (!std::isspace(static_cast<unsigned char>(f[k]))) ok = false;
-    if (!ok || !std::isfinite(values[i]))
-      throw InvalidInput("box \"" + text + "\": field " + std::to_string(i + 1) + " \"" + f +
-                         "\" is not a finite number");
+      for (const char* k = end; *k != '\0'; ++k)
+        if (!std::isspace(static_cast<unsigned char>(*k))) ok = false;
+    if (ok && range_error && std::isinf(values[i]))
+      throw InvalidInput(field_name + " is not a finite number: it overflows double precision (magnitude above "
+                         "1.7976931348623157e308)");
+    if (!ok || !std::isfinite(values[i])) throw InvalidInput(field_name + " is not a finite number");
+    // A nonzero coordinate must be a normal double: a subnormal one (or one that underflows to 0)
+    // has lost precision, and a side that small cannot be subdivided or evaluated on.
+    if (range_error || (values[i] != 0 && std::abs(values[i]) < min_coordinate))
+      throw InvalidInput(field_name + " is too small: a nonzero box coordinate must be at least " +
+                         "2.2250738585072014e-308 in magnitude (the smallest normal double); write 0 for 0");
   }
   Box3 box;
   static const char* names = "xyz";
@@ -581,13 +589,57 @@ Surface::Surface(GiNaC::ex E, std::string text) {
     }
   limits.check("expanding the expression", true);
 
-  polynomial_ = E_.is_polynomial(coordinates()) && has_only_rational_polynomial_parts(E_.expand());
+  // Only a polynomial is expanded (check_size bounds its terms); a product of n non-polynomial
+  // factors such as (2 + sin x) would expand to 2^n terms.
+  const bool polynomial_in_xyz = E_.is_polynomial(coordinates());
+  const GiNaC::ex expanded = polynomial_in_xyz ? E_.expand() : E_;
+  polynomial_ = polynomial_in_xyz && has_only_rational_polynomial_parts(expanded);
   if (polynomial_) {
     // Total degree: the degree in s of E(s x, s y, s z).
     GiNaC::symbol s("s");
     GiNaC::ex scaled = E_.subs(GiNaC::lst{x == s * x, y == s * y, z == s * z}).expand();
     degree_ = scaled.degree(s);
   }
+  normalize_constant_factor(expanded);
+}
+
+namespace {
+
+//! The product of the numeric factors of a product (the number itself for a number; 1 for any
+//! other expression).
+GiNaC::numeric numeric_factor(const GiNaC::ex& e) {
+  using namespace GiNaC;
+  if (is_a<numeric>(e)) return ex_to<numeric>(e);
+  numeric c = 1;
+  if (is_a<mul>(e))
+    for (std::size_t i = 0; i < e.nops(); ++i)
+      if (is_a<numeric>(e.op(i))) c *= ex_to<numeric>(e.op(i));
+  return c;
+}
+
+}  // namespace
+
+void Surface::normalize_constant_factor(const GiNaC::ex& expanded) {
+  using namespace GiNaC;
+  numeric largest = 0;
+  if (polynomial_ && is_a<add>(expanded)) {
+    for (std::size_t i = 0; i < expanded.nops(); ++i) {
+      const numeric c = abs(numeric_factor(expanded.op(i)));
+      if (c > largest) largest = c;
+    }
+  } else {
+    largest = abs(numeric_factor(polynomial_ ? expanded : E_));
+  }
+  if (largest.is_zero() || !largest.is_rational()) return;
+  // 2^(k − 1) < largest < 2^(k + 1).
+  const long k = static_cast<long>(largest.numer().int_length()) - static_cast<long>(largest.denom().int_length());
+  if (k >= -max_coefficient_exponent && k <= max_coefficient_exponent) return;
+  const ex factor = pow(numeric(2), numeric(-k));
+  E_ = E_ * factor;
+  for (auto& g : gradient_) g = g * factor;
+  for (unsigned i = 0; i < 3; ++i)
+    for (unsigned j = 0; j < 3; ++j) hessian_(i, j) = hessian_(i, j) * factor;
+  normalization_exponent_ = static_cast<int>(k);
 }
 
 double Surface::evaluate(const std::array<double, 3>& p) const {

@@ -22,9 +22,14 @@ GiNaC::lst coordinates();
 struct Box3 {
   std::array<double, 3> lo{};
   std::array<double, 3> hi{};
-  //! Parses "x0,x1,y0,y1,z0,z1"; throws InvalidInput on malformed text, a non-finite number, an
-  //! empty box, or a box so large that a width xi1 − xi0 or the squared diagonal overflows double.
+  //! Parses "x0,x1,y0,y1,z0,z1"; throws InvalidInput on malformed text, a non-finite number (one
+  //! that overflows says so), a nonzero number below min_coordinate in magnitude (subnormal, or
+  //! underflowing to 0), an empty box, or a box so large that a width xi1 − xi0 or the squared
+  //! diagonal overflows double.
   static Box3 parse(const std::string& text);
+  //! The smallest magnitude of a nonzero coordinate Box3::parse accepts: the smallest normal
+  //! double, 2^-1022 ≈ 2.2250738585072014e-308.
+  static constexpr double min_coordinate = 2.2250738585072014e-308;
   //! The cube [−h, h]³ centred at the origin.  Precondition: h > 0 (else PreconditionViolation).
   static Box3 cube(double h);
   bool contains(const std::array<double, 3>& p) const;
@@ -69,7 +74,18 @@ class Surface {
   //! numerics become the rational of the shortest decimal that reads back as the same double
   //! (numeric(0.1) → 1/10).  Throws InvalidInput beyond the size limits (max_degree,
   //! max_expanded_terms).
+  //!
+  //! A constant factor of E does not change Σ but can put E's values beyond double precision
+  //! (1e200*(x^2+y^2+z^2-1)).  So when the largest coefficient magnitude c (of the expanded
+  //! polynomial; of the numeric factor of a product otherwise) lies outside
+  //! [2^-max_coefficient_exponent, 2^max_coefficient_exponent], E (and its derivatives) are
+  //! stored divided by the power of two 2^k nearest c (2^(k−1) < c < 2^(k+1)), exactly;
+  //! normalization_exponent() gives k.
   explicit Surface(GiNaC::ex E, std::string text = {});
+
+  static constexpr long max_coefficient_exponent = 64;
+  //! The k of the constructor's normalisation: E() = E_given / 2^k (0: E as given).
+  int normalization_exponent() const { return normalization_exponent_; }
 
   const GiNaC::ex& E() const { return E_; }
   //! ∇E = (∂E/∂x, ∂E/∂y, ∂E/∂z), exact.
@@ -88,7 +104,11 @@ class Surface {
   double evaluate(const std::array<double, 3>& p) const;
 
  private:
+  //! The constructor's division by a power of two (see there), once polynomial_ is known.
+  void normalize_constant_factor(const GiNaC::ex& expanded);
+
   GiNaC::ex E_;
+  int normalization_exponent_ = 0;
   std::array<GiNaC::ex, 3> gradient_;
   GiNaC::matrix hessian_{3, 3};
   bool polynomial_ = false;

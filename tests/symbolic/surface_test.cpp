@@ -201,6 +201,44 @@ BOOST_AUTO_TEST_CASE(box_parsing) {
   }
 }
 
+// Numbers at the ends of double precision: a subnormal coordinate or one that underflows is
+// refused as below the smallest normal double (not as "not a finite number"); one that overflows
+// says so; the smallest normal double and 0 are accepted.
+BOOST_AUTO_TEST_CASE(box_coordinates_at_the_ends_of_double) {
+  for (const std::string small : {"5e-324", "1e-310", "-1e-400"}) {
+    const std::string message = box_error("-2,2,-2,2," + small + ",1");
+    BOOST_TEST(message.find("is too small: a nonzero box coordinate must be at least 2.2250738585072014e-308") !=
+                   std::string::npos,
+               message);
+    BOOST_TEST(message.find("not a finite number") == std::string::npos, message);
+  }
+  BOOST_TEST(box_error("-2,2,-2,2,0,1e400").find("overflows double precision") != std::string::npos);
+  const Box3 b = Box3::parse("-2,2,-2,2,0,2.2250738585072014e-308");
+  BOOST_TEST(b.hi[2] == Box3::min_coordinate);
+}
+
+// A constant factor far from 1 is divided out by a power of two: E = 1e200 (x² + y² + z² − 1)
+// becomes 10^200 / 2^664 (x² + y² + z² − 1), exactly; moderate coefficients are kept as given.
+BOOST_AUTO_TEST_CASE(extreme_constant_factor_is_normalised) {
+  const GiNaC::ex unit = x * x + y * y + z * z - 1;
+  const Surface big = Surface::parse("1e200*(x^2+y^2+z^2-1)");
+  BOOST_TEST(big.normalization_exponent() == 664);
+  const GiNaC::numeric c = GiNaC::numeric(10).power(200) / GiNaC::numeric(2).power(664);
+  BOOST_TEST(same(big.E(), c * unit));
+  BOOST_TEST(same(big.gradient()[0], 2 * c * x));
+  BOOST_TEST(same(big.hessian()(2, 2), 2 * c));
+  BOOST_TEST(std::abs(big.evaluate({2, 0, 0}) - 3 * c.to_double()) < 1e-12);
+  const Surface small = Surface::parse("1e-300*x^2+1e-300*y^2+1e-300*z^2-1e-300");
+  BOOST_TEST(small.normalization_exponent() < -900);
+  BOOST_TEST(std::abs(small.evaluate({0, 0, 0}) + 1) < 1, "E(0) = " << small.evaluate({0, 0, 0}));
+  const Surface product = Surface::parse("1e-250*(x^2+y^2+z^2-1)*exp(x)");
+  BOOST_TEST(product.normalization_exponent() < -800);
+  BOOST_TEST(std::abs(product.evaluate({0, 0, 0}) + 1) < 1);
+  const Surface moderate = Surface::parse("1000*(x^2+y^2+z^2-1)");
+  BOOST_TEST(moderate.normalization_exponent() == 0);
+  BOOST_TEST(same(moderate.E(), 1000 * unit));
+}
+
 // Inputs that once exhausted the stack (20 000 nested parentheses) or would exhaust the memory of
 // the exact arithmetic are refused with the limit they break, before any expansion.
 BOOST_AUTO_TEST_CASE(input_limits) {

@@ -239,8 +239,10 @@ InputMesh validate_input_mesh(const std::vector<Point3>& points, const std::vect
       length_of(bounds.xmax() - bounds.xmin(), bounds.ymax() - bounds.ymin(), bounds.zmax() - bounds.zmin());
   const double margin = tolerances::input_mesh_box_margin * input.bounding_box_diagonal;
   for (int i = 0; i < 3; ++i) {
-    input.box.lo[i] = bounds.min(i) - margin;
-    input.box.hi[i] = bounds.max(i) + margin;
+    // At least one step of double outward: a margin below half a unit in the last place of a
+    // (subnormal) bound rounds away.
+    input.box.lo[i] = std::min(bounds.min(i) - margin, std::nextafter(bounds.min(i), -HUGE_VAL));
+    input.box.hi[i] = std::max(bounds.max(i) + margin, std::nextafter(bounds.max(i), HUGE_VAL));
   }
   std::vector<double> lengths;
   lengths.reserve(input.mesh.number_of_edges());

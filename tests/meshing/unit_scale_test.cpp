@@ -3,8 +3,10 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <memory>
 
 #include "meshing/del_mesh.h"
+#include "meshing/input_mesh.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/mesh_oracle.h"
 #include "meshing/unit_scale.h"
@@ -138,6 +140,32 @@ BOOST_AUTO_TEST_CASE(remesh_at_a_tiny_scale_is_the_unit_remesh_scaled) {
     BOOST_TEST(p.z() == std::ldexp(q.z(), k));
     // On the octahedron |x| + |y| + |z| = s.
     BOOST_TEST(std::abs(std::abs(p.x()) + std::abs(p.y()) + std::abs(p.z()) - s) < 1e-12 * s);
+  }
+}
+
+// The octahedron of size 2^-1074 (the least subnormal double) and of size 2^-1000: validation's
+// box holds the vertices strictly (its margin would round away), and the oracle works on it.
+BOOST_AUTO_TEST_CASE(validated_subnormal_mesh_gives_an_oracle) {
+  for (const double s : {std::ldexp(1.0, -1074), std::ldexp(1.0, -1000)}) {
+    BOOST_TEST_CONTEXT("size " << s) {
+      const SurfaceMesh m = octahedron(s);
+      std::vector<Point3> points(m.points().begin(), m.points().end());
+      std::vector<std::vector<std::size_t>> polygons;
+      for (auto f : m.faces()) {
+        std::vector<std::size_t> polygon;
+        for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) polygon.push_back(v.idx());
+        polygons.push_back(polygon);
+      }
+      const InputMesh input = validate_input_mesh(points, polygons, "octahedron");
+      for (int i = 0; i < 3; ++i) {
+        BOOST_TEST(input.box.lo[i] < -s);
+        BOOST_TEST(input.box.hi[i] > s);
+      }
+      std::unique_ptr<MeshOracle> oracle;
+      BOOST_REQUIRE_NO_THROW(oracle = std::make_unique<MeshOracle>(input.mesh, input.box));
+      BOOST_TEST(oracle->scale_exponent() < -990);
+      BOOST_TEST(oracle->value_sign(Vec3{0, 0, 0}) == -1);
+    }
   }
 }
 

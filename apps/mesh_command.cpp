@@ -32,6 +32,7 @@
 #include "meshing/mesh_checker.h"
 #include "meshing/mesh_io.h"
 #include "meshing/mesh_oracle.h"
+#include "meshing/unit_scale.h"
 
 namespace delmesh::app {
 
@@ -209,7 +210,9 @@ namespace {
 //! remesh() on the plan's oracle, built in `seconds_oracle` seconds.
 DelMeshResult remesh_on(const MeshInputPlan& plan, MeshOracle& oracle, double seconds_oracle,
                         const DelMeshOptions& options) {
-  DelMeshResult result = del_mesh(oracle, options);
+  // The oracle works at unit scale (meshing/unit_scale.h); the run's lengths and results are converted.
+  DelMeshResult result = del_mesh(oracle, unit_scale_options(options, oracle.scale_exponent()));
+  restore_scale(result, oracle.scale_exponent());
   const InputMesh& m = plan.mesh;
   result.statistics["input_mesh"] = {{"file", plan.path},
                                      {"faces_read", m.faces_read},

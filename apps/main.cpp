@@ -20,6 +20,7 @@
 #include "apps/output_files.h"
 #include "common/errors.h"
 #include "common/huge_page_heap.h"
+#include "common/run_limits.h"
 
 namespace {
 
@@ -109,6 +110,12 @@ int main(int argc, char** argv) {
   } catch (const delmesh::app::OutputError& e) {
     delmesh::app::print_error(e.what());
     return code(ExitCode::io_error);
+  } catch (const delmesh::RunStopped& e) {
+    // A limit or a signal before any result existed: nothing to write.
+    delmesh::app::print_warning(std::string(e.what()) + " (status " +
+                                (e.reason() == delmesh::StopReason::interrupted ? "interrupted" : "time_limit") +
+                                "); no output written");
+    return code(ExitCode::limit_reached);
   } catch (const std::invalid_argument& e) {
     delmesh::app::print_error(e.what());
     return code(ExitCode::invalid_input);

@@ -1,7 +1,10 @@
 // Tests of apps/interrupt.h: SIGINT and SIGTERM stop `delmesh mesh` like a limit, and stop the
-// certificate of `delmesh check --certify` and `delmesh mesh --certify` with nothing lost.
+// certificate of `delmesh check --certify` and `delmesh mesh --certify` with nothing lost; every
+// handled signal, at any moment of any subcommand, ends the program with an exit code, never by
+// the signal; a second signal removes the temporary files.
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -9,6 +12,7 @@
 #include <chrono>
 #include <fstream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -140,6 +144,181 @@ BOOST_AUTO_TEST_CASE(a_signal_stops_a_certificate_with_nothing_lost) {
   const std::string err = read_text(scratch / "stderr.txt");
   BOOST_TEST(err.find("interrupted by a signal") != std::string::npos, err);
   BOOST_TEST(std::count(err.begin(), err.end(), '\n') == 1, err);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+namespace {
+
+// After a run that got signals: no temporary file is left in `directory`, and each of its
+// outputs m.off and m.json is either untouched (still `old`) or replaced by a whole file, the
+// two of one run.
+void check_outputs(const std::filesystem::path& directory, const std::string& old) {
+  BOOST_TEST(temporaries_in(directory).empty());
+  const std::string mesh = read_text(directory / "m.off"), stats = read_text(directory / "m.json");
+  BOOST_TEST((mesh == old) == (stats == old), "one output replaced, the other not");
+  if (mesh == old || stats == old) return;
+  const auto statistics = nlohmann::json::parse(stats);
+  // The counts of the OFF header (a partial mesh may have no triangles, which the readers refuse).
+  std::istringstream off(mesh);
+  std::string magic;
+  std::size_t vertices = 0, triangles = 0;
+  off >> magic >> vertices >> triangles;
+  BOOST_TEST(magic == "OFF");
+  BOOST_TEST(vertices == statistics.at("vertices").get<std::size_t>());
+  BOOST_TEST(triangles == statistics.at("triangles").get<std::size_t>());
+}
+
+// The torus at the default settings: a run of about 0.4 s, long enough to be signalled while it
+// meshes.
+const std::vector<std::string> torus_run{"mesh", "--surface", "torus", "--quiet", "--out", "m.off", "--stats", "m.json"};
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(signals)
+
+// Each handled signal, sent once the refinement runs (its first progress line; the whole run
+// would take about 10 s), stops it like a limit: exit code 3, status interrupted, the partial
+// mesh and its statistics written.
+BOOST_AUTO_TEST_CASE(every_handled_signal_stops_a_run) {
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGXCPU, SIGUSR1, SIGUSR2, SIGALRM}) {
+    BOOST_TEST_CONTEXT("signal " << signal) {
+      TempDir dir;
+      const std::vector<std::string> args{"mesh", "--surface", "torus", "--size-bound", "0.05",
+                                          "--out", "m.off", "--stats", "m.json"};
+      const pid_t pid = spawn_delmesh(args, dir.path);
+      // Signalled once the progress shows that the refinement runs.
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+      while (read_text(dir / ".spawn.stderr").find("delmesh: meshing") == std::string::npos &&
+             std::chrono::steady_clock::now() < give_up)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      ::kill(pid, signal);
+      const RunResult r = wait_delmesh(pid, dir.path);
+      BOOST_TEST(!r.signalled);
+      BOOST_TEST(r.exit_code == 3, r.err);
+      BOOST_TEST(nlohmann::json::parse(read_text(dir / "m.json"))["status"] == "interrupted");
+      check_outputs(dir.path, "");
+    }
+  }
+}
+
+// SIGINT and SIGTERM at 0 to 50 ms after the handler is installed (the earliest moment a program
+// can answer a signal), to every subcommand: never death by a signal; a command that ran when
+// the signal came exits with 3 (mesh: always, it runs for longer), the fast ones may have ended
+// with 0 before it; no temporary file is left, and the outputs of mesh are untouched or whole.
+BOOST_AUTO_TEST_CASE(signals_at_any_moment_never_kill) {
+  TempDir dir;
+  write_text(dir / "oct.off", octahedron_off);
+  const std::string old = "old\n";
+  const std::vector<std::vector<std::string>> commands{
+      {"surfaces"},
+      {"surfaces", "--json"},
+      {"solve", "--surface", "sphere", "--primitive", "surface_critical", "--direction", "0,0,1"},
+      {"check", "oct.off", "--json"},
+      torus_run,
+  };
+  for (const auto& args : commands) {
+    const bool mesh = args[0] == "mesh";
+    for (const int signal : {SIGINT, SIGTERM}) {
+      for (const int delay_ms : {0, 1, 2, 5, 10, 20, 50}) {
+        BOOST_TEST_CONTEXT(args[0] << " " << (args.size() > 1 ? args[1] : "") << ", signal " << signal << " after "
+                                   << delay_ms << " ms") {
+          write_text(dir / "m.off", old);
+          write_text(dir / "m.json", old);
+          const pid_t pid = spawn_delmesh(args, dir.path);
+          if (!wait_for_handler(pid, signal)) {
+            // The command ended before the loop saw its handler: it must have succeeded.
+            const RunResult r = wait_delmesh(pid, dir.path);
+            BOOST_TEST(!mesh);
+            BOOST_TEST(r.exit_code == 0, r.err);
+            continue;
+          }
+          std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+          ::kill(pid, signal);
+          const RunResult r = wait_delmesh(pid, dir.path);
+          BOOST_TEST(!r.signalled);
+          if (mesh) {
+            BOOST_TEST(r.exit_code == 3, r.err);
+          } else {
+            BOOST_TEST((r.exit_code == 0 || r.exit_code == 3), "exit code " << r.exit_code << ": " << r.err);
+            if (r.exit_code == 3) {
+              BOOST_TEST(r.err_lines().size() == 1u, r.err);
+              BOOST_TEST(r.err.find("interrupted by") != std::string::npos, r.err);
+            }
+          }
+          check_outputs(dir.path, old);
+        }
+      }
+    }
+  }
+}
+
+// Signals during the write: the statistics go to a FIFO, so the run has written its temporary
+// mesh file and waits for a reader; nothing is replaced yet.  One SIGINT there lets the run finish
+// once the FIFO is read (exit code 3, both outputs of the run); a second SIGINT ends it at once
+// with exit code 3, the temporary file removed and the old mesh untouched.
+BOOST_AUTO_TEST_CASE(signals_during_the_write) {
+  for (const int signals : {1, 2}) {
+    BOOST_TEST_CONTEXT(signals << " SIGINT") {
+      TempDir dir;
+      write_text(dir / "m.off", "old\n");
+      BOOST_TEST_REQUIRE(::mkfifo((dir / "m.json").c_str(), 0644) == 0);
+      const pid_t pid = spawn_delmesh({"mesh", "--surface", "sphere", "--out", "m.off", "--stats", "m.json"}, dir.path);
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+      while (temporaries_in(dir.path).empty() && std::chrono::steady_clock::now() < give_up)
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+      BOOST_TEST_REQUIRE(temporaries_in(dir.path).size() == 1u);
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      for (int i = 0; i < signals; ++i) {
+        ::kill(pid, SIGINT);
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+      std::string statistics;
+      if (signals == 1) {
+        const int fd = ::open((dir / "m.json").c_str(), O_RDONLY);
+        char buffer[4096];
+        for (ssize_t n; (n = ::read(fd, buffer, sizeof buffer)) > 0;) statistics.append(buffer, static_cast<std::size_t>(n));
+        ::close(fd);
+      }
+      const RunResult r = wait_delmesh(pid, dir.path);
+      BOOST_TEST(!r.signalled);
+      BOOST_TEST(r.exit_code == 3, r.err);
+      BOOST_TEST(temporaries_in(dir.path).empty());
+      if (signals == 1) {
+        const TriangleSoup soup = read_triangle_soup((dir / "m.off").string());
+        BOOST_TEST(soup.points.size() == nlohmann::json::parse(statistics).at("vertices").get<std::size_t>());
+        BOOST_TEST(r.err.find("interrupted by SIGINT") != std::string::npos, r.err);
+      } else {
+        BOOST_TEST(read_text(dir / "m.off") == "old\n");
+        BOOST_TEST(r.err.find("second signal") != std::string::npos, r.err);
+      }
+    }
+  }
+}
+
+// Two signals in a row at several moments of a meshing run (the second 0 to 20 ms after the
+// first, so some arrive while the outputs are written): exit code 3, never death by a signal, no
+// temporary file left, each output untouched or whole.
+BOOST_AUTO_TEST_CASE(a_second_signal_ends_the_run_cleanly) {
+  for (const int first_ms : {0, 20, 100}) {
+    for (const int gap_ms : {0, 1, 5, 20}) {
+      BOOST_TEST_CONTEXT("first after " << first_ms << " ms, second " << gap_ms << " ms later") {
+        TempDir dir;
+        write_text(dir / "m.off", "old\n");
+        write_text(dir / "m.json", "old\n");
+        const pid_t pid = spawn_delmesh(torus_run, dir.path);
+        BOOST_TEST_REQUIRE(wait_for_handler(pid, SIGINT));
+        std::this_thread::sleep_for(std::chrono::milliseconds(first_ms));
+        ::kill(pid, SIGINT);
+        std::this_thread::sleep_for(std::chrono::milliseconds(gap_ms));
+        ::kill(pid, SIGTERM);
+        const RunResult r = wait_delmesh(pid, dir.path);
+        BOOST_TEST(!r.signalled);
+        BOOST_TEST(r.exit_code == 3, r.err);
+        check_outputs(dir.path, "old\n");
+      }
+    }
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -2,15 +2,19 @@
 //! Runs the built `delmesh` binary (compile definition DELMESH_BINARY) in a scratch directory and
 //! captures its exit code, stdout and stderr.  Shared by the tests of tests/apps.
 
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <boost/test/unit_test.hpp>
@@ -91,6 +95,88 @@ inline RunResult run_delmesh(const std::vector<std::string>& args, const std::fi
 inline RunResult run_delmesh(const std::vector<std::string>& args) {
   TempDir scratch;
   return run_delmesh(args, scratch.path);
+}
+
+//! Starts `delmesh args...` in `directory` without waiting: stdin from /dev/null, stderr to
+//! directory/.spawn.stderr, stdout to the descriptor `stdout_fd` if it is not negative, else to
+//! directory/.spawn.stdout.  Returns the process id (the child does only async-signal-safe work
+//! between fork and exec).
+inline pid_t spawn_delmesh(const std::vector<std::string>& args, const std::filesystem::path& directory,
+                           int stdout_fd = -1) {
+  std::vector<std::string> argv_text{DELMESH_BINARY};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const std::string dir = directory.string(), out = (directory / ".spawn.stdout").string(),
+                    err = (directory / ".spawn.stderr").string();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    if (::chdir(dir.c_str()) != 0) ::_exit(127);
+    const int null = ::open("/dev/null", O_RDONLY);
+    const int out_fd = stdout_fd >= 0 ? stdout_fd : ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int err_fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (null < 0 || out_fd < 0 || err_fd < 0) ::_exit(127);
+    ::dup2(null, 0);
+    ::dup2(out_fd, 1);
+    ::dup2(err_fd, 2);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+//! Waits for a process of spawn_delmesh() and returns its result (stdout is read from
+//! directory/.spawn.stdout, empty if it went elsewhere); removes the two capture files.
+inline RunResult wait_delmesh(pid_t pid, const std::filesystem::path& directory) {
+  int status = 0;
+  RunResult r;
+  if (::waitpid(pid, &status, 0) != pid) return r;
+  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  r.signalled = WIFSIGNALED(status);
+  r.out = read_text(directory / ".spawn.stdout");
+  r.err = read_text(directory / ".spawn.stderr");
+  std::error_code ignored;
+  std::filesystem::remove(directory / ".spawn.stdout", ignored);
+  std::filesystem::remove(directory / ".spawn.stderr", ignored);
+  return r;
+}
+
+//! Whether process `pid` runs the delmesh binary (it has passed exec) and has a handler for
+//! `signal` (bit signal - 1 of the mask on the SigCgt line of /proc/pid/status).
+inline bool handler_installed(pid_t pid, int signal) {
+  std::error_code error;
+  const auto exe = std::filesystem::read_symlink("/proc/" + std::to_string(pid) + "/exe", error);
+  if (error || std::filesystem::weakly_canonical(exe, error) != std::filesystem::weakly_canonical(DELMESH_BINARY, error))
+    return false;
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("SigCgt:", 0) == 0) return (std::stoull(line.substr(7), nullptr, 16) >> (signal - 1)) & 1u;
+  return false;
+}
+
+//! Waits (polling every 0.2 ms, at most 20 s) until process `pid` has a handler for `signal`;
+//! false if it ended or the time ran out first.
+inline bool wait_for_handler(pid_t pid, int signal) {
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (!handler_installed(pid, signal)) {
+    siginfo_t info{};
+    if (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid)
+      return false;
+    if (std::chrono::steady_clock::now() > give_up) return false;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  return true;
+}
+
+//! The names in `directory` that contain ".tmp" (temporary files left behind).
+inline std::vector<std::string> temporaries_in(const std::filesystem::path& directory) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(directory)) {
+    const std::string name = entry.path().filename().string();
+    if (name.find(".tmp") != std::string::npos) names.push_back(name);
+  }
+  return names;
 }
 
 //! Asserts exit code 2 with exactly one stderr line beginning "error:", that mentions `mention`.

@@ -112,9 +112,10 @@ int main(int argc, char** argv) {
     return code(ExitCode::io_error);
   } catch (const delmesh::RunStopped& e) {
     // A limit or a signal before any result existed: nothing to write.
-    delmesh::app::print_warning(std::string(e.what()) + " (status " +
-                                (e.reason() == delmesh::StopReason::interrupted ? "interrupted" : "time_limit") +
-                                "); no output written");
+    delmesh::app::print_warning(std::string(e.reason() == delmesh::StopReason::interrupted
+                                                ? "interrupted by a signal (status interrupted)"
+                                                : "stopped by --time-limit (status time_limit)") +
+                                " while " + e.phase() + "; no output written");
     return code(ExitCode::limit_reached);
   } catch (const std::invalid_argument& e) {
     delmesh::app::print_error(e.what());

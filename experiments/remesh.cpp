@@ -46,6 +46,7 @@
 #include "meshing/mesh_io.h"
 #include "meshing/mesh_oracle.h"
 #include "meshing/theorem_bounds.h"
+#include "meshing/unit_scale.h"
 
 using namespace delmesh;
 using namespace delmesh::experiments;
@@ -180,8 +181,9 @@ int main(int argc, char** argv) {
         DelMeshOptions options = base;
         options.phase = phase;
         options.min_spacing = min_spacing_fraction * input.median_edge_length;
-        MeshOracle oracle(input.mesh, input.box);
-        const DelMeshResult result = del_mesh(oracle, options, seconds_validation);
+        MeshOracle oracle(input.mesh, input.box);  // at unit scale (meshing/unit_scale.h)
+        DelMeshResult result = del_mesh(oracle, unit_scale_options(options, oracle.scale_exponent()), seconds_validation);
+        restore_scale(result, oracle.scale_exponent());
         const fs::path mesh_file = dir / (name + "_" + label + ".off");
         write_mesh(result.mesh, mesh_file.string());
         write_json(dir / (name + "_" + label + "_stats.json"), result.statistics);

@@ -550,7 +550,7 @@ Command add_mesh_command(CLI::App& parent) {
   sub->add_flag("--certify", o->certify,
                 "Certify the finished mesh from scratch, as `delmesh check --certify` does, and put the "
                 "certificate in the statistics (\"certificate\"); a warning if it is not certified and matching");
-  return {sub, [o]() { return run_mesh(*o); }};
+  return {sub, [o]() { return stopped_as_limit([&] { return run_mesh(*o); }); }};
 }
 
 }  // namespace delmesh::app

@@ -9,6 +9,21 @@
 
 namespace delmesh::app {
 
+std::string stop_message(StopReason reason, const std::string& phase) {
+  return one_line(std::string(reason == StopReason::interrupted ? "interrupted by a signal (status interrupted)"
+                                                                : "stopped by --time-limit (status time_limit)") +
+                  " while " + phase + "; no output written");
+}
+
+ExitCode stopped_as_limit(const std::function<ExitCode()>& action) {
+  try {
+    return action();
+  } catch (const RunStopped& stopped) {
+    print_warning(stop_message(stopped.reason(), stopped.phase()));
+    return ExitCode::limit_reached;
+  }
+}
+
 PhaseWatchdog::PhaseWatchdog(const RunLimits& limits) : limits_(limits) {
   if (!limits_.unlimited()) thread_ = std::thread([this] { watch(); });
 }
@@ -40,12 +55,7 @@ void PhaseWatchdog::watch() {
     const StopReason reason = limits_.expired_now();
     if (reason == StopReason::none) continue;
     // The lock stays held: the main thread cannot disarm and go on to write its outputs.
-    const std::string line =
-        "warning: " +
-        one_line(std::string(reason == StopReason::interrupted ? "interrupted by a signal (status interrupted)"
-                                                               : "stopped by --time-limit (status time_limit)") +
-                 " while " + phase_ + "; no output written") +
-        "\n";
+    const std::string line = "warning: " + stop_message(reason, phase_) + "\n";
     std::fflush(stdout);
     std::fflush(stderr);
     const ssize_t written = ::write(STDERR_FILENO, line.data(), line.size());

@@ -10,16 +10,29 @@
 //! "interrupted by a signal (status interrupted) …") and exit code 3.  Such a phase writes no file,
 //! and the outputs are replaced atomically (command_line.h), so nothing is left half written.
 //! Only the program arms it: the Python module calls the same computations without it.
+//! A phase that tests the limits itself (Surface between its GiNaC steps, the compilation of a
+//! system between its nodes) may see them first and throw RunStopped: stopped_as_limit() ends
+//! the command the same way.
 
 #include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
 
+#include "apps/command_line.h"
 #include "common/run_limits.h"
 
 namespace delmesh::app {
+
+//! "stopped by --time-limit (status time_limit) while <phase>; no output written", or
+//! "interrupted by a signal (status interrupted) while …": the warning of a stop before any output.
+std::string stop_message(StopReason reason, const std::string& phase);
+
+//! Runs a command's action; a RunStopped it throws becomes the warning stop_message() and exit
+//! code 3, as the watchdog would have ended it.
+ExitCode stopped_as_limit(const std::function<ExitCode()>& action);
 
 class PhaseWatchdog {
  public:

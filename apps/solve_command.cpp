@@ -256,7 +256,7 @@ Command add_solve_command(CLI::App& parent) {
   sub->add_flag("--json", o->json,
                 "Print {\"status\", \"roots\": [[x,y,z],...], \"undecided\": [[[lo,hi],[lo,hi],[lo,hi]],...] "
                 "(world bounding boxes), \"boxes\", \"seconds\"}");
-  return {sub, [o]() { return run_solve(*o); }};
+  return {sub, [o]() { return stopped_as_limit([&] { return run_solve(*o); }); }};
 }
 
 }  // namespace delmesh::app

@@ -95,9 +95,19 @@ Certificate certify_mesh(const std::vector<Point3>& points, const std::vector<st
     if (referenced[i] && !(std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z())))
       throw InvalidInput("vertex " + std::to_string(i) + " has a non-finite coordinate");
   }
-  c.seconds_validation = validate_input(surface, box).seconds;
-
-  ImplicitOracle oracle(surface, box, SolverBackend::subdivision);
+  // Compiling E's systems tests the command's limits (RunLimits::current()) and throws when
+  // they pass: the certificate then stops before its first face, with nothing decided.
+  std::optional<ImplicitOracle> built;
+  try {
+    c.seconds_validation = validate_input(surface, box).seconds;
+    built.emplace(surface, box, SolverBackend::subdivision);
+  } catch (const RunStopped& stopped) {
+    c.interrupted = stopped.reason() == StopReason::interrupted;
+    c.time_limited = stopped.reason() == StopReason::time_limit;
+    c.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return c;
+  }
+  ImplicitOracle& oracle = *built;
   oracle.set_run_controls(options.seed, options.deadline);
   Delaunay del;
   std::vector<VertexId> id_of(points.size(), -1);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/errors.h"
+#include "common/run_limits.h"
 #include "symbolic/detail/straight_line_program.h"
 #include "symbolic/monomial_basis.h"
 #include "symbolic/polynomial_form.h"
@@ -72,7 +73,11 @@ std::vector<GiNaC::ex> hessian_outputs(const GiNaC::matrix& jacobian, const std:
   out.reserve(m * n * n);
   for (std::size_t i = 0; i < m; ++i)
     for (std::size_t j = 0; j < n; ++j)
-      for (std::size_t k = 0; k < n; ++k) out.push_back(jacobian(i, j).diff(unknowns[k]));
+      for (std::size_t k = 0; k < n; ++k) {
+        // One derivative may take long on a large expression: the limits are read before each.
+        RunLimits::current().check("differentiating the compiled system", true);
+        out.push_back(jacobian(i, j).diff(unknowns[k]));
+      }
   return out;
 }
 
@@ -80,8 +85,10 @@ GiNaC::matrix derive_jacobian(const std::vector<GiNaC::ex>& equations, const std
   GiNaC::matrix jacobian(static_cast<unsigned>(std::max<std::size_t>(equations.size(), 1)),
                          static_cast<unsigned>(std::max<std::size_t>(unknowns.size(), 1)));
   for (std::size_t i = 0; i < equations.size(); ++i)
-    for (std::size_t j = 0; j < unknowns.size(); ++j)
+    for (std::size_t j = 0; j < unknowns.size(); ++j) {
+      RunLimits::current().check("differentiating the compiled system", true);
       jacobian(i, j) = equations[i].diff(unknowns[j]);
+    }
   return jacobian;
 }
 

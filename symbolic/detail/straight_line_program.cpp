@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "common/errors.h"
+#include "common/run_limits.h"
 
 namespace delmesh::detail {
 
@@ -112,6 +113,8 @@ class StraightLineProgram::Compiler {
 
   SignedRef signed_value_uncached(const GiNaC::ex& e) {
     using namespace GiNaC;
+    // A node costs hash-table work; the strided test of the limits adds nothing measurable.
+    limits_.check("compiling the expression");
     if (is_a<symbol>(e)) {
       const auto it = symbols_.find(e);
       if (it == symbols_.end())
@@ -343,6 +346,7 @@ class StraightLineProgram::Compiler {
 
   StraightLineProgram& program_;
   bool share_;
+  const RunLimits& limits_ = RunLimits::current();
   std::unordered_map<GiNaC::ex, int, std::hash<GiNaC::ex>, GiNaC::ex_is_equal> symbols_;
   std::unordered_map<GiNaC::ex, SignedRef, std::hash<GiNaC::ex>, GiNaC::ex_is_equal> memo_;
   std::unordered_map<GiNaC::ex, Canon, std::hash<GiNaC::ex>, GiNaC::ex_is_equal> canon_;

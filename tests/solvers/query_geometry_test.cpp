@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 
 #include <boost/test/unit_test.hpp>
 
@@ -49,6 +50,32 @@ BOOST_AUTO_TEST_CASE(frame_is_orthonormal_right_handed_and_deterministic) {
 BOOST_AUTO_TEST_CASE(zero_direction_is_invalid) {
   BOOST_CHECK_THROW(orthonormal_frame({0, 0, 0}), InvalidInput);
   BOOST_CHECK_THROW(orthonormal_frame({NAN, 0, 1}), InvalidInput);
+}
+
+// A direction whose squared length overflows (1e308) or underflows (1e-320, subnormal) is a
+// direction all the same; zero and non-finite ones are refused, named in shortest form.
+BOOST_AUTO_TEST_CASE(directions_of_extreme_length) {
+  const Vec3 huge = unit_vector({1e308, 1e308, 0});
+  BOOST_TEST(std::abs(huge[0] - std::sqrt(0.5)) < 1e-15);
+  BOOST_TEST(std::abs(huge[1] - std::sqrt(0.5)) < 1e-15);
+  BOOST_TEST(huge[2] == 0.0);
+  BOOST_TEST((unit_vector({1e-320, 0, 0}) == Vec3{1, 0, 0}));
+  const Vec3 tiny = unit_vector({3e-170, -4e-170, 0});
+  BOOST_TEST(std::abs(tiny[0] - 0.6) < 1e-15);
+  BOOST_TEST(std::abs(tiny[1] + 0.8) < 1e-15);
+  BOOST_TEST(clip_line_to_box({0, 0, 0}, {1e-320, 0, 0}, unit_cube()).has_value());
+  try {
+    (void)unit_vector({0, 0, 0});
+    BOOST_ERROR("no exception");
+  } catch (const InvalidInput& e) {
+    BOOST_TEST(std::string(e.what()) == "direction (0, 0, 0) is zero");
+  }
+  try {
+    (void)unit_vector({0.1, INFINITY, 0});
+    BOOST_ERROR("no exception");
+  } catch (const InvalidInput& e) {
+    BOOST_TEST(std::string(e.what()) == "direction (0.1, inf, 0) is not finite");
+  }
 }
 
 BOOST_AUTO_TEST_CASE(line_clipping) {

@@ -2,7 +2,7 @@
 //! The `delmesh` command line: subcommands surfaces, solve, mesh, check.  See command_line.h for
 //! the exit codes.  Every failure ends as one `error:` line and an exit code: the program never
 //! dies by a signal or an abort.  The signal handlers (apps/interrupt.h) are installed before
-//! anything else, SIGPIPE is ignored (a closed pipe is a write error), std::terminate is
+//! anything else (before the shared libraries are initialised, and again first in main), SIGPIPE is ignored (a closed pipe is a write error), std::terminate is
 //! intercepted, and every write to standard output is checked at the end (exit code 6 if one
 //! failed).
 
@@ -31,6 +31,14 @@ using delmesh::app::ExitCode;
   std::cerr << "error: internal: unexpected termination" << std::endl;
   std::_Exit(static_cast<int>(ExitCode::internal_error));
 }
+
+//! Installs the signal handlers before the shared libraries' initialisers run (an entry of the
+//! executable's ELF .preinit_array runs right after the dynamic loader's relocation), so that
+//! the window in which a signal still has its default action is as short as a program can make
+//! it; `main` installs them again first thing (idempotent).
+extern "C" void delmesh_install_handlers_early(int, char**, char**) { delmesh::app::install_interrupt_handlers(); }
+__attribute__((section(".preinit_array"), used)) void (*const install_handlers_early)(int, char**, char**) =
+    delmesh_install_handlers_early;
 
 int code(ExitCode c) { return static_cast<int>(c); }
 

@@ -54,7 +54,7 @@ int finish(ExitCode result) {
   if (delmesh::app::interrupt_flag().load() &&
       (result == ExitCode::complete || result == ExitCode::check_failed || result == ExitCode::uncertified)) {
     delmesh::app::print_warning("interrupted by " + delmesh::app::interrupt_signal_name() +
-                                " (status interrupted): the output above is complete");
+                                " (status interrupted) after the command had done its work: its output is complete");
     return code(ExitCode::limit_reached);
   }
   return code(result);

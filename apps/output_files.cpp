@@ -248,7 +248,12 @@ void OutputSet::write_temporary(Output& output, const Writer& writer) {
   for (int attempt = 0; fd.get() < 0; ++attempt) {
     const std::string candidate = attempt == 0 ? base : base + "-" + std::to_string(attempt);
     // Registered before it exists, so that no moment leaves it unregistered.
-    const std::size_t slot = register_temporary(candidate);
+    std::size_t slot = 0;
+    try {
+      slot = register_temporary(candidate);
+    } catch (const std::length_error& e) {
+      throw OutputError(output.option + ": cannot write " + output.path + ": " + e.what());
+    }
     fd = FileDescriptor(::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
     if (fd.get() >= 0) {
       output.temporary = candidate;

@@ -42,7 +42,7 @@ bool make_device(const fs::path& path, unsigned minor) {
     BOOST_TEST_MESSAGE("skipped: mknod " << path << " failed: " << std::strerror(errno));
     return false;
   }
-  return true;
+  return ::chmod(path.c_str(), 0666) == 0;  // writable by everyone, as the real devices are
 }
 
 // Whether `path` is still the character device (1, minor).
@@ -100,6 +100,24 @@ BOOST_AUTO_TEST_CASE(devices_are_written_in_place) {
   BOOST_TEST(is_device(dir / "null.off", 3));
   BOOST_TEST(nlohmann::json::parse(read_text(dir / "s.json"))["status"] == "complete");
   BOOST_TEST(temporaries_in(dir.path).empty());
+}
+
+// A user who may write a device but not its directory writes it in place: nothing needs to be
+// created next to it.  (The program runs as nobody, uid 65534.)
+BOOST_AUTO_TEST_CASE(a_device_needs_no_writable_directory) {
+  TempDir dir;
+  if (!make_device(dir / "null", 3)) return;
+  // The run's working directory o/ may be written by anyone; the directory of the device may not.
+  fs::create_directory(dir / "o");
+  fs::permissions(dir / "o", fs::perms::all);
+  fs::permissions(dir.path, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                fs::perms::others_read | fs::perms::others_exec);
+  const uid_t nobody = 65534;
+  const pid_t pid = spawn_delmesh(with(sphere, {"--out", "m.off", "--stats", "../null"}), dir / "o", -1, nobody);
+  const RunResult r = wait_delmesh(pid, dir / "o");
+  BOOST_TEST(r.exit_code == 0, r.err);
+  BOOST_TEST(is_device(dir / "null", 3));
+  BOOST_TEST(read_triangle_soup((dir / "o/m.off").string()).triangles.size() > 0u);
 }
 
 // A FIFO, and a symbolic link to the program's own standard output (a pipe), are written in

@@ -3,6 +3,7 @@
 //! captures its exit code, stdout and stderr.  Shared by the tests of tests/apps.
 
 #include <fcntl.h>
+#include <grp.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -99,10 +100,11 @@ inline RunResult run_delmesh(const std::vector<std::string>& args) {
 
 //! Starts `delmesh args...` in `directory` without waiting: stdin from /dev/null, stderr to
 //! directory/.spawn.stderr, stdout to the descriptor `stdout_fd` if it is not negative, else to
-//! directory/.spawn.stdout.  Returns the process id (the child does only async-signal-safe work
+//! directory/.spawn.stdout.  With a non-zero `user` (the caller being root), the program runs as
+//! that user and group.  Returns the process id (the child does only async-signal-safe work
 //! between fork and exec).
 inline pid_t spawn_delmesh(const std::vector<std::string>& args, const std::filesystem::path& directory,
-                           int stdout_fd = -1) {
+                           int stdout_fd = -1, uid_t user = 0) {
   std::vector<std::string> argv_text{DELMESH_BINARY};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -120,6 +122,7 @@ inline pid_t spawn_delmesh(const std::vector<std::string>& args, const std::file
     ::dup2(null, 0);
     ::dup2(out_fd, 1);
     ::dup2(err_fd, 2);
+    if (user != 0 && (::setgroups(0, nullptr) != 0 || ::setgid(user) != 0 || ::setuid(user) != 0)) ::_exit(126);
     ::execv(argv[0], argv.data());
     ::_exit(127);
   }

@@ -229,7 +229,11 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
     const auto& before = records[i];
     const bool status_changed = !before.had_record || before.was_restricted != r.restricted;
     if (status_changed) star_change(t);
-    if (status_changed || before.old_dual_point != r.dual_point())
+    // A record solved again is a new answer, not a subset of the old one: VorEdge runs on it as
+    // on a new face (its may_fire decides whether it is queued).
+    if (before.solved)
+      queue_triangle(t, true, r);
+    else if (status_changed || before.old_dual_point != r.dual_point())
       queue_triangle(t, policy_ == RecheckPolicy::changed_faces, r);
     else if (policy_ == RecheckPolicy::changed_faces)
       queue(t, FaceKind::triangle, Dirtied::new_faces);
@@ -376,7 +380,11 @@ MeshStatus Refinement::run() {
     // A face no longer in Del S has nothing to check.  A row with a generic choice whose witnesses
     // were all rejected runs again with the next choice (S is unchanged: the face is still current).
     const bool current_face = face_current(item);
-    CheckContext context{restricted_, row.kind, lambda_, size_bound_, /*cell_faces_clean=*/true};
+    // Silhouette's facet shortcut rests on FacetContact and FacetCycle being clean on every facet
+    // of V_p.  Their queues come first and are empty when Silhouette's turn comes, so only a facet
+    // left unsettled can break the premise.
+    CheckContext context{restricted_, row.kind, lambda_, size_bound_,
+                         /*cell_faces_clean=*/row.kind != CheckKind::silhouette || silhouette_premise(item[0])};
     bool inserted = false, retry = false;
     do {
       CheckResult result;
@@ -463,6 +471,16 @@ void Refinement::insert_partner(const Witness& w) {
   timed_insert(partner, witness.id);
 }
 
+bool Refinement::silhouette_premise(VertexId p) const {
+  for (const auto& [key, entry] : unsettled_) {
+    const auto& [step, item] = key;
+    const CheckKind kind = steps_[step].row->kind;
+    if ((kind == CheckKind::facet_contact || kind == CheckKind::facet_cycle) && (item[0] == p || item[1] == p))
+      return false;
+  }
+  return true;
+}
+
 bool Refinement::requeue_unsettled() {
   // A face left unsettled is examined again if S changed since (it may have shrunk away from
   // what could not be settled, or a rejected witness may now be inserted).  Faces no longer in
@@ -501,6 +519,20 @@ Certification Refinement::certify(MeshStatus run_status, bool output_defective) 
   // by the end, the counts differ.
   if (restricted_.record_count() != del_.triangle_count())
     c.unsettled.push_back({CheckKind::vor_edge, UnsettledReason::record_count_mismatch, {}});
+  // VorEdge's condition on every final record, whether or not its check ran since the record was
+  // last solved: a record with a tangency candidate or two crossings fails Lemma 4.7.  A face the
+  // driver already lists as unsettled is not listed twice.
+  for (int s = 0; s < static_cast<int>(steps_.size()); ++s) {
+    const CheckInfo& row = *steps_[s].row;
+    if (row.kind != CheckKind::vor_edge || !row.may_fire) continue;
+    std::vector<std::pair<TriangleKey, Vec3>> firing;
+    restricted_.for_each_record([&](const TriangleKey& t, const VoronoiEdgeRecord& r) {
+      if (row.may_fire(r) && unsettled_.count({s, t}) == 0)
+        firing.push_back({t, r.candidates().empty() ? r.crossings().front() : r.candidates().front()});
+    });
+    std::sort(firing.begin(), firing.end());
+    for (const auto& [t, x] : firing) c.unsettled.push_back({CheckKind::vor_edge, UnsettledReason::vor_edge_fires, x});
+  }
   c.status = run_status;
   if (run_status == MeshStatus::complete && (!c.unsettled.empty() || output_defective)) c.status = MeshStatus::uncertified;
   return c;

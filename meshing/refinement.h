@@ -224,11 +224,17 @@ class Refinement {
   //! means every check of every current face came out clean.
   std::vector<Unsettled> unsettled() const;
   //! The final judgement: `run_status` unless it is complete and either something is unsettled
-  //! (unsettled(), an unresolved region on a current Voronoi edge, or records that are not one per
+  //! (unsettled(), an unresolved region on a current Voronoi edge, a current Voronoi-edge record on
+  //! which VorEdge fires, UnsettledReason::vor_edge_fires, or records that are not one per
   //! Delaunay triangle, UnsettledReason::record_count_mismatch) or the output has a defect
   //! (`output_defective`: Tri S|Σ is not a closed, consistently oriented 2-manifold); then
   //! uncertified.  Precondition: no insertion since the last run().
   Certification certify(MeshStatus run_status, bool output_defective) const;
+  //! Silhouette's premise at p (silhouette.h, facets_clean): no facet of V_p is left unsettled by
+  //! FacetContact or FacetCycle.  The driver passes it to every Silhouette check; since the steps
+  //! run in order, the facet checks' queues are empty whenever Silhouette runs, so an unsettled
+  //! facet is the only way the premise can fail.
+  bool silhouette_premise(VertexId p) const;
   //! Records something left unsettled outside any face's check (e.g. a seed region).
   void report_unsettled(const Unsettled& u) { standing_unsettled_.push_back(u); }
 
@@ -329,6 +335,7 @@ class Refinement {
   //! Inserts the first witness of `result` that is not rejected, and keeps the face's unsettled
   //! findings (a rejection of every witness included).  Returns whether a witness went in.
   bool settle(int step, const Simplex& item, CheckResult result);
+
   //! Inserts the opposite-sheet partner of the witness w just inserted (the last log entry), if
   //! it has one (see above).
   void insert_partner(const Witness& w);

@@ -238,8 +238,10 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
     const auto& s = star[to_solve[k]];
     solved[k] = compute(s.key, &s.apexes);
   }, tolerances::parallel_least_records);
-  for (std::size_t k = 0; k < to_solve.size(); ++k)
+  for (std::size_t k = 0; k < to_solve.size(); ++k) {
     out[to_solve[k]].record = &install(star[to_solve[k]].key, std::move(solved[k]), true);
+    out[to_solve[k]].solved = true;
+  }
   return out;
 }
 

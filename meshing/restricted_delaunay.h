@@ -149,6 +149,10 @@ class RestrictedDelaunay {
     bool had_record = false;      //!< an up-to-date record existed before
     bool was_restricted = false;  //!< … and it was restricted
     Vec3 old_dual_point{};        //!< … with this dual point
+    //! The record was solved afresh (not restricted from the old one): a new solver answer, which
+    //! may hold what the old one did not (a tangency candidate, two crossings at the new vertex),
+    //! so its VorEdge check must run as on a new face.
+    bool solved = false;
   };
   //! After forget_destroyed(): brings the records of the new vertex's closed star up to date —
   //! link triangles (not containing the vertex) are shrunk and restricted from their records
@@ -312,6 +316,12 @@ class RestrictedDelaunay {
   //! triangle, ascending.  Precondition: assume_every_triangle_recorded() and every record up to
   //! date (no insertion since the last prepare_star()).
   std::vector<std::pair<TriangleKey, Vec3>> unresolved_regions() const;
+  //! Calls f(t, record) for the record of every current Delaunay triangle t, in no particular
+  //! order.  Precondition: as for unresolved_regions().
+  template <class F>
+  void for_each_record(F&& f) const {
+    edges_.for_each(std::forward<F>(f));
+  }
 
  private:
   //! Solves the record of t: SurfaceLine on its dual edge, unless one interval evaluation of E on

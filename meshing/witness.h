@@ -48,7 +48,9 @@ enum class UnsettledReason {
   unresolved_crossing,   //!< an undecided region on a Voronoi edge that is neither a crossing nor a candidate
   record_count_mismatch,  //!< the Voronoi-edge records are not one per Delaunay triangle (no location)
   //! an undecided CurveCritical region whose line gave no witness: a closed curve of Σ ∩ F may lie in it
-  undecided_critical_region
+  undecided_critical_region,
+  //! a final Voronoi-edge record holds a tangency candidate or two crossings (VorEdge's condition fails)
+  vor_edge_fires
 };
 constexpr auto enum_names(UnsettledReason) {
   return name_table<UnsettledReason>("UnsettledReason", {{UnsettledReason::unprojectable_region, "unprojectable_region"},
@@ -58,7 +60,8 @@ constexpr auto enum_names(UnsettledReason) {
                                                          {UnsettledReason::no_witness, "no_witness"},
                                                          {UnsettledReason::unresolved_crossing, "unresolved_crossing"},
                                                          {UnsettledReason::record_count_mismatch, "record_count_mismatch"},
-                                                         {UnsettledReason::undecided_critical_region, "undecided_critical_region"}});
+                                                         {UnsettledReason::undecided_critical_region, "undecided_critical_region"},
+                                                         {UnsettledReason::vor_edge_fires, "vor_edge_fires"}});
 }
 inline std::ostream& operator<<(std::ostream& out, UnsettledReason reason) { return write_enum(out, reason); }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "check_fixture.h"
+#include "forwarding_oracle.h"
 #include "common/tolerances.h"
 #include "meshing/detail/vec3.h"
 #include "meshing/facet_cycle.h"
@@ -14,60 +15,15 @@ namespace {
 
 // The oracle of a fixture, except that CurveCritical explores nothing: it returns its whole domain
 // as one undecided region, as a solve cut short by its box budget or the time limit does.
-class BudgetCutOracle final : public SurfaceOracle {
+class BudgetCutOracle final : public test::ForwardingOracle {
  public:
-  explicit BudgetCutOracle(SurfaceOracle& inner) : inner_(inner) {}
-  void set_run_controls(std::uint64_t seed, std::optional<std::chrono::steady_clock::time_point> deadline) override {
-    inner_.set_run_controls(seed, deadline);
-  }
-  const Box3& box() const override { return inner_.box(); }
-  const Box3& clip_box() const override { return inner_.clip_box(); }
-  SolveResult surface_line(const Vec3& p, const Vec3& v, double t0, double t1) override {
-    return inner_.surface_line(p, v, t0, t1);
-  }
-  SolveResult surface_critical(const Vec3& d, const Domain& domain, std::size_t box_budget) override {
-    return inner_.surface_critical(d, domain, box_budget);
-  }
-  SolveResult surface_plane_contact(const Vec3& o, const Vec3& a, const Vec3& b, const Domain& domain) override {
-    return inner_.surface_plane_contact(o, a, b, domain);
-  }
+  using ForwardingOracle::ForwardingOracle;
   SolveResult curve_critical(const Vec3&, const Vec3&, const Vec3&, const Domain& domain) override {
     SolveResult cut;
     cut.status = SolveStatus::box_limit;
     cut.undecided.push_back({domain.box, UndecidedReason::budget});
     return cut;
   }
-  SolveResult silhouette_plane(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& d,
-                               const Domain& domain) override {
-    return inner_.silhouette_plane(o, a, b, d, domain);
-  }
-  SolveResult silhouette_critical(const Vec3& d, const Vec3& d2, const Domain& domain) override {
-    return inner_.silhouette_critical(d, d2, domain);
-  }
-  SolveResult solve(const std::string& primitive, const std::vector<double>& parameters, const Domain& domain,
-                    std::size_t box_budget) override {
-    return inner_.solve(primitive, parameters, domain, box_budget);
-  }
-  ConeAnswer prove_gradient_cone(const AffineChart& chart, const Domain& domain, const Vec3& w) override {
-    return inner_.prove_gradient_cone(chart, domain, w);
-  }
-  ConeAnswer gradient_cone_slope(const AffineChart& chart, const Domain& domain, const Vec3& w,
-                                 double target) override {
-    return inner_.gradient_cone_slope(chart, domain, w, target);
-  }
-  bool bounds_cone_slopes() const override { return inner_.bounds_cone_slopes(); }
-  int gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const override {
-    return inner_.gradient_sign(a, b, w);
-  }
-  using SurfaceOracle::value_sign;
-  int value_sign(const Vec3& lo, const Vec3& hi) const override { return inner_.value_sign(lo, hi); }
-  Vec3 gradient(const Vec3& x) const override { return inner_.gradient(x); }
-  Vec3 normal(const Vec3& x) const override { return inner_.normal(x); }
-  std::optional<Vec3> project(const Vec3& x) const override { return inner_.project(x); }
-  nlohmann::json statistics_json() const override { return inner_.statistics_json(); }
-
- private:
-  SurfaceOracle& inner_;
 };
 
 // Four small spheres of radius 0.05 centred at (0, ±0.6, 0) and (0, 0, ±0.6): the plane x = 0

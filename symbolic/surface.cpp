@@ -1,11 +1,13 @@
 #include "symbolic/surface.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
+#include <unordered_map>
 #include <vector>
 
 #include "common/errors.h"
@@ -516,6 +518,37 @@ void check_size(const GiNaC::ex& E, const std::string& text) {
                        std::to_string(Surface::max_expanded_terms) + " terms; simplify it or lower its degree");
 }
 
+//! The size of e written out as a tree: every node counted at each of its uses.  `sizes` memoizes
+//! it per shared node, so the cost is that of the expression's DAG.  Saturates at 1e300.
+double tree_size(const GiNaC::ex& e, std::unordered_map<const GiNaC::basic*, double>& sizes) {
+  const GiNaC::basic* node = &GiNaC::ex_to<GiNaC::basic>(e);
+  const auto found = sizes.find(node);
+  if (found != sizes.end()) return found->second;
+  double size = 1;
+  for (std::size_t i = 0; i < e.nops(); ++i) size = std::min(size + tree_size(e.op(i), sizes), 1e300);
+  sizes.emplace(node, size);
+  return size;
+}
+
+//! Throws InvalidInput if the Hessian of E, estimated from the tree sizes of E and ∇E, exceeds
+//! Surface::max_derivative_tree_size and Surface::max_derivative_growth times E's size.
+void check_derivative_size(const GiNaC::ex& E, const std::array<GiNaC::ex, 3>& gradient, const std::string& text) {
+  std::unordered_map<const GiNaC::basic*, double> sizes;
+  const double e = tree_size(E, sizes);
+  double g = 0;
+  for (const auto& d : gradient) g += tree_size(d, sizes);
+  const double estimate = g / e * g;
+  const double limit = std::max(Surface::max_derivative_tree_size, Surface::max_derivative_growth * e);
+  if (estimate > limit) {
+    std::ostringstream s;
+    s.precision(2);
+    s << "expression " << abbreviated(text) << " is too large to differentiate: its second derivatives would "
+      << "have about " << estimate << " operations written out (at most " << limit
+      << "); simplify it, e.g. use fewer factors in a product";
+    throw InvalidInput(s.str());
+  }
+}
+
 GiNaC::ex parse_text(const std::string& text) {
   if (text.size() > Surface::max_length)
     throw InvalidInput("expression too long: " + std::to_string(text.size()) + " characters (at most " +
@@ -582,6 +615,7 @@ Surface::Surface(GiNaC::ex E, std::string text) {
     limits.check("differentiating the expression", true);
     gradient_[i] = E_.diff(*xyz[i]);
   }
+  check_derivative_size(E_, gradient_, text_);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       if (j >= i) limits.check("differentiating the expression", true);

@@ -67,13 +67,26 @@ class Surface {
   //! that degree in the variables).
   static constexpr std::size_t max_degree = 200;
   static constexpr std::size_t max_expanded_terms = 200000;
+  //! A size limit on differentiation, checked once ∇E is known and before the Hessian is built:
+  //! the Hessian, written out as a tree (each shared subexpression counted at every use, as
+  //! GiNaC's evaluation and the compiled systems' derivatives of it pay for it), is estimated as
+  //! s(∇E)² / s(E) from the tree sizes s of E and ∇E (a product of n factors has derivatives
+  //! about n times its size; the estimate is within a factor 2 above the Hessian's size on such
+  //! products).  It may be at most max_derivative_tree_size or max_derivative_growth · s(E),
+  //! whichever is larger: a large polynomial, whose derivatives are no larger than itself, is
+  //! never refused by it.  A product of 100 non-polynomial factors (estimate 6·10⁶, minutes and
+  //! gigabytes of compilation) is refused; one of 50 (9·10⁵) is not.
+  static constexpr double max_derivative_tree_size = 1e6;
+  static constexpr double max_derivative_growth = 100;
 
   //! Wraps an already built expression in x, y, z; the same validation as parse() on the
   //! expression: symbols ⊂ {x, y, z}, constant Pi, functions exp sin cos log, powers with integer
   //! or half-integer (square root) exponents, real constants, not constant.  Floating-point
   //! numerics become the rational of the shortest decimal that reads back as the same double
   //! (numeric(0.1) → 1/10).  Throws InvalidInput beyond the size limits (max_degree,
-  //! max_expanded_terms).
+  //! max_expanded_terms, max_derivative_tree_size: "expression … too large to differentiate …").
+  //! Under a command's limits (common/run_limits.h: RunLimits::current()) it tests them between
+  //! its GiNaC steps and throws RunStopped once they have passed.
   //!
   //! A constant factor of E does not change Σ but can put E's values beyond double precision
   //! (1e200*(x^2+y^2+z^2-1)).  So when the largest coefficient magnitude c (of the expanded

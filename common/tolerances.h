@@ -270,6 +270,11 @@ inline constexpr std::size_t mesher_box_budget_3d = 20000;
 inline constexpr std::size_t mesher_box_budget_global = 400000;
 //! Box budget of one univariate isolation on a Voronoi edge or a FacetCycle line.
 inline constexpr std::size_t mesher_box_budget_1d = 20000;
+//! The seed solve goes on in the regions its box budget left unexplored, each solved again with
+//! mesher_box_budget_global boxes of its own, round after round while a round certifies a root,
+//! until none is left or the boxes of all its solves reach this many times
+//! mesher_box_budget_global.
+inline constexpr std::size_t seed_solve_budget_factor = 16;
 //! Different generic height directions tried for the seeds before giving up with InvalidInput.
 inline constexpr int mesher_height_direction_retries = 6;
 //! Newton projection of a candidate witness onto Σ: iterations, and convergence |E|/|∇E| below

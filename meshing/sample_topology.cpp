@@ -19,6 +19,52 @@ Vec3 generic_direction(std::uint64_t seed, int k) {
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
+namespace {
+
+// SurfaceCritical in direction d over `domain`, then over every region the box budget left
+// unexplored, each with a budget of its own, round after round while the last round certified a
+// root (progress) and the boxes of all the solves stay within tolerances::seed_solve_budget_factor
+// budgets.  The regions tile the part of the domain that was
+// not excluded, so the roots and regions gathered cover every critical point as one solve would.
+// Stops at once on time_limit or non_isolated, which it returns.
+SolveResult seed_solve(SurfaceOracle& oracle, const Vec3& d, const Domain& domain) {
+  const std::size_t budget = tolerances::mesher_box_budget_global;
+  SolveResult all = oracle.surface_critical(d, domain, budget);
+  std::size_t boxes = all.counters.boxes;
+  std::size_t roots_before = 0;
+  while (all.status == SolveStatus::box_limit && all.roots.size() > roots_before &&
+         boxes < tolerances::seed_solve_budget_factor * budget) {
+    roots_before = all.roots.size();
+    std::vector<UndecidedBox> unexplored;
+    std::vector<UndecidedBox> kept;
+    for (auto& u : all.undecided) (u.reason == UndecidedReason::budget ? unexplored : kept).push_back(std::move(u));
+    all.undecided = std::move(kept);
+    all.status = SolveStatus::undecided;
+    for (std::size_t i = 0; i < unexplored.size(); ++i) {
+      if (boxes >= tolerances::seed_solve_budget_factor * budget) {
+        // Out of budget: what is left stays unexplored.
+        all.undecided.insert(all.undecided.end(), unexplored.begin() + static_cast<std::ptrdiff_t>(i), unexplored.end());
+        all.status = SolveStatus::box_limit;
+        break;
+      }
+      SolveResult part = oracle.surface_critical(d, Domain{unexplored[i].box, domain.half_spaces}, budget);
+      boxes += part.counters.boxes;
+      all.counters += part.counters;
+      if (part.status == SolveStatus::time_limit || part.status == SolveStatus::non_isolated) {
+        part.counters = all.counters;
+        return part;
+      }
+      if (part.status == SolveStatus::box_limit) all.status = SolveStatus::box_limit;
+      all.roots.insert(all.roots.end(), part.roots.begin(), part.roots.end());
+      all.undecided.insert(all.undecided.end(), part.undecided.begin(), part.undecided.end());
+    }
+  }
+  if (all.status != SolveStatus::box_limit && all.undecided.empty()) all.status = SolveStatus::complete;
+  return all;
+}
+
+}  // namespace
+
 SeedReport insert_seeds(Refinement& refinement) {
   auto& oracle = refinement.oracle();
   const Box3& box = oracle.clip_box();
@@ -28,7 +74,7 @@ SeedReport insert_seeds(Refinement& refinement) {
   for (int k = 0; k < tolerances::mesher_height_direction_retries; ++k) {
     const Vec3 d = generic_direction(refinement.seed(), k);
     ++report.attempts;
-    const auto result = oracle.surface_critical(d, domain, tolerances::mesher_box_budget_global);
+    const auto result = seed_solve(oracle, d, domain);
     if (result.status == SolveStatus::time_limit) {
       report.time_limited = true;
       return report;

@@ -7,8 +7,10 @@
 //! Choices: the height direction is a seeded pseudo-random unit vector (the paper's x3 is not
 //! generic for e.g. a torus with axis x3, whose critical points form circles).  If the solver
 //! reports non_isolated, another seeded direction is tried, at most
-//! tolerances::mesher_height_direction_retries times, then InvalidInput.  Undecided regions of the
-//! seed solve are projected onto Σ and inserted as seeds too (they are deleted again in step 3).
+//! tolerances::mesher_height_direction_retries times, then InvalidInput.  Regions the seed solve's
+//! box budget left unexplored are solved again, each with a budget of its own, in rounds while a
+//! round certifies a root, within tolerances::seed_solve_budget_factor budgets in all.  Undecided regions of the seed solve are
+//! projected onto Σ and inserted as seeds too (they are deleted again in step 3).
 //! Seeds are deleted in increasing id order.
 
 #include <cstdint>

@@ -3,8 +3,11 @@
 #include <cmath>
 
 #include "common/errors.h"
+#include "common/tolerances.h"
 #include "meshing/detail/vec3.h"
+#include "meshing/del_mesh.h"
 #include "meshing/implicit_oracle.h"
+#include "meshing/mesh_checker.h"
 #include "meshing/sample_topology.h"
 #include "symbolic/catalog.h"
 
@@ -59,6 +62,39 @@ BOOST_AUTO_TEST_CASE(unprojectable_seed_regions_are_unsettled_not_empty) {
     BOOST_TEST((u.check == CheckKind::seed));
     BOOST_TEST((u.reason == UnsettledReason::unprojectable_region));
   }
+}
+
+// Chmutov's octic T8(x) + T8(y) + T8(z) = 0 (T8 the Chebyshev polynomial; genus 81, box ±1.1):
+// one budget of the seed solve leaves regions unexplored, and the solve goes on there until every
+// critical point of the height is certified, so no region is left to project or report.
+const char* chmutov8 =
+    "(128*x^8-256*x^6+160*x^4-32*x^2+1)+(128*y^8-256*y^6+160*y^4-32*y^2+1)+(128*z^8-256*z^6+160*z^4-32*z^2+1)";
+
+BOOST_AUTO_TEST_CASE(seed_solve_goes_on_where_its_budget_ran_out) {
+  ImplicitOracle oracle(Surface::parse(chmutov8), Box3::cube(1.1), SolverBackend::subdivision);
+  const Box3& box = oracle.clip_box();  // where the seed solve runs
+  const Vec3 d = generic_direction(1, 0);
+  const Domain domain = Domain::from_box({{box.lo[0], box.hi[0]}, {box.lo[1], box.hi[1]}, {box.lo[2], box.hi[2]}});
+  BOOST_TEST_REQUIRE((oracle.surface_critical(d, domain, tolerances::mesher_box_budget_global).status ==
+                      SolveStatus::box_limit));
+  Refinement topology(oracle, 1, RefinementLimits{});
+  const SeedReport report = insert_seeds(topology);
+  BOOST_TEST(report.undecided == 0u);
+  BOOST_TEST(report.seeds > 0u);
+  BOOST_TEST(topology.unsettled().empty());
+}
+
+// The whole run on the octic ends complete, with the genus of Σ.
+BOOST_AUTO_TEST_CASE(chmutov8_meshes_complete_with_genus_81, *boost::unit_test::label("slow")) {
+  DelMeshOptions options;
+  const DelMeshResult result = del_mesh(Surface::parse(chmutov8), Box3::cube(1.1), options);
+  BOOST_TEST(result.statistics.at("status").get<std::string>() == "complete");
+  BOOST_TEST(result.statistics.at("unsettled").at("count").get<std::size_t>() == 0u);
+  const MeshReport r = check_mesh(result.mesh);
+  BOOST_TEST(r.closed);
+  BOOST_TEST(r.manifold);
+  BOOST_TEST(r.components == 1u);
+  BOOST_TEST(r.genus_per_component == std::vector<int>{81}, boost::test_tools::per_element());
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "common/run_limits.h"
 #include "common/tolerances.h"
 #include "solvers/detail/interval_box.h"
 #include "solvers/krawczyk.h"
@@ -165,6 +166,7 @@ bool regular_in_mpfi(const CompiledSystem& system, const std::array<double, 6>& 
     detail::MpfiPrecisionScope precision(bits);
     std::vector<std::array<double, 6>> stack{bounds};
     while (!stack.empty()) {
+      RunLimits::current().check("validating the surface");
       if (budget == 0) return false;
       --budget;
       const auto box = stack.back();
@@ -526,6 +528,7 @@ std::size_t check_box_faces(const CompiledSystem& system, const Box3& box) {
       bool positive = false, negative = false, undecided = false;
       std::size_t budget = tolerances::mesher_box_budget_global;
       while (!stack.empty()) {
+        RunLimits::current().check("validating the surface");
         const Rect r = stack.back();
         stack.pop_back();
         ++examined;
@@ -590,6 +593,7 @@ std::size_t check_regular(const CompiledSystem& system, const Surface& surface, 
   std::size_t examined = 0;
   bool budget_exhausted = false;
   while (!stack.empty()) {
+    RunLimits::current().check("validating the surface");
     if (examined >= tolerances::mesher_box_budget_global) {
       budget_exhausted = true;
       break;

@@ -99,6 +99,8 @@ std::size_t validate_box_faces(const Surface& surface, const Box3& box);
 std::size_t validate_regular(const Surface& surface, const Box3& box);
 
 //! Both checks above (faces first), timed.  Precondition: box.lo < box.hi componentwise.
+//! Under a command's limits (common/run_limits.h: RunLimits::current()) every box or rectangle
+//! of both checks tests them, and the check throws RunStopped once they have passed.
 ValidationReport validate_input(const Surface& surface, const Box3& box);
 
 }  // namespace delmesh

@@ -74,9 +74,10 @@ class Surface {
   //! about n times its size; the estimate is within a factor 2 above the Hessian's size on such
   //! products).  It may be at most max_derivative_tree_size or max_derivative_growth · s(E),
   //! whichever is larger: a large polynomial, whose derivatives are no larger than itself, is
-  //! never refused by it.  A product of 100 non-polynomial factors (estimate 6·10⁶, minutes and
-  //! gigabytes of compilation) is refused; one of 50 (9·10⁵) is not.
-  static constexpr double max_derivative_tree_size = 1e6;
+  //! never refused by it.  A product of 100 non-polynomial factors (estimate 6.4·10⁶, minutes
+  //! and gigabytes of compilation) is refused; one of 50 (8.6·10⁵) is not, nor sin nested
+  //! max_nesting − 1 deep (2·10⁶).
+  static constexpr double max_derivative_tree_size = 3e6;
   static constexpr double max_derivative_growth = 100;
 
   //! Wraps an already built expression in x, y, z; the same validation as parse() on the

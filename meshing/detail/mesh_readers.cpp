@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "common/run_limits.h"
 
 namespace delmesh::detail {
 namespace {
@@ -461,7 +462,9 @@ PolygonSoup read_off(const std::string& path, const std::string& contents) {
   // varies) are the rest of the vertex's line.
   const bool extra_fields = layout.normal || layout.colour || layout.texture;
   const int coordinates = layout.homogeneous ? 4 : 3;
+  const RunLimits& limits = RunLimits::current();
   for (std::uintmax_t v = 0; v < nv; ++v) {
+    limits.check("reading the mesh file");
     double c[4] = {0, 0, 0, 1};
     for (int k = 0; k < coordinates; ++k) {
       word = in.word();
@@ -474,6 +477,7 @@ PolygonSoup read_off(const std::string& path, const std::string& contents) {
   }
   // 4. Faces, one per line: the size, the indices, then an optional colour (ignored).
   for (std::uintmax_t f = 0; f < nf; ++f) {
+    limits.check("reading the mesh file");
     if (!in.next_line_with_words())
       mesh_file_error(path, "truncated: the file ends before face " + std::to_string(f) + " of the " +
                                 std::to_string(nf) + " declared");
@@ -589,7 +593,9 @@ PolygonSoup read_ply(const std::string& path, const std::string& contents) {
     if (vertex) reserve(contents, soup, e.count, 0);
     if (face) reserve(contents, soup, 0, e.count);
     const std::string what = vertex || face ? e.name : "element '" + printable(e.name) + "'";
+    const RunLimits& limits = RunLimits::current();
     for (std::uintmax_t i = 0; i < e.count; ++i) {
+      limits.check("reading the mesh file");
       const std::string where = what + " " + std::to_string(i);
       double c[3] = {0, 0, 0};
       for (std::size_t k = 0; k < e.properties.size(); ++k) {

@@ -48,6 +48,9 @@ std::string vertex_range(std::uintmax_t n, std::uintmax_t first);
 //! naming path.
 PolygonSoup read_off(const std::string& path, const std::string& contents);
 
+//! Both readers test the command's limits (common/run_limits.h: RunLimits::current()) at every
+//! vertex and face (ASCII OFF) or element (PLY) and throw RunStopped once they have passed.
+//!
 //! Reads a PLY file (ASCII or binary) of the given contents, with the same guarantees as read_off.
 //! Throws InvalidInput naming path.
 PolygonSoup read_ply(const std::string& path, const std::string& contents);

@@ -16,6 +16,7 @@
 #include "meshing/mesh_checker.h"
 #include "meshing/mesh_io.h"
 #include "tests/apps/run_delmesh.h"
+#include "tests/meshing/known_meshes.h"
 
 using namespace delmesh::test;
 
@@ -24,40 +25,15 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using P3 = std::array<double, 3>;
 
-//! The icosahedron subdivided twice, its vertices on the unit sphere: 162 vertices, 320
+//! The icosphere of known_meshes.h with two levels: 162 vertices on the unit sphere, 320
 //! triangles, outward oriented.
 void unit_icosphere(std::vector<P3>& points, std::vector<std::array<int, 3>>& faces) {
-  const double t = (1 + std::sqrt(5.0)) / 2;
-  points = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-            {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  auto project = [](P3 p) {
-    const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-    return P3{p[0] / n, p[1] / n, p[2] / n};
-  };
-  for (auto& p : points) p = project(p);
-  faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-           {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-           {3, 8, 9},  {4, 9, 5},   {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (int level = 0; level < 2; ++level) {
-    std::map<std::pair<int, int>, int> middle;
-    auto mid = [&](int a, int b) {
-      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-      if (auto it = middle.find(key); it != middle.end()) return it->second;
-      const P3& p = points[a];
-      const P3& q = points[b];
-      points.push_back(project({(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2}));
-      return middle[key] = static_cast<int>(points.size()) - 1;
-    };
-    std::vector<std::array<int, 3>> finer;
-    for (const auto& f : faces) {
-      const int ab = mid(f[0], f[1]), bc = mid(f[1], f[2]), ca = mid(f[2], f[0]);
-      finer.push_back({f[0], ab, ca});
-      finer.push_back({f[1], bc, ab});
-      finer.push_back({f[2], ca, bc});
-      finer.push_back({ab, bc, ca});
-    }
-    faces = finer;
-  }
+  const Soup sphere = icosphere(2);
+  points.clear();
+  faces.clear();
+  for (const auto& p : sphere.points) points.push_back({p.x(), p.y(), p.z()});
+  for (const auto& t : sphere.triangles)
+    faces.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
 }
 
 //! Points and triangles as OFF text, every coordinate with 17 significant digits.

@@ -2,8 +2,11 @@
 //! \file known_meshes.h
 //! Small triangle soups with known topology and geometry, shared by the meshing tests.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
+#include <utility>
 #include <cstddef>
 #include <vector>
 
@@ -69,6 +72,35 @@ inline Soup icosahedron() {
                  {{1, 5, 9}},  {{5, 11, 4}}, {{11, 10, 2}}, {{10, 7, 6}}, {{7, 1, 8}},
                  {{3, 9, 4}},  {{3, 4, 2}},  {{3, 2, 6}},   {{3, 6, 8}},  {{3, 8, 9}},
                  {{4, 9, 5}},  {{2, 4, 11}}, {{6, 2, 10}},  {{8, 6, 7}},  {{9, 8, 1}}};
+  return m;
+}
+
+//! The icosahedron with each triangle split into four `levels` times, every new vertex (an edge's
+//! midpoint) pushed out onto the unit sphere: 10·4^levels + 2 vertices, outward oriented.
+inline Soup icosphere(int levels) {
+  Soup m = icosahedron();
+  auto on_sphere = [](const Point3& p) {
+    const double n = std::sqrt(p.x() * p.x() + p.y() * p.y() + p.z() * p.z());
+    return Point3(p.x() / n, p.y() / n, p.z() / n);
+  };
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<std::size_t, std::size_t>, std::size_t> middle;
+    auto mid = [&](std::size_t a, std::size_t b) {
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      if (auto it = middle.find(key); it != middle.end()) return it->second;
+      m.points.push_back(on_sphere(CGAL::midpoint(m.points[a], m.points[b])));
+      return middle[key] = m.points.size() - 1;
+    };
+    std::vector<std::array<std::size_t, 3>> finer;
+    for (const auto& t : m.triangles) {
+      const std::size_t ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+      finer.push_back({t[0], ab, ca});
+      finer.push_back({t[1], bc, ab});
+      finer.push_back({t[2], ca, bc});
+      finer.push_back({ab, bc, ca});
+    }
+    m.triangles = std::move(finer);
+  }
   return m;
 }
 

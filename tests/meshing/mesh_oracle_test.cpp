@@ -10,6 +10,7 @@
 #include <map>
 
 #include "common/errors.h"
+#include "known_meshes.h"
 #include "meshing/del_mesh.h"
 #include "meshing/detail/vec3.h"
 #include "meshing/mesh_checker.h"
@@ -64,36 +65,6 @@ SurfaceMesh torus(double R, double r, int n, int m) {
       t.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
       t.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
-  return mesh_of(p, t);
-}
-
-// The icosahedron subdivided `levels` times, vertices on the unit sphere.
-SurfaceMesh icosphere(int levels) {
-  const double g = (1 + std::sqrt(5.0)) / 2;
-  std::vector<Vec3> p{{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                      {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-  for (auto& x : p) x = normalized(x);
-  std::vector<std::array<int, 3>> t{{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                                    {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (int l = 0; l < levels; ++l) {
-    std::map<std::pair<int, int>, int> middle;
-    auto mid = [&](int a, int b) {
-      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-      if (auto it = middle.find(key); it != middle.end()) return it->second;
-      p.push_back(normalized(0.5 * (p[a] + p[b])));
-      return middle[key] = static_cast<int>(p.size()) - 1;
-    };
-    std::vector<std::array<int, 3>> finer;
-    for (const auto& f : t) {
-      const int ab = mid(f[0], f[1]), bc = mid(f[1], f[2]), ca = mid(f[2], f[0]);
-      finer.push_back({f[0], ab, ca});
-      finer.push_back({f[1], bc, ab});
-      finer.push_back({f[2], ca, bc});
-      finer.push_back({ab, bc, ca});
-    }
-    t = finer;
-  }
   return mesh_of(p, t);
 }
 
@@ -292,7 +263,7 @@ BOOST_AUTO_TEST_CASE(a_silhouette_edge_inside_a_cell) {
 }
 
 BOOST_AUTO_TEST_CASE(an_icosphere_remeshed_is_a_sphere_on_the_input) {
-  const SurfaceMesh input = icosphere(2);
+  const SurfaceMesh input = test::icosphere(2).to_surface_mesh();
   MeshOracle oracle(input, Box3::cube(1.3));
   DelMeshOptions options;
   options.lambda = 0.06;

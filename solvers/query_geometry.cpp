@@ -39,13 +39,14 @@ std::string shortest(double x) {
 // d scaled by a power of two (exact) so that its largest component lies in [1, 2): then |d|²
 // neither overflows nor underflows.  InvalidInput if d is zero or not finite.
 Vec3 scaled_direction(const Vec3& d) {
-  const std::string text = "direction (" + shortest(d[0]) + ", " + shortest(d[1]) + ", " + shortest(d[2]) + ")";
+  // The text is made only for the error: callers on hot paths meet zero directions.
+  auto text = [&] { return "direction (" + shortest(d[0]) + ", " + shortest(d[1]) + ", " + shortest(d[2]) + ")"; };
   double largest = 0;
   for (double c : d) {
-    if (!std::isfinite(c)) throw InvalidInput(text + " is not finite");
+    if (!std::isfinite(c)) throw InvalidInput(text() + " is not finite");
     largest = std::max(largest, std::abs(c));
   }
-  if (largest == 0) throw InvalidInput(text + " is zero");
+  if (largest == 0) throw InvalidInput(text() + " is zero");
   const int e = std::ilogb(largest);
   return {std::scalbn(d[0], -e), std::scalbn(d[1], -e), std::scalbn(d[2], -e)};
 }

@@ -67,11 +67,28 @@ SurfaceMesh output_mesh(Refinement& refinement, std::size_t& flipped_inconsisten
   for (std::size_t i = 1; i < directed.size(); ++i)
     if (directed[i] == directed[i - 1]) ++flipped_inconsistent;
   not_added = 0;
+  std::vector<std::array<VertexId, 3>> added;
+  added.reserve(oriented.size());
   for (const auto& f : oriented) {
     const auto face = mesh.add_face(index[f[0]], index[f[1]], index[f[2]]);
-    if (face == SurfaceMesh::null_face()) ++not_added;
+    if (face == SurfaceMesh::null_face()) {
+      ++not_added;
+    } else {
+      added.push_back(f);
+    }
   }
-  return mesh;
+  if (not_added == 0) return mesh;
+  // A vertex whose every triangle was refused would stay in the mesh without a face, and the
+  // statistics (check_mesh) count the vertices of faces only: the mesh is built again from the
+  // vertices of the added faces, in the same order, with the same faces (add_face depends on the
+  // faces added before only, so each one is accepted again).
+  SurfaceMesh kept;
+  kept.reserve(used.size(), 3 * added.size() / 2, added.size());
+  std::vector<SurfaceMesh::Vertex_index> kept_index(index.size());
+  for (VertexId v : used)
+    if (!mesh.is_isolated(index[v])) kept_index[v] = kept.add_vertex(mesh.point(index[v]));
+  for (const auto& f : added) kept.add_face(kept_index[f[0]], kept_index[f[1]], kept_index[f[2]]);
+  return kept;
 }
 
 // At most this many unsettled items are listed one by one in the statistics (all are counted).

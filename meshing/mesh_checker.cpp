@@ -29,23 +29,31 @@ Vec cross(const Vec& a, const Vec& b) {
 }
 double norm(const Vec& a) { return std::sqrt(dot(a, a)); }
 
-//! The exponent e of the largest component of v in magnitude (2^e ≤ max |v_i| < 2^(e+1)); 0 for
-//! v = 0.
+//! Components below 2^256 and above 2^-256 in magnitude need no scaling: the products of two of
+//! them below stay between 2^-512 and 2^512, inside the normal range.
+constexpr int unscaled_exponents = 256;
+
+//! The exponent e of the largest component of v in magnitude (2^e ≤ max |v_i| < 2^(e+1)), or 0
+//! when |e| < unscaled_exponents or v = 0 (v is then used as it is).
 int exponent_of(const Vec& v) {
   const double m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-  return m > 0 ? std::ilogb(m) : 0;
+  const int e = m > 0 ? std::ilogb(m) : 0;
+  return std::abs(e) < unscaled_exponents ? 0 : e;
 }
 //! v · 2^-e, exact while the result stays in the normal range (a power-of-two scaling rounds
 //! nothing), so that the squares and products of the measures below neither overflow nor
-//! underflow at any scale of the mesh.
-Vec scaled(const Vec& v, int e) { return {std::scalbn(v.x, -e), std::scalbn(v.y, -e), std::scalbn(v.z, -e)}; }
-//! |v|, computed on v scaled to a largest component in [1, 2): no square overflows or underflows.
+//! underflow at any scale of the mesh, and give the same bits as unscaled where they would not.
+Vec scaled(const Vec& v, int e) {
+  if (e == 0) return v;
+  return {std::scalbn(v.x, -e), std::scalbn(v.y, -e), std::scalbn(v.z, -e)};
+}
+//! |v|, computed on v scaled by exponent_of(v): no square overflows or underflows.
 double length(const Vec& v) {
   const int e = exponent_of(v);
-  return std::scalbn(norm(scaled(v, e)), e);
+  return e == 0 ? norm(v) : std::scalbn(norm(scaled(v, e)), e);
 }
 //! The angle between u and v in [0, π], accurate also near 0 and π, and independent of the
-//! lengths of u and v (each is first scaled by a power of two to a largest component in [1, 2)).
+//! lengths of u and v (each is first scaled by 2^-exponent_of: cross and dot scale alike).
 double angle_between(const Vec& u, const Vec& v) {
   const Vec su = scaled(u, exponent_of(u)), sv = scaled(v, exponent_of(v));
   return std::atan2(norm(cross(su, sv)), dot(su, sv));

@@ -11,15 +11,26 @@ using namespace detail;
 
 namespace {
 
-//! The exponent of the largest coordinate difference among p, q, r (0 if they coincide).
+//! Lengths below 2^256 and above 2^-256 need no scaling: the products below (of three lengths, of
+//! two in the cross product) stay between 2^-768 and 2^768, inside the normal range.
+constexpr int unscaled_exponents = 256;
+
+//! The exponent e of the largest coordinate difference among p, q, r, or 0 when it is below
+//! unscaled_exponents in magnitude (or the points coincide): the frame is then left as it is.
+//! Scaling by 2^-e is exact, so either way the results are the same bits where no product leaves
+//! the normal range.
 int frame_exponent(const Vec3& p, const Vec3& q, const Vec3& r) {
   double m = 0;
   for (int k = 0; k < 3; ++k) m = std::max({m, std::abs(q[k] - p[k]), std::abs(r[k] - p[k])});
-  return m > 0 ? std::ilogb(m) : 0;
+  const int e = m > 0 ? std::ilogb(m) : 0;
+  return std::abs(e) < unscaled_exponents ? 0 : e;
 }
 
 //! x · 2^-e (exact while the result stays in the normal range).
-Vec3 scaled(const Vec3& x, int e) { return {std::scalbn(x[0], -e), std::scalbn(x[1], -e), std::scalbn(x[2], -e)}; }
+Vec3 scaled(const Vec3& x, int e) {
+  if (e == 0) return x;
+  return {std::scalbn(x[0], -e), std::scalbn(x[1], -e), std::scalbn(x[2], -e)};
+}
 
 }  // namespace
 
@@ -30,7 +41,8 @@ double circumradius(const Vec3& p, const Vec3& q, const Vec3& r) {
   const double a = norm(w), b = norm(v), c = norm(u);
   const double area2 = norm(cross(u, v));  // twice the area
   if (!(area2 > 0)) return std::numeric_limits<double>::infinity();
-  return std::scalbn(a * b * c / (2 * area2), e);
+  const double radius = a * b * c / (2 * area2);
+  return e == 0 ? radius : std::scalbn(radius, e);
 }
 
 double radius_edge_ratio(const Vec3& p, const Vec3& q, const Vec3& r) {

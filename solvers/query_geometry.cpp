@@ -36,10 +36,9 @@ std::string shortest(double x) {
   return buffer;
 }
 
-// d scaled by a power of two (exact) so that its largest component lies in [1, 2): then |d|²
-// neither overflows nor underflows.  InvalidInput if d is zero or not finite.
-Vec3 scaled_direction(const Vec3& d) {
-  // The text is made only for the error: callers on hot paths meet zero directions.
+// The largest |d_i|; InvalidInput if d is zero or not finite (the text is made only then: this
+// runs on hot paths).
+double direction_size(const Vec3& d) {
   auto text = [&] { return "direction (" + shortest(d[0]) + ", " + shortest(d[1]) + ", " + shortest(d[2]) + ")"; };
   double largest = 0;
   for (double c : d) {
@@ -47,7 +46,13 @@ Vec3 scaled_direction(const Vec3& d) {
     largest = std::max(largest, std::abs(c));
   }
   if (largest == 0) throw InvalidInput(text() + " is zero");
-  const int e = std::ilogb(largest);
+  return largest;
+}
+
+// d scaled by a power of two (exact) so that its largest component lies in [1, 2): then |d|²
+// neither overflows nor underflows.  InvalidInput if d is zero or not finite.
+Vec3 scaled_direction(const Vec3& d) {
+  const int e = std::ilogb(direction_size(d));
   return {std::scalbn(d[0], -e), std::scalbn(d[1], -e), std::scalbn(d[2], -e)};
 }
 
@@ -81,7 +86,7 @@ OrthonormalFrame orthonormal_frame(const Vec3& direction) {
 }
 
 std::optional<std::array<double, 2>> clip_line_to_box(const Vec3& p, const Vec3& v, const Box3& box) {
-  (void)scaled_direction(v);  // throws if v is zero or not finite
+  (void)direction_size(v);  // throws if v is zero or not finite
   double t0 = -std::numeric_limits<double>::infinity();
   double t1 = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 3; ++i) {

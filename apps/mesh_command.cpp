@@ -20,8 +20,8 @@
 #include "apps/command_line.h"
 #include "apps/commands.h"
 #include "apps/interrupt.h"
-#include "apps/phase_watchdog.h"
 #include "apps/output_files.h"
+#include "apps/phase_watchdog.h"
 #include "common/enum_names.h"
 #include "common/errors.h"
 #include "common/run_limits.h"
@@ -362,6 +362,9 @@ ExitCode exit_code(MeshStatus status, const nlohmann::json& statistics, double m
         print_warning("the termination floor --min-spacing " + format_number(min_spacing) + " was reached " +
                       std::to_string(statistics["min_spacing"]["witnesses_below"].get<std::size_t>()) +
                       " times (statistics: \"min_spacing\")");
+      if (!statistics["solver_certified"].get<bool>())
+        print_warning("--solver homotopy: its path tracking is not certified, so the run cannot be complete "
+                      "(statistics: \"solver_certified\")");
       print_warning("uncertified: the run ended, but " + std::to_string(statistics["unsettled"]["count"].get<std::size_t>()) +
                     " findings were not settled (statistics: \"unsettled\"); the mesh carries no guarantee");
       return ExitCode::uncertified;

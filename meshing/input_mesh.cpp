@@ -237,6 +237,17 @@ InputMesh validate_input_mesh(const std::vector<Point3>& points, const std::vect
   const CGAL::Bbox_3 bounds = CGAL::bbox_3(soup.points.begin(), soup.points.end());
   input.bounding_box_diagonal =
       length_of(bounds.xmax() - bounds.xmin(), bounds.ymax() - bounds.ymin(), bounds.zmax() - bounds.zmin());
+  // 8. A mesh far from the origin is resolved finely enough by its coordinates.
+  const double largest = std::max({std::abs(bounds.xmin()), std::abs(bounds.xmax()), std::abs(bounds.ymin()),
+                                   std::abs(bounds.ymax()), std::abs(bounds.zmin()), std::abs(bounds.zmax())});
+  const double unit = largest - std::nextafter(largest, 0.0);  // a unit in the last place there
+  if (largest >= tolerances::input_mesh_far_ratio * input.bounding_box_diagonal &&
+      !(input.bounding_box_diagonal >= tolerances::input_mesh_min_resolution * unit))
+    fail("the mesh lies too far from the origin for its size: its bounding-box diagonal spans only " +
+         std::to_string(static_cast<long long>(input.bounding_box_diagonal / unit)) +
+         " units in the last place of its coordinates (at least " +
+         std::to_string(static_cast<long long>(tolerances::input_mesh_min_resolution)) +
+         " are needed); translate it towards the origin");
   const double margin = tolerances::input_mesh_box_margin * input.bounding_box_diagonal;
   for (int i = 0; i < 3; ++i) {
     // At least one step of double outward: a margin below half a unit in the last place of a

@@ -16,7 +16,10 @@
 //!     (or a surface that is not orientable at all);
 //!  6. degenerate triangle: three collinear vertices (exact predicate), after triangulation;
 //!  7. self-intersection: two triangles that meet other than in their shared vertices or edge
-//!     (PMP::self_intersections, exact predicates; the first pair found is named).
+//!     (PMP::self_intersections, exact predicates; the first pair found is named);
+//!  8. resolution: a mesh far from the origin (largest |coordinate| ≥
+//!     tolerances::input_mesh_far_ratio · diagonal) whose diagonal spans fewer than
+//!     tolerances::input_mesh_min_resolution units in the last place of that coordinate.
 //! Checks 2–5 are made on the faces as given, each polygon split into a fan (which adds only
 //! diagonals inside the polygon, each in two of its triangles, so the edges between faces and the
 //! fans around vertices are the polygons'), with the independent checker's counts and first

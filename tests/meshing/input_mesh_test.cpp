@@ -269,4 +269,30 @@ BOOST_AUTO_TEST_CASE(real_mesh_eight_has_genus_two) {
   BOOST_TEST(input.median_edge_length < input.bounding_box_diagonal);
 }
 
+// An octahedron 32 across at 2^54 from the origin lies on a lattice of 4 (its coordinates' unit in
+// the last place), 14 units across: refused with the reason and the remedy.  At 2^30 the same
+// octahedron spans about 2^27 units and is accepted.
+BOOST_AUTO_TEST_CASE(a_coarse_lattice_far_from_the_origin_is_refused) {
+  for (const double offset : {std::ldexp(1.0, 54), std::ldexp(1.0, 30)}) {
+    BOOST_TEST_CONTEXT("offset " << offset) {
+      const test::Soup unit = test::octahedron();
+      std::vector<Point3> points;
+      for (const Point3& p : unit.points) points.emplace_back(offset + 16 * p.x(), offset + 16 * p.y(), offset + 16 * p.z());
+      std::vector<std::vector<std::size_t>> polygons;
+      for (const auto& t : unit.triangles) polygons.push_back({t[0], t[1], t[2]});
+      if (offset > std::ldexp(1.0, 40)) {
+        try {
+          (void)validate_input_mesh(points, polygons, "far.off");
+          BOOST_ERROR("a mesh 14 units in the last place across was accepted");
+        } catch (const InvalidInput& e) {
+          BOOST_TEST(std::string(e.what()).find("too far from the origin for its size") != std::string::npos, e.what());
+          BOOST_TEST(std::string(e.what()).find("translate it towards the origin") != std::string::npos, e.what());
+        }
+      } else {
+        BOOST_TEST(validate_input_mesh(points, polygons, "far.off").bounding_box_diagonal > 55);
+      }
+    }
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

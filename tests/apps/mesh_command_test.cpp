@@ -247,8 +247,9 @@ BOOST_AUTO_TEST_CASE(a_time_limit_stops_with_exit_3_and_replaces_outputs_atomica
   TempDir dir;
   write_text(dir / "g.off", octahedron_off);
   // 2 s: long enough for the partial mesh to have triangles under the sanitizers on a loaded
-  // machine (the oracle build alone can take 0.5 s there), far from genus2's time at 0.01.
-  const RunResult r = run_delmesh({"mesh", "--surface", "genus2", "--size-bound", "0.01", "--time-limit", "2",
+  // machine (the oracle build alone can take 0.5 s there), far from genus2's time at 0.004
+  // (more than the default 200 000 points, reached after about 13 s in a Release build).
+  const RunResult r = run_delmesh({"mesh", "--surface", "genus2", "--size-bound", "0.004", "--time-limit", "2",
                                    "--quiet", "--out", "g.off", "--stats", "g.json"},
                                   dir.path);
   BOOST_TEST(!r.signalled);

@@ -1,9 +1,12 @@
 //! \file check_command.cpp
 //! `delmesh check MESH [--lambda L] [(--surface NAME | --expr E --box B) --certify [--seed N]]
-//! [--json]`: the independent checker (meshing/mesh_checker.h) on a mesh file, optionally
-//! compared with the bounds of Theorem 6.1 for λ, and with --certify the topology certificate
-//! of the mesh for that surface (meshing/certificate.h).
+//! [--time-limit S] [--json]`: the independent checker (meshing/mesh_checker.h) on a mesh file,
+//! optionally compared with the bounds of Theorem 6.1 for λ, and with --certify the topology
+//! certificate of the mesh for that surface (meshing/certificate.h).  The time limit counts from
+//! the command's start: the certificate stops at it (status undecided); reading the mesh, checking
+//! it and compiling the surface are held to it by the phase watchdog (apps/phase_watchdog.h).
 
+#include <cmath>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -15,6 +18,7 @@
 #include "apps/command_line.h"
 #include "apps/commands.h"
 #include "apps/interrupt.h"
+#include "apps/phase_watchdog.h"
 #include "common/errors.h"
 #include "meshing/certificate.h"
 #include "meshing/mesh_checker.h"
@@ -31,6 +35,7 @@ struct CheckOptions {
   bool json = false;
   bool certify = false;
   std::uint64_t seed = 1;
+  double time_limit = 0;  //!< seconds; 0: none
   SurfaceOptions surface;
   CLI::Option* lambda_option = nullptr;
   CLI::Option* seed_option = nullptr;
@@ -135,18 +140,37 @@ ExitCode run_check(const CheckOptions& o) {
   if (!o.certify && o.surface.given())
     throw InvalidInput("--surface and --expr are used only with --certify (the certificate of the mesh for that surface)");
   if (!o.certify && o.seed_option->count() > 0) throw InvalidInput("--seed is used only with --certify");
+  if (!std::isfinite(o.time_limit) || o.time_limit < 0 || o.time_limit > max_time_limit_seconds)
+    throw InvalidInput("--time-limit must be >= 0 and <= 1e9 seconds (0: none), got " + format_number(o.time_limit));
+  const auto start = RunLimits::Clock::now();
+  const RunLimits limits = RunLimits::after(o.time_limit, &interrupt_flag(), start);
+  const RunLimits::Scope limits_scope(limits);
+  // Reading and checking the mesh and compiling the surface cannot stop themselves: the watchdog
+  // ends them at the deadline or a signal.  The certificate stops itself at either (and is then
+  // reported, undecided); its own watchdog ends it only if one step still runs
+  // PhaseWatchdog::solve_grace after the deadline.
+  PhaseWatchdog watchdog(limits);
+  std::optional<PhaseWatchdog::Phase> phase;  // (destroyed before the watchdog it arms)
+  phase.emplace(watchdog, "reading and checking the mesh");
   // Read as a soup: open, non-manifold and non-orientable meshes are reported, not refused.
   const TriangleSoup soup = read_triangle_soup(o.mesh);
   const CheckVerdict verdict = check_verdict(check_mesh(soup.points, soup.triangles),
                                              with_bounds ? std::optional<double>(o.lambda) : std::nullopt);
   std::optional<Certificate> certificate;
   if (o.certify) {
+    phase.emplace(watchdog, "compiling the surface");
     const SurfaceInput input = o.surface.resolve();
+    phase.reset();
+    PhaseWatchdog certificate_watchdog(RunLimits::after(
+        o.time_limit > 0 ? o.time_limit + PhaseWatchdog::solve_grace.count() : 0, nullptr, start));
+    const PhaseWatchdog::Phase certifying(certificate_watchdog, "certifying the mesh");
     CertificateOptions options;
     options.seed = o.seed;
     options.interrupt = &interrupt_flag();
+    options.deadline = limits.deadline();
     certificate = certify_mesh(soup.points, soup.triangles, input.surface, input.box, options);
   }
+  phase.reset();
   for (const std::string& warning : verdict.warnings) print_warning(warning);
   const MeshReport& report = verdict.report;
   const TheoremBounds& bounds = verdict.bounds;
@@ -204,6 +228,10 @@ ExitCode run_check(const CheckOptions& o) {
     print_warning("interrupted by a signal: the certificate is incomplete (status undecided)");
     return ExitCode::limit_reached;
   }
+  if (certificate && certificate->time_limited) {
+    print_warning("stopped by --time-limit: the certificate is incomplete (status undecided)");
+    return ExitCode::limit_reached;
+  }
   const bool certified = !certificate || (certificate->status == CertificateStatus::certified &&
                                           certificate->restricted_matches_mesh);
   return verdict.all_pass() && certified ? ExitCode::complete : ExitCode::check_failed;
@@ -227,9 +255,10 @@ Command add_check_command(CLI::App& parent) {
       "vertices need not lie exactly on the surface, so meshes from other programs can be certified." "\n\n"
       "Exit codes: 0 checked (and with --lambda every bound holds, with --certify the certificate is certified "
       "and the mesh is Tri S|Sigma), 1 some bound or the certificate fails, "
-              "2 invalid input (missing or corrupt file, lambda out of range, a bad surface), 3 interrupted "
-              "by a signal (SIGINT, SIGTERM, ...; during the certificate it stops, otherwise the report is "
-              "finished first), 4 internal error, 6 the report could not be written to standard output.");
+              "2 invalid input (missing or corrupt file, lambda out of range, a bad surface), 3 stopped by "
+              "--time-limit or a signal such as SIGINT or SIGTERM (during the certificate it stops and the report "
+              "says undecided; before it nothing is printed; while the report is printed it is finished "
+              "first), 4 internal error, 6 the report could not be written to standard output.");
   sub->add_option("MESH", o->mesh, "The mesh file (.off, .ply or .obj)")->required();
   o->lambda_option = sub->add_option("--lambda", o->lambda,
                                      "lambda in (0, 1/6): compare with min angle >= asin(1/(2+2 lambda)), "
@@ -244,10 +273,15 @@ Command add_check_command(CLI::App& parent) {
                        ->type_name("N")
                        ->check(whole_number(0, std::numeric_limits<std::uint64_t>::max()))
                        ->capture_default_str();
+  sub->add_option("--time-limit", o->time_limit,
+                  "Stop (exit code 3) after this many seconds (at most 1e9) from the start; with --certify "
+                  "the report then says undecided. 0 means none")
+      ->type_name("S")
+      ->check(finite_number());
   sub->add_flag("--json", o->json,
                 "Print the report as JSON (with --lambda also \"lambda\", \"bounds\" and \"pass\"; with "
                 "--certify also \"certificate\")");
-  return {sub, [o]() { return run_check(*o); }};
+  return {sub, [o]() { return stopped_as_limit([&] { return run_check(*o); }); }};
 }
 
 }  // namespace delmesh::app

@@ -1,6 +1,7 @@
 // Tests of the command's limits over every phase (apps/phase_watchdog.h, common/run_limits.h):
 // `--time-limit 1` and a SIGINT stop parsing and differentiating a large expression, reading and
-// validating a large input mesh, a remeshing run, and the certificate of `mesh --certify`, each
+// validating a large input mesh, a remeshing run, and the certificates of `mesh --certify` and
+// `check --certify`, each
 // within the limit plus `slack`, with exit code 3 and no `error:` line.
 #include <fcntl.h>
 #include <signal.h>
@@ -236,6 +237,35 @@ BOOST_AUTO_TEST_CASE(time_limit_stops_the_certificate) {
     BOOST_TEST(cut["certificate"]["time_limited"] == true);
     BOOST_TEST(cut["certificate"]["status"] == "undecided");
   }
+}
+
+BOOST_AUTO_TEST_CASE(time_limit_stops_the_certificate_of_check) {
+  TempDir scratch;
+  const RunResult made = run_delmesh({"mesh", "--surface", "torus", "--size-bound", "0.05", "--threads", "1", "--quiet",
+                                      "--out", "t.off", "--stats", "t.json"},
+                                     scratch.path);
+  BOOST_TEST_REQUIRE(made.exit_code == 0, "stderr: " << made.err);
+  const std::vector<std::string> check{"check", "t.off", "--surface", "torus", "--certify", "--json"};
+  const TimedRun full = timed_delmesh(check, scratch.path);
+  BOOST_TEST_REQUIRE(full.result.exit_code == 0, "stderr: " << full.result.err);
+  const double certificate_seconds = nlohmann::json::parse(full.result.out)["certificate"]["seconds"].get<double>();
+  // Half the certificate's own time: reading and checking the mesh take a small part of it.
+  const double limit = 0.5 * certificate_seconds;
+  std::vector<std::string> limited = check;
+  limited.insert(limited.end(), {"--time-limit", std::to_string(limit)});
+  const TimedRun r = timed_delmesh(limited, scratch.path);
+  BOOST_TEST(!r.result.signalled);
+  BOOST_TEST(r.result.exit_code == 3, "stderr: " << r.result.err);
+  BOOST_TEST(r.result.err.find("error:") == std::string::npos, "stderr: " << r.result.err);
+  BOOST_TEST(r.seconds <= limit + slack, "limit " << limit << " s, certificate " << certificate_seconds << " s");
+  // The report is printed, with the certificate undecided and marked as stopped by the limit.
+  const auto cut = nlohmann::json::parse(r.result.out);
+  BOOST_TEST(cut["certificate"]["time_limited"] == true);
+  BOOST_TEST(cut["certificate"]["status"] == "undecided");
+  BOOST_TEST(cut["vertices"] == nlohmann::json::parse(full.result.out)["vertices"]);
+  BOOST_TEST(r.result.err.find("stopped by --time-limit") != std::string::npos, "stderr: " << r.result.err);
+  // Out of range: refused like mesh's and solve's.
+  require_invalid_input(run_delmesh({"check", "t.off", "--time-limit", "-1"}, scratch.path), "--time-limit");
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -17,6 +17,7 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 
 #include "common/errors.h"
+#include "common/run_limits.h"
 #include "common/tolerances.h"
 #include "meshing/folded_vertices.h"
 #include "meshing/mesh_io.h"
@@ -190,6 +191,9 @@ InputMesh validate_input_mesh(const std::vector<Point3>& points, const std::vect
   // 1. A well-formed, non-empty soup; 2–5. manifold, closed, consistently oriented.
   check_soup(points, polygons, fail);
   check_combinatorics(points, polygons, fail);
+  const RunLimits& limits = RunLimits::current();
+  const char* const phase = "validating the input mesh";
+  limits.check(phase, true);
 
   InputMesh input;
   input.faces_read = polygons.size();
@@ -207,6 +211,7 @@ InputMesh validate_input_mesh(const std::vector<Point3>& points, const std::vect
   };
   if (input.polygons_triangulated > 0 && !PMP::triangulate_faces(input.mesh))
     fail("a face with more than three vertices could not be triangulated (a degenerate polygon)");
+  limits.check(phase, true);
 
   // 6. No degenerate triangle (exact collinearity test).
   for (SurfaceMesh::Face_index f : input.mesh.faces()) {
@@ -218,6 +223,7 @@ InputMesh validate_input_mesh(const std::vector<Point3>& points, const std::vect
   }
 
   // 7. No self-intersection (exact predicates); the first pair found is named.
+  limits.check(phase, true);
   std::vector<std::pair<SurfaceMesh::Face_index, SurfaceMesh::Face_index>> crossing;
   PMP::self_intersections(input.mesh, std::back_inserter(crossing), CGAL::parameters::maximum_number(1));
   if (!crossing.empty()) {
@@ -232,8 +238,11 @@ InputMesh validate_input_mesh(const std::vector<Point3>& points, const std::vect
   }
 
   // Outward orientation, the domain box and the measures.
+  limits.check(phase, true);
   input.components_reversed = orient_outward(input.mesh);
+  limits.check(phase, true);
   input.report = check_mesh(input.mesh);
+  limits.check(phase, true);
   const CGAL::Bbox_3 bounds = CGAL::bbox_3(soup.points.begin(), soup.points.end());
   input.bounding_box_diagonal =
       length_of(bounds.xmax() - bounds.xmin(), bounds.ymax() - bounds.ymin(), bounds.zmax() - bounds.zmin());

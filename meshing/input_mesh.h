@@ -75,7 +75,9 @@ struct InputMesh {
 //! lists with at least three distinct indices into points.  `source` names the mesh in the
 //! messages (a path).  Throws InvalidInput naming `source`, the first defect and where it is
 //! (the file comment's list), or a malformed soup (an index out of range, a polygon with fewer
-//! than three vertices or a repeated vertex, a non-finite coordinate).
+//! than three vertices or a repeated vertex, a non-finite coordinate).  Tests the command's limits
+//! (common/run_limits.h: RunLimits::current()) between its steps and throws RunStopped once they
+//! have passed (each CGAL step, such as the self-intersection test, runs to its end first).
 [[nodiscard]] InputMesh validate_input_mesh(const std::vector<Point3>& points,
                                             const std::vector<std::vector<std::size_t>>& polygons,
                                             const std::string& source);

@@ -39,6 +39,7 @@
 #include "apps/command_line.h"
 #include "apps/commands.h"
 #include "common/errors.h"
+#include "common/run_limits.h"
 #include "meshing/del_mesh.h"
 #include "meshing/mesh_checker.h"
 #include "solvers/primitive_registry.h"
@@ -158,11 +159,33 @@ struct MeshResult {
   std::string status;
 };
 
-//! run(options) (del_mesh or remesh) on a worker thread, with `base` plus an interrupt flag and
-//! the progress lines; the caller keeps serving progress and signals (file comment).
-DelMeshResult run_on_worker(const DelMeshOptions& base, const std::function<DelMeshResult(const DelMeshOptions&)>& run,
-                            const py::object& progress) {
+//! What a run on the worker gets from the call: the interrupt flag and the progress sink to put
+//! in its DelMeshOptions, and the call's limits (also RunLimits::current() on the worker).
+struct CallControls {
+  const std::atomic<bool>* interrupt = nullptr;
+  std::function<void(const std::string&)> progress;  //!< empty without a progress callback
+  const RunLimits* limits = nullptr;
+
+  //! `options` with the flag, the sink, and the time left of the call's limit (from the call's start).
+  DelMeshOptions applied_to(DelMeshOptions options) const {
+    options.interrupt = interrupt;
+    if (progress) options.progress = progress;
+    if (const std::optional<double> left = limits->seconds_left())
+      options.time_limit_seconds = std::max(*left, std::numeric_limits<double>::denorm_min());
+    return options;
+  }
+};
+
+//! work(controls) on a worker thread under the call's limits: a deadline `time_limit` seconds
+//! (0: none) from now and an interrupt flag, in a RunLimits::Scope there, so that parsing and
+//! compiling E, reading and validating an input mesh and the run itself all see them.  The
+//! caller keeps serving progress and signals (file comment).  A phase stopped before the run
+//! throws RunStopped, which reaches Python as TimeoutError (or the KeyboardInterrupt that set
+//! the flag).
+DelMeshResult run_on_worker(double time_limit, const py::object& progress,
+                            const std::function<DelMeshResult(const CallControls&)>& work) {
   std::atomic<bool> interrupt{false};
+  const RunLimits limits = RunLimits::after(time_limit, &interrupt);
   std::mutex m;
   std::condition_variable changed;
   std::deque<std::string> lines;
@@ -170,10 +193,11 @@ DelMeshResult run_on_worker(const DelMeshOptions& base, const std::function<DelM
   std::optional<DelMeshResult> result;
   std::exception_ptr failure;
 
-  DelMeshOptions options = base;
-  options.interrupt = &interrupt;
+  CallControls controls;
+  controls.interrupt = &interrupt;
+  controls.limits = &limits;
   if (!progress.is_none()) {
-    options.progress = [&](const std::string& line) {
+    controls.progress = [&](const std::string& line) {
       std::lock_guard<std::mutex> lock(m);
       lines.push_back(line);
       changed.notify_all();
@@ -191,7 +215,8 @@ DelMeshResult run_on_worker(const DelMeshOptions& base, const std::function<DelM
     }
   } worker{interrupt, std::thread([&] {
     try {
-      DelMeshResult r = run(options);
+      const RunLimits::Scope scope(limits);
+      DelMeshResult r = work(controls);
       std::lock_guard<std::mutex> lock(m);
       result.emplace(std::move(r));
     } catch (...) {
@@ -254,35 +279,34 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
   std::vector<Point3> points;
   std::vector<std::array<std::size_t, 3>> faces;
   std::string statistics, status;
+  std::vector<std::string> warnings;
   {
     LibraryCall call;
+    // Planning (parsing and compiling E, or reading and validating the mesh) runs on the worker
+    // too, under the call's limits; its warnings are issued once the call has the GIL again.
     std::optional<DelMeshResult> result;
-    if (request.input_mesh) {
-      // A triangle mesh, remeshed through its MeshOracle as `delmesh mesh --input-mesh` does.
-      const MeshInputPlan plan = plan_mesh_input(request);
-      {
-        py::gil_scoped_acquire gil;
-        warn_all(plan.warnings);
+    result = run_on_worker(request.time_limit, progress, [&](const CallControls& controls) {
+      if (request.input_mesh) {
+        // A triangle mesh, remeshed through its MeshOracle as `delmesh mesh --input-mesh` does.
+        const MeshInputPlan plan = plan_mesh_input(request);
+        warnings = plan.warnings;
+        DelMeshResult r = remesh(plan, controls.applied_to(plan.options));
+        statistics = run_statistics(r, request.seed, std::nullopt).dump();
+        return r;
       }
-      result = run_on_worker(plan.options, [&](const DelMeshOptions& o) { return remesh(plan, o); }, progress);
-      statistics = run_statistics(*result, request.seed, std::nullopt).dump();
-    } else {
       const MeshPlan plan = plan_mesh(request);
-      {
-        py::gil_scoped_acquire gil;
-        warn_all(plan.warnings);
-      }
-      result = run_on_worker(
-          plan.options, [&](const DelMeshOptions& o) { return del_mesh(plan.input.surface, plan.input.box, o); },
-          progress);
-      statistics = mesh_statistics(*result, plan.input, request.seed, std::nullopt).dump();
-    }
+      warnings = plan.warnings;
+      DelMeshResult r = del_mesh(plan.input.surface, plan.input.box, controls.applied_to(plan.options));
+      statistics = mesh_statistics(r, plan.input, request.seed, std::nullopt).dump();
+      return r;
+    });
     mesh_to_soup(result->mesh, points, faces);
     std::ostringstream s;
     s << result->status;
     status = s.str();
   }
 
+  warn_all(warnings);
   MeshResult out;
   out.vertices = rows_of_three<double>(points.size(), [&](std::size_t i, int k) { return points[i][k]; });
   out.triangles = rows_of_three<std::int64_t>(faces.size(), [&](std::size_t i, int k) { return faces[i][k]; });
@@ -388,6 +412,9 @@ SolveAnswer solve(const std::string& primitive, const py::object& expr, const py
   std::optional<SolveOutcome> outcome;
   {
     LibraryCall call;
+    // The time limit counts from the call: compiling the primitive's system tests it too.
+    const RunLimits limits = RunLimits::after(request.time_limit, nullptr);
+    const RunLimits::Scope scope(limits);
     outcome.emplace(solve_primitive(request));
   }
   const SolveOutcome& o = *outcome;
@@ -448,6 +475,10 @@ PYBIND11_MODULE(delmesh, m) {
       if (p) std::rethrow_exception(p);
     } catch (const std::invalid_argument& e) {
       PyErr_SetString(PyExc_ValueError, delmesh::app::one_line(e.what()).c_str());
+    } catch (const delmesh::RunStopped& e) {
+      // A limit passed before there was a mesh to return (while compiling E or validating an input).
+      PyErr_SetString(e.reason() == delmesh::StopReason::interrupted ? PyExc_KeyboardInterrupt : PyExc_TimeoutError,
+                      delmesh::app::one_line(e.what()).c_str());
     }
   });
 
@@ -500,7 +531,8 @@ size_bound: also refine triangles whose surface Delaunay ball radius exceeds it.
 phase: "topology" (SampleTopology only) or "all" (DelMesh).
 seed: 0 <= seed < 2**64; the same input and seed give the same mesh as the program.
 max_points, time_limit (seconds; 0 or None: none): a run stopped by a limit returns its partial
-  mesh with status point_limit or time_limit.
+  mesh with status point_limit or time_limit.  The time limit counts from the call: one that
+  passes before meshing starts (while E is compiled or input_mesh validated) raises TimeoutError.
 threads: worker threads (None or 0: every hardware thread); the mesh does not depend on it.
 progress: called with each progress line (about every 0.5 s), on the calling thread.
 solver: "subdivision" or "homotopy" (polynomial E only).
@@ -535,7 +567,9 @@ Raises ValueError on an index out of range, a repeated index in a triangle, a no
     }
     return doc + R"doc(; options in brackets are optional.  Vectors are three numbers or "a,b,c".  The surface as for mesh().
 Returns a SolveResult: status, roots (K x 3), undecided (U x 3 x 2 world boxes) and their reasons.
-The GIL is released while solving; time_limit (seconds) and max_boxes bound the work.)doc";
+The GIL is released while solving; time_limit (seconds, counted from the call) and max_boxes bound
+the work: a limit that passes while the system is compiled raises TimeoutError, one that passes
+while solving returns status time_limit.)doc";
   }();
   m.def("solve", &solve, py::arg("primitive"), py::kw_only(), py::arg("expr") = py::none(),
         py::arg("box") = py::none(), py::arg("surface") = py::none(), py::arg("direction") = py::none(),

@@ -261,6 +261,18 @@ class ThreadsTest(unittest.TestCase):
         # The library is usable again: the worker was joined and the lock released.
         self.assertEqual(delmesh.mesh(surface="sphere").status, "complete")
 
+    def test_a_time_limit_passing_while_compiling_raises_timeout_error(self):
+        # A sphere times 40 factors (2 + sin(x + i)): compiling its systems takes several
+        # seconds; the limit counts from the call and stops the compilation between its steps.
+        expr = "".join("(2+sin(x+%d))*" % i for i in range(1, 41)) + "(x^2+y^2+z^2-1)"
+        start = time.monotonic()
+        with self.assertRaises(TimeoutError) as raised:
+            delmesh.mesh(expr=expr, box="-2,2,-2,2,-2,2", time_limit=0.5)
+        self.assertLess(time.monotonic() - start, 0.5 + 2.0)
+        self.assertIn("stopped by the time limit while", str(raised.exception))
+        # The library is usable again.
+        self.assertEqual(delmesh.mesh(surface="sphere").status, "complete")
+
     def test_an_exception_in_progress_stops_the_run(self):
         def progress(line):
             raise RuntimeError("enough")

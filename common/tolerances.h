@@ -398,6 +398,11 @@ inline constexpr int singular_evidence_krawczyk_attempts = 8;
 //! first limit (two unit spheres 1e-6 apart) are then certified.
 inline constexpr double validation_deep_min_box_relative_width = 1e-10;
 inline constexpr std::size_t validation_deep_box_budget = 100000;
+//! Input validation: the regularity check works in rounds of mesher_box_budget_global boxes; a
+//! round that leaves less unexplored volume than the one before it earns another, up to this
+//! many rounds in all (surfaces of high degree, whose enclosures are loose, need more boxes; a
+//! check that stops deciding volume stops after one round).
+inline constexpr std::size_t validation_box_rounds = 32;
 //! Input validation: the surface is called singular only with a proof, sought near a point where
 //! E and ∇E could not be separated: a rational point at which E, ∂xE, ∂yE, ∂zE evaluate to exactly
 //! 0, tried at the point's coordinates rounded to 0 … singular_proof_decimal_places decimal places

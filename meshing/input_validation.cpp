@@ -6,6 +6,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -592,11 +593,24 @@ std::size_t check_regular(const CompiledSystem& system, const Surface& surface, 
   std::size_t looked_at = 0;  // boxes singular_evidence looked at
   std::size_t examined = 0;
   bool budget_exhausted = false;
+  // The budget grows by rounds while each round decides volume (tolerances::validation_box_rounds).
+  const auto volume = [](const std::array<double, 6>& b) { return (b[1] - b[0]) * (b[3] - b[2]) * (b[5] - b[4]); };
+  const double domain_volume = volume(stack.front());
+  double unexplored_before = domain_volume;  // the stack's volume when the round began
+  std::size_t rounds = 1;
+  double unexplored = domain_volume;
   while (!stack.empty()) {
     RunLimits::current().check("validating the surface");
-    if (examined >= tolerances::mesher_box_budget_global) {
-      budget_exhausted = true;
-      break;
+    if (examined >= rounds * tolerances::mesher_box_budget_global) {
+      unexplored = 0;
+      for (const auto& b : stack) unexplored += volume(b);
+      if (rounds < tolerances::validation_box_rounds && unexplored < unexplored_before) {
+        ++rounds;
+        unexplored_before = unexplored;
+      } else {
+        budget_exhausted = true;
+        break;
+      }
     }
     const auto bounds = stack.back();
     stack.pop_back();
@@ -662,8 +676,11 @@ std::size_t check_regular(const CompiledSystem& system, const Surface& surface, 
   std::ostringstream s;
   s << "cannot certify that the gradient of E is non-zero on the surface: ";
   if (budget_exhausted)
-    s << "the budget of " << tolerances::mesher_box_budget_global << " boxes ran out with " << stack.size()
-      << " boxes unexplored and " << undecided.size() << " undecided";
+    s << "the budget of " << rounds << " × " << tolerances::mesher_box_budget_global << " boxes ran out with "
+      << stack.size() << " boxes unexplored (" << std::setprecision(3) << 100 * unexplored / domain_volume
+      << std::setprecision(6) << "% of the box's volume"
+      << (rounds < tolerances::validation_box_rounds ? ", no less than after the round before" : "") << ") and "
+      << undecided.size() << " undecided";
   else
     s << undecided.size() << " boxes stay undecided (bisected down to width " << deep_min_width << " or the budget of "
       << tolerances::validation_deep_box_budget << " narrow boxes, then in MPFI at up to "

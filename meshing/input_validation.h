@@ -32,6 +32,15 @@
 //! A box that is not dropped is bisected; the union of the dropped boxes is the whole domain when
 //! the check passes, which proves the claim on every point of it.
 //!
+//! ## Budget
+//! The regularity check examines boxes in rounds of tolerances::mesher_box_budget_global.  At the
+//! end of a round the volume of the boxes not yet examined is measured; if it is smaller than at
+//! the end of the round before (the round decided some of the domain), another round follows, up
+//! to tolerances::validation_box_rounds rounds.  Surfaces of high degree, whose enclosures are
+//! loose (a product of three tori, degree 12), need several rounds; a check that has stopped
+//! deciding volume ends after one more.  Running out reports the rounds, the boxes left and the
+//! share of the domain's volume they hold.
+//!
 //! ## Undecided boxes: "singular" only with a proof
 //! A box narrower than tolerances::validation_min_box_relative_width (relative to the widest side
 //! of the domain) that is not dropped is looked at for a singular point.  From the box's centre,
@@ -88,7 +97,8 @@ struct [[nodiscard]] ValidationReport {
 std::size_t validate_box_faces(const Surface& surface, const Box3& box);
 
 //! Certifies that ∇E does not vanish on Σ ∩ box: no zero of {E, ∂xE, ∂yE, ∂zE} in the box, by
-//! the subdivision of the file comment (at most tolerances::mesher_box_budget_global boxes).
+//! the subdivision of the file comment (in rounds of tolerances::mesher_box_budget_global boxes
+//! while each round decides volume, at most tolerances::validation_box_rounds of them).
 //! Throws InvalidInput:
 //!  - "the surface is singular: the gradient of E vanishes on it ..." with the proof (a rational
 //!    point where E and ∇E are exactly 0, or a sign-changing common factor; file comment);

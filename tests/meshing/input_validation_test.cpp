@@ -5,7 +5,9 @@
 
 #include "common/errors.h"
 #include "common/tolerances.h"
+#include "meshing/certificate.h"
 #include "meshing/del_mesh.h"
+#include "meshing/mesh_checker.h"
 #include "meshing/input_validation.h"
 #include "symbolic/catalog.h"
 
@@ -89,6 +91,40 @@ BOOST_AUTO_TEST_CASE(catalog_surfaces_validate) {
       BOOST_CHECK_NO_THROW((void)validate_input(entry.surface(), entry.box));
     }
   }
+}
+
+// Three tori of radii 1 and 0.3 centred at x = −1.1, 0, 1.1, and E their product minus 0.01: a
+// smooth surface of degree 12 (|∇E| ≥ about 1 on it) whose loose interval enclosures need more
+// than one round of mesher_box_budget_global boxes; each round decides volume, so the budget
+// grows until the proof is complete.
+std::string three_tori() {
+  std::string e;
+  for (const char* shift : {"+1.1", "", "-1.1"})
+    e += std::string(e.empty() ? "" : "*") + "(((x" + shift + ")^2+y^2+z^2+0.91)^2-4*((x" + shift + ")^2+y^2))";
+  return e + "-0.01";
+}
+const Box3 three_tori_box{{-2.6, -1.6, -0.6}, {2.6, 1.6, 0.6}};
+
+BOOST_AUTO_TEST_CASE(three_overlapping_tori_validate_in_more_than_one_round) {
+  const std::size_t boxes = validate_regular(Surface::parse(three_tori()), three_tori_box);
+  BOOST_TEST(boxes > tolerances::mesher_box_budget_global);
+  BOOST_TEST(boxes < tolerances::validation_box_rounds * tolerances::mesher_box_budget_global);
+}
+
+BOOST_AUTO_TEST_CASE(three_overlapping_tori_mesh_complete_and_certified, *boost::unit_test::label("slow")) {
+  const Surface surface = Surface::parse(three_tori());
+  const DelMeshResult result = del_mesh(surface, three_tori_box, DelMeshOptions{});
+  BOOST_TEST_REQUIRE(result.status == MeshStatus::complete);
+  const MeshReport report = check_mesh(result.mesh);
+  BOOST_TEST(report.manifold);
+  BOOST_TEST(report.orientable);
+  // The certificate, from the mesh alone, proves it homeomorphic to the surface.
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  mesh_to_soup(result.mesh, points, triangles);
+  const Certificate certificate = certify_mesh(points, triangles, surface, three_tori_box);
+  BOOST_TEST(certificate.status == CertificateStatus::certified);
+  BOOST_TEST(certificate.restricted_matches_mesh);
 }
 
 // The cone's apex is a singular point, and "singular" comes with its proof: E and ∇E are exactly

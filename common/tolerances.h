@@ -21,20 +21,12 @@ inline constexpr std::size_t default_box_budget = 200000;
 //! MPFI precisions (bits) tried, in order, when double intervals cannot decide a box.
 inline constexpr int escalation_precisions[] = {106, 212};
 
-//! Certified roots whose midpoints are closer than this (absolute, world units) are the same
-//! root found twice; used only after uniqueness boxes have been compared.
-inline constexpr double duplicate_root_distance = 1e-10;
-
 //! Homotopy continuation: smallest step in the path parameter before a path is declared failed.
 inline constexpr double homotopy_min_step = 1e-14;
 
 //! Homotopy continuation: a solution whose largest imaginary part is below this is a candidate
 //! real root (it is then certified by Krawczyk over the reals, so this only filters candidates).
 inline constexpr double homotopy_real_candidate = 1e-6;
-
-//! Relative perturbation used to make a user-given direction generic when the solver reports
-//! non-isolated solutions for it.
-inline constexpr double generic_direction_perturbation = 1e-3;
 
 
 // ---- homotopy continuation (solvers/homotopy_solver.cpp, solvers/detail/homotopy_tracker.cpp) ----
@@ -223,10 +215,9 @@ inline constexpr double exclusion_singular_box_relative_width = 1e-9;
 //! solvers/subdivision_solver.h): each region is bisected on down to this width (relative to the
 //! whole domain), within singular_refinement_box_budget boxes.  Two sheets of Σ 10⁻⁶ of a cell
 //! apart are separated there; a true singular root costs the budget and stays undecided.  With
-//! 1024 boxes the two unit spheres 10⁻⁶ apart still end complete (64 262 points against 73 163
-//! with 4096), and thin_handle, whose SilhouettePlane solves have true singular roots, spends
-//! 39 631 boxes there instead of 110 287 (the run 0.88 s instead of 1.84 s, the same mesh); 256
-//! was too few for the spheres.
+//! this budget two unit spheres 10⁻⁶ apart mesh complete (with 256 they do not); a larger one
+//! only spends more boxes on true singular roots (thin_handle's SilhouettePlane solves have
+//! some) for the same mesh.
 inline constexpr double refined_singular_box_relative_width = 1e-9;
 inline constexpr std::size_t singular_refinement_box_budget = 1024;
 
@@ -312,15 +303,15 @@ inline constexpr int generic_choice_attempts = 3;
 inline constexpr std::size_t facet_miss_box_budget = 8;
 //! Box budget of one gradient-cone certificate (solvers/gradient_cone.h) over a Voronoi facet;
 //! the full solvers run when it does not suffice.  A failed certificate costs the whole budget,
-//! a solve it spares costs more: on genus2 at size bound 0.05, raising the budget from 48 to 192
-//! cuts the SilhouetteCritical solves from 857 to 339 and the time of the run by about a fifth
-//! (torus: 1175 to 101 solves, about a tenth), with the same meshes.
+//! a solve it spares costs more, so the budget is large enough for most certificates on the
+//! catalog surfaces to succeed (on the torus at size bound 0.05, all but a few dozen of several
+//! thousand), and small enough that a failure stays cheap.  The meshes do not depend on it.
 inline constexpr std::size_t gradient_cone_box_budget = 192;
 //! The same over a Voronoi cell (Silhouette).  The cells of the topology phase are large, and the
 //! SilhouetteCritical solve a failed certificate leads to costs about five times as much per box
-//! (three equations, second derivatives) as the certificate: on genus2 at size bound 0.05, 1024
-//! instead of 192 cuts those solves from 335 to 74 and the run's instructions by 18 %, with the
-//! same mesh (torus at 0.05: 102 to 22 solves, the same mesh, no change in time).
+//! (three equations, second derivatives) as the certificate, so the budget is larger than the
+//! facet's: a certificate that succeeds with more boxes is still cheaper than the solve.  The
+//! meshes do not depend on it.
 inline constexpr std::size_t gradient_cone_cell_box_budget = 1024;
 //! The box the mesher clips its Voronoi faces to (SurfaceOracle::clip_box(), solvers/surface_box.h,
 //! whose SurfaceBoxOptions default to the first two):
@@ -365,11 +356,9 @@ inline constexpr std::size_t checks_per_clock_reading = 32;
 //! The least batch of edge records that an insertion computes on several threads
 //! (detail::ParallelFor, `--threads`); a smaller one runs on the calling thread.  Handing a batch
 //! to TBB's threads and waiting for them costs tens of microseconds, while an edge record is about
-//! a microsecond (one interval evaluation, or a SurfaceLine solve).  Measured on 2 cores, torus at
-//! size bound 0.05 (Release, 8 paired whole runs, 2 threads over 1), when the new edges' facets
-//! were also certified at insertion: every batch of 2 or more on the threads took 1.10 times the
-//! wall time and 2.0 times the CPU time; no batch on the threads (this value: an insertion's
-//! batches stay below it) 1.02–1.04 and 1.02–1.04.  Batches this large come from wide
+//! a microsecond (one interval evaluation, or a SurfaceLine solve), so a batch of a few records
+//! is slower on the threads than on the calling thread.  An ordinary insertion's batches stay
+//! below this value and run on the calling thread; batches this large come from wide
 //! invalidations only.
 inline constexpr std::size_t parallel_least_records = 256;
 //! Interval subdivision of a box face to certify E ≠ 0 on it: maximal depth of the quadtree.
@@ -431,7 +420,7 @@ inline constexpr double input_mesh_max_coordinate = 1e100;
 //! input_mesh_far_ratio times its bounding-box diagonal): the diagonal must span at least this
 //! many units in the last place of that coordinate.  Below, the coordinates are a coarse lattice
 //! across the mesh, on which the constructions of the oracle and the mesher degenerate (CGAL's
-//! ray-cast inside test at a vertex was seen not to return on a lattice 14 units across); a
+//! ray-cast inside test at a vertex may not return on a lattice 14 units across); a
 //! translation towards the origin removes the problem, and the refusal says so.
 inline constexpr double input_mesh_min_resolution = 65536;
 inline constexpr double input_mesh_far_ratio = 4;

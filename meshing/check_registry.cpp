@@ -87,4 +87,6 @@ std::string check_kind_name(CheckKind kind) {
   return name ? name : "unknown";
 }
 
+std::ostream& operator<<(std::ostream& out, CheckKind kind) { return out << check_kind_name(kind); }
+
 }  // namespace delmesh

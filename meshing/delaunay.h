@@ -18,13 +18,10 @@
 #include <optional>
 #include <vector>
 
+#include "meshing/simplex_keys.h"
 #include "meshing/surface_mesh.h"
 
 namespace delmesh {
-
-using VertexId = int;
-using TriangleKey = std::array<VertexId, 3>;  //!< sorted ascending
-using EdgeKey = std::array<VertexId, 2>;      //!< sorted ascending
 
 TriangleKey make_triangle_key(VertexId a, VertexId b, VertexId c);
 EdgeKey make_edge_key(VertexId a, VertexId b);

@@ -204,13 +204,6 @@ void write_mesh(const SurfaceMesh& mesh, const std::string& path) {
   write_triangle_soup(soup, path);
 }
 
-std::vector<std::vector<std::size_t>> PolygonSoup::polygons() const {
-  std::vector<std::vector<std::size_t>> out;
-  out.reserve(faces());
-  for (std::size_t f = 0; f < faces(); ++f) out.emplace_back(face(f), face(f) + face_size(f));
-  return out;
-}
-
 PolygonSoup read_polygon_soup(const std::string& path) {
   const Format format = format_of(path);
   std::error_code error;

@@ -11,30 +11,10 @@
 #include <vector>
 
 #include "common/enum_names.h"
+#include "meshing/mesh_soup.h"
 #include "meshing/surface_mesh.h"
 
 namespace delmesh {
-
-//! A triangle soup as read from a file: points and index triples, nothing merged or reordered.
-struct TriangleSoup {
-  std::vector<Point3> points;
-  std::vector<std::array<std::size_t, 3>> triangles;
-};
-
-//! A polygon soup as read from a file, nothing merged or reordered: face f has the vertex indices
-//! corners[offsets[f]], …, corners[offsets[f + 1] − 1], at least three of them (offsets holds
-//! faces() + 1 entries, the first 0).  Flat, so that its memory is a small multiple of the file's.
-struct PolygonSoup {
-  std::vector<Point3> points;
-  std::vector<std::size_t> corners;
-  std::vector<std::size_t> offsets{0};
-  std::size_t faces() const { return offsets.size() - 1; }
-  std::size_t face_size(std::size_t f) const { return offsets[f + 1] - offsets[f]; }
-  //! The first of face f's face_size(f) vertex indices.
-  const std::size_t* face(std::size_t f) const { return corners.data() + offsets[f]; }
-  //! The faces as index lists (what CGAL's polygon-soup functions take).
-  std::vector<std::vector<std::size_t>> polygons() const;
-};
 
 //! The mesh file formats, chosen by the file extension (case-insensitive): .off, .ply, .obj.
 enum class MeshFormat { off, ply, obj };

@@ -9,8 +9,7 @@
 #include <vector>
 
 #include "common/enum_names.h"
-#include "common/enum_names.h"
-#include "meshing/delaunay.h"
+#include "meshing/simplex_keys.h"
 
 namespace delmesh {
 
@@ -27,7 +26,8 @@ constexpr auto enum_names(CheckKind) {
                                              {CheckKind::silhouette, "silhouette"}, {CheckKind::quality, "quality"},
                                              {CheckKind::smooth, "smooth"}, {CheckKind::size, "size"}});
 }
-//! The kind's name in the statistics (check_kind_name, check_registry.h).
+//! The kind's name in the statistics (check_kind_name; defined with the registry,
+//! meshing/check_registry.cpp).
 std::ostream& operator<<(std::ostream& out, CheckKind kind);
 
 struct Witness {

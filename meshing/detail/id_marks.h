@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "meshing/delaunay.h"
+#include "meshing/simplex_keys.h"
 
 namespace delmesh::detail {
 

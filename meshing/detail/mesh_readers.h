@@ -20,7 +20,7 @@
 #include <cstdint>
 #include <string>
 
-#include "meshing/mesh_io.h"
+#include "meshing/mesh_soup.h"
 
 namespace delmesh::detail {
 

@@ -65,9 +65,6 @@ class StraightLineProgram {
   //! The instructions in execution order; instruction k writes register
   //! n_inputs() + n_constants() + k.
   const std::vector<Instruction>& code() const { return code_; }
-  //! Number of runs of equal opcodes in code(): the evaluator dispatches once per run (the
-  //! instructions are scheduled, dependencies permitting, to make runs long).
-  std::size_t block_count() const { return blocks_.size(); }
 
   //! outputs[i] = value of output i at the inputs.  Inputs are read from in_first[0, n_first)
   //! followed by in_rest[0, n_inputs − n_first); outputs are written to out_first[0, n_out_first)

@@ -1,5 +1,7 @@
 #include "meshing/detail/key_order.h"
 
+#include "meshing/delaunay.h"
+
 #include <algorithm>
 #include <limits>
 #include <random>

@@ -34,6 +34,7 @@ namespace generic_stream {
 inline constexpr std::int64_t facet_rotation = 17;       //!< in-plane frame of a Voronoi facet
 inline constexpr std::int64_t silhouette_direction = 29; //!< Silhouette's direction d′ of a sample
 inline constexpr std::int64_t height_direction = 101;    //!< SampleTopology's height direction
+inline constexpr std::int64_t flow_segment = 131;        //!< the flow certificate's counting segments
 }  // namespace generic_stream
 
 }  // namespace delmesh

@@ -529,4 +529,30 @@ inline constexpr std::size_t polynomial_form_max_terms = 4000;
 //! compiled path.)
 inline constexpr double taylor_form_instruction_ratio = 2;
 
+// ---- the gradient-flow certificate (meshing/gradient_flow_certificate.h) ----
+
+//! The tube T = {|E| ≤ ε′} of the flow certificate has ε′ = this factor times ε, the largest bound
+//! of |E| on the mesh, so that the mesh lies in T's interior.
+inline constexpr double flow_tube_factor = 1.25;
+//! A triangle whose transversality a piece cannot decide is cut in four, down to this depth
+//! (4^depth pieces at most).
+inline constexpr int flow_triangle_max_depth = 7;
+//! A piece whose bound of |E| exceeds this factor times the largest |E| met so far at a piece's
+//! centre (a value E takes on the mesh) is cut in four as well, down to the same depth, so that ε
+//! comes within about this factor of max |E| on the mesh instead of carrying the overestimate
+//! of whole-triangle enclosures.
+inline constexpr double flow_epsilon_slack = 1.25;
+//! A box of the gradient proof is kept once its certified lower bound of |∇E| is at least this
+//! fraction of |∇E| at its centre (the bound G then loses at most this factor), or once it is
+//! narrower than flow_min_box_relative_width of the domain.
+inline constexpr double flow_gradient_quality = 0.9;
+inline constexpr double flow_min_box_relative_width = 1e-7;
+//! Boxes and rectangles the proofs of (a) and (b) may examine, in all.
+inline constexpr std::size_t flow_box_budget = 8000000;
+//! Directions tried for a critical point's counting segment (the first along ∇E, then perturbed)
+//! when a segment passes through an edge or vertex of the mesh or is not proved monotone; and
+//! the doublings of its half-length.
+inline constexpr int flow_segment_attempts = 8;
+inline constexpr int flow_segment_doublings = 40;
+
 }  // namespace delmesh::tolerances

@@ -19,14 +19,6 @@ Vec3 generic_direction(std::uint64_t seed, int k) {
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
-namespace {
-
-// SurfaceCritical in direction d over `domain`, then over every region the box budget left
-// unexplored, each with a budget of its own, round after round while the last round certified a
-// root (progress) and the boxes of all the solves stay within tolerances::seed_solve_budget_factor
-// budgets.  The regions tile the part of the domain that was
-// not excluded, so the roots and regions gathered cover every critical point as one solve would.
-// Stops at once on time_limit or non_isolated, which it returns.
 SolveResult seed_solve(SurfaceOracle& oracle, const Vec3& d, const Domain& domain) {
   const std::size_t budget = tolerances::mesher_box_budget_global;
   SolveResult all = oracle.surface_critical(d, domain, budget);
@@ -62,8 +54,6 @@ SolveResult seed_solve(SurfaceOracle& oracle, const Vec3& d, const Domain& domai
   if (all.status != SolveStatus::box_limit && all.undecided.empty()) all.status = SolveStatus::complete;
   return all;
 }
-
-}  // namespace
 
 SeedReport insert_seeds(Refinement& refinement) {
   auto& oracle = refinement.oracle();

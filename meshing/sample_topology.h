@@ -30,6 +30,14 @@ struct SeedReport {
 //! The k-th seeded generic unit direction (k = 0, 1, …).
 Vec3 generic_direction(std::uint64_t seed, int k);
 
+//! SurfaceCritical in direction d over `domain` (the seed solve of step 1), then over every region
+//! the box budget left unexplored, each with a budget of its own, round after round while the last
+//! round certified a root, within tolerances::seed_solve_budget_factor budgets in all.  The
+//! regions tile the part of the domain that was not excluded, so the roots and regions returned
+//! cover every critical point as one solve would.  Stops at once on time_limit or non_isolated,
+//! which it returns; status complete when no region is left undecided.
+SolveResult seed_solve(SurfaceOracle& oracle, const Vec3& d, const Domain& domain);
+
 //! Step 1: inserts the seeds into S.  Throws InvalidInput if Σ is empty in the box (the seed
 //! solve found no critical point and left no undecided region) or no generic height direction
 //! is found.  An undecided region that cannot be projected onto Σ is reported unsettled

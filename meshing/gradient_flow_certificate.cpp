@@ -1,0 +1,713 @@
+// The gradient-flow isotopy certificate: the steps of the proof in gradient_flow_certificate.h.
+//  1. read the soup; check that it is a closed orientable 2-manifold and orient each component;
+//  2. on every triangle, by pieces: a bound of |E| (giving ε) and the sign of ⟨∇E, n⟩ (d);
+//  3. (a) |E| > ε′ on the faces of B and (b) |∇E| ≥ G on T, by subdivision;
+//  4. (e) the critical points of a height function on Σ and one counting segment through each;
+//  5. the Hausdorff bound ε/G and the per-triangle bounds.
+#include "meshing/gradient_flow_certificate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <utility>
+
+#include "common/errors.h"
+#include "common/seeded_uniform.h"
+#include "common/tolerances.h"
+#include "meshing/implicit_oracle.h"
+#include "meshing/input_validation.h"
+#include "meshing/mesh_checker.h"
+#include "meshing/sample_topology.h"
+#include "solvers/domain.h"
+#include "symbolic/compiled_system.h"
+#include "symbolic/scalar_traits.h"
+
+namespace delmesh {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using P3 = std::array<double, 3>;
+using IBox = std::array<Interval, 3>;
+
+//! Thrown inside the certificate when the interrupt flag or the deadline is seen.
+struct Stopped {};
+
+//! A condition that could not be proved, or a refutation: ends the certificate with `status`.
+struct Verdict {
+  FlowCertificateStatus status;
+  std::string reason;
+  std::optional<P3> location;
+};
+
+bool finite(const Interval& a) { return std::isfinite(a.inf()) && std::isfinite(a.sup()); }
+
+//! The intersection of two enclosures of one number (the first if it is the only finite one).
+Interval meet(const Interval& a, const Interval& b) {
+  if (!finite(b)) return a;
+  if (!finite(a)) return b;
+  const double lo = std::max(a.inf(), b.inf()), hi = std::min(a.sup(), b.sup());
+  return lo <= hi ? Interval(lo, hi) : a;
+}
+
+//! The largest |x| over an enclosure (infinity for a non-finite one).
+double magnitude(const Interval& a) {
+  return finite(a) ? std::max(std::abs(a.inf()), std::abs(a.sup())) : std::numeric_limits<double>::infinity();
+}
+
+P3 centre_of(const IBox& x) {
+  P3 c;
+  for (int k = 0; k < 3; ++k) c[k] = std::min(std::max(0.5 * x[k].inf() + 0.5 * x[k].sup(), x[k].inf()), x[k].sup());
+  return c;
+}
+
+double width_of(const IBox& x) {
+  double w = 0;
+  for (int k = 0; k < 3; ++k) w = std::max(w, x[k].sup() - x[k].inf());
+  return w;
+}
+
+//! {E, ∂xE, ∂yE, ∂zE} over a box X and at its centre c: E(X), ∇E(X), H(X) (Jacobian rows 1–3),
+//! E(c), ∇E(c), and X − c.  Evaluated under a RoundingGuard held by the caller.
+struct Enclosure {
+  Interval v[4], j[12], vc[4];
+  IBox d;
+  P3 c{};
+  bool c2 = false;  //!< every enclosure finite: E is C² on X and the Taylor forms apply
+
+  Enclosure(const CompiledSystem& system, const IBox& x) {
+    c = centre_of(x);
+    IBox at;
+    for (int k = 0; k < 3; ++k) {
+      at[k] = Interval(c[k]);
+      d[k] = x[k] - at[k];
+    }
+    system.values_and_jacobian<Interval>(x.data(), nullptr, v, j);
+    system.values<Interval>(at.data(), nullptr, vc);
+    c2 = true;
+    for (const Interval& a : v) c2 = c2 && finite(a);
+    for (const Interval& a : j) c2 = c2 && finite(a);
+    for (const Interval& a : vc) c2 = c2 && finite(a);
+  }
+  Interval hessian(int i, int k) const { return j[3 * (1 + i) + k]; }
+
+  //! E over X: the natural enclosure met with the mean-value form.
+  Interval value() const {
+    if (!c2) return v[0];
+    Interval mv = vc[0];
+    for (int i = 0; i < 3; ++i) mv += v[1 + i] * d[i];
+    return meet(v[0], mv);
+  }
+  //! ⟨∇E(x), w⟩ over X for a vector w (enclosed): natural met with mean value.
+  Interval directional(const IBox& w) const {
+    Interval natural(0);
+    for (int i = 0; i < 3; ++i) natural += v[1 + i] * w[i];
+    if (!c2) return natural;
+    Interval mv(0);
+    for (int i = 0; i < 3; ++i) mv += vc[1 + i] * w[i];
+    for (int k = 0; k < 3; ++k) {
+      Interval hw(0);
+      for (int i = 0; i < 3; ++i) hw += hessian(i, k) * w[i];
+      mv += hw * d[k];
+    }
+    return meet(natural, mv);
+  }
+};
+
+IBox interval_point(const P3& p) { return {Interval(p[0]), Interval(p[1]), Interval(p[2])}; }
+IBox interval_point(const Point3& p) { return {Interval(p.x()), Interval(p.y()), Interval(p.z())}; }
+
+//! The certificate's state: the system, the limits, the counters.
+class FlowProof {
+ public:
+  FlowProof(const Surface& surface, const Box3& box, const FlowCertificateOptions& options, FlowCertificate& out)
+      : system_(std::vector<GiNaC::ex>{surface.E(), surface.gradient()[0], surface.gradient()[1], surface.gradient()[2]},
+                {coordinate_x(), coordinate_y(), coordinate_z()}, {}, false, PolynomialFormBuild::never),
+        box_(box), options_(options), out_(out) {
+    for (int k = 0; k < 3; ++k) domain_width_ = std::max(domain_width_, box.hi[k] - box.lo[k]);
+  }
+
+  const CompiledSystem& system() const { return system_; }
+
+  //! Throws Stopped once the interrupt flag or the deadline is seen.
+  void poll() const {
+    if (options_.interrupt && options_.interrupt->load(std::memory_order_relaxed)) {
+      out_.interrupted = true;
+      throw Stopped{};
+    }
+    if (options_.deadline && ++polls_ % 64 == 0 && Clock::now() >= *options_.deadline) {
+      out_.time_limited = true;
+      throw Stopped{};
+    }
+  }
+
+  //! Records a value E takes on the mesh (up to rounding): largest_value_met() estimates max |E|
+  //! over M from below, and the pieces' bounds are refined towards it.
+  void met_value(double e) {
+    if (std::isfinite(e)) largest_value_met_ = std::max(largest_value_met_, std::abs(e));
+  }
+  double largest_value_met() const { return largest_value_met_; }
+
+  void count_box() {
+    if (++out_.boxes > tolerances::flow_box_budget)
+      throw Verdict{FlowCertificateStatus::undecided,
+                    "the budget of " + std::to_string(tolerances::flow_box_budget) +
+                        " boxes of the tube proofs ran out",
+                    std::nullopt};
+  }
+
+  //! (a): |E| > tube on every face of B, by subdividing each face (flat boxes).
+  void prove_faces(double tube) {
+    const double min_width = tolerances::flow_min_box_relative_width * domain_width_;
+    for (int axis = 0; axis < 3; ++axis)
+      for (double fixed : {box_.lo[axis], box_.hi[axis]}) {
+        std::vector<std::array<double, 6>> stack;
+        std::array<double, 6> face{box_.lo[0], box_.hi[0], box_.lo[1], box_.hi[1], box_.lo[2], box_.hi[2]};
+        face[2 * axis] = face[2 * axis + 1] = fixed;
+        stack.push_back(face);
+        while (!stack.empty()) {
+          poll();
+          count_box();
+          const auto b = stack.back();
+          stack.pop_back();
+          IBox x;
+          for (int k = 0; k < 3; ++k) x[k] = Interval(b[2 * k], b[2 * k + 1]);
+          Interval e;
+          {
+            RoundingGuard guard;
+            e = Enclosure(system_, x).value();
+          }
+          if (e.inf() > tube || e.sup() < -tube) continue;
+          split_or_fail(b, stack, min_width, "the tube |E| <= " + text(tube) + " may reach the boundary of the box");
+        }
+      }
+  }
+
+  //! (b): |∇E| ≥ G on T = {|E| ≤ tube}; returns G.
+  double prove_gradient(double tube) {
+    const double min_width = tolerances::flow_min_box_relative_width * domain_width_;
+    double least = std::numeric_limits<double>::infinity();
+    std::vector<std::array<double, 6>> stack{{box_.lo[0], box_.hi[0], box_.lo[1], box_.hi[1], box_.lo[2], box_.hi[2]}};
+    while (!stack.empty()) {
+      poll();
+      count_box();
+      const auto b = stack.back();
+      stack.pop_back();
+      IBox x;
+      for (int k = 0; k < 3; ++k) x[k] = Interval(b[2 * k], b[2 * k + 1]);
+      const double width = width_of(x);
+      double bound = 0, at_centre = 0;
+      bool outside_tube = false;
+      {
+        RoundingGuard guard;
+        const Enclosure en(system_, x);
+        const Interval e = en.value();
+        outside_tube = e.inf() > tube || e.sup() < -tube;
+        if (!outside_tube) {
+          at_centre = std::sqrt(magnitude(en.vc[1]) * magnitude(en.vc[1]) + magnitude(en.vc[2]) * magnitude(en.vc[2]) +
+                                magnitude(en.vc[3]) * magnitude(en.vc[3]));
+          bound = gradient_lower_bound(en);
+        }
+      }
+      if (outside_tube) continue;
+      if (bound > 0 && (bound >= tolerances::flow_gradient_quality * at_centre || width < min_width)) {
+        least = std::min(least, bound);
+        continue;
+      }
+      split_or_fail(b, stack, min_width, "the gradient of E may vanish in the tube |E| <= " + text(tube));
+    }
+    return least;
+  }
+
+  //! A lower bound of |∇E| over the enclosure's box (0 if none is proved): |⟨∇E, g⟩|/‖g‖ for
+  //! g ≈ ∇E(c) and for the axes.  Under a RoundingGuard.
+  static double gradient_lower_bound(const Enclosure& en) {
+    double best = 0;
+    const auto try_direction = [&](const P3& g) {
+      const IBox w = interval_point(g);
+      const Interval s = en.directional(w);
+      if (!certainly_nonzero(s) || !finite(s)) return;
+      const Interval norm = CGAL::sqrt(CGAL::square(w[0]) + CGAL::square(w[1]) + CGAL::square(w[2]));
+      const Interval lower = Interval(std::min(std::abs(s.inf()), std::abs(s.sup()))) / norm;
+      best = std::max(best, lower.inf());
+    };
+    P3 g{};
+    bool usable = false;
+    for (int i = 0; i < 3; ++i) {
+      g[i] = finite(en.vc[1 + i]) ? 0.5 * en.vc[1 + i].inf() + 0.5 * en.vc[1 + i].sup() : 0;
+      usable = usable || g[i] != 0;
+    }
+    if (usable) try_direction(g);
+    for (int k = 0; k < 3; ++k) {
+      P3 axis{};
+      axis[k] = 1;
+      try_direction(axis);
+    }
+    return best;
+  }
+
+  static std::string text(double x) {
+    std::ostringstream s;
+    s.precision(3);
+    s << x;
+    return s.str();
+  }
+
+ private:
+  //! Bisects the widest side of b onto the stack, or throws the verdict `failure` (undecided)
+  //! located at b's centre once b is narrower than min_width.
+  void split_or_fail(const std::array<double, 6>& b, std::vector<std::array<double, 6>>& stack, double min_width,
+                     const std::string& failure) {
+    int side = 0;
+    for (int k = 1; k < 3; ++k)
+      if (b[2 * k + 1] - b[2 * k] > b[2 * side + 1] - b[2 * side]) side = k;
+    const double lo = b[2 * side], hi = b[2 * side + 1], split = 0.5 * (lo + hi);
+    if (hi - lo < min_width || !(split > lo && split < hi)) {
+      const P3 at{0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])};
+      throw Verdict{FlowCertificateStatus::undecided, failure, at};
+    }
+    auto lower = b, upper = b;
+    lower[2 * side + 1] = split;
+    upper[2 * side] = split;
+    stack.push_back(upper);
+    stack.push_back(lower);
+  }
+
+  CompiledSystem system_;
+  Box3 box_;
+  const FlowCertificateOptions& options_;
+  FlowCertificate& out_;
+  double domain_width_ = 0;
+  double largest_value_met_ = 0;
+  mutable std::uint32_t polls_ = 0;
+};
+
+// ---- 1. the soup ----
+
+//! Checks the indices and coordinates (InvalidInput as certificate.h's certify_mesh).
+void check_soup(const std::vector<Point3>& points, const std::vector<std::array<std::size_t, 3>>& triangles) {
+  if (triangles.empty()) throw InvalidInput("the mesh has no triangle to certify");
+  for (const auto& t : triangles) {
+    for (std::size_t i : t)
+      if (i >= points.size())
+        throw InvalidInput("a triangle refers to vertex " + std::to_string(i) + " of " + std::to_string(points.size()));
+    if (t[0] == t[1] || t[0] == t[2] || t[1] == t[2]) throw InvalidInput("a triangle repeats a vertex index");
+    for (std::size_t i : t) {
+      const Point3& p = points[i];
+      if (!(std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z())))
+        throw InvalidInput("vertex " + std::to_string(i) + " has a non-finite coordinate");
+    }
+  }
+}
+
+//! Consistent orientations of a closed orientable 2-manifold soup: flip[t] = ±1 so that across
+//! every edge the two triangles, t reversed where flip[t] = −1, run through it in opposite
+//! directions; and the component of each triangle.
+struct Orientation {
+  std::vector<int> flip;
+  std::vector<std::size_t> component;
+  std::size_t components = 0;
+};
+
+Orientation orient(const std::vector<std::array<std::size_t, 3>>& triangles) {
+  // Each directed edge a → b of each triangle, by its undirected key.
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::pair<std::size_t, bool>>> edges;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t a = triangles[t][k], b = triangles[t][(k + 1) % 3];
+      edges[std::minmax(a, b)].push_back({t, a < b});
+    }
+  Orientation o;
+  o.flip.assign(triangles.size(), 0);
+  o.component.assign(triangles.size(), 0);
+  std::vector<std::size_t> stack;
+  for (std::size_t root = 0; root < triangles.size(); ++root) {
+    if (o.flip[root] != 0) continue;
+    o.flip[root] = 1;
+    o.component[root] = o.components;
+    stack.push_back(root);
+    while (!stack.empty()) {
+      const std::size_t t = stack.back();
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t a = triangles[t][k], b = triangles[t][(k + 1) % 3];
+        const bool forward = a < b;
+        for (const auto& [u, u_forward] : edges[std::minmax(a, b)]) {
+          if (u == t) continue;
+          // Consistent: u runs through the edge the other way, after both flips.
+          const int want = forward != u_forward ? o.flip[t] : -o.flip[t];
+          if (o.flip[u] == 0) {
+            o.flip[u] = want;
+            o.component[u] = o.components;
+            stack.push_back(u);
+          }
+        }
+      }
+    }
+    ++o.components;
+  }
+  return o;
+}
+
+// ---- 2. the triangles ----
+
+//! What one triangle gave: the bound of |E| on it and the sign of its flux (0: undecided).
+struct TriangleProof {
+  double e_bound = 0;
+  int sign = 0;
+  P3 undecided_at{};
+};
+
+//! A piece of a triangle in its barycentric parameters (dyadic, exact): corners (u_i, v_i).
+struct Piece {
+  std::array<std::array<double, 2>, 3> uv;
+  int depth = 0;
+};
+
+//! E at the centroid of a piece (its corners enclosed; the midpoints of the enclosures), in
+//! floating point.
+double centroid_value(const CompiledSystem& system, const std::array<IBox, 3>& corner) {
+  P3 centroid{};
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) centroid[k] += (0.5 * corner[i][k].inf() + 0.5 * corner[i][k].sup()) / 3;
+  double values[4];
+  system.values<double>(centroid.data(), nullptr, values);
+  return values[0];
+}
+
+TriangleProof prove_triangle(FlowProof& proof, const Point3& a, const Point3& b, const Point3& c,
+                             std::size_t& pieces) {
+  TriangleProof out;
+  RoundingGuard guard;
+  const IBox ia = interval_point(a), ib = interval_point(b), ic = interval_point(c);
+  IBox ab, ac;
+  for (int k = 0; k < 3; ++k) {
+    ab[k] = ib[k] - ia[k];
+    ac[k] = ic[k] - ia[k];
+  }
+  const IBox normal{ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0]};
+  std::vector<Piece> stack{{{{{0, 0}, {1, 0}, {0, 1}}}, 0}};
+  while (!stack.empty()) {
+    proof.poll();
+    const Piece piece = stack.back();
+    stack.pop_back();
+    ++pieces;
+    // The corners, enclosed, and their box.
+    std::array<IBox, 3> corner;
+    IBox x;
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) {
+        corner[i][k] = ia[k] + Interval(piece.uv[i][0]) * ab[k] + Interval(piece.uv[i][1]) * ac[k];
+        x[k] = i == 0 ? corner[i][k] : Interval(std::min(x[k].inf(), corner[i][k].inf()),
+                                                std::max(x[k].sup(), corner[i][k].sup()));
+      }
+    const Enclosure en(proof.system(), x);
+    // |E| on the piece: Taylor at c with the affine term at the corners, met with E(X).
+    Interval e = en.v[0];
+    if (en.c2) {
+      Interval affine;
+      for (int i = 0; i < 3; ++i) {
+        Interval at_corner(0);
+        for (int k = 0; k < 3; ++k) at_corner += en.vc[1 + k] * (corner[i][k] - Interval(en.c[k]));
+        affine = i == 0 ? at_corner
+                        : Interval(std::min(affine.inf(), at_corner.inf()), std::max(affine.sup(), at_corner.sup()));
+      }
+      Interval quadratic(0);
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) quadratic += en.hessian(i, k) * en.d[i] * en.d[k];
+      e = meet(e, en.vc[0] + affine + Interval(0.5) * quadratic);
+    }
+    const Interval flux = en.directional(normal);
+    const int sign = certainly_nonzero(flux) && finite(flux) ? (flux.inf() > 0 ? 1 : -1) : 0;
+    proof.met_value(centroid_value(proof.system(), corner));
+    const bool tight = magnitude(e) <= tolerances::flow_epsilon_slack * proof.largest_value_met() ||
+                       piece.depth >= tolerances::flow_triangle_max_depth;
+    const bool consistent = sign != 0 && (out.sign == 0 || out.sign == sign);
+    if (consistent && tight) {
+      out.sign = sign;
+      out.e_bound = std::max(out.e_bound, magnitude(e));
+      continue;
+    }
+    if ((sign == 0 || consistent) && piece.depth < tolerances::flow_triangle_max_depth) {
+      // Four children by the midpoints of the parameter triangle (exact halves).
+      const auto mid = [&](int i, int j) {
+        return std::array<double, 2>{0.5 * (piece.uv[i][0] + piece.uv[j][0]), 0.5 * (piece.uv[i][1] + piece.uv[j][1])};
+      };
+      const auto m01 = mid(0, 1), m12 = mid(1, 2), m20 = mid(2, 0);
+      for (const auto& child : {std::array<std::array<double, 2>, 3>{piece.uv[0], m01, m20},
+                                std::array<std::array<double, 2>, 3>{m01, piece.uv[1], m12},
+                                std::array<std::array<double, 2>, 3>{m20, m12, piece.uv[2]},
+                                std::array<std::array<double, 2>, 3>{m12, m20, m01}})
+        stack.push_back({child, piece.depth + 1});
+      continue;
+    }
+    // Undecided at the depth limit, or pieces of opposite proved signs (the flux vanishes between).
+    out.sign = 0;
+    out.undecided_at = en.c;
+    return out;
+  }
+  return out;
+}
+
+// ---- 4. the counting segments ----
+
+//! The algebraic number of crossings of the segment pq with the positively oriented triangles,
+//! or nothing if the segment passes through an edge or a vertex of one (or lies in its plane).
+std::optional<int> crossings(const Point3& p, const Point3& q, const std::vector<Point3>& points,
+                             const std::vector<std::array<std::size_t, 3>>& oriented) {
+  const CGAL::Bbox_3 segment = p.bbox() + q.bbox();
+  int count = 0;
+  for (const auto& t : oriented) {
+    const Point3 &a = points[t[0]], &b = points[t[1]], &c = points[t[2]];
+    if (!CGAL::do_overlap(segment, a.bbox() + b.bbox() + c.bbox())) continue;
+    const CGAL::Orientation op = CGAL::orientation(a, b, c, p), oq = CGAL::orientation(a, b, c, q);
+    if (op == CGAL::COPLANAR && oq == CGAL::COPLANAR) return std::nullopt;
+    // An end in the triangle's plane is not in the triangle (|E| > ε′ there, ≤ ε on it).
+    if (op == oq || op == CGAL::COPLANAR || oq == CGAL::COPLANAR) continue;
+    const CGAL::Orientation s[3] = {CGAL::orientation(p, q, a, b), CGAL::orientation(p, q, b, c),
+                                    CGAL::orientation(p, q, c, a)};
+    const bool positive = s[0] == CGAL::POSITIVE || s[1] == CGAL::POSITIVE || s[2] == CGAL::POSITIVE;
+    const bool negative = s[0] == CGAL::NEGATIVE || s[1] == CGAL::NEGATIVE || s[2] == CGAL::NEGATIVE;
+    if (positive && negative) continue;  // the line misses the triangle
+    if (s[0] == CGAL::COPLANAR || s[1] == CGAL::COPLANAR || s[2] == CGAL::COPLANAR) return std::nullopt;
+    count += op == CGAL::NEGATIVE ? 1 : -1;  // from the back to the front: along ∇E
+  }
+  return count;
+}
+
+//! Whether ⟨∇E, q − p⟩ > 0 on the segment pq, by pieces of its parameter range.
+bool increasing_along(FlowProof& proof, const Point3& p, const Point3& q) {
+  RoundingGuard guard;
+  const IBox ip = interval_point(p), iq = interval_point(q);
+  IBox w;
+  for (int k = 0; k < 3; ++k) w[k] = iq[k] - ip[k];
+  std::vector<std::pair<double, double>> stack{{0.0, 1.0}};
+  constexpr int max_pieces = 1 << 12;
+  int pieces = 0;
+  while (!stack.empty()) {
+    proof.poll();
+    const auto [t0, t1] = stack.back();
+    stack.pop_back();
+    IBox x;
+    for (int k = 0; k < 3; ++k) x[k] = ip[k] + Interval(t0, t1) * w[k];
+    const Interval s = Enclosure(proof.system(), x).directional(w);
+    if (finite(s) && s.inf() > 0) continue;
+    if (++pieces > max_pieces || (finite(s) && s.sup() < 0)) return false;
+    const double m = 0.5 * (t0 + t1);
+    stack.push_back({m, t1});
+    stack.push_back({t0, m});
+  }
+  return true;
+}
+
+//! E at a point, enclosed.
+Interval value_at(const CompiledSystem& system, const Point3& p) {
+  RoundingGuard guard;
+  const IBox x = interval_point(p);
+  Interval v[4];
+  system.values<Interval>(x.data(), nullptr, v);
+  return v[0];
+}
+
+//! (e) for one critical point z with root box `root`: a segment through z, monotone in E, from
+//! E < −tube to E > tube, and its algebraic crossing count with M.
+int count_through(FlowProof& proof, const P3& z, const std::vector<std::array<double, 2>>& root, double tube,
+                  const std::vector<Point3>& points, const std::vector<std::array<std::size_t, 3>>& oriented,
+                  std::uint64_t seed, std::size_t index) {
+  const CompiledSystem& system = proof.system();
+  {
+    RoundingGuard guard;
+    IBox x;
+    for (int k = 0; k < 3; ++k) x[k] = Interval(root[k][0], root[k][1]);
+    const Interval e = Enclosure(system, x).value();
+    if (!(finite(e) && e.inf() >= -tube && e.sup() <= tube))
+      throw Verdict{FlowCertificateStatus::undecided, "the box of a critical point of the height function is not proved inside the tube", z};
+  }
+  double values[4];
+  system.values<double>(z.data(), nullptr, values);
+  const P3 gradient{values[1], values[2], values[3]};
+  const double length = std::sqrt(gradient[0] * gradient[0] + gradient[1] * gradient[1] + gradient[2] * gradient[2]);
+  if (!(length > 0) || !std::isfinite(length))
+    throw Verdict{FlowCertificateStatus::undecided, "the gradient of E is not usable at a critical point", z};
+  for (int attempt = 0; attempt < tolerances::flow_segment_attempts; ++attempt) {
+    P3 g;
+    for (int k = 0; k < 3; ++k) {
+      const double jitter = attempt == 0 ? 0 : 0.05 * attempt * (2 * seeded_uniform(seed, static_cast<std::int64_t>(index), attempt * 3 + k, generic_stream::flow_segment) - 1);
+      g[k] = gradient[k] / length + jitter;
+    }
+    double s = 4 * tube / length;
+    for (int doubling = 0; doubling < tolerances::flow_segment_doublings; ++doubling, s *= 2) {
+      const Point3 p(z[0] - s * g[0], z[1] - s * g[1], z[2] - s * g[2]);
+      const Point3 q(z[0] + s * g[0], z[1] + s * g[1], z[2] + s * g[2]);
+      const Interval ep = value_at(system, p), eq = value_at(system, q);
+      if (!(finite(ep) && finite(eq))) break;
+      if (!(ep.sup() < -tube && eq.inf() > tube)) continue;
+      if (!increasing_along(proof, p, q)) break;
+      if (const auto count = crossings(p, q, points, oriented)) return *count;
+      break;
+    }
+  }
+  throw Verdict{FlowCertificateStatus::undecided,
+                "no segment through a critical point of the height function could be proved to cross the tube "
+                "monotonically and generically",
+                z};
+}
+
+}  // namespace
+
+FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
+                                      const std::vector<std::array<std::size_t, 3>>& triangles,
+                                      const Surface& surface, const Box3& box, const FlowCertificateOptions& options) {
+  const auto start = Clock::now();
+  FlowCertificate c;
+  c.seed = options.seed;
+  c.box_diagonal = box.diagonal();
+  c.hausdorff_upper_bound = std::numeric_limits<double>::infinity();
+  check_soup(points, triangles);
+  try {
+    (void)validate_input(surface, box);
+    FlowProof proof(surface, box, options, c);
+    // 1. A closed orientable 2-manifold, or a proof that M is not Σ's kind of surface: the
+    //    validation above proved Σ a closed (orientable) level set of a regular value inside B.
+    const MeshReport report = check_mesh(points, triangles);
+    if (!report.manifold || !report.orientable)
+      throw Verdict{FlowCertificateStatus::refuted,
+                    std::string("the mesh is not a closed orientable 2-manifold (") +
+                        (report.closed ? "" : "it has boundary edges; ") + std::to_string(report.nonmanifold_edges) +
+                        " non-manifold edges, " + std::to_string(report.nonmanifold_vertices) +
+                        " non-manifold vertices) while the surface is one (E is certified non-zero on the box's "
+                        "boundary and its gradient non-zero on the surface)",
+                    std::nullopt};
+    const Orientation orientation = orient(triangles);
+    c.mesh_components = orientation.components;
+
+    // 2. ε and the transversality of every triangle.
+    std::vector<double> e_bound(triangles.size());
+    std::vector<int> sign(triangles.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      const auto& tri = triangles[t];
+      const TriangleProof tp = prove_triangle(proof, points[tri[0]], points[tri[1]], points[tri[2]], c.triangle_pieces);
+      if (tp.sign == 0)
+        throw Verdict{FlowCertificateStatus::undecided,
+                      "triangle " + std::to_string(t) + " is not proved transverse to the gradient of E", tp.undecided_at};
+      e_bound[t] = tp.e_bound;
+      sign[t] = tp.sign * orientation.flip[t];
+      c.epsilon = std::max(c.epsilon, tp.e_bound);
+    }
+    // One direction of the flux per component.
+    std::vector<int> component_sign(orientation.components, 0);
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      int& s = component_sign[orientation.component[t]];
+      if (s == 0) s = sign[t];
+      if (s != sign[t]) {
+        const Point3& a = points[triangles[t][0]];
+        throw Verdict{FlowCertificateStatus::undecided,
+                      "the gradient of E crosses the triangles of one component of the mesh in both directions "
+                      "(at triangle " + std::to_string(t) + ")",
+                      P3{a.x(), a.y(), a.z()}};
+      }
+    }
+    std::vector<std::array<std::size_t, 3>> oriented = triangles;
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+      if (orientation.flip[t] * component_sign[orientation.component[t]] < 0) std::swap(oriented[t][1], oriented[t][2]);
+    if (!std::isfinite(c.epsilon))
+      throw Verdict{FlowCertificateStatus::undecided, "|E| on the mesh could not be bounded", std::nullopt};
+    c.tube = std::max(tolerances::flow_tube_factor * c.epsilon, std::numeric_limits<double>::min());
+
+    // 3. (a) and (b).
+    proof.prove_faces(c.tube);
+    c.min_gradient = proof.prove_gradient(c.tube);
+    if (!(c.min_gradient > 0))
+      throw Verdict{FlowCertificateStatus::undecided, "no lower bound of the gradient of E was proved", std::nullopt};
+
+    // 4. (e): the critical points of a generic height function and one segment through each.
+    ImplicitOracle oracle(surface, box, SolverBackend::subdivision);
+    oracle.set_run_controls(options.seed, options.deadline);
+    const Domain domain = Domain::from_box({{box.lo[0], box.hi[0]}, {box.lo[1], box.hi[1]}, {box.lo[2], box.hi[2]}});
+    std::optional<SolveResult> solved;
+    for (int k = 0; k < tolerances::mesher_height_direction_retries && !solved; ++k) {
+      SolveResult r = seed_solve(oracle, generic_direction(options.seed, k), domain);
+      if (r.status == SolveStatus::time_limit) {
+        c.time_limited = true;
+        throw Stopped{};
+      }
+      if (r.status != SolveStatus::non_isolated) solved = std::move(r);
+    }
+    if (!solved)
+      throw Verdict{FlowCertificateStatus::undecided, "no generic height direction was found for the surface", std::nullopt};
+    if (solved->status != SolveStatus::complete || !solved->undecided.empty())
+      throw Verdict{FlowCertificateStatus::undecided,
+                    "the critical points of the height function on the surface were not all certified (" +
+                        std::to_string(solved->undecided.size()) + " regions undecided)",
+                    solved->undecided.empty() ? std::nullopt : std::optional<P3>(solved->undecided.front().world)};
+    std::size_t index = 0;
+    for (const CertifiedRoot& root : solved->roots) {
+      if (!root.inside_domain) continue;
+      const int count = count_through(proof, root.world, root.box.bounds, c.tube, points, oriented, options.seed, index++);
+      if (count != 1)
+        throw Verdict{FlowCertificateStatus::undecided,
+                      "a segment across the tube through a critical point of the surface meets the mesh " +
+                          std::to_string(count) + " times (with sign): the mesh covers that component of the surface " +
+                          std::to_string(count) + " times, not once",
+                      root.world};
+      ++c.critical_points;
+    }
+    if (c.critical_points == 0)
+      throw Verdict{FlowCertificateStatus::refuted,
+                    "the surface is empty in the box (a generic height function has no critical point on it, "
+                    "certified) but the mesh is not",
+                    std::nullopt};
+
+    // 5. Certified: the Hausdorff bounds, rounded up.
+    c.status = FlowCertificateStatus::certified;
+    RoundingGuard guard;
+    c.hausdorff_upper_bound = (Interval(c.epsilon) / Interval(c.min_gradient)).sup();
+    c.triangle_distance_bounds.resize(triangles.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+      c.triangle_distance_bounds[t] = (Interval(e_bound[t]) / Interval(c.min_gradient)).sup();
+  } catch (const Verdict& v) {
+    c.status = v.status;
+    c.reason = v.reason;
+    c.location = v.location;
+  } catch (const Stopped&) {
+    c.status = FlowCertificateStatus::undecided;
+    c.reason = c.interrupted ? "interrupted by a signal" : "stopped by the time limit";
+  } catch (const RunStopped& stopped) {
+    c.interrupted = stopped.reason() == StopReason::interrupted;
+    c.time_limited = stopped.reason() == StopReason::time_limit;
+    c.status = FlowCertificateStatus::undecided;
+    c.reason = stopped.what();
+  }
+  c.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return c;
+}
+
+nlohmann::json to_json(const FlowCertificate& c, bool per_triangle) {
+  std::ostringstream status;
+  status << c.status;
+  nlohmann::json j;
+  j["status"] = status.str();
+  j["reason"] = c.reason;
+  j["location"] = c.location ? nlohmann::json(*c.location) : nlohmann::json(nullptr);
+  j["epsilon"] = c.epsilon;
+  j["tube"] = c.tube;
+  j["min_gradient"] = c.min_gradient;
+  const bool bounded = c.status == FlowCertificateStatus::certified;
+  j["hausdorff_upper_bound"] = bounded ? nlohmann::json(c.hausdorff_upper_bound) : nlohmann::json(nullptr);
+  j["hausdorff_relative"] =
+      bounded && c.box_diagonal > 0 ? nlohmann::json(c.hausdorff_upper_bound / c.box_diagonal) : nlohmann::json(nullptr);
+  j["mesh_components"] = c.mesh_components;
+  j["critical_points"] = c.critical_points;
+  j["triangle_pieces"] = c.triangle_pieces;
+  j["boxes"] = c.boxes;
+  j["interrupted"] = c.interrupted;
+  j["time_limited"] = c.time_limited;
+  j["seed"] = c.seed;
+  j["seconds"] = c.seconds;
+  if (per_triangle) j["triangle_distance_bounds"] = c.triangle_distance_bounds;
+  return j;
+}
+
+}  // namespace delmesh

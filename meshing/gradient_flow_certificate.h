@@ -1,0 +1,163 @@
+#pragma once
+//! \file gradient_flow_certificate.h
+//! The isotopy certificate of any closed triangle mesh M for Σ = {E = 0} ⊂ B, by the gradient
+//! flow of E, with a certified two-sided Hausdorff bound.  Unlike the restricted-Delaunay
+//! certificate (certificate.h) it does not ask M to be Tri S|Σ of its vertices: meshes from
+//! other programs (marching cubes, CGAL Mesh_3) are certified on the same terms.
+//!
+//! ## The theorem
+//! Let ε ≥ 0, ε′ > ε, T = {x ∈ B : |E(x)| ≤ ε′}, G > 0, and suppose
+//!  (a) |E| > ε′ on the boundary of B;
+//!  (b) |∇E| ≥ G on T (so ∇E ≠ 0 there);
+//!  (c) M is a closed orientable 2-manifold (as a simplicial complex) with |E| ≤ ε on M;
+//!  (d) every triangle τ of M, oriented consistently within its component, is transverse to ∇E:
+//!      ⟨∇E(x), n_τ⟩ > 0 for every x ∈ τ (n_τ the normal (b − a) × (c − a) of τ = abc), after
+//!      reversing every triangle of a component whose triangles all have ⟨∇E, n_τ⟩ < 0;
+//!  (e) on Σ ∩ B a generic height function h(x) = ⟨x, d⟩ has finitely many critical points, all
+//!      certified (SurfaceCritical, no undecided region), and through each critical point c a
+//!      segment γ_c is proved to start where E < −ε′, end where E > ε′, be crossed by E
+//!      increasingly (⟨∇E, γ′⟩ > 0 along it), and meet M with algebraic intersection number 1.
+//! Then M is ambient-isotopic to Σ ∩ B, and every point of M is within ε/G of Σ and every point
+//! of Σ within ε/G of M (two-sided Hausdorff distance ≤ ε/G).
+//!
+//! Proof.  By (a) and (b), T is a compact region inside B on which ∇E ≠ 0; the normalised flow
+//! φ (dx/ds = ∇E/|∇E|², so dE/ds = 1) carries {E = −ε′} onto {E = ε′}, and T ≅ Σ × [−ε′, ε′]
+//! with every point of T on exactly one arc, each arc crossing Σ once (Morse theory without
+//! critical points; Milnor, *Morse theory*, Thm. 3.1).  Let π : T → Σ slide each point along its
+//! arc.  On a triangle τ of M, (d) makes π a local diffeomorphism that preserves orientation.
+//! Across an edge shared by τ and τ′, both images keep their orientation, and the two triangles
+//! run through the edge in opposite directions, so their images lie on the two sides of the
+//! image of the edge: π is a local homeomorphism there.  At a vertex, the images of the
+//! triangles around it wind w ≥ 1 times around its image.  So each component M_j of M is a
+//! branched covering of one component Σ_i of Σ of some degree d_j ≥ 1 (M_j is compact and lies
+//! in the component T_i of T that holds Σ_i), branched at most at vertices, and every arc of T_i
+//! meets M_j in d_j points counted with sign, all crossings having sign +1 (d).  For a path γ in
+//! T_i from {E = −ε′} to {E = ε′}, the algebraic intersection number with M_j equals d_j: γ is
+//! homotopic to an arc with its ends kept on those two boundary components (each is connected,
+//! ≅ Σ_i), and intersection numbers with the closed M_j ⊂ int T are invariant under such
+//! homotopies.  The part of γ_c with |E| ≤ ε′ is such a path (E is monotone along γ_c), in the
+//! component holding c, so (e) gives Σ_j d_j = 1 over the components of M above Σ_i: exactly one
+//! component, of degree 1.  Every component of Σ has a critical point of h (it is compact), so
+//! every Σ_i is reached, and every M_j lies above some Σ_i: π : M → Σ is a branched covering of
+//! degree one on each component, hence a homeomorphism (a branch point of index w ≥ 2 would need
+//! degree ≥ 2).  Each arc meets M exactly once, transversally; sliding along the arcs, with a
+//! bump function in the flow parameter, is an ambient isotopy of B taking M onto Σ.  Along an
+//! arc |dx/ds| = 1/|∇E| ≤ 1/G, and the point x ∈ M reaches Σ after |E(x)| ≤ ε units of s: its
+//! distance to Σ is at most ε/G, and every point of Σ is that close to the one point of M on its
+//! arc.  The bound for one triangle is (max over τ of |E|)/G.  ∎
+//!
+//! ## How each condition is proved
+//! All enclosures are interval arithmetic (CompiledSystem over {E, ∂xE, ∂yE, ∂zE}, whose Jacobian
+//! rows 1–3 are the Hessian) under a RoundingGuard; a NaN or infinite bound proves nothing.
+//!  - (c): checked combinatorially (mesh_checker.h); the triangles are oriented consistently per
+//!    component by walking across edges.  ε is the largest of the bounds below.
+//!  - |E| on a triangle: τ is cut into pieces in its barycentric parameters (dyadic, so the pieces
+//!    tile τ exactly); on a piece P with box X ⊇ P and centre c ∈ X, Taylor's theorem gives
+//!    E(x) ∈ E(c) + ⟨∇E(c), x − c⟩ + ½ (x − c)ᵀ H(X) (x − c), the middle term affine in x and so
+//!    bounded by its values at P's three corners (enclosed as intervals), the last by the interval
+//!    Hessian over X; intersected with the natural enclosure E(X).
+//!  - (d): ⟨∇E(x), N⟩ with N the interval enclosure of (b − a) × (c − a), over each piece's box
+//!    (natural ∇E(X) and mean-value ∇E(c) + H(X)(X − c)).  A piece is cut in four, down to
+//!    tolerances::flow_triangle_max_depth, while the sign is not decided or its bound of |E|
+//!    exceeds tolerances::flow_epsilon_slack times the largest |E| met at a piece's centre.
+//!  - (a): each face of B is subdivided (flat boxes) until every rectangle's enclosure of E
+//!    excludes [−ε′, ε′].
+//!  - (b): B is subdivided as in input_validation.h: a box whose enclosure of E excludes
+//!    [−ε′, ε′] holds no point of T and is dropped; otherwise, for g ≈ ∇E(c)/|∇E(c)| (then the
+//!    axes), the enclosure of ⟨∇E, g⟩ over the box (natural ∩ mean value) with lower bound ℓ > 0
+//!    gives |∇E| ≥ ℓ there.  A box is cut until ℓ ≥ tolerances::flow_gradient_quality · |∇E(c)|
+//!    (or it reaches the minimum width, where any ℓ > 0 is kept); G is the least ℓ kept.
+//!  - (e): the critical points come from the seed solve of sample_topology.h (certified, no
+//!    undecided region; generic directions seeded by FlowCertificateOptions::seed).  The root box
+//!    X_c must lie in T.  γ_c = [z − s g, z + s g] with z the root's midpoint and g ≈ ∇E(z)/|∇E(z)|;
+//!    s doubles from 4ε′/|∇E(z)| until the ends have E < −ε′ and E > ε′ (interval point values)
+//!    and ⟨∇E, g⟩ > 0 is proved on the boxes of γ_c's pieces.  The crossings of γ_c with the
+//!    triangles are decided with exact orientation predicates; a segment through an edge or a
+//!    vertex of M is replaced by one in a perturbed direction.
+//! Each piece, box and segment test also reads the options' interrupt flag and deadline.
+//!
+//! ## Status
+//!  - certified: (a)–(e) proved; M is isotopic to Σ and within hausdorff_upper_bound of it;
+//!  - refuted: a proof that M and Σ differ topologically: M is not a closed orientable 2-manifold
+//!    while Σ is one (validate_input proves E ≠ 0 on ∂B and ∇E ≠ 0 on Σ), or Σ ∩ B is empty (no
+//!    critical point of the height function, certified, with (a) proved) while M is not;
+//!  - undecided: some condition could not be proved; `reason` names the first, `location` a
+//!    point near it.  Not being Tri S|Σ of its vertices plays no part.
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "common/enum_names.h"
+#include "meshing/surface_mesh.h"
+#include "symbolic/surface.h"
+
+namespace delmesh {
+
+enum class FlowCertificateStatus { certified, refuted, undecided };
+constexpr auto enum_names(FlowCertificateStatus) {
+  return name_table<FlowCertificateStatus>("FlowCertificateStatus",
+                                           {{FlowCertificateStatus::certified, "certified"},
+                                            {FlowCertificateStatus::refuted, "refuted"},
+                                            {FlowCertificateStatus::undecided, "undecided"}});
+}
+inline std::ostream& operator<<(std::ostream& out, FlowCertificateStatus status) { return write_enum(out, status); }
+
+struct FlowCertificateOptions {
+  std::uint64_t seed = 1;  //!< seeds the height directions of (e) and the segments' perturbations
+  //! If given, the certificate stops at its next test after it becomes true (status undecided,
+  //! `interrupted`).
+  const std::atomic<bool>* interrupt = nullptr;
+  //! If given, the certificate stops at its next test after it has passed (status undecided,
+  //! `time_limited`); the seed solve gets it too.
+  std::optional<std::chrono::steady_clock::time_point> deadline;
+};
+
+struct [[nodiscard]] FlowCertificate {
+  FlowCertificateStatus status = FlowCertificateStatus::undecided;
+  std::string reason;                            //!< the first condition not proved (or the refutation)
+  std::optional<std::array<double, 3>> location;  //!< a point near it
+  bool interrupted = false;
+  bool time_limited = false;
+
+  double epsilon = 0;        //!< ε: the largest certified bound of |E| over the triangles
+  double tube = 0;           //!< ε′ = tolerances::flow_tube_factor · ε (T's half-width in E)
+  double min_gradient = 0;   //!< G: certified lower bound of |∇E| on T (0: not proved)
+  //! ε/G when certified (else infinity): the two-sided Hausdorff distance between M and Σ is at most this.
+  double hausdorff_upper_bound = 0;
+  double box_diagonal = 0;
+  //! Per triangle of the soup (its index order): (bound of |E| on it)/G, a bound on the distance
+  //! from its points to Σ along the flow; empty unless certified.
+  std::vector<double> triangle_distance_bounds;
+
+  std::size_t mesh_components = 0;
+  std::size_t critical_points = 0;      //!< of the height function on Σ, each with its segment counted
+  std::size_t triangle_pieces = 0;      //!< pieces examined for (c) and (d)
+  std::size_t boxes = 0;                //!< boxes and rectangles examined for (a) and (b)
+  double seconds = 0;
+  std::uint64_t seed = 1;
+};
+
+//! The certificate of the triangle soup (points, triangles) for Σ = {E = 0} in `box` (see the
+//! file comment).  Throws InvalidInput if an index is out of range, a triangle repeats an index,
+//! a referenced point is not finite, the soup has no triangle, or Σ fails validate_input (not
+//! strictly inside the box, or not certified smooth; input_validation.h).
+FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
+                                      const std::vector<std::array<std::size_t, 3>>& triangles,
+                                      const Surface& surface, const Box3& box, const FlowCertificateOptions& options = {});
+
+//! {status, reason, location, epsilon, tube, min_gradient, hausdorff_upper_bound,
+//!  hausdorff_relative (to the box diagonal), mesh_components, critical_points, triangle_pieces,
+//!  boxes, interrupted, time_limited, seed, seconds}; with `per_triangle`, also
+//!  triangle_distance_bounds.
+nlohmann::json to_json(const FlowCertificate& certificate, bool per_triangle = false);
+
+}  // namespace delmesh

@@ -1,0 +1,170 @@
+#include "meshing/gradient_flow_certificate.h"
+
+#include <cmath>
+#include <string>
+
+#include <boost/test/unit_test.hpp>
+
+#include "common/errors.h"
+#include "meshing/del_mesh.h"
+#include "meshing/mesh_checker.h"
+#include "symbolic/catalog.h"
+#include "tests/meshing/known_meshes.h"
+
+using namespace delmesh;
+
+namespace {
+
+const std::string unit_sphere = "x^2+y^2+z^2-1";
+const Box3 sphere_box = Box3::cube(1.5);
+// The torus of radii 2 and 1 about the z axis: test::torus's surface.
+const std::string torus_2_1 = "(x^2+y^2+z^2+3)^2-16*(x^2+y^2)";
+const Box3 torus_box{{-3.5, -3.5, -1.5}, {3.5, 3.5, 1.5}};
+
+FlowCertificate certify(const test::Soup& m, const std::string& e, const Box3& box) {
+  return certify_gradient_flow(m.points, m.triangles, Surface::parse(e), box);
+}
+
+double norm(const Point3& p) { return std::sqrt(p.x() * p.x() + p.y() * p.y() + p.z() * p.z()); }
+
+// The largest distance to the unit sphere over points of the mesh's triangles (barycentric grid
+// of step 1/16): a lower bound on the one-sided Hausdorff distance from the mesh to the sphere.
+double sampled_distance_to_unit_sphere(const test::Soup& m) {
+  double worst = 0;
+  for (const auto& t : m.triangles)
+    for (int i = 0; i <= 16; ++i)
+      for (int j = 0; i + j <= 16; ++j) {
+        const double u = i / 16.0, v = j / 16.0, w = 1 - u - v;
+        const Point3 &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]];
+        const Point3 x(w * a.x() + u * b.x() + v * c.x(), w * a.y() + u * b.y() + v * c.y(),
+                       w * a.z() + u * b.z() + v * c.z());
+        worst = std::max(worst, std::abs(norm(x) - 1));
+      }
+  return worst;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(gradient_flow_certificate)
+
+// An icosphere with its vertices on the unit sphere: not the restricted Delaunay triangulation of
+// its vertices in general, but isotopic to the sphere; the bound holds and is not loose.
+BOOST_AUTO_TEST_CASE(an_icosphere_is_certified_with_a_sound_hausdorff_bound) {
+  const test::Soup m = test::icosphere(3);
+  const FlowCertificate c = certify(m, unit_sphere, sphere_box);
+  BOOST_TEST_REQUIRE(c.status == FlowCertificateStatus::certified, c.reason);
+  BOOST_TEST(c.mesh_components == 1u);
+  BOOST_TEST(c.critical_points >= 2u);  // a maximum and a minimum of the height
+  const double sampled = sampled_distance_to_unit_sphere(m);
+  BOOST_TEST(c.hausdorff_upper_bound >= sampled);
+  BOOST_TEST(c.hausdorff_upper_bound <= 10 * sampled, "bound " << c.hausdorff_upper_bound << ", sampled " << sampled);
+  BOOST_TEST(c.triangle_distance_bounds.size() == m.triangles.size());
+  for (double d : c.triangle_distance_bounds) BOOST_TEST(d <= c.hausdorff_upper_bound);
+}
+
+// Reversing every triangle changes nothing: orientation is found per component.
+BOOST_AUTO_TEST_CASE(an_inward_oriented_mesh_is_certified_too) {
+  test::Soup m = test::icosphere(2);
+  for (auto& t : m.triangles) std::swap(t[1], t[2]);
+  BOOST_TEST(certify(m, unit_sphere, sphere_box).status == FlowCertificateStatus::certified);
+}
+
+// A grid torus (vertices on the torus, 48 × 24 cells): genus 1, certified.
+BOOST_AUTO_TEST_CASE(a_grid_torus_is_certified) {
+  const FlowCertificate c = certify(test::torus(48, 24), torus_2_1, torus_box);
+  BOOST_TEST(c.status == FlowCertificateStatus::certified, c.reason);
+  BOOST_TEST(c.hausdorff_upper_bound > 0);
+}
+
+// Two nested spheres around one unit sphere: each is transverse, but the segment through a
+// critical point crosses the mesh twice.
+BOOST_AUTO_TEST_CASE(a_doubly_covered_sphere_is_not_certified) {
+  test::Soup m = test::icosphere(2);
+  test::Soup outer = test::icosphere(2);
+  for (Point3& p : outer.points) p = Point3(1.01 * p.x(), 1.01 * p.y(), 1.01 * p.z());
+  m.append(outer);
+  const FlowCertificate c = certify(m, unit_sphere, sphere_box);
+  BOOST_TEST(c.status == FlowCertificateStatus::undecided);
+  BOOST_TEST(c.reason.find("2 times") != std::string::npos, c.reason);
+}
+
+// Two unit spheres, the mesh around one of them: the other component is missed.  (The mesh is
+// fine enough for the tube |E| ≤ ε′ around it to stay clear of the critical point of E between
+// the spheres, where E = 1.5625.)
+BOOST_AUTO_TEST_CASE(a_missing_component_is_not_certified) {
+  const FlowCertificate c = certify(test::icosphere(3), "(x^2+y^2+z^2-1)*((x-3)^2+y^2+z^2-1)",
+                                    Box3{{-1.5, -1.5, -1.5}, {4.5, 1.5, 1.5}});
+  BOOST_TEST(c.status == FlowCertificateStatus::undecided);
+  BOOST_TEST(c.reason.find("0 times") != std::string::npos, c.reason);
+  BOOST_REQUIRE(c.location.has_value());
+  BOOST_TEST((*c.location)[0] > 1.5);  // at the sphere without a mesh
+}
+
+// A vertex moved across one of its neighbours (onto the sphere beyond it) folds the mesh: the
+// triangles on the far side are crossed by ∇E the other way.  A vertex pushed in by a fifth of
+// the radius is only a dimple, transverse still, and certified.
+BOOST_AUTO_TEST_CASE(a_folded_vertex_is_not_certified) {
+  test::Soup m = test::icosphere(2);
+  std::size_t neighbour = 0;
+  for (const auto& t : m.triangles)
+    if (t[0] == 0) neighbour = t[1];
+  BOOST_TEST_REQUIRE((neighbour != 0u));
+  const Point3 &p = m.points[0], &q = m.points[neighbour];
+  const Point3 beyond(2 * q.x() - p.x(), 2 * q.y() - p.y(), 2 * q.z() - p.z());
+  const double r = norm(beyond);
+  test::Soup folded = m;
+  folded.points[0] = Point3(beyond.x() / r, beyond.y() / r, beyond.z() / r);
+  const FlowCertificate c = certify(folded, unit_sphere, sphere_box);
+  BOOST_TEST(c.status == FlowCertificateStatus::undecided);
+  const bool names_the_flux =
+      c.reason.find("transverse") != std::string::npos || c.reason.find("both directions") != std::string::npos;
+  BOOST_TEST(names_the_flux, c.reason);
+
+  test::Soup dimpled = m;
+  dimpled.points[0] = Point3(0.8 * p.x(), 0.8 * p.y(), 0.8 * p.z());
+  BOOST_TEST(certify(dimpled, unit_sphere, sphere_box).status == FlowCertificateStatus::certified);
+}
+
+// A sphere is not a mesh of a torus: the tube of |E| holding it holds critical points of E.
+BOOST_AUTO_TEST_CASE(a_mesh_of_the_wrong_surface_is_not_certified) {
+  test::Soup m = test::icosphere(2);
+  for (Point3& p : m.points) p = Point3(2 * p.x(), 2 * p.y(), 0.5 * p.z());
+  BOOST_TEST(certify(m, torus_2_1, torus_box).status != FlowCertificateStatus::certified);
+}
+
+// A mesh with a hole is not a closed surface, and the unit sphere provably is: refuted.
+BOOST_AUTO_TEST_CASE(an_open_mesh_is_refuted) {
+  test::Soup m = test::icosphere(2);
+  m.triangles.pop_back();
+  const FlowCertificate c = certify(m, unit_sphere, sphere_box);
+  BOOST_TEST(c.status == FlowCertificateStatus::refuted);
+  BOOST_TEST(c.reason.find("not a closed orientable 2-manifold") != std::string::npos, c.reason);
+}
+
+BOOST_AUTO_TEST_CASE(bad_soups_are_invalid_input) {
+  const test::Soup m = test::icosphere(1);
+  const Surface s = Surface::parse(unit_sphere);
+  BOOST_CHECK_THROW((void)certify_gradient_flow(m.points, {}, s, sphere_box), InvalidInput);
+  BOOST_CHECK_THROW((void)certify_gradient_flow(m.points, {{0, 1, 1000}}, s, sphere_box), InvalidInput);
+  BOOST_CHECK_THROW((void)certify_gradient_flow(m.points, {{0, 1, 1}}, s, sphere_box), InvalidInput);
+}
+
+// delmesh's own mesh of the torus of the catalog at size bound 0.1 is certified by the flow as
+// well.  (Its coarsest mesh is not: |E| reaches about 1 on it, and the tube |E| ≤ 1.25 touches
+// the box's faces z = ±0.65, where E is as low as 1.05.)
+BOOST_AUTO_TEST_CASE(delmesh_output_is_certified) {
+  const CatalogEntry& entry = catalog_entry("torus");
+  const Surface surface = entry.surface();
+  DelMeshOptions options;
+  options.size_bound = 0.1;
+  const DelMeshResult r = del_mesh(surface, entry.box, options);
+  BOOST_TEST_REQUIRE(r.status == MeshStatus::complete);
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  mesh_to_soup(r.mesh, points, triangles);
+  const FlowCertificate c = certify_gradient_flow(points, triangles, surface, entry.box);
+  BOOST_TEST(c.status == FlowCertificateStatus::certified, c.reason);
+  BOOST_TEST(c.hausdorff_upper_bound / entry.box.diagonal() < 0.01);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -1,8 +1,10 @@
 //! \file check_command.cpp
-//! `delmesh check MESH [--lambda L] [(--surface NAME | --expr E --box B) --certify [--seed N]]
-//! [--time-limit S] [--json]`: the independent checker (meshing/mesh_checker.h) on a mesh file,
-//! optionally compared with the bounds of Theorem 6.1 for λ, and with --certify the topology
-//! certificate of the mesh for that surface (meshing/certificate.h).  The time limit counts from
+//! `delmesh check MESH [--lambda L] [(--surface NAME | --expr E --box B) --certify [--method M]
+//! [--seed N]] [--time-limit S] [--json]`: the independent checker (meshing/mesh_checker.h) on a
+//! mesh file, optionally compared with the bounds of Theorem 6.1 for λ, and with --certify the
+//! topology certificates of the mesh for that surface: the restricted-Delaunay certificate
+//! (meshing/certificate.h), the gradient-flow certificate (meshing/gradient_flow_certificate.h),
+//! or both, and the verdict they give together.  The time limit counts from
 //! the command's start: the certificate stops at it (status undecided); reading the mesh, checking
 //! it and compiling the surface are held to it by the phase watchdog (apps/phase_watchdog.h).
 
@@ -21,6 +23,7 @@
 #include "apps/phase_watchdog.h"
 #include "common/errors.h"
 #include "meshing/certificate.h"
+#include "meshing/gradient_flow_certificate.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/mesh_io.h"
 #include "meshing/theorem_bounds.h"
@@ -29,16 +32,28 @@ namespace delmesh::app {
 
 namespace {
 
+//! Which certificates --certify runs.  automatic: restricted-Delaunay, then gradient-flow unless
+//! that certified the mesh as Tri S|Σ of its vertices; both: the two, each must certify.
+enum class CertifyMethod { automatic, restricted_delaunay, gradient_flow, both };
+constexpr auto enum_names(CertifyMethod) {
+  return name_table<CertifyMethod>("CertifyMethod", {{CertifyMethod::automatic, "auto"},
+                                                     {CertifyMethod::restricted_delaunay, "restricted-delaunay"},
+                                                     {CertifyMethod::gradient_flow, "gradient-flow"},
+                                                     {CertifyMethod::both, "both"}});
+}
+
 struct CheckOptions {
   std::string mesh;
   double lambda = 0;
   bool json = false;
   bool certify = false;
+  std::string method = "auto";
   std::uint64_t seed = 1;
   double time_limit = 0;  //!< seconds; 0: none
   SurfaceOptions surface;
   CLI::Option* lambda_option = nullptr;
   CLI::Option* seed_option = nullptr;
+  CLI::Option* method_option = nullptr;
 };
 
 const char* yes_no(bool b) { return b ? "yes" : "no"; }
@@ -64,7 +79,10 @@ void print_certificate(std::ostream& out, const Certificate& c) {
   status << c.status;
   out << "certificate:           " << status.str() << (c.interrupted ? " (interrupted)" : "") << ", "
       << c.faces_checked() << " Voronoi faces checked (" << c.voronoi_edges << " edges, " << c.voronoi_facets
-      << " facets, " << c.voronoi_cells << " cells) in " << c.seconds << " s\n";
+      << " facets, " << c.voronoi_cells << " cells) in " << c.seconds << " s (restricted Delaunay)\n";
+  if (c.status == CertificateStatus::violated)
+    out << "  (the mesh's vertices fail a sampling check of Sec. 5.3: this proves nothing about the mesh's "
+           "topology)\n";
   out << "  Tri S|Sigma = mesh:  " << yes_no(c.restricted_matches_mesh);
   if (!c.restricted_matches_mesh)
     out << " (" << c.restricted_not_in_mesh << " restricted triangles not in the mesh, " << c.mesh_not_restricted
@@ -90,6 +108,49 @@ void print_certificate(std::ostream& out, const Certificate& c) {
       out << "    " << c.unsettled[i].what.check << ": " << c.unsettled[i].what.reason << " at "
           << point_text(c.unsettled[i].what.location) << "\n";
   }
+}
+
+//! The gradient-flow certificate's lines: status, reason and place, the tube and the bound.
+void print_flow_certificate(std::ostream& out, const FlowCertificate& c) {
+  std::ostringstream status;
+  status << c.status;
+  out << "gradient flow:         " << status.str() << " in " << c.seconds << " s ("
+      << count_of(c.mesh_components, "mesh component") << ", " << count_of(c.critical_points, "critical point")
+      << " counted, " << count_of(c.triangle_pieces, "triangle piece") << ", " << c.boxes << " boxes)\n";
+  if (!c.reason.empty())
+    out << "  " << (c.status == FlowCertificateStatus::refuted ? "refutation:          " : "not proved:          ")
+        << c.reason << (c.location ? " at " + point_text(*c.location) : "") << "\n";
+  if (c.epsilon > 0) out << "  |E| on the mesh:     <= " << c.epsilon << " (tube |E| <= " << c.tube << ")\n";
+  if (c.min_gradient > 0) out << "  |grad E| on tube:    >= " << c.min_gradient << "\n";
+  if (c.status == FlowCertificateStatus::certified)
+    out << "  Hausdorff distance:  <= " << c.hausdorff_upper_bound << " (" << 100 * c.hausdorff_upper_bound / c.box_diagonal
+        << " % of the box diagonal)\n";
+}
+
+//! What the certificates prove together.
+struct TopologyVerdict {
+  std::string verdict;  //!< certified, refuted or undecided
+  std::string method;   //!< the method that decided ("" when none did)
+  std::string reason;
+};
+
+TopologyVerdict topology_verdict(CertifyMethod method, const std::optional<Certificate>& delaunay,
+                                 const std::optional<FlowCertificate>& flow) {
+  const bool delaunay_ok =
+      delaunay && delaunay->status == CertificateStatus::certified && delaunay->restricted_matches_mesh;
+  const bool flow_ok = flow && flow->status == FlowCertificateStatus::certified;
+  const bool flow_refuted = flow && flow->status == FlowCertificateStatus::refuted;
+  if (method == CertifyMethod::both) {
+    if (delaunay_ok && flow_ok) return {"certified", "both", "both proofs hold"};
+    if (flow_refuted) return {"refuted", "gradient-flow", flow->reason};
+    return {"undecided", "", delaunay_ok ? "the gradient-flow certificate: " + flow->reason
+                                         : "the restricted-Delaunay certificate did not certify the mesh as Tri S|Sigma"};
+  }
+  if (delaunay_ok) return {"certified", "restricted-delaunay", "the mesh is Tri S|Sigma of its vertices, certified"};
+  if (flow_ok) return {"certified", "gradient-flow", "the mesh is isotopic to the surface along its gradient flow"};
+  if (flow_refuted) return {"refuted", "gradient-flow", flow->reason};
+  if (flow) return {"undecided", "", flow->reason};
+  return {"undecided", "", "the restricted-Delaunay certificate did not certify the mesh as Tri S|Sigma"};
 }
 
 }  // namespace
@@ -140,6 +201,8 @@ ExitCode run_check(const CheckOptions& o) {
   if (!o.certify && o.surface.given())
     throw InvalidInput("--surface and --expr are used only with --certify (the certificate of the mesh for that surface)");
   if (!o.certify && o.seed_option->count() > 0) throw InvalidInput("--seed is used only with --certify");
+  if (!o.certify && o.method_option->count() > 0) throw InvalidInput("--method is used only with --certify");
+  const CertifyMethod method = parse_enum<CertifyMethod>(o.method, "--method");
   if (!std::isfinite(o.time_limit) || o.time_limit < 0 || o.time_limit > max_time_limit_seconds)
     throw InvalidInput("--time-limit must be >= 0 and <= 1e9 seconds (0: none), got " + format_number(o.time_limit));
   const auto start = RunLimits::Clock::now();
@@ -157,6 +220,8 @@ ExitCode run_check(const CheckOptions& o) {
   const CheckVerdict verdict = check_verdict(check_mesh(soup.points, soup.triangles),
                                              with_bounds ? std::optional<double>(o.lambda) : std::nullopt);
   std::optional<Certificate> certificate;
+  std::optional<FlowCertificate> flow;
+  TopologyVerdict verdict_of_certificates;
   if (o.certify) {
     phase.emplace(watchdog, "compiling the surface");
     const SurfaceInput input = o.surface.resolve();
@@ -164,11 +229,24 @@ ExitCode run_check(const CheckOptions& o) {
     PhaseWatchdog certificate_watchdog(RunLimits::after(
         o.time_limit > 0 ? o.time_limit + PhaseWatchdog::solve_grace.count() : 0, nullptr, start));
     const PhaseWatchdog::Phase certifying(certificate_watchdog, "certifying the mesh");
-    CertificateOptions options;
-    options.seed = o.seed;
-    options.interrupt = &interrupt_flag();
-    options.deadline = limits.deadline();
-    certificate = certify_mesh(soup.points, soup.triangles, input.surface, input.box, options);
+    if (method != CertifyMethod::gradient_flow) {
+      CertificateOptions options;
+      options.seed = o.seed;
+      options.interrupt = &interrupt_flag();
+      options.deadline = limits.deadline();
+      certificate = certify_mesh(soup.points, soup.triangles, input.surface, input.box, options);
+    }
+    const bool stopped = certificate && (certificate->interrupted || certificate->time_limited);
+    const bool delaunay_ok = certificate && certificate->status == CertificateStatus::certified &&
+                             certificate->restricted_matches_mesh;
+    if (!stopped && (method != CertifyMethod::restricted_delaunay && !(method == CertifyMethod::automatic && delaunay_ok))) {
+      FlowCertificateOptions options;
+      options.seed = o.seed;
+      options.interrupt = &interrupt_flag();
+      options.deadline = limits.deadline();
+      flow = certify_gradient_flow(soup.points, soup.triangles, input.surface, input.box, options);
+    }
+    verdict_of_certificates = topology_verdict(method, certificate, flow);
   }
   phase.reset();
   for (const std::string& warning : verdict.warnings) print_warning(warning);
@@ -178,6 +256,17 @@ ExitCode run_check(const CheckOptions& o) {
   if (o.json) {
     nlohmann::ordered_json out = verdict.to_json();
     if (certificate) out["certificate"] = nlohmann::ordered_json::parse(to_json(*certificate).dump());
+    if (flow) out["gradient_flow"] = nlohmann::ordered_json::parse(to_json(*flow, true).dump());
+    if (o.certify) {
+      nlohmann::ordered_json topology;
+      topology["verdict"] = verdict_of_certificates.verdict;
+      topology["method"] = verdict_of_certificates.method.empty() ? nlohmann::ordered_json(nullptr)
+                                                                  : nlohmann::ordered_json(verdict_of_certificates.method);
+      topology["reason"] = verdict_of_certificates.reason;
+      const bool bounded = flow && flow->status == FlowCertificateStatus::certified;
+      topology["hausdorff_upper_bound"] = bounded ? nlohmann::ordered_json(flow->hausdorff_upper_bound) : nlohmann::ordered_json(nullptr);
+      out["topology"] = topology;
+    }
     print_json(std::cout, out);
   } else {
     std::cout << "mesh:                  " << o.mesh << "\n";
@@ -222,18 +311,22 @@ ExitCode run_check(const CheckOptions& o) {
                 << "\n";
     }
     if (certificate) print_certificate(std::cout, *certificate);
+    if (flow) print_flow_certificate(std::cout, *flow);
+    if (o.certify)
+      std::cout << "topology:              " << verdict_of_certificates.verdict
+                << (verdict_of_certificates.method.empty() ? "" : " (" + verdict_of_certificates.method + ")") << ": "
+                << verdict_of_certificates.reason << "\n";
     std::cout.flush();
   }
-  if (certificate && certificate->interrupted) {
+  if ((certificate && certificate->interrupted) || (flow && flow->interrupted)) {
     print_warning("interrupted by a signal: the certificate is incomplete (status undecided)");
     return ExitCode::limit_reached;
   }
-  if (certificate && certificate->time_limited) {
+  if ((certificate && certificate->time_limited) || (flow && flow->time_limited)) {
     print_warning("stopped by --time-limit: the certificate is incomplete (status undecided)");
     return ExitCode::limit_reached;
   }
-  const bool certified = !certificate || (certificate->status == CertificateStatus::certified &&
-                                          certificate->restricted_matches_mesh);
+  const bool certified = !o.certify || verdict_of_certificates.verdict == "certified";
   return verdict.all_pass() && certified ? ExitCode::complete : ExitCode::check_failed;
 }
 
@@ -251,10 +344,17 @@ Command add_check_command(CLI::App& parent) {
       "reported, not refused. With --lambda, compare with the bounds of Theorem 6.1. With --certify and the "
       "surface, certify the topology: build the Delaunay triangulation of the mesh's vertices, run the five "
       "checks of Sec. 5.3 on every Voronoi face, and compare the restricted Delaunay triangulation Tri S|Sigma "
-      "with the mesh; certified and matching proves the mesh homeomorphic to the surface (Theorem 2.1). The "
-      "vertices need not lie exactly on the surface, so meshes from other programs can be certified." "\n\n"
-      "Exit codes: 0 checked (and with --lambda every bound holds, with --certify the certificate is certified "
-      "and the mesh is Tri S|Sigma), 1 some bound or the certificate fails, "
+      "with the mesh; certified and matching proves the mesh homeomorphic to the surface (Theorem 2.1). That "
+      "needs the mesh to be Tri S|Sigma of its vertices; any closed mesh, from any program, is certified by the "
+      "gradient flow instead: in a tube |E| <= eps' around the mesh the gradient of E is proved non-zero, every "
+      "triangle transverse to it, and a segment through each critical point of a height function on the surface "
+      "crosses the mesh once; then the mesh is isotopic to the surface and within the certified Hausdorff bound "
+      "eps/min|grad E| of it. --method auto runs restricted-Delaunay, then gradient-flow if the first did not "
+      "certify; both runs the two independent proofs. The verdict (\"topology:\") is certified, refuted (only "
+      "with a proof that the mesh's topology differs, e.g. it is not a closed 2-manifold) or undecided with the "
+      "first condition not proved and where." "\n\n"
+      "Exit codes: 0 checked (and with --lambda every bound holds, with --certify the verdict is certified), 1 "
+      "some bound fails or the verdict is not certified, "
               "2 invalid input (missing or corrupt file, lambda out of range, a bad surface), 3 stopped by "
               "--time-limit or a signal such as SIGINT or SIGTERM (during the certificate it stops and the report "
               "says undecided; before it nothing is printed; while the report is printed it is finished "
@@ -267,9 +367,14 @@ Command add_check_command(CLI::App& parent) {
   o->surface.add_to(*sub);
   sub->add_flag("--certify", o->certify,
                 "Certify the topology of the mesh for the surface given by --surface or --expr with --box");
+  o->method_option = sub->add_option("--method", o->method,
+                                     "auto, restricted-delaunay, gradient-flow or both: which certificates "
+                                     "--certify runs")
+                         ->type_name("M")
+                         ->capture_default_str();
   o->seed_option = sub->add_option("--seed", o->seed,
-                                   "Seed of the certificate's generic directions (FacetCycle, Silhouette), "
-                                   "0 <= N < 2^64")
+                                   "Seed of the certificates' generic directions (FacetCycle, Silhouette, the "
+                                   "gradient flow's height function), 0 <= N < 2^64")
                        ->type_name("N")
                        ->check(whole_number(0, std::numeric_limits<std::uint64_t>::max()))
                        ->capture_default_str();
@@ -280,7 +385,7 @@ Command add_check_command(CLI::App& parent) {
       ->check(finite_number());
   sub->add_flag("--json", o->json,
                 "Print the report as JSON (with --lambda also \"lambda\", \"bounds\" and \"pass\"; with "
-                "--certify also \"certificate\")");
+                "--certify also \"topology\", and \"certificate\" and \"gradient_flow\" for the methods that ran)");
   return {sub, [o]() { return stopped_as_limit([&] { return run_check(*o); }); }};
 }
 

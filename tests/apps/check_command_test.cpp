@@ -1,4 +1,6 @@
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>
@@ -6,6 +8,36 @@
 #include "tests/apps/run_delmesh.h"
 
 using namespace delmesh::test;
+
+namespace {
+
+// A latitude-longitude sphere (rings × sectors quadrilaterals, two triangles each, fans at the
+// poles) with its vertices on the unit sphere: its thin polar triangles make it far from the
+// restricted Delaunay triangulation of its vertices, as meshes of other programs often are.
+std::string uv_sphere_off(int rings, int sectors) {
+  const double pi = std::acos(-1.0);
+  std::ostringstream v, f;
+  v.precision(17);
+  v << 0 << " " << 0 << " " << 1 << "\n";
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < sectors; ++j) {
+      const double theta = pi * i / rings, phi = 2 * pi * j / sectors;
+      v << std::sin(theta) * std::cos(phi) << " " << std::sin(theta) * std::sin(phi) << " " << std::cos(theta) << "\n";
+    }
+  v << 0 << " " << 0 << " " << -1 << "\n";
+  const int south = 1 + (rings - 1) * sectors;
+  const auto at = [&](int i, int j) { return 1 + (i - 1) * sectors + j % sectors; };
+  int faces = 0;
+  for (int j = 0; j < sectors; ++j, ++faces) f << "3 0 " << at(1, j) << " " << at(1, j + 1) << "\n";
+  for (int i = 1; i + 1 < rings; ++i)
+    for (int j = 0; j < sectors; ++j, faces += 2)
+      f << "3 " << at(i, j) << " " << at(i + 1, j) << " " << at(i, j + 1) << "\n3 " << at(i, j + 1) << " "
+        << at(i + 1, j) << " " << at(i + 1, j + 1) << "\n";
+  for (int j = 0; j < sectors; ++j, ++faces) f << "3 " << south << " " << at(rings - 1, j + 1) << " " << at(rings - 1, j) << "\n";
+  return "OFF\n" + std::to_string(south + 1) + " " + std::to_string(faces) + " 0\n" + v.str() + f.str();
+}
+
+}  // namespace
 
 BOOST_AUTO_TEST_SUITE(check_command)
 
@@ -185,12 +217,86 @@ BOOST_AUTO_TEST_CASE(certify_refuses_a_mesh_that_misses_a_handle) {
   BOOST_TEST(text.out.find("certificate:           certified") == std::string::npos, text.out);
 }
 
+// A mesh from elsewhere that is not Tri S|Σ of its vertices: the restricted-Delaunay certificate
+// cannot say, the gradient flow certifies it (auto runs it), with a Hausdorff bound at least
+// the largest distance of a vertex ring's chord midpoint to the sphere.
+BOOST_AUTO_TEST_CASE(certify_a_mesh_that_is_not_the_restricted_delaunay_triangulation) {
+  TempDir dir;
+  write_text(dir / "uv.off", uv_sphere_off(8, 16));
+  const RunResult r = run_delmesh({"check", "uv.off", "--surface", "sphere", "--certify", "--json"}, dir.path);
+  BOOST_TEST(r.exit_code == 0, r.err);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  BOOST_TEST(!j.at("certificate").at("restricted_matches_mesh").get<bool>());
+  BOOST_TEST(j.at("gradient_flow").at("status").get<std::string>() == "certified", j.at("gradient_flow").dump());
+  BOOST_TEST(j.at("topology").at("verdict").get<std::string>() == "certified");
+  BOOST_TEST(j.at("topology").at("method").get<std::string>() == "gradient-flow");
+  const double bound = j.at("topology").at("hausdorff_upper_bound").get<double>();
+  const double sagitta = 1 - std::cos(std::acos(-1.0) / 16);  // the equator's chords
+  BOOST_TEST(bound >= sagitta);
+  BOOST_TEST(bound <= 10 * sagitta);
+  BOOST_TEST(j.at("gradient_flow").at("triangle_distance_bounds").size() == 16u * 2u * 7u);
+  // Only the gradient flow; and as text, where the restricted-Delaunay status is explained.
+  const RunResult flow =
+      run_delmesh({"check", "uv.off", "--surface", "sphere", "--certify", "--method", "gradient-flow", "--json"}, dir.path);
+  BOOST_TEST(flow.exit_code == 0, flow.err);
+  BOOST_TEST(!nlohmann::json::parse(flow.out).contains("certificate"));
+  const RunResult text = run_delmesh({"check", "uv.off", "--surface", "sphere", "--certify"}, dir.path);
+  BOOST_TEST(text.out.find("topology:              certified (gradient-flow)") != std::string::npos, text.out);
+  BOOST_TEST(text.out.find("Hausdorff distance:  <= ") != std::string::npos, text.out);
+  // The restricted-Delaunay certificate alone does not certify it: exit 1, undecided.
+  const RunResult delaunay = run_delmesh(
+      {"check", "uv.off", "--surface", "sphere", "--certify", "--method", "restricted-delaunay", "--json"}, dir.path);
+  BOOST_TEST(delaunay.exit_code == 1);
+  BOOST_TEST(nlohmann::json::parse(delaunay.out).at("topology").at("verdict").get<std::string>() == "undecided");
+}
+
+// --method both on delmesh's own mesh: the two independent proofs hold.
+BOOST_AUTO_TEST_CASE(certify_both_methods_on_delmesh_output) {
+  TempDir dir;
+  const RunResult m = run_delmesh({"mesh", "--surface", "torus", "--size-bound", "0.1", "--out", "torus.off",
+                                   "--stats", "torus.json", "--quiet"},
+                                  dir.path);
+  BOOST_TEST_REQUIRE(m.exit_code == 0, m.err);
+  const RunResult r =
+      run_delmesh({"check", "torus.off", "--surface", "torus", "--certify", "--method", "both", "--json"}, dir.path);
+  BOOST_TEST(r.exit_code == 0, r.err);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  BOOST_TEST(j.at("certificate").at("status").get<std::string>() == "certified");
+  BOOST_TEST(j.at("gradient_flow").at("status").get<std::string>() == "certified");
+  BOOST_TEST(j.at("topology").at("method").get<std::string>() == "both");
+}
+
+// A mesh with a hole is refuted by the gradient flow (the sphere is a closed surface); the
+// tetrahedron on the thin torus is left undecided, never certified.
+BOOST_AUTO_TEST_CASE(certify_gradient_flow_refutes_only_with_a_proof) {
+  TempDir dir;
+  write_text(dir / "open.off", "OFF\n6 7 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n"
+                               "3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n");
+  const RunResult r = run_delmesh(
+      {"check", "open.off", "--surface", "sphere", "--certify", "--method", "gradient-flow", "--json"}, dir.path);
+  BOOST_TEST(r.exit_code == 1, r.err);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  BOOST_TEST(j.at("topology").at("verdict").get<std::string>() == "refuted", j.dump());
+  BOOST_TEST(j.at("topology").at("hausdorff_upper_bound").is_null());
+  write_text(dir / "tetra.off",
+             "OFF\n4 4 0\n1.08 0 0\n-1.08 0 0\n0 0.92 0\n0 -1 0.08\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+  const RunResult t = run_delmesh({"check", "tetra.off", "--surface", "thin_handle", "--certify", "--json"}, dir.path);
+  BOOST_TEST(t.exit_code == 1);
+  const nlohmann::json tj = nlohmann::json::parse(t.out);
+  BOOST_TEST(tj.at("topology").at("verdict").get<std::string>() == "undecided");
+  BOOST_TEST(tj.at("gradient_flow").at("reason").get<std::string>().find("transverse") != std::string::npos);
+}
+
 BOOST_AUTO_TEST_CASE(certify_options_are_validated) {
   TempDir dir;
   write_text(dir / "octahedron.off", octahedron_off);
   require_invalid_input(run_delmesh({"check", "octahedron.off", "--certify"}, dir.path), "--certify");
   require_invalid_input(run_delmesh({"check", "octahedron.off", "--surface", "sphere"}, dir.path), "--certify");
   require_invalid_input(run_delmesh({"check", "octahedron.off", "--seed", "3"}, dir.path), "--certify");
+  require_invalid_input(run_delmesh({"check", "octahedron.off", "--method", "both"}, dir.path), "--certify");
+  require_invalid_input(
+      run_delmesh({"check", "octahedron.off", "--surface", "sphere", "--certify", "--method", "flow"}, dir.path),
+      "--method");
   require_invalid_input(run_delmesh({"check", "octahedron.off", "--surface", "nosuch", "--certify"}, dir.path));
   require_invalid_input(run_delmesh({"check", "octahedron.off", "--expr", "x^2+y^2+z^2-1", "--certify"}, dir.path),
                         "--box");

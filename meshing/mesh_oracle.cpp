@@ -15,7 +15,6 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_rational.h>
 #include <CGAL/Interval_nt.h>
-#include <CGAL/Side_of_triangle_mesh.h>
 
 #include <algorithm>
 #include <cmath>
@@ -40,7 +39,6 @@ using AabbTraits = CGAL::AABB_traits<Kernel, Primitive>;
 using Tree = CGAL::AABB_tree<AabbTraits>;
 using Face = SurfaceMesh::Face_index;
 using VertexIndex = SurfaceMesh::Vertex_index;
-using SideOfMesh = CGAL::Side_of_triangle_mesh<SurfaceMesh, Kernel>;
 
 // The primitives in the order of the statistics.
 enum PrimitiveIndex { line_index, critical_index, contact_index, curve_index, sil_plane_index, sil_critical_index };
@@ -68,6 +66,22 @@ int filtered_sign(Value&& value) {
     if (const int sign = interval_sign(value(CGAL::Interval_nt_advanced())); sign != 2) return sign;
   }
   return static_cast<int>(CGAL::sign(value(CGAL::Exact_rational())));
+}
+
+// The sign of orientation(p, q, r, s_ε) for s_ε = s + (ε, ε², ε³), ε > 0 infinitesimal (exact):
+// det(q − p, r − p, s_ε − p) = orientation(p, q, r, s) + ε n_x + ε² n_y + ε³ n_z with
+// n = (q − p) × (r − p), so its sign is the first non-zero one among them; each component of n is
+// the orientation of the projections of p, q, r onto the other two axes.  0 only if p, q, r are
+// collinear.
+int perturbed_orientation(const Point3& p, const Point3& q, const Point3& r, const Point3& s) {
+  if (const CGAL::Orientation o = CGAL::orientation(p, q, r, s); o != CGAL::COPLANAR) return static_cast<int>(o);
+  using Point2 = Kernel::Point_2;
+  const CGAL::Orientation n[3] = {CGAL::orientation(Point2(p.y(), p.z()), Point2(q.y(), q.z()), Point2(r.y(), r.z())),
+                                  CGAL::orientation(Point2(p.z(), p.x()), Point2(q.z(), q.x()), Point2(r.z(), r.x())),
+                                  CGAL::orientation(Point2(p.x(), p.y()), Point2(q.x(), q.y()), Point2(r.x(), r.y()))};
+  for (const CGAL::Orientation c : n)
+    if (c != CGAL::COLLINEAR) return static_cast<int>(c);
+  return 0;
 }
 
 // The exact sign of ⟨x − y, d⟩.
@@ -192,7 +206,6 @@ struct SectionGraph {
 struct MeshOracle::Impl {
   SurfaceMesh mesh;
   Tree tree;
-  std::unique_ptr<SideOfMesh> side;
   std::vector<Vec3> points;               // by vertex index
   std::vector<std::array<int, 3>> faces;  // by face index, outward order
   std::vector<Vec3> face_normal;          // unit outward normal by face index
@@ -253,7 +266,49 @@ struct MeshOracle::Impl {
     tree.build();
     tree.accelerate_distance_queries();
     (void)tree.closest_point(mesh.point(*mesh.vertices().begin()));  // builds the search tree now
-    side = std::make_unique<SideOfMesh>(tree);
+  }
+
+  //! The side of x: 0 if x lies on a face (exact), else the parity of the crossings of Σ by the
+  //! segment from x to a point q outside the bounding box of the vertices (−1 odd: inside, +1
+  //! even: outside).  Every sign is exact, and q is perturbed symbolically to
+  //! q + (ε, ε², ε³) (perturbed_orientation), so the segment meets no edge or vertex and lies in
+  //! no face's plane: each crossing is transversal through the interior of one face, and the
+  //! sides alternate along it.  One segment, no retries: time linear in the faces it meets.
+  int side_of(const Vec3& x) const {
+    const CGAL::Bbox_3 bounds = tree.bbox();
+    if (x[0] < bounds.xmin() || x[0] > bounds.xmax() || x[1] < bounds.ymin() || x[1] > bounds.ymax() ||
+        x[2] < bounds.zmin() || x[2] > bounds.zmax())
+      return 1;
+    // q: beyond the nearer of the box's sides normal to the first axis, in a fixed oblique direction.
+    const double span = std::max({bounds.xmax() - bounds.xmin(), bounds.ymax() - bounds.ymin(), bounds.zmax() - bounds.zmin()});
+    const bool up = 2 * x[0] >= bounds.xmin() + bounds.xmax();
+    double qx = up ? bounds.xmax() + span : bounds.xmin() - span;
+    if (!std::isfinite(qx) || (up ? !(qx > bounds.xmax()) : !(qx < bounds.xmin())))
+      qx = std::nextafter(up ? bounds.xmax() : bounds.xmin(), up ? HUGE_VAL : -HUGE_VAL);
+    const double run = std::abs(qx - x[0]);
+    const double qy = x[1] + 0.3 * run, qz = x[2] + 0.17 * run;
+    const Point3 p = point(x);
+    const Point3 q(qx, std::isfinite(qy) ? qy : x[1], std::isfinite(qz) ? qz : x[2]);
+
+    std::vector<Face> found;
+    tree.all_intersected_primitives(Kernel::Segment_3(p, q), std::back_inserter(found));
+    std::size_t crossings = 0;
+    for (Face face : found) {
+      const auto& t = faces[face.idx()];
+      const Point3 a = mesh.point(VertexIndex(t[0])), b = mesh.point(VertexIndex(t[1])), c = mesh.point(VertexIndex(t[2]));
+      const CGAL::Orientation side_x = CGAL::orientation(a, b, c, p);
+      if (side_x == CGAL::COPLANAR) {
+        // The segment meets the face's plane only at x (q_ε is off it).
+        if (CGAL::do_intersect(Kernel::Triangle_3(a, b, c), p)) return 0;
+        continue;
+      }
+      if (perturbed_orientation(a, b, c, q) == static_cast<int>(side_x)) continue;  // x, q_ε on one side
+      // The line through x and q_ε meets the face's interior iff it passes on the same side of
+      // its three edges (none of these signs is 0: x is off the plane, so not on an edge's line).
+      const int s = perturbed_orientation(p, a, b, q);
+      if (perturbed_orientation(p, b, c, q) == s && perturbed_orientation(p, c, a, q) == s) ++crossings;
+    }
+    return crossings % 2 == 1 ? -1 : 1;
   }
 
   const Vec3& vertex(int f, int k) const { return points[faces[f][k]]; }
@@ -722,13 +777,7 @@ int MeshOracle::gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const
 
 int MeshOracle::value_sign(const Vec3& lo, const Vec3& hi) const {
   const Impl& m = *impl_;
-  if (lo == hi) {
-    switch ((*m.side)(point(lo))) {
-      case CGAL::ON_BOUNDED_SIDE: return -1;
-      case CGAL::ON_UNBOUNDED_SIDE: return 1;
-      default: return 0;
-    }
-  }
+  if (lo == hi) return m.side_of(lo);
   if (m.tree.do_intersect(CGAL::Bbox_3(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]))) return 0;
   return value_sign(lo);
 }

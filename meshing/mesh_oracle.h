@@ -9,7 +9,7 @@
 //! whether a segment meets a face, which side of a facet's plane a mesh vertex lies on, which way
 //! a face faces relative to a direction, which of two vertices is higher in a direction, inside
 //! or outside — is an exact predicate on the input doubles: CGAL's filtered predicates of the
-//! Epick kernel (orientation, do_intersect, Side_of_triangle_mesh) or a determinant or dot product
+//! Epick kernel (orientation, do_intersect) or a determinant or dot product
 //! evaluated in interval arithmetic and, if its sign is not certain, in exact rationals.  Only the
 //! points the oracle returns (a crossing of a segment and a face, of a mesh edge and a plane) are
 //! constructed in double precision; they lie on Σ up to rounding.  Where a plane or a direction is
@@ -57,7 +57,11 @@
 //!    that are local extrema of ⟨x, d2⟩ along J_d (both silhouette neighbours higher, or both
 //!    lower), and those where J_d branches (four or more silhouette edges).
 //! The other questions:
-//!  - value_sign(x): −1 inside, +1 outside, 0 on Σ (CGAL::Side_of_triangle_mesh, exact);
+//!  - value_sign(x): −1 inside, +1 outside, 0 on Σ (exact): 0 if x lies on a face, else the
+//!    parity of the crossings of Σ by one segment from x to a point q outside the bounding box of
+//!    the vertices, with q perturbed symbolically to q + (ε, ε², ε³) so that the segment meets
+//!    no edge or vertex and lies in no face's plane (no retried directions; time linear in the
+//!    faces the segment meets);
 //!    value_sign(lo, hi): the side of the box's centre if no face meets the box (exact
 //!    do_intersect), else 0.
 //!  - normal(x), gradient(x): n_x of the point of Σ closest to x: the face's unit outward normal

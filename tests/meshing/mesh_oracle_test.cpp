@@ -6,12 +6,14 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
 #include "common/errors.h"
 #include "known_meshes.h"
 #include "meshing/del_mesh.h"
+#include "meshing/input_mesh.h"
 #include "meshing/detail/vec3.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/mesh_oracle.h"
@@ -154,6 +156,55 @@ BOOST_AUTO_TEST_CASE(segments_through_a_cube_face_edge_and_vertex) {
   BOOST_TEST(distance(oracle.normal({1, 1, 0.3}), normalized(Vec3{1, 1, 0})) < 1e-15);
   BOOST_TEST(distance(oracle.normal({1, 1, 1}), normalized(Vec3{1, 1, 1})) < 1e-12);
   BOOST_TEST(distance(*oracle.project({0.2, 0.3, 1.4}), Vec3{0.2, 0.3, 1}) < 1e-15);
+}
+
+// value_sign at every point of the grid (k/4)³, |k| ≤ 6, against the exact answer: |x|₁ < 1
+// inside the octahedron, |x|∞ < 1 inside the cube; on a face, an edge or a vertex, 0.  Many of the
+// points lie on Σ or on the planes of faces and the lines of edges.
+BOOST_AUTO_TEST_CASE(value_sign_on_a_grid_matches_the_octahedron_and_the_cube) {
+  MeshOracle octahedron_oracle(octahedron(), Box3::cube(2));
+  MeshOracle cube_oracle(cube(), Box3::cube(2));
+  for (int i = -6; i <= 6; ++i)
+    for (int j = -6; j <= 6; ++j)
+      for (int k = -6; k <= 6; ++k) {
+        const Vec3 x{i / 4.0, j / 4.0, k / 4.0};
+        const int l1 = std::abs(i) + std::abs(j) + std::abs(k), linf = std::max({std::abs(i), std::abs(j), std::abs(k)});
+        BOOST_TEST_CONTEXT("x = (" << x[0] << ", " << x[1] << ", " << x[2] << ")") {
+          BOOST_TEST(octahedron_oracle.value_sign(x) == (l1 < 4 ? -1 : l1 == 4 ? 0 : 1));
+          BOOST_TEST(cube_oracle.value_sign(x) == (linf < 4 ? -1 : linf == 4 ? 0 : 1));
+        }
+      }
+}
+
+// The octahedron of radius 2^28 centred at (0x1.98p59, 0x1.84p59, −2^53) (fuzz/crashes/
+// fuzz_input_mesh/value_sign_ray_rounds_to_its_source_far_from_the_origin): its coordinates are
+// multiples of 128 in x and y, and a point plus a unit vector rounds back to the point, so a ray
+// cast constructed as "source + direction" in doubles is degenerate in every direction.
+// value_sign decides every side exactly: 0 at the vertices and on a face and an edge, −1 inside,
+// +1 inside the bounding box but outside the octahedron and at the box's corners.
+BOOST_AUTO_TEST_CASE(value_sign_far_from_the_origin_on_a_coarse_lattice) {
+  const double r = std::ldexp(1.0, 28);
+  const Vec3 c{0x1.98p59, 0x1.84p59, -0x1p53};
+  const std::vector<Vec3> unit{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  std::vector<Point3> points;
+  for (const Vec3& u : unit) points.emplace_back(c[0] + r * u[0], c[1] + r * u[1], c[2] + r * u[2]);
+  const std::vector<std::vector<std::size_t>> polygons{{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                                       {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  const InputMesh input = validate_input_mesh(points, polygons, "far octahedron");
+  MeshOracle oracle(input.mesh, input.box);
+  BOOST_TEST_REQUIRE(oracle.scale_exponent() == 0);
+  for (const Point3& p : points) BOOST_TEST(oracle.value_sign(Vec3{p.x(), p.y(), p.z()}) == 0);
+  const auto at = [&](double u, double v, double w) { return Vec3{c[0] + u * r, c[1] + v * r, c[2] + w * r}; };
+  BOOST_TEST(oracle.value_sign(c) == -1);
+  BOOST_TEST(oracle.value_sign(at(0.25, -0.25, 0.25)) == -1);
+  BOOST_TEST(oracle.value_sign(at(0.5, 0.25, 0.25)) == 0);   // inside the face (+, +, +)
+  BOOST_TEST(oracle.value_sign(at(0.5, 0, -0.5)) == 0);      // on the edge from +x to −z
+  BOOST_TEST(oracle.value_sign(at(0.5, 0.5, 0.5)) == 1);
+  BOOST_TEST(oracle.value_sign(at(-0.75, 0, -0.75)) == 1);
+  const Box3& box = oracle.box();
+  for (int corner = 0; corner < 8; ++corner)
+    BOOST_TEST(oracle.value_sign(Vec3{(corner & 1) ? box.hi[0] : box.lo[0], (corner & 2) ? box.hi[1] : box.lo[1],
+                                      (corner & 4) ? box.hi[2] : box.lo[2]}) == 1);
 }
 
 BOOST_AUTO_TEST_CASE(a_torus_sliced_through_its_hole_gives_two_closed_polylines) {

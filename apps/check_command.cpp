@@ -32,16 +32,6 @@ namespace delmesh::app {
 
 namespace {
 
-//! Which certificates --certify runs.  automatic: restricted-Delaunay, then gradient-flow unless
-//! that certified the mesh as Tri S|Σ of its vertices; both: the two, each must certify.
-enum class CertifyMethod { automatic, restricted_delaunay, gradient_flow, both };
-constexpr auto enum_names(CertifyMethod) {
-  return name_table<CertifyMethod>("CertifyMethod", {{CertifyMethod::automatic, "auto"},
-                                                     {CertifyMethod::restricted_delaunay, "restricted-delaunay"},
-                                                     {CertifyMethod::gradient_flow, "gradient-flow"},
-                                                     {CertifyMethod::both, "both"}});
-}
-
 struct CheckOptions {
   std::string mesh;
   double lambda = 0;
@@ -127,32 +117,6 @@ void print_flow_certificate(std::ostream& out, const FlowCertificate& c) {
         << " % of the box diagonal)\n";
 }
 
-//! What the certificates prove together.
-struct TopologyVerdict {
-  std::string verdict;  //!< certified, refuted or undecided
-  std::string method;   //!< the method that decided ("" when none did)
-  std::string reason;
-};
-
-TopologyVerdict topology_verdict(CertifyMethod method, const std::optional<Certificate>& delaunay,
-                                 const std::optional<FlowCertificate>& flow) {
-  const bool delaunay_ok =
-      delaunay && delaunay->status == CertificateStatus::certified && delaunay->restricted_matches_mesh;
-  const bool flow_ok = flow && flow->status == FlowCertificateStatus::certified;
-  const bool flow_refuted = flow && flow->status == FlowCertificateStatus::refuted;
-  if (method == CertifyMethod::both) {
-    if (delaunay_ok && flow_ok) return {"certified", "both", "both proofs hold"};
-    if (flow_refuted) return {"refuted", "gradient-flow", flow->reason};
-    return {"undecided", "", delaunay_ok ? "the gradient-flow certificate: " + flow->reason
-                                         : "the restricted-Delaunay certificate did not certify the mesh as Tri S|Sigma"};
-  }
-  if (delaunay_ok) return {"certified", "restricted-delaunay", "the mesh is Tri S|Sigma of its vertices, certified"};
-  if (flow_ok) return {"certified", "gradient-flow", "the mesh is isotopic to the surface along its gradient flow"};
-  if (flow_refuted) return {"refuted", "gradient-flow", flow->reason};
-  if (flow) return {"undecided", "", flow->reason};
-  return {"undecided", "", "the restricted-Delaunay certificate did not certify the mesh as Tri S|Sigma"};
-}
-
 }  // namespace
 
 void require_bounds_lambda(double lambda) {
@@ -191,6 +155,78 @@ nlohmann::ordered_json CheckVerdict::to_json() const {
   return out;
 }
 
+bool TopologyCertificates::interrupted() const {
+  return (delaunay && delaunay->interrupted) || (flow && flow->interrupted);
+}
+
+bool TopologyCertificates::time_limited() const {
+  return (delaunay && delaunay->time_limited) || (flow && flow->time_limited);
+}
+
+nlohmann::ordered_json TopologyCertificates::to_json() const {
+  nlohmann::ordered_json out;
+  if (delaunay) out["certificate"] = nlohmann::ordered_json::parse(delmesh::to_json(*delaunay).dump());
+  if (flow) out["gradient_flow"] = nlohmann::ordered_json::parse(delmesh::to_json(*flow, true).dump());
+  const bool bounded = flow && flow->status == FlowCertificateStatus::certified;
+  out["topology"] = {{"verdict", verdict},
+                     {"method", method.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(method)},
+                     {"reason", reason},
+                     {"hausdorff_upper_bound",
+                      bounded ? nlohmann::ordered_json(flow->hausdorff_upper_bound) : nlohmann::ordered_json(nullptr)}};
+  return out;
+}
+
+TopologyCertificates certify_topology(const std::vector<Point3>& points,
+                                      const std::vector<std::array<std::size_t, 3>>& triangles,
+                                      const SurfaceInput& input, CertifyMethod method, std::uint64_t seed,
+                                      const std::atomic<bool>* interrupt,
+                                      std::optional<std::chrono::steady_clock::time_point> deadline) {
+  TopologyCertificates c;
+  if (method != CertifyMethod::gradient_flow) {
+    CertificateOptions options;
+    options.seed = seed;
+    options.interrupt = interrupt;
+    options.deadline = deadline;
+    c.delaunay = certify_mesh(points, triangles, input.surface, input.box, options);
+  }
+  const bool delaunay_ok =
+      c.delaunay && c.delaunay->status == CertificateStatus::certified && c.delaunay->restricted_matches_mesh;
+  const bool flow_wanted = method == CertifyMethod::gradient_flow || method == CertifyMethod::both ||
+                           (method == CertifyMethod::automatic && !delaunay_ok);
+  if (flow_wanted && !c.interrupted() && !c.time_limited()) {
+    FlowCertificateOptions options;
+    options.seed = seed;
+    options.interrupt = interrupt;
+    options.deadline = deadline;
+    c.flow = certify_gradient_flow(points, triangles, input.surface, input.box, options);
+  }
+  const bool flow_ok = c.flow && c.flow->status == FlowCertificateStatus::certified;
+  const bool flow_refuted = c.flow && c.flow->status == FlowCertificateStatus::refuted;
+  const std::string delaunay_failed = "the restricted-Delaunay certificate did not certify the mesh as Tri S|Sigma";
+  const auto decide = [&](const char* verdict, const char* by, const std::string& reason) {
+    c.verdict = verdict;
+    c.method = by;
+    c.reason = reason;
+  };
+  if (method == CertifyMethod::both) {
+    if (delaunay_ok && flow_ok)
+      decide("certified", "both", "both proofs hold");
+    else if (flow_refuted)
+      decide("refuted", "gradient-flow", c.flow->reason);
+    else
+      decide("undecided", "", delaunay_ok && c.flow ? "the gradient-flow certificate: " + c.flow->reason : delaunay_failed);
+  } else if (delaunay_ok) {
+    decide("certified", "restricted-delaunay", "the mesh is Tri S|Sigma of its vertices, certified");
+  } else if (flow_ok) {
+    decide("certified", "gradient-flow", "the mesh is isotopic to the surface along its gradient flow");
+  } else if (flow_refuted) {
+    decide("refuted", "gradient-flow", c.flow->reason);
+  } else {
+    decide("undecided", "", c.flow ? c.flow->reason : delaunay_failed);
+  }
+  return c;
+}
+
 namespace {
 
 ExitCode run_check(const CheckOptions& o) {
@@ -219,9 +255,7 @@ ExitCode run_check(const CheckOptions& o) {
   const TriangleSoup soup = read_triangle_soup(o.mesh);
   const CheckVerdict verdict = check_verdict(check_mesh(soup.points, soup.triangles),
                                              with_bounds ? std::optional<double>(o.lambda) : std::nullopt);
-  std::optional<Certificate> certificate;
-  std::optional<FlowCertificate> flow;
-  TopologyVerdict verdict_of_certificates;
+  std::optional<TopologyCertificates> certificates;
   if (o.certify) {
     phase.emplace(watchdog, "compiling the surface");
     const SurfaceInput input = o.surface.resolve();
@@ -229,24 +263,8 @@ ExitCode run_check(const CheckOptions& o) {
     PhaseWatchdog certificate_watchdog(RunLimits::after(
         o.time_limit > 0 ? o.time_limit + PhaseWatchdog::solve_grace.count() : 0, nullptr, start));
     const PhaseWatchdog::Phase certifying(certificate_watchdog, "certifying the mesh");
-    if (method != CertifyMethod::gradient_flow) {
-      CertificateOptions options;
-      options.seed = o.seed;
-      options.interrupt = &interrupt_flag();
-      options.deadline = limits.deadline();
-      certificate = certify_mesh(soup.points, soup.triangles, input.surface, input.box, options);
-    }
-    const bool stopped = certificate && (certificate->interrupted || certificate->time_limited);
-    const bool delaunay_ok = certificate && certificate->status == CertificateStatus::certified &&
-                             certificate->restricted_matches_mesh;
-    if (!stopped && (method != CertifyMethod::restricted_delaunay && !(method == CertifyMethod::automatic && delaunay_ok))) {
-      FlowCertificateOptions options;
-      options.seed = o.seed;
-      options.interrupt = &interrupt_flag();
-      options.deadline = limits.deadline();
-      flow = certify_gradient_flow(soup.points, soup.triangles, input.surface, input.box, options);
-    }
-    verdict_of_certificates = topology_verdict(method, certificate, flow);
+    certificates = certify_topology(soup.points, soup.triangles, input, method, o.seed, &interrupt_flag(),
+                                    limits.deadline());
   }
   phase.reset();
   for (const std::string& warning : verdict.warnings) print_warning(warning);
@@ -255,18 +273,7 @@ ExitCode run_check(const CheckOptions& o) {
 
   if (o.json) {
     nlohmann::ordered_json out = verdict.to_json();
-    if (certificate) out["certificate"] = nlohmann::ordered_json::parse(to_json(*certificate).dump());
-    if (flow) out["gradient_flow"] = nlohmann::ordered_json::parse(to_json(*flow, true).dump());
-    if (o.certify) {
-      nlohmann::ordered_json topology;
-      topology["verdict"] = verdict_of_certificates.verdict;
-      topology["method"] = verdict_of_certificates.method.empty() ? nlohmann::ordered_json(nullptr)
-                                                                  : nlohmann::ordered_json(verdict_of_certificates.method);
-      topology["reason"] = verdict_of_certificates.reason;
-      const bool bounded = flow && flow->status == FlowCertificateStatus::certified;
-      topology["hausdorff_upper_bound"] = bounded ? nlohmann::ordered_json(flow->hausdorff_upper_bound) : nlohmann::ordered_json(nullptr);
-      out["topology"] = topology;
-    }
+    if (certificates) out.update(certificates->to_json());
     print_json(std::cout, out);
   } else {
     std::cout << "mesh:                  " << o.mesh << "\n";
@@ -310,23 +317,24 @@ ExitCode run_check(const CheckOptions& o) {
       std::cout << "  roughness <= " << bounds.max_roughness_rad << " rad: " << pass_fail(verdict.roughness_ok)
                 << "\n";
     }
-    if (certificate) print_certificate(std::cout, *certificate);
-    if (flow) print_flow_certificate(std::cout, *flow);
-    if (o.certify)
-      std::cout << "topology:              " << verdict_of_certificates.verdict
-                << (verdict_of_certificates.method.empty() ? "" : " (" + verdict_of_certificates.method + ")") << ": "
-                << verdict_of_certificates.reason << "\n";
+    if (certificates) {
+      if (certificates->delaunay) print_certificate(std::cout, *certificates->delaunay);
+      if (certificates->flow) print_flow_certificate(std::cout, *certificates->flow);
+      std::cout << "topology:              " << certificates->verdict
+                << (certificates->method.empty() ? "" : " (" + certificates->method + ")") << ": "
+                << certificates->reason << "\n";
+    }
     std::cout.flush();
   }
-  if ((certificate && certificate->interrupted) || (flow && flow->interrupted)) {
+  if (certificates && certificates->interrupted()) {
     print_warning("interrupted by a signal: the certificate is incomplete (status undecided)");
     return ExitCode::limit_reached;
   }
-  if ((certificate && certificate->time_limited) || (flow && flow->time_limited)) {
+  if (certificates && certificates->time_limited()) {
     print_warning("stopped by --time-limit: the certificate is incomplete (status undecided)");
     return ExitCode::limit_reached;
   }
-  const bool certified = !o.certify || verdict_of_certificates.verdict == "certified";
+  const bool certified = !certificates || certificates->verdict == "certified";
   return verdict.all_pass() && certified ? ExitCode::complete : ExitCode::check_failed;
 }
 

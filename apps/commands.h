@@ -7,6 +7,8 @@
 //! command-line code, apps/<name>_command.cpp; printing and output files stay there.
 
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -17,7 +19,9 @@
 
 #include "apps/command_line.h"
 #include "common/tolerances.h"
+#include "meshing/certificate.h"
 #include "meshing/del_mesh.h"
+#include "meshing/gradient_flow_certificate.h"
 #include "meshing/input_mesh.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/theorem_bounds.h"
@@ -118,6 +122,40 @@ struct CheckVerdict {
 //! The verdict on `report` for the optional λ.  Precondition (checked by
 //! require_bounds_lambda, throws InvalidInput): λ, if given, lies in (0, 1/6).
 CheckVerdict check_verdict(const MeshReport& report, std::optional<double> lambda);
+
+//! Which certificates `check --certify` runs: automatic ("auto") runs the restricted-Delaunay
+//! certificate, then the gradient-flow certificate unless the first certified the mesh as
+//! Tri S|Σ of its vertices; both runs the two, and the verdict is certified only if each is.
+enum class CertifyMethod { automatic, restricted_delaunay, gradient_flow, both };
+constexpr auto enum_names(CertifyMethod) {
+  return name_table<CertifyMethod>("CertifyMethod", {{CertifyMethod::automatic, "auto"},
+                                                     {CertifyMethod::restricted_delaunay, "restricted-delaunay"},
+                                                     {CertifyMethod::gradient_flow, "gradient-flow"},
+                                                     {CertifyMethod::both, "both"}});
+}
+
+//! The certificates that ran and what they prove together.
+struct TopologyCertificates {
+  std::optional<Certificate> delaunay;    //!< meshing/certificate.h
+  std::optional<FlowCertificate> flow;    //!< meshing/gradient_flow_certificate.h
+  std::string verdict = "undecided";      //!< certified, refuted (only by the flow's proof) or undecided
+  std::string method;                     //!< the method that decided the verdict ("" when none did)
+  std::string reason;                     //!< why, in one phrase
+  bool interrupted() const;               //!< a certificate stopped at the interrupt flag
+  bool time_limited() const;              //!< a certificate stopped at the deadline
+  //! {"certificate": …} and {"gradient_flow": …} for those that ran (the latter with the
+  //! per-triangle bounds), and "topology": {verdict, method, reason, hausdorff_upper_bound}.
+  nlohmann::ordered_json to_json() const;
+};
+
+//! The certificates of the soup for the surface by `method` (a stopped certificate ends the
+//! sequence).  Throws InvalidInput as certify_mesh and certify_gradient_flow do (bad indices,
+//! a surface that fails validation).
+TopologyCertificates certify_topology(const std::vector<Point3>& points,
+                                      const std::vector<std::array<std::size_t, 3>>& triangles,
+                                      const SurfaceInput& input, CertifyMethod method, std::uint64_t seed,
+                                      const std::atomic<bool>* interrupt,
+                                      std::optional<std::chrono::steady_clock::time_point> deadline);
 
 // ---------------------------------------------------------------------------------------------
 // delmesh solve (solve_command.cpp)

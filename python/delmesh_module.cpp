@@ -182,15 +182,16 @@ struct CallControls {
 //! caller keeps serving progress and signals (file comment).  A phase stopped before the run
 //! throws RunStopped, which reaches Python as TimeoutError (or the KeyboardInterrupt that set
 //! the flag).
-DelMeshResult run_on_worker(double time_limit, const py::object& progress,
-                            const std::function<DelMeshResult(const CallControls&)>& work) {
+template <class Result>
+Result run_on_worker(double time_limit, const py::object& progress,
+                     const std::function<Result(const CallControls&)>& work) {
   std::atomic<bool> interrupt{false};
   const RunLimits limits = RunLimits::after(time_limit, &interrupt);
   std::mutex m;
   std::condition_variable changed;
   std::deque<std::string> lines;
   bool done = false;
-  std::optional<DelMeshResult> result;
+  std::optional<Result> result;
   std::exception_ptr failure;
 
   CallControls controls;
@@ -216,7 +217,7 @@ DelMeshResult run_on_worker(double time_limit, const py::object& progress,
   } worker{interrupt, std::thread([&] {
     try {
       const RunLimits::Scope scope(limits);
-      DelMeshResult r = work(controls);
+      Result r = work(controls);
       std::lock_guard<std::mutex> lock(m);
       result.emplace(std::move(r));
     } catch (...) {
@@ -285,7 +286,7 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
     // Planning (parsing and compiling E, or reading and validating the mesh) runs on the worker
     // too, under the call's limits; its warnings are issued once the call has the GIL again.
     std::optional<DelMeshResult> result;
-    result = run_on_worker(request.time_limit, progress, [&](const CallControls& controls) {
+    result = run_on_worker<DelMeshResult>(request.time_limit, progress, [&](const CallControls& controls) {
       if (request.input_mesh) {
         // A triangle mesh, remeshed through its MeshOracle as `delmesh mesh --input-mesh` does.
         const MeshInputPlan plan = plan_mesh_input(request);
@@ -319,12 +320,10 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
 // check
 // ---------------------------------------------------------------------------------------------
 
-py::object check(const py::object& vertices, const py::object& triangles, const py::object& lam) {
-  std::optional<double> lambda;
-  if (!lam.is_none()) {
-    lambda = finite_option("--lambda", lam);
-    require_bounds_lambda(*lambda);
-  }
+//! The soup of an N × 3 array of coordinates and an M × 3 array of integer vertex indices.
+//! Throws InvalidInput on other shapes, non-integer or negative indices.
+void read_soup(const py::object& vertices, const py::object& triangles, std::vector<Point3>& points,
+               std::vector<std::array<std::size_t, 3>>& faces) {
   const py::module_ np = py::module_::import("numpy");
   const py::array v = np.attr("asarray")(vertices, "float64");
   if (v.ndim() != 2 || v.shape(1) != 3) {
@@ -342,10 +341,10 @@ py::object check(const py::object& vertices, const py::object& triangles, const 
   }
   const auto vv = py::array_t<double, py::array::c_style | py::array::forcecast>(v).unchecked<2>();
   const auto tt = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>(t).unchecked<2>();
-  std::vector<Point3> points;
+  points.clear();
   points.reserve(static_cast<std::size_t>(vv.shape(0)));
   for (py::ssize_t i = 0; i < vv.shape(0); ++i) points.emplace_back(vv(i, 0), vv(i, 1), vv(i, 2));
-  std::vector<std::array<std::size_t, 3>> faces;
+  faces.clear();
   faces.reserve(static_cast<std::size_t>(tt.shape(0)));
   for (py::ssize_t i = 0; i < tt.shape(0); ++i) {
     std::array<std::size_t, 3> f{};
@@ -358,6 +357,17 @@ py::object check(const py::object& vertices, const py::object& triangles, const 
     }
     faces.push_back(f);
   }
+}
+
+py::object check(const py::object& vertices, const py::object& triangles, const py::object& lam) {
+  std::optional<double> lambda;
+  if (!lam.is_none()) {
+    lambda = finite_option("--lambda", lam);
+    require_bounds_lambda(*lambda);
+  }
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> faces;
+  read_soup(vertices, triangles, points, faces);
 
   std::string report;
   std::vector<std::string> warnings;
@@ -368,6 +378,38 @@ py::object check(const py::object& vertices, const py::object& triangles, const 
     warnings = verdict.warnings;
   }
   warn_all(warnings);
+  return from_json(report);
+}
+
+// ---------------------------------------------------------------------------------------------
+// certify
+// ---------------------------------------------------------------------------------------------
+
+py::object certify(const py::object& vertices, const py::object& triangles, const py::object& expr,
+                   const py::object& box, const py::object& surface, const std::string& method,
+                   const py::object& seed, const py::object& time_limit) {
+  SurfaceArguments arguments;
+  if (!surface.is_none()) arguments.surface = surface.cast<std::string>();
+  if (!expr.is_none()) arguments.expr = expr.cast<std::string>();
+  if (!box.is_none()) arguments.box = list_option(box);
+  const CertifyMethod chosen = parse_enum<CertifyMethod>(method, "method");
+  const std::uint64_t seed_value = whole_option("--seed", seed, 0, std::numeric_limits<std::uint64_t>::max());
+  const double limit = time_limit.is_none() ? 0 : finite_option("--time-limit", time_limit);
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> faces;
+  read_soup(vertices, triangles, points, faces);
+  std::string report;
+  {
+    LibraryCall call;
+    // Compiling E and both certificates run on the worker, under the call's limit and Ctrl-C.
+    const TopologyCertificates c =
+        run_on_worker<TopologyCertificates>(limit, py::none(), [&](const CallControls& controls) {
+          const SurfaceInput input = arguments.resolve();
+          return certify_topology(points, faces, input, chosen, seed_value, controls.interrupt,
+                                  controls.limits->deadline());
+        });
+    report = c.to_json().dump();
+  }
   return from_json(report);
 }
 
@@ -550,6 +592,24 @@ orientable 2-manifold), closed / manifold / orientable with the counts of bounda
 and of non-manifold edges and vertices, min angle, max radius-edge ratio, max roughness.
 lam: lambda in (0, 1/6): also "lambda", the bounds of Theorem 6.1 ("bounds") and which hold ("pass").
 Raises ValueError on an index out of range, a repeated index in a triangle, a non-finite point.)doc");
+
+  m.def("certify", &certify, py::arg("vertices"), py::arg("triangles"), py::kw_only(), py::arg("expr") = py::none(),
+        py::arg("box") = py::none(), py::arg("surface") = py::none(), py::arg("method") = "auto",
+        py::arg("seed") = 1, py::arg("time_limit") = py::none(),
+        R"doc(Certify the topology of a triangle soup for a surface, as `delmesh check --certify --json`; returns a dict.
+
+vertices: N x 3 array of coordinates; triangles: M x 3 array of integer vertex indices.  The surface
+as for mesh(): expr with box, or a catalog surface (a box replaces the catalog's).
+method: "auto" (restricted-Delaunay, then gradient-flow unless the first certified the mesh as
+Tri S|Sigma), "restricted-delaunay", "gradient-flow" or "both" (each must certify).
+The dict has "topology" {verdict: certified, refuted or undecided; method; reason;
+hausdorff_upper_bound (a certified two-sided Hausdorff bound, with the gradient flow)}, and
+"certificate" and "gradient_flow" for the certificates that ran.
+seed: the generic directions.  time_limit (seconds from the call; 0 or None: none): a certificate
+that reaches it is returned undecided with "time_limited": true; one passed while E is compiled
+raises TimeoutError.  The GIL is released; Ctrl-C stops the certificate and is raised.
+Raises ValueError, with the program's error message, on invalid input (a bad soup, a surface that
+fails validation).)doc");
 
   // The primitives and their options come from the registry, so a registered primitive is
   // documented here as in `delmesh solve --help`.

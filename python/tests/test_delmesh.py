@@ -331,6 +331,41 @@ class CheckTest(unittest.TestCase):
         self.assertEqual(str(caught.exception), message)
 
 
+class CertifyTest(unittest.TestCase):
+    def test_same_certificates_as_the_program(self):
+        result = delmesh.mesh(surface="torus", size_bound=0.1)
+        certificates = delmesh.certify(result.vertices, result.triangles, surface="torus", method="both")
+        self.assertEqual(certificates["topology"]["verdict"], "certified")
+        self.assertEqual(certificates["topology"]["method"], "both")
+        bound = certificates["topology"]["hausdorff_upper_bound"]
+        self.assertGreater(bound, 0)
+        self.assertEqual(len(certificates["gradient_flow"]["triangle_distance_bounds"]), len(result.triangles))
+        with tempfile.TemporaryDirectory() as d:
+            off = os.path.join(d, "t.off")
+            code, _, err = run_cli("mesh", "--surface", "torus", "--size-bound", "0.1", "--out", off,
+                                   "--stats", os.path.join(d, "t.json"), "--quiet")
+            self.assertEqual(code, 0, err)
+            code, out, err = run_cli("check", off, "--surface", "torus", "--certify", "--method",
+                                     "gradient-flow", "--json")
+            self.assertEqual(code, 0, err)
+        program = json.loads(out)
+        flow = delmesh.certify(result.vertices, result.triangles, surface="torus", method="gradient-flow")
+        self.assertEqual(flow["topology"], program["topology"])
+        self.assertEqual(flow["gradient_flow"]["hausdorff_upper_bound"], bound)
+        self.assertNotIn("certificate", flow)
+
+    def test_a_squashed_mesh_is_not_certified_and_bad_input_raises(self):
+        result = delmesh.mesh(surface="sphere")
+        squashed = result.vertices * np.array([1.0, 1.0, 0.3])
+        certificates = delmesh.certify(squashed, result.triangles, surface="sphere", method="gradient-flow")
+        self.assertNotEqual(certificates["topology"]["verdict"], "certified")
+        self.assertIsNone(certificates["topology"]["hausdorff_upper_bound"])
+        with self.assertRaisesRegex(ValueError, "method: expected auto"):
+            delmesh.certify(result.vertices, result.triangles, surface="sphere", method="flow")
+        with self.assertRaisesRegex(ValueError, "negative index"):
+            delmesh.certify(result.vertices, result.triangles - 1, surface="sphere")
+
+
 class SolveTest(unittest.TestCase):
     def test_critical_points_of_the_torus_along_x(self):
         # The catalog torus (x^2+y^2+z^2+R^2-r^2)^2 - 4R^2(x^2+y^2), R = 1, r = 0.4, revolves about z:

@@ -419,9 +419,9 @@ inline constexpr double input_mesh_max_coordinate = 1e100;
 //! Remeshing a triangle mesh far from the origin (its largest |coordinate| at least
 //! input_mesh_far_ratio times its bounding-box diagonal): the diagonal must span at least this
 //! many units in the last place of that coordinate.  Below, the coordinates are a coarse lattice
-//! across the mesh, on which the constructions of the oracle and the mesher degenerate (CGAL's
-//! ray-cast inside test at a vertex may not return on a lattice 14 units across); a
-//! translation towards the origin removes the problem, and the refusal says so.
+//! across the mesh, on which the floating-point constructions of the oracle and the mesher
+//! (Voronoi vertices, clipped segments, projections) are too coarse to separate nearby features;
+//! a translation towards the origin removes the problem, and the refusal says so.
 inline constexpr double input_mesh_min_resolution = 65536;
 inline constexpr double input_mesh_far_ratio = 4;
 //! Remeshing a triangle mesh: the default termination floor (delmesh mesh --min-spacing) is this

@@ -168,12 +168,8 @@ class FlowProof {
         face[2 * axis] = face[2 * axis + 1] = fixed;
         stack.push_back(face);
         while (!stack.empty()) {
-          poll();
-          count_box();
-          const auto b = stack.back();
-          stack.pop_back();
-          IBox x;
-          for (int k = 0; k < 3; ++k) x[k] = Interval(b[2 * k], b[2 * k + 1]);
+          const auto b = next_box(stack);
+          const IBox x = interval_box(b);
           Interval e;
           {
             RoundingGuard guard;
@@ -191,12 +187,8 @@ class FlowProof {
     double least = std::numeric_limits<double>::infinity();
     std::vector<std::array<double, 6>> stack{{box_.lo[0], box_.hi[0], box_.lo[1], box_.hi[1], box_.lo[2], box_.hi[2]}};
     while (!stack.empty()) {
-      poll();
-      count_box();
-      const auto b = stack.back();
-      stack.pop_back();
-      IBox x;
-      for (int k = 0; k < 3; ++k) x[k] = Interval(b[2 * k], b[2 * k + 1]);
+      const auto b = next_box(stack);
+      const IBox x = interval_box(b);
       const double width = width_of(x);
       double bound = 0, at_centre = 0;
       bool outside_tube = false;
@@ -256,6 +248,19 @@ class FlowProof {
   }
 
  private:
+  //! Takes the next box (lo, hi per axis) off the stack, after the limits and the budget.
+  std::array<double, 6> next_box(std::vector<std::array<double, 6>>& stack) {
+    poll();
+    count_box();
+    const auto b = stack.back();
+    stack.pop_back();
+    return b;
+  }
+
+  static IBox interval_box(const std::array<double, 6>& b) {
+    return {Interval(b[0], b[1]), Interval(b[2], b[3]), Interval(b[4], b[5])};
+  }
+
   //! Bisects the widest side of b onto the stack, or throws the verdict `failure` (undecided)
   //! located at b's centre once b is narrower than min_width.
   void split_or_fail(const std::array<double, 6>& b, std::vector<std::array<double, 6>>& stack, double min_width,

@@ -549,10 +549,10 @@ inline constexpr double flow_gradient_quality = 0.9;
 inline constexpr double flow_min_box_relative_width = 1e-7;
 //! Boxes and rectangles the proofs of (a) and (b) may examine, in all.
 inline constexpr std::size_t flow_box_budget = 8000000;
-//! Directions tried for a critical point's counting segment (the first along ∇E, then perturbed)
-//! when a segment passes through an edge or vertex of the mesh or is not proved monotone; and
-//! the doublings of its half-length.
+//! First directions tried for a critical point's counting path (along ∇E, then perturbed) when
+//! the path passes through an edge or vertex of the mesh or cannot be proved monotone; and the
+//! steps (proved or halved) each half of a path may take.
 inline constexpr int flow_segment_attempts = 8;
-inline constexpr int flow_segment_doublings = 40;
+inline constexpr int flow_path_steps = 256;
 
 }  // namespace delmesh::tolerances

@@ -2,7 +2,7 @@
 //  1. read the soup; check that it is a closed orientable 2-manifold and orient each component;
 //  2. on every triangle, by pieces: a bound of |E| (giving ε) and the sign of ⟨∇E, n⟩ (d);
 //  3. (a) |E| > ε′ on the faces of B and (b) |∇E| ≥ G on T, by subdivision;
-//  4. (e) the critical points of a height function on Σ and one counting segment through each;
+//  4. (e) the critical points of a height function on Σ and one counting path along the flow through each;
 //  5. the Hausdorff bound ε/G and the per-triangle bounds.
 #include "meshing/gradient_flow_certificate.h"
 
@@ -456,12 +456,15 @@ TriangleProof prove_triangle(FlowProof& proof, const Point3& a, const Point3& b,
   return out;
 }
 
-// ---- 4. the counting segments ----
+// ---- 4. the counting paths ----
 
 //! The algebraic number of crossings of the segment pq with the positively oriented triangles,
-//! or nothing if the segment passes through an edge or a vertex of one (or lies in its plane).
-std::optional<int> crossings(const Point3& p, const Point3& q, const std::vector<Point3>& points,
-                             const std::vector<std::array<std::size_t, 3>>& oriented) {
+//! or nothing if the segment passes through an edge or a vertex of one (or lies in its plane),
+//! or if an end that may lie on M (p unless p_off_mesh, q unless q_off_mesh) lies in the plane of
+//! a triangle near the segment.  An end off M (|E| > ε′ there) in a triangle's plane is not in
+//! the triangle.
+std::optional<int> crossings(const Point3& p, const Point3& q, bool p_off_mesh, bool q_off_mesh,
+                             const std::vector<Point3>& points, const std::vector<std::array<std::size_t, 3>>& oriented) {
   const CGAL::Bbox_3 segment = p.bbox() + q.bbox();
   int count = 0;
   for (const auto& t : oriented) {
@@ -469,7 +472,7 @@ std::optional<int> crossings(const Point3& p, const Point3& q, const std::vector
     if (!CGAL::do_overlap(segment, a.bbox() + b.bbox() + c.bbox())) continue;
     const CGAL::Orientation op = CGAL::orientation(a, b, c, p), oq = CGAL::orientation(a, b, c, q);
     if (op == CGAL::COPLANAR && oq == CGAL::COPLANAR) return std::nullopt;
-    // An end in the triangle's plane is not in the triangle (|E| > ε′ there, ≤ ε on it).
+    if ((op == CGAL::COPLANAR && !p_off_mesh) || (oq == CGAL::COPLANAR && !q_off_mesh)) return std::nullopt;
     if (op == oq || op == CGAL::COPLANAR || oq == CGAL::COPLANAR) continue;
     const CGAL::Orientation s[3] = {CGAL::orientation(p, q, a, b), CGAL::orientation(p, q, b, c),
                                     CGAL::orientation(p, q, c, a)};
@@ -516,7 +519,42 @@ Interval value_at(const CompiledSystem& system, const Point3& p) {
   return v[0];
 }
 
-//! (e) for one critical point z with root box `root`: a segment through z, monotone in E, from
+//! A polyline from `start` along the flow of ±∇E (sign): the first step in direction `first`,
+//! the next along ∇E at each new point (times sign), every segment proved to increase E (sign +1)
+//! or decrease it (−1), ending where E > tube (resp. < −tube) is proved.  The step starts at
+//! `step` and doubles after a proved segment, halves after a failed one.  Nothing if no such
+//! polyline is found within tolerances::flow_path_steps steps or the step falls below 2^−30 of
+//! the first.
+std::optional<std::vector<Point3>> flow_path(FlowProof& proof, const Point3& start, P3 direction, int sign, double step,
+                                             double tube) {
+  const CompiledSystem& system = proof.system();
+  std::vector<Point3> path{start};
+  const double least = std::ldexp(step, -30);
+  for (int n = 0; n < tolerances::flow_path_steps; ++n) {
+    const Point3& x = path.back();
+    const Point3 y(x.x() + step * direction[0], x.y() + step * direction[1], x.z() + step * direction[2]);
+    const bool proved = sign > 0 ? increasing_along(proof, x, y) : increasing_along(proof, y, x);
+    if (!proved) {
+      step *= 0.5;
+      if (!(step >= least)) return std::nullopt;
+      continue;
+    }
+    path.push_back(y);
+    const Interval e = value_at(system, path.back());
+    if (!finite(e)) return std::nullopt;
+    if (sign > 0 ? e.inf() > tube : e.sup() < -tube) return path;
+    const P3 at{y.x(), y.y(), y.z()};
+    double values[4];
+    system.values<double>(at.data(), nullptr, values);
+    const double norm = std::sqrt(values[1] * values[1] + values[2] * values[2] + values[3] * values[3]);
+    if (!(norm > 0) || !std::isfinite(norm)) return std::nullopt;
+    for (int k = 0; k < 3; ++k) direction[k] = sign * values[1 + k] / norm;
+    step *= 2;
+  }
+  return std::nullopt;
+}
+
+//! (e) for one critical point z with root box `root`: a path through z, monotone in E, from
 //! E < −tube to E > tube, and its algebraic crossing count with M.
 int count_through(FlowProof& proof, const P3& z, const std::vector<std::array<double, 2>>& root, double tube,
                   const std::vector<Point3>& points, const std::vector<std::array<std::size_t, 3>>& oriented,
@@ -542,20 +580,26 @@ int count_through(FlowProof& proof, const P3& z, const std::vector<std::array<do
       const double jitter = attempt == 0 ? 0 : 0.05 * attempt * (2 * seeded_uniform(seed, static_cast<std::int64_t>(index), attempt * 3 + k, generic_stream::flow_segment) - 1);
       g[k] = gradient[k] / length + jitter;
     }
-    double s = 4 * tube / length;
-    for (int doubling = 0; doubling < tolerances::flow_segment_doublings; ++doubling, s *= 2) {
-      const Point3 p(z[0] - s * g[0], z[1] - s * g[1], z[2] - s * g[2]);
-      const Point3 q(z[0] + s * g[0], z[1] + s * g[1], z[2] + s * g[2]);
-      const Interval ep = value_at(system, p), eq = value_at(system, q);
-      if (!(finite(ep) && finite(eq))) break;
-      if (!(ep.sup() < -tube && eq.inf() > tube)) continue;
-      if (!increasing_along(proof, p, q)) break;
-      if (const auto count = crossings(p, q, points, oriented)) return *count;
-      break;
+    const Point3 start(z[0], z[1], z[2]);
+    const std::optional<std::vector<Point3>> up = flow_path(proof, start, g, +1, tube / length, tube);
+    if (!up) continue;
+    const std::optional<std::vector<Point3>> down =
+        flow_path(proof, start, P3{-g[0], -g[1], -g[2]}, -1, tube / length, tube);
+    if (!down) continue;
+    // The path from E < −ε′ to E > ε′: down reversed, then up.
+    std::vector<Point3> path(down->rbegin(), down->rend());
+    path.insert(path.end(), up->begin() + 1, up->end());
+    int count = 0;
+    bool generic = true;
+    for (std::size_t i = 0; i + 1 < path.size() && generic; ++i) {
+      const auto c = crossings(path[i], path[i + 1], i == 0, i + 2 == path.size(), points, oriented);
+      if (c) count += *c;
+      generic = c.has_value();
     }
+    if (generic) return count;
   }
   throw Verdict{FlowCertificateStatus::undecided,
-                "no segment through a critical point of the height function could be proved to cross the tube "
+                "no path through a critical point of the height function could be proved to cross the tube "
                 "monotonically and generically",
                 z};
 }
@@ -627,7 +671,7 @@ FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
     if (!(c.min_gradient > 0))
       throw Verdict{FlowCertificateStatus::undecided, "no lower bound of the gradient of E was proved", std::nullopt};
 
-    // 4. (e): the critical points of a generic height function and one segment through each.
+    // 4. (e): the critical points of a generic height function and one path through each.
     ImplicitOracle oracle(surface, box, SolverBackend::subdivision);
     oracle.set_run_controls(options.seed, options.deadline);
     const Domain domain = Domain::from_box({{box.lo[0], box.hi[0]}, {box.lo[1], box.hi[1]}, {box.lo[2], box.hi[2]}});
@@ -653,7 +697,7 @@ FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
       const int count = count_through(proof, root.world, root.box.bounds, c.tube, points, oriented, options.seed, index++);
       if (count != 1)
         throw Verdict{FlowCertificateStatus::undecided,
-                      "a segment across the tube through a critical point of the surface meets the mesh " +
+                      "a path across the tube through a critical point of the surface meets the mesh " +
                           std::to_string(count) + " times (with sign): the mesh covers that component of the surface " +
                           std::to_string(count) + " times, not once",
                       root.world};

@@ -15,8 +15,9 @@
 //!      reversing every triangle of a component whose triangles all have ⟨∇E, n_τ⟩ < 0;
 //!  (e) on Σ ∩ B a generic height function h(x) = ⟨x, d⟩ has finitely many critical points, all
 //!      certified (SurfaceCritical, no undecided region), and through each critical point c a
-//!      segment γ_c is proved to start where E < −ε′, end where E > ε′, be crossed by E
-//!      increasingly (⟨∇E, γ′⟩ > 0 along it), and meet M with algebraic intersection number 1.
+//!      polygonal path γ_c is proved to start where E < −ε′, end where E > ε′, be crossed by E
+//!      increasingly (⟨∇E, γ′⟩ > 0 along each segment), and meet M with algebraic intersection
+//!      number 1.
 //! Then M is ambient-isotopic to Σ ∩ B, and every point of M is within ε/G of Σ and every point
 //! of Σ within ε/G of M (two-sided Hausdorff distance ≤ ε/G).
 //!
@@ -69,12 +70,14 @@
 //!    (or it reaches the minimum width, where any ℓ > 0 is kept); G is the least ℓ kept.
 //!  - (e): the critical points come from the seed solve of sample_topology.h (certified, no
 //!    undecided region; generic directions seeded by FlowCertificateOptions::seed).  The root box
-//!    X_c must lie in T.  γ_c = [z − s g, z + s g] with z the root's midpoint and g ≈ ∇E(z)/|∇E(z)|;
-//!    s doubles from 4ε′/|∇E(z)| until the ends have E < −ε′ and E > ε′ (interval point values)
-//!    and ⟨∇E, g⟩ > 0 is proved on the boxes of γ_c's pieces.  The crossings of γ_c with the
-//!    triangles are decided with exact orientation predicates; a segment through an edge or a
-//!    vertex of M is replaced by one in a perturbed direction.
-//! Each piece, box and segment test also reads the options' interrupt flag and deadline.
+//!    X_c must lie in T.  γ_c follows the flow from z, the root's midpoint, both ways: each
+//!    segment starts along ±∇E at its first point (the first along g ≈ ∇E(z)/|∇E(z)|), its
+//!    length starts at ε′/|∇E(z)| and doubles after a segment on whose boxes ⟨∇E, q − p⟩ > 0 is
+//!    proved (halves after a failure), until an end has E > ε′ (resp. < −ε′; interval point
+//!    values).  The crossings of γ_c with the triangles are decided with exact orientation
+//!    predicates; a path through an edge or a vertex of M, or with a joint in a triangle's
+//!    plane, is replaced by one whose first direction is perturbed.
+//! Each piece, box and path test also reads the options' interrupt flag and deadline.
 //!
 //! ## Status
 //!  - certified: (a)–(e) proved; M is isotopic to Σ and within hausdorff_upper_bound of it;
@@ -112,7 +115,7 @@ constexpr auto enum_names(FlowCertificateStatus) {
 inline std::ostream& operator<<(std::ostream& out, FlowCertificateStatus status) { return write_enum(out, status); }
 
 struct FlowCertificateOptions {
-  std::uint64_t seed = 1;  //!< seeds the height directions of (e) and the segments' perturbations
+  std::uint64_t seed = 1;  //!< seeds the height directions of (e) and the paths' perturbations
   //! If given, the certificate stops at its next test after it becomes true (status undecided,
   //! `interrupted`).
   const std::atomic<bool>* interrupt = nullptr;
@@ -139,7 +142,7 @@ struct [[nodiscard]] FlowCertificate {
   std::vector<double> triangle_distance_bounds;
 
   std::size_t mesh_components = 0;
-  std::size_t critical_points = 0;      //!< of the height function on Σ, each with its segment counted
+  std::size_t critical_points = 0;      //!< of the height function on Σ, each with its path counted
   std::size_t triangle_pieces = 0;      //!< pieces examined for (c) and (d)
   std::size_t boxes = 0;                //!< boxes and rectangles examined for (a) and (b)
   double seconds = 0;

@@ -14,15 +14,16 @@
 //! and e the ray direction.  The closed forms for the sphere (4π) and the torus (4π²R/r) are
 //! printed next to the computed values.
 //!
-//! Real ε-samples (meshing/eps_sample.h) for every surface: a dense reference sample R of Σ
-//! (meshing/dense_sample.h, cell edges ≤ --relative-spacing · lfs, seeded by --sample-seed), with
-//! lfs analytic where the catalog knows it and otherwise estimated from the Voronoi poles of a
-//! dense sample (meshing/lfs_estimate.h); the greedy farthest-point ε-sample of R for each ε of
-//! --epsilons; and per run size_ratio = |S| λ² / (|ε-sample| ε²), which Theorem 6.1(iii) predicts
-//! to stay bounded as λ → 0.  Where lfs is analytic the pole estimate is made as well and its
-//! relative error against the exact lfs is reported.  The ε-samples depend on the surface only, so
-//! they are computed once per surface, or read back with --eps-reference from an earlier run's
-//! eps_reference.csv (the Snakemake workflow, experiments/Snakefile, does that).
+//! Real ε-samples (experiments/sampling/eps_sample.h) for every surface: a dense reference sample
+//! R of Σ (experiments/sampling/dense_sample.h, cell edges ≤ --relative-spacing · lfs, seeded by
+//! --sample-seed), with lfs analytic where the catalog knows it and otherwise estimated from the
+//! Voronoi poles of a dense sample (experiments/sampling/lfs_estimate.h); the greedy
+//! farthest-point ε-sample of R for each ε of --epsilons; and per run size_ratio =
+//! |S| λ² / (|ε-sample| ε²), which Theorem 6.1(iii) predicts to stay bounded as λ → 0.  Where lfs
+//! is analytic the pole estimate is made as well and its relative error against the exact lfs is
+//! reported.  The ε-samples depend on the surface only, so they are computed once per surface, or
+//! read back with --eps-reference from an earlier run's eps_reference.csv (the Snakemake workflow,
+//! experiments/Snakefile, does that).
 //!
 //! Output in <out-dir>: lambda_sweep.csv (one row per surface and λ), eps_sample.csv (one row per
 //! surface, λ and ε), eps_reference.csv (one row per surface and ε: the ε-samples and the lfs
@@ -44,10 +45,10 @@
 #include "common/errors.h"
 #include "common/huge_page_heap.h"
 #include "experiments/experiment_support.h"
+#include "experiments/sampling/dense_sample.h"
+#include "experiments/sampling/eps_sample.h"
+#include "experiments/sampling/lfs_estimate.h"
 #include "meshing/del_mesh.h"
-#include "meshing/dense_sample.h"
-#include "meshing/eps_sample.h"
-#include "meshing/lfs_estimate.h"
 #include "meshing/mesh_io.h"
 #include "meshing/theorem_bounds.h"
 #include "symbolic/catalog.h"

@@ -1,4 +1,4 @@
-#include "meshing/dense_sample.h"
+#include "experiments/sampling/dense_sample.h"
 
 #include <cmath>
 

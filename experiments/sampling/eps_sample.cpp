@@ -1,4 +1,4 @@
-#include "meshing/eps_sample.h"
+#include "experiments/sampling/eps_sample.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "meshing/lfs_estimate.h"
+#include "experiments/sampling/lfs_estimate.h"
 
 #include <cmath>
 

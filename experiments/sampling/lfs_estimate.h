@@ -18,7 +18,7 @@
 #include <memory>
 #include <vector>
 
-#include "meshing/dense_sample.h"
+#include "experiments/sampling/dense_sample.h"
 #include "symbolic/surface.h"
 
 namespace delmesh {
@@ -47,7 +47,7 @@ class PoleLfsEstimate {
 struct LfsEstimateOptions {
   //! The refined sample of pass 2.  The default cells (edge ≤ 0.1 lfs̃₁) are coarser than an
   //! ε-sample's reference needs: the poles are accurate at that density (max relative error below
-  //! 10 % on the catalog torus, tests/meshing/lfs_estimate_test.cpp).
+  //! 10 % on the catalog torus, tests/experiments/lfs_estimate_test.cpp).
   DenseSampleOptions sample = [] {
     DenseSampleOptions options;
     options.relative_spacing = 0.1;

@@ -1,8 +1,9 @@
 #pragma once
 //! \file dense_sample.h
 //! A dense, seeded, reproducible reference sample of Σ = {E = 0} inside a box, fine relative to a
-//! local feature size: the reference against which ε-samples are built (meshing/eps_sample.h) and
-//! on which lfs is estimated (meshing/lfs_estimate.h).  Not part of the mesher.
+//! local feature size: the reference against which ε-samples are built
+//! (experiments/sampling/eps_sample.h) and on which lfs is estimated
+//! (experiments/sampling/lfs_estimate.h).  Not part of the mesher.
 //!
 //! Construction (octree with an interval exclusion test and Newton projection):
 //!   1. The box is cut into a grid of cells of edge at most max_spacing (relative to the diagonal).

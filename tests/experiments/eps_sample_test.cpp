@@ -1,11 +1,11 @@
-#include "meshing/eps_sample.h"
+#include "experiments/sampling/eps_sample.h"
 
 #include <cmath>
 
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
-#include "meshing/dense_sample.h"
+#include "experiments/sampling/dense_sample.h"
 #include "symbolic/catalog.h"
 
 using namespace delmesh;

@@ -132,7 +132,7 @@ BOOST_AUTO_TEST_CASE(convex_saddle_and_flat_vertices_are_not_folded) {
 }
 
 BOOST_AUTO_TEST_CASE(cgal_meshes_femur_has_one_folded_vertex_the_others_none) {
-  // femur's fold is why its remeshing cannot end complete (paper/README.md, Fig. 13 table).
+  // femur's fold is why its remeshing cannot end complete (paper/README.md, "Remeshing").
   SurfaceMesh femur;
   const auto folded = folded_in_archive_mesh("femur", &femur);
   BOOST_REQUIRE(folded.size() == 1u);

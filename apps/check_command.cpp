@@ -198,6 +198,8 @@ TopologyCertificates certify_topology(const std::vector<Point3>& points,
     options.seed = seed;
     options.interrupt = interrupt;
     options.deadline = deadline;
+    // certify_mesh validated the surface if it ran and was not stopped (it throws otherwise).
+    options.surface_validated = c.delaunay.has_value();
     c.flow = certify_gradient_flow(points, triangles, input.surface, input.box, options);
   }
   const bool flow_ok = c.flow && c.flow->status == FlowCertificateStatus::certified;

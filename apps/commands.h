@@ -41,6 +41,7 @@ struct MeshRequest {
   std::string phase = "all";              //!< --phase: topology or all
   std::string solver = "subdivision";     //!< --solver: subdivision or homotopy
   std::optional<double> size_bound;       //!< --size-bound
+  std::optional<double> max_distance;     //!< --max-distance (an implicit surface and phase all only)
   std::size_t max_points = DelMeshOptions{}.max_points;  //!< --max-points
   double time_limit = 0;                  //!< --time-limit (0: none)
   std::uint64_t seed = 1;                 //!< --seed

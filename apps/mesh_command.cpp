@@ -45,6 +45,7 @@ struct MeshOptions {
   std::string phase = "all";
   std::string solver = "subdivision";
   double size_bound = 0;
+  double max_distance = 0;
   double min_spacing = 0;
   std::string out, stats;
   std::size_t max_points = DelMeshOptions{}.max_points;
@@ -55,6 +56,7 @@ struct MeshOptions {
   bool certify = false;
   CLI::Option* input_mesh_option = nullptr;
   CLI::Option* size_bound_option = nullptr;
+  CLI::Option* max_distance_option = nullptr;
   CLI::Option* min_spacing_option = nullptr;
   CLI::Option* out_option = nullptr;
   CLI::Option* stats_option = nullptr;
@@ -73,6 +75,8 @@ std::pair<std::string, std::string> flag_and_value(MeshOption option, const DelM
     case MeshOption::lambda: return {"--lambda", format_number(options.lambda)};
     case MeshOption::size_bound:
       return {"--size-bound", options.size_bound ? format_number(*options.size_bound) : "none"};
+    case MeshOption::max_distance:
+      return {"--max-distance", options.max_distance ? format_number(*options.max_distance) : "none"};
     case MeshOption::max_points: return {"--max-points", std::to_string(options.max_points)};
     case MeshOption::time_limit: return {"--time-limit", format_number(options.time_limit_seconds)};
     case MeshOption::threads: return {"--threads", std::to_string(options.threads)};
@@ -107,6 +111,7 @@ MeshRequest request_of(const MeshOptions& o) {
   r.phase = o.phase;
   r.solver = o.solver;
   if (o.size_bound_option->count() > 0) r.size_bound = o.size_bound;
+  if (o.max_distance_option->count() > 0) r.max_distance = o.max_distance;
   if (o.min_spacing_option->count() > 0) r.min_spacing = o.min_spacing;
   r.max_points = o.max_points;
   r.time_limit = o.time_limit;
@@ -130,6 +135,7 @@ DelMeshOptions common_options(const MeshRequest& r) {
 
 void limit_options(const MeshRequest& r, DelMeshOptions& options) {
   options.size_bound = r.size_bound;
+  options.max_distance = r.max_distance;
   options.max_points = r.max_points;
   options.time_limit_seconds = r.time_limit;
   options.seed = r.seed;
@@ -162,6 +168,8 @@ MeshPlan plan_mesh(const MeshRequest& r) {
   DelMeshOptions options = common_options(r);
   options.solver = parse_enum<SolverBackend>(r.solver, "--solver");
   limit_options(r, options);
+  if (options.max_distance && options.phase != MeshPhase::all)
+    throw InvalidInput("--max-distance needs --phase all (the distance is refined with Quality and Smooth)");
 
   MeshPlan plan{r.surface.resolve(), options, {}};
   if (!covered) plan.warnings.push_back(lambda_warning(r.lambda));
@@ -173,6 +181,9 @@ MeshInputPlan plan_mesh_input(const MeshRequest& r) {
   if (!r.input_mesh) throw PreconditionViolation("plan_mesh_input: the request has no --input-mesh");
   if (r.surface.surface || r.surface.expr || r.surface.box)
     throw InvalidInput("--input-mesh excludes --surface, --expr and --box");
+  if (r.max_distance)
+    throw InvalidInput("--max-distance needs --surface or --expr: an input mesh has no E whose gradient bounds "
+                       "the distance");
   // The default outputs <stem>_remeshed.off and .json never replace the input.
   MeshInputPlan plan{std::filesystem::path(*r.input_mesh).stem().string() + "_remeshed", *r.input_mesh,
                      read_input_mesh(*r.input_mesh), common_options(r), {}};
@@ -399,7 +410,9 @@ DelMeshResult mesh_surface(const MeshPlan& plan, DelMeshOptions options, PhaseWa
     oracle.emplace(plan.input.surface, plan.input.box, options.solver);
   }
   options.time_limit_seconds = seconds_left(limits);
+  const auto run_start = std::chrono::steady_clock::now();
   DelMeshResult result = del_mesh(*oracle, options, validation->seconds);
+  certify_distance(result, plan.input.surface, plan.input.box, options, run_start);
   result.statistics["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
@@ -416,6 +429,17 @@ DelMeshResult remesh_input(const MeshInputPlan& plan, DelMeshOptions options, Ph
   const double seconds_oracle = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   options.time_limit_seconds = seconds_left(limits);
   return remesh_on(plan, *oracle, seconds_oracle, options);
+}
+
+//! One line on stderr for the statistics' "distance" certificate (del_mesh.h), if it was attempted.
+void print_distance(const nlohmann::json& statistics) {
+  const auto d = statistics.find("distance");
+  if (d == statistics.end() || (*d)["status"] == "not attempted") return;
+  if ((*d)["status"] == "certified")
+    std::cerr << "delmesh: distance to the surface <= " << format_number((*d)["hausdorff_upper_bound"].get<double>())
+              << " (two-sided Hausdorff, certified by the gradient flow)" << std::endl;
+  else
+    std::cerr << "delmesh: distance to the surface not certified: " << (*d)["reason"].get<std::string>() << std::endl;
 }
 
 //! The steps: plan the run and check its outputs (every option valid from then on, so a warning
@@ -468,6 +492,7 @@ ExitCode run_mesh(const MeshOptions& o) {
     std::cerr << "delmesh: " << result.status << ": wrote " << out << " (" << result.mesh.number_of_vertices()
               << " vertices, " << result.mesh.number_of_faces() << " triangles)"
               << (stats == "-" ? "" : " and " + stats) << std::endl;
+    print_distance(statistics);
   }
   if (certificate_stopped) {
     print_warning(std::string(*certificate_stopped == MeshStatus::interrupted ? "interrupted by a signal"
@@ -521,6 +546,12 @@ Command add_mesh_command(CLI::App& parent) {
   o->size_bound_option = sub->add_option(
       "--size-bound", o->size_bound,
       "H > 0 (length units of E): also refine triangles whose surface Delaunay ball radius exceeds H")->type_name("H")
+      ->check(finite_number());
+  o->max_distance_option = sub->add_option(
+      "--max-distance", o->max_distance,
+      "delta > 0 (length units of E; --surface/--expr only): also refine until every triangle is proved within "
+      "delta of the surface along the gradient flow; the run is complete only if the gradient-flow certificate "
+      "then proves the two-sided Hausdorff distance <= delta (statistics \"distance\")")->type_name("DELTA")
       ->check(finite_number());
   o->out_option = sub->add_option("--out", o->out,
                                   "Mesh file, format by extension .off|.ply|.obj (default: <name>.off, <name> = "

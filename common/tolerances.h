@@ -554,5 +554,9 @@ inline constexpr std::size_t flow_box_budget = 8000000;
 //! steps (proved or halved) each half of a path may take.
 inline constexpr int flow_segment_attempts = 8;
 inline constexpr int flow_path_steps = 256;
+//! The flow distance bound of one triangle (meshing/flow_distance.h) bisects the grown box of the
+//! triangle down to this many levels (8^depth boxes at most) while a box's lower bound of |∇E| is
+//! not positive.
+inline constexpr int flow_distance_gradient_depth = 2;
 
 }  // namespace delmesh::tolerances

@@ -465,6 +465,7 @@ int main(int argc, char** argv) {
       for (double lambda : lambdas) {
         DelMeshOptions options = base;
         options.lambda = lambda;
+        options.distance_certificate = false;  // the sweep measures the mesher's sample and shape
         const Stopwatch clock;
         std::string status;
         MeshReport report;

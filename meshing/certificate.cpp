@@ -165,7 +165,7 @@ Certificate certify_mesh(const std::vector<Point3>& points, const std::vector<st
     bool clean = true;
     for (const CheckInfo* row : rows_of[static_cast<int>(kind)]) {
       if (row->after_clean_predecessors && !clean) continue;
-      CheckContext context{restricted, row->kind, 0, std::nullopt, true};
+      CheckContext context{restricted, row->kind, 0, std::nullopt, std::nullopt, nullptr, true};
       // A cell's faces are clean if no check so far found anything on a face of V_p.
       if (kind == FaceKind::vertex) context.cell_faces_clean = !findings.dirty(face[0]) && clean;
       const auto t0 = Clock::now();

@@ -8,8 +8,8 @@ namespace delmesh {
 
 namespace {
 
-//! The paper's kinds, seed … size; registered rows are numbered after them.
-constexpr int paper_kind_count = static_cast<int>(CheckKind::size) + 1;
+//! The built-in kinds, seed … distance; registered rows are numbered after them.
+constexpr int paper_kind_count = static_cast<int>(CheckKind::distance) + 1;
 
 //! The rows registered by CheckRegistration, and whether the registry has been read.
 struct Registered {
@@ -50,9 +50,9 @@ const std::vector<CheckInfo>& check_registry() {
     Registered& r = registered();
     r.read = true;
     std::vector<CheckInfo> rows = builtin_checks();
-    // A row of the paper names its own enumerator, neither seed nor size.
+    // A row of the paper names its own enumerator, neither seed nor a control of the Quality row.
     std::vector<bool> taken(paper_kind_count, false);
-    taken[static_cast<int>(CheckKind::seed)] = taken[static_cast<int>(CheckKind::size)] = true;
+    for (CheckKind k : {CheckKind::seed, CheckKind::size, CheckKind::distance}) taken[static_cast<int>(k)] = true;
     for (const CheckInfo& row : rows) {
       const int k = static_cast<int>(row.kind);
       if (k < 0 || k >= paper_kind_count || taken[k])

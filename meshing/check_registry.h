@@ -14,7 +14,7 @@
 //!
 //! Adding a check = one function and one row.  A row of builtin_checks() names the CheckKind
 //! enumerator of its paper's check; every other row gets the next CheckKind after
-//! CheckKind::size, named by the row (operator<< on CheckKind reads the registry).
+//! CheckKind::distance, named by the row (operator<< on CheckKind reads the registry).
 
 #include <array>
 #include <functional>
@@ -30,6 +30,8 @@
 #include "meshing/witness.h"
 
 namespace delmesh {
+
+class FlowDistance;  // flow_distance.h
 
 //! A face of Del S, as the driver queues it: a vertex {v, −1, −1}, an edge {p, q, −1} or a
 //! triangle {p, q, r}, ids ascending.  Its dual Voronoi face is a cell, a facet or an edge.
@@ -79,6 +81,10 @@ struct CheckContext {
   CheckKind kind;                  //!< the row's own kind, for its witnesses and unsettled findings
   double lambda = 0;               //!< geometry rows: λ of Refinement::enable_geometry
   std::optional<double> size_bound;  //!< geometry rows: the size bound H, if given
+  //! Geometry rows: the distance bound δ of `--max-distance`, if given, with the surface's flow
+  //! distance bound (flow_distance.h; not null when max_distance is given).
+  std::optional<double> max_distance;
+  const FlowDistance* flow_distance = nullptr;
   //! Vertex rows: whether the topology checks that ran before this one came out clean on every
   //! face of the vertex's cell (its Voronoi edges, facets and the cell itself).  The driver
   //! always says true: a row runs only when the queues of the rows before it are empty.  The
@@ -108,7 +114,8 @@ struct CheckInfo {
   CheckPhase phase = CheckPhase::topology;
   //! The check on a face that is in Del S (the driver and the certificate test that first): its
   //! witnesses, points of Σ, in order of preference, and what it could not settle.  Witnesses
-  //! are labelled with context.kind (Quality labels its size-bound witnesses CheckKind::size).
+  //! are labelled with context.kind (Quality labels its size-bound witnesses CheckKind::size and
+  //! its distance-bound ones CheckKind::distance).
   Function check;
   //! Triangle rows, optional: a check that is a function of the triangle's VoronoiEdgeRecord alone may
   //! say from the record that it cannot fire; the driver then does not queue the triangle.
@@ -136,13 +143,13 @@ struct CheckInfo {
   //! for every direction outside a measure-zero set, and the seeded choices avoid it alike.
   bool generic_choice = false;
   //! Set by the registry: the paper's enumerator for a row of builtin_checks(), the next kind
-  //! after CheckKind::size for any other row.
+  //! after CheckKind::distance for any other row.
   CheckKind kind = CheckKind::seed;
 };
 
 //! The rows of the paper's checks (meshing/checks.cpp), in the driver's order: VorEdge,
-//! FacetContact, TopoDisk, FacetCycle, Silhouette (topology), Quality with the size bound, Smooth
-//! (geometry).
+//! FacetContact, TopoDisk, FacetCycle, Silhouette (topology), Quality with the size and distance
+//! bounds, Smooth (geometry).
 const std::vector<CheckInfo>& builtin_checks();
 
 //! Registers one more row, after the built-in rows of its phase in the order of registration

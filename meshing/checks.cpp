@@ -87,13 +87,16 @@ const std::vector<CheckInfo>& builtin_checks() {
     r.push_back(silhouette);
 
     CheckInfo quality{"quality",
-                      "Quality (§6.1): radius-edge ratio ≤ 1 + λ, and with --size-bound H surface Delaunay "
-                      "ball radius ≤ H (witnesses of kind size)",
+                      "Quality (§6.1): radius-edge ratio ≤ 1 + λ; with --size-bound H, surface Delaunay "
+                      "ball radius ≤ H (witnesses of kind size); with --max-distance δ, the triangle proved "
+                      "within δ of Σ (witnesses of kind distance)",
                       FaceKind::triangle, Dirtied::restricted_triangles, CheckPhase::geometry,
                       [](const CheckContext& c, const DelaunayFace& f) {
                         const TriangleKey t = as_triangle(f);
                         auto w = quality_witness(c.restricted, t, c.lambda);
                         if (!w && c.size_bound) w = size_witness(c.restricted, t, *c.size_bound);
+                        if (!w && c.max_distance)
+                          w = distance_witness(c.restricted, t, *c.max_distance, *c.flow_distance);
                         return from_optional(w);
                       }};
     quality.kind = CheckKind::quality;

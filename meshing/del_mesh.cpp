@@ -17,6 +17,7 @@
 #include "common/errors.h"
 #include "meshing/detail/key_order.h"
 #include "meshing/detail/vec3.h"
+#include "meshing/gradient_flow_certificate.h"
 #include "meshing/input_validation.h"
 #include "meshing/mesh_checker.h"
 #include "meshing/sample_topology.h"
@@ -227,7 +228,7 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
                                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                                refinement.insertions_json(), refinement.floor_json()};
   if (status == MeshStatus::complete && options.phase == MeshPhase::all) {
-    refinement.enable_geometry(options.lambda, options.size_bound);
+    refinement.enable_geometry(options.lambda, options.size_bound, options.max_distance);
     status = refinement.run();
   }
 
@@ -271,6 +272,10 @@ std::optional<std::string> violated_range(MeshOption option, const DelMeshOption
       if (options.size_bound && !(std::isfinite(*options.size_bound) && *options.size_bound > 0))
         return "be a positive length";
       break;
+    case MeshOption::max_distance:
+      if (options.max_distance && !(std::isfinite(*options.max_distance) && *options.max_distance > 0))
+        return "be a positive length";
+      break;
     case MeshOption::max_points:
       if (options.max_points < 1) return "be at least 1";
       break;
@@ -289,17 +294,52 @@ std::optional<std::string> violated_range(MeshOption option, const DelMeshOption
   return std::nullopt;
 }
 
+void certify_distance(DelMeshResult& result, const Surface& surface, const Box3& box, const DelMeshOptions& options,
+                      std::chrono::steady_clock::time_point start) {
+  auto& j = result.statistics;
+  const bool attempted = (result.status == MeshStatus::complete || result.status == MeshStatus::uncertified) &&
+                         result.mesh.number_of_faces() > 0;
+  if (!attempted) {
+    j["distance"] = {{"status", "not attempted"}, {"reason", "the run ended " + text_of(result.status)}};
+  } else {
+    if (options.progress) options.progress("certifying the distance to the surface (gradient flow)");
+    FlowCertificateOptions flow;
+    flow.seed = options.seed;
+    flow.interrupt = options.interrupt;
+    flow.deadline = refinement_limits(options, start).deadline;
+    flow.distance_radius = options.max_distance.value_or(0);
+    flow.surface_validated = true;
+    std::vector<Point3> points;
+    std::vector<std::array<std::size_t, 3>> triangles;
+    mesh_to_soup(result.mesh, points, triangles);
+    const FlowCertificate certificate = certify_gradient_flow(points, triangles, surface, box, flow);
+    j["distance"] = to_json(certificate);
+    const bool within = certificate.status == FlowCertificateStatus::certified &&
+                        (!options.max_distance || certificate.hausdorff_upper_bound <= *options.max_distance);
+    if (options.max_distance && !within && result.status == MeshStatus::complete) {
+      result.status = MeshStatus::uncertified;
+      j["status"] = text_of(result.status);
+    }
+  }
+  j["distance"]["max_distance"] = options.max_distance ? nlohmann::json(*options.max_distance) : nlohmann::json();
+  j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   check_options(box, options);
   const ValidationReport validation = validate_input(surface, box);
   ImplicitOracle oracle(surface, box, options.solver);
-  return run(oracle, options, validation.seconds, start);
+  DelMeshResult result = run(oracle, options, validation.seconds, start);
+  if (options.distance_certificate || options.max_distance) certify_distance(result, surface, box, options, start);
+  return result;
 }
 
 DelMeshResult del_mesh(SurfaceOracle& oracle, const DelMeshOptions& options, double seconds_validation) {
   const auto start = std::chrono::steady_clock::now();
   check_options(oracle.box(), options);
+  if (options.max_distance && !oracle.flow_distance())
+    throw InvalidInput("max_distance needs a surface given by E (this input has no gradient field to bound distances by)");
   return run(oracle, options, seconds_validation, start);
 }
 

@@ -16,6 +16,8 @@
 #include "common/errors.h"
 #include "common/seeded_uniform.h"
 #include "common/tolerances.h"
+#include "meshing/detail/flow_enclosure.h"
+#include "meshing/flow_distance.h"
 #include "meshing/implicit_oracle.h"
 #include "meshing/input_validation.h"
 #include "meshing/mesh_checker.h"
@@ -29,8 +31,14 @@ namespace delmesh {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using P3 = std::array<double, 3>;
-using IBox = std::array<Interval, 3>;
+using detail::centre_of;
+using detail::Enclosure;
+using detail::finite;
+using detail::IBox;
+using detail::interval_point;
+using detail::magnitude;
+using detail::P3;
+using detail::width_of;
 
 //! Thrown inside the certificate when the interrupt flag or the deadline is seen.
 struct Stopped {};
@@ -42,94 +50,18 @@ struct Verdict {
   std::optional<P3> location;
 };
 
-bool finite(const Interval& a) { return std::isfinite(a.inf()) && std::isfinite(a.sup()); }
-
-//! The intersection of two enclosures of one number (the first if it is the only finite one).
-Interval meet(const Interval& a, const Interval& b) {
-  if (!finite(b)) return a;
-  if (!finite(a)) return b;
-  const double lo = std::max(a.inf(), b.inf()), hi = std::min(a.sup(), b.sup());
-  return lo <= hi ? Interval(lo, hi) : a;
-}
-
-//! The largest |x| over an enclosure (infinity for a non-finite one).
-double magnitude(const Interval& a) {
-  return finite(a) ? std::max(std::abs(a.inf()), std::abs(a.sup())) : std::numeric_limits<double>::infinity();
-}
-
-P3 centre_of(const IBox& x) {
-  P3 c;
-  for (int k = 0; k < 3; ++k) c[k] = std::min(std::max(0.5 * x[k].inf() + 0.5 * x[k].sup(), x[k].inf()), x[k].sup());
-  return c;
-}
-
-double width_of(const IBox& x) {
-  double w = 0;
-  for (int k = 0; k < 3; ++k) w = std::max(w, x[k].sup() - x[k].inf());
-  return w;
-}
-
-//! {E, ∂xE, ∂yE, ∂zE} over a box X and at its centre c: E(X), ∇E(X), H(X) (Jacobian rows 1–3),
-//! E(c), ∇E(c), and X − c.  Evaluated under a RoundingGuard held by the caller.
-struct Enclosure {
-  Interval v[4], j[12], vc[4];
-  IBox d;
-  P3 c{};
-  bool c2 = false;  //!< every enclosure finite: E is C² on X and the Taylor forms apply
-
-  Enclosure(const CompiledSystem& system, const IBox& x) {
-    c = centre_of(x);
-    IBox at;
-    for (int k = 0; k < 3; ++k) {
-      at[k] = Interval(c[k]);
-      d[k] = x[k] - at[k];
-    }
-    system.values_and_jacobian<Interval>(x.data(), nullptr, v, j);
-    system.values<Interval>(at.data(), nullptr, vc);
-    c2 = true;
-    for (const Interval& a : v) c2 = c2 && finite(a);
-    for (const Interval& a : j) c2 = c2 && finite(a);
-    for (const Interval& a : vc) c2 = c2 && finite(a);
-  }
-  Interval hessian(int i, int k) const { return j[3 * (1 + i) + k]; }
-
-  //! E over X: the natural enclosure met with the mean-value form.
-  Interval value() const {
-    if (!c2) return v[0];
-    Interval mv = vc[0];
-    for (int i = 0; i < 3; ++i) mv += v[1 + i] * d[i];
-    return meet(v[0], mv);
-  }
-  //! ⟨∇E(x), w⟩ over X for a vector w (enclosed): natural met with mean value.
-  Interval directional(const IBox& w) const {
-    Interval natural(0);
-    for (int i = 0; i < 3; ++i) natural += v[1 + i] * w[i];
-    if (!c2) return natural;
-    Interval mv(0);
-    for (int i = 0; i < 3; ++i) mv += vc[1 + i] * w[i];
-    for (int k = 0; k < 3; ++k) {
-      Interval hw(0);
-      for (int i = 0; i < 3; ++i) hw += hessian(i, k) * w[i];
-      mv += hw * d[k];
-    }
-    return meet(natural, mv);
-  }
-};
-
-IBox interval_point(const P3& p) { return {Interval(p[0]), Interval(p[1]), Interval(p[2])}; }
 IBox interval_point(const Point3& p) { return {Interval(p.x()), Interval(p.y()), Interval(p.z())}; }
 
 //! The certificate's state: the system, the limits, the counters.
 class FlowProof {
  public:
   FlowProof(const Surface& surface, const Box3& box, const FlowCertificateOptions& options, FlowCertificate& out)
-      : system_(std::vector<GiNaC::ex>{surface.E(), surface.gradient()[0], surface.gradient()[1], surface.gradient()[2]},
-                {coordinate_x(), coordinate_y(), coordinate_z()}, {}, false, PolynomialFormBuild::never),
-        box_(box), options_(options), out_(out) {
+      : distance_(surface), box_(box), options_(options), out_(out) {
     for (int k = 0; k < 3; ++k) domain_width_ = std::max(domain_width_, box.hi[k] - box.lo[k]);
   }
 
-  const CompiledSystem& system() const { return system_; }
+  const CompiledSystem& system() const { return distance_.system(); }
+  const FlowDistance& distance() const { return distance_; }
 
   //! Throws Stopped once the interrupt flag or the deadline is seen.
   void poll() const {
@@ -173,7 +105,7 @@ class FlowProof {
           Interval e;
           {
             RoundingGuard guard;
-            e = Enclosure(system_, x).value();
+            e = Enclosure(system(), x).value();
           }
           if (e.inf() > tube || e.sup() < -tube) continue;
           split_or_fail(b, stack, min_width, "the tube |E| <= " + text(tube) + " may reach the boundary of the box");
@@ -194,13 +126,13 @@ class FlowProof {
       bool outside_tube = false;
       {
         RoundingGuard guard;
-        const Enclosure en(system_, x);
+        const Enclosure en(system(), x);
         const Interval e = en.value();
         outside_tube = e.inf() > tube || e.sup() < -tube;
         if (!outside_tube) {
           at_centre = std::sqrt(magnitude(en.vc[1]) * magnitude(en.vc[1]) + magnitude(en.vc[2]) * magnitude(en.vc[2]) +
                                 magnitude(en.vc[3]) * magnitude(en.vc[3]));
-          bound = gradient_lower_bound(en);
+          bound = detail::gradient_lower_bound(en);
         }
       }
       if (outside_tube) continue;
@@ -211,33 +143,6 @@ class FlowProof {
       split_or_fail(b, stack, min_width, "the gradient of E may vanish in the tube |E| <= " + text(tube));
     }
     return least;
-  }
-
-  //! A lower bound of |∇E| over the enclosure's box (0 if none is proved): |⟨∇E, g⟩|/‖g‖ for
-  //! g ≈ ∇E(c) and for the axes.  Under a RoundingGuard.
-  static double gradient_lower_bound(const Enclosure& en) {
-    double best = 0;
-    const auto try_direction = [&](const P3& g) {
-      const IBox w = interval_point(g);
-      const Interval s = en.directional(w);
-      if (!certainly_nonzero(s) || !finite(s)) return;
-      const Interval norm = CGAL::sqrt(CGAL::square(w[0]) + CGAL::square(w[1]) + CGAL::square(w[2]));
-      const Interval lower = Interval(std::min(std::abs(s.inf()), std::abs(s.sup()))) / norm;
-      best = std::max(best, lower.inf());
-    };
-    P3 g{};
-    bool usable = false;
-    for (int i = 0; i < 3; ++i) {
-      g[i] = finite(en.vc[1 + i]) ? 0.5 * en.vc[1 + i].inf() + 0.5 * en.vc[1 + i].sup() : 0;
-      usable = usable || g[i] != 0;
-    }
-    if (usable) try_direction(g);
-    for (int k = 0; k < 3; ++k) {
-      P3 axis{};
-      axis[k] = 1;
-      try_direction(axis);
-    }
-    return best;
   }
 
   static std::string text(double x) {
@@ -280,7 +185,7 @@ class FlowProof {
     stack.push_back(lower);
   }
 
-  CompiledSystem system_;
+  FlowDistance distance_;
   Box3 box_;
   const FlowCertificateOptions& options_;
   FlowCertificate& out_;
@@ -365,68 +270,25 @@ struct TriangleProof {
   P3 undecided_at{};
 };
 
-//! A piece of a triangle in its barycentric parameters (dyadic, exact): corners (u_i, v_i).
-struct Piece {
-  std::array<std::array<double, 2>, 3> uv;
-  int depth = 0;
-};
-
-//! E at the centroid of a piece (its corners enclosed; the midpoints of the enclosures), in
-//! floating point.
-double centroid_value(const CompiledSystem& system, const std::array<IBox, 3>& corner) {
-  P3 centroid{};
-  for (int k = 0; k < 3; ++k)
-    for (int i = 0; i < 3; ++i) centroid[k] += (0.5 * corner[i][k].inf() + 0.5 * corner[i][k].sup()) / 3;
-  double values[4];
-  system.values<double>(centroid.data(), nullptr, values);
-  return values[0];
-}
-
 TriangleProof prove_triangle(FlowProof& proof, const Point3& a, const Point3& b, const Point3& c,
                              std::size_t& pieces) {
   TriangleProof out;
   RoundingGuard guard;
-  const IBox ia = interval_point(a), ib = interval_point(b), ic = interval_point(c);
-  IBox ab, ac;
-  for (int k = 0; k < 3; ++k) {
-    ab[k] = ib[k] - ia[k];
-    ac[k] = ic[k] - ia[k];
-  }
-  const IBox normal{ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0]};
-  std::vector<Piece> stack{{{{{0, 0}, {1, 0}, {0, 1}}}, 0}};
+  const detail::EnclosedTriangle triangle(P3{a.x(), a.y(), a.z()}, P3{b.x(), b.y(), b.z()}, P3{c.x(), c.y(), c.z()});
+  std::vector<detail::TrianglePiece> stack{detail::TrianglePiece{}};
   while (!stack.empty()) {
     proof.poll();
-    const Piece piece = stack.back();
+    const detail::TrianglePiece piece = stack.back();
     stack.pop_back();
     ++pieces;
-    // The corners, enclosed, and their box.
     std::array<IBox, 3> corner;
     IBox x;
-    for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < 3; ++k) {
-        corner[i][k] = ia[k] + Interval(piece.uv[i][0]) * ab[k] + Interval(piece.uv[i][1]) * ac[k];
-        x[k] = i == 0 ? corner[i][k] : Interval(std::min(x[k].inf(), corner[i][k].inf()),
-                                                std::max(x[k].sup(), corner[i][k].sup()));
-      }
+    triangle.corners(piece, corner, x);
     const Enclosure en(proof.system(), x);
-    // |E| on the piece: Taylor at c with the affine term at the corners, met with E(X).
-    Interval e = en.v[0];
-    if (en.c2) {
-      Interval affine;
-      for (int i = 0; i < 3; ++i) {
-        Interval at_corner(0);
-        for (int k = 0; k < 3; ++k) at_corner += en.vc[1 + k] * (corner[i][k] - Interval(en.c[k]));
-        affine = i == 0 ? at_corner
-                        : Interval(std::min(affine.inf(), at_corner.inf()), std::max(affine.sup(), at_corner.sup()));
-      }
-      Interval quadratic(0);
-      for (int i = 0; i < 3; ++i)
-        for (int k = 0; k < 3; ++k) quadratic += en.hessian(i, k) * en.d[i] * en.d[k];
-      e = meet(e, en.vc[0] + affine + Interval(0.5) * quadratic);
-    }
-    const Interval flux = en.directional(normal);
+    const Interval e = en.value_on_hull(corner);
+    const Interval flux = en.directional(triangle.normal());
     const int sign = certainly_nonzero(flux) && finite(flux) ? (flux.inf() > 0 ? 1 : -1) : 0;
-    proof.met_value(centroid_value(proof.system(), corner));
+    proof.met_value(detail::centroid_value(proof.system(), corner));
     const bool tight = magnitude(e) <= tolerances::flow_epsilon_slack * proof.largest_value_met() ||
                        piece.depth >= tolerances::flow_triangle_max_depth;
     const bool consistent = sign != 0 && (out.sign == 0 || out.sign == sign);
@@ -436,16 +298,7 @@ TriangleProof prove_triangle(FlowProof& proof, const Point3& a, const Point3& b,
       continue;
     }
     if ((sign == 0 || consistent) && piece.depth < tolerances::flow_triangle_max_depth) {
-      // Four children by the midpoints of the parameter triangle (exact halves).
-      const auto mid = [&](int i, int j) {
-        return std::array<double, 2>{0.5 * (piece.uv[i][0] + piece.uv[j][0]), 0.5 * (piece.uv[i][1] + piece.uv[j][1])};
-      };
-      const auto m01 = mid(0, 1), m12 = mid(1, 2), m20 = mid(2, 0);
-      for (const auto& child : {std::array<std::array<double, 2>, 3>{piece.uv[0], m01, m20},
-                                std::array<std::array<double, 2>, 3>{m01, piece.uv[1], m12},
-                                std::array<std::array<double, 2>, 3>{m20, m12, piece.uv[2]},
-                                std::array<std::array<double, 2>, 3>{m12, m20, m01}})
-        stack.push_back({child, piece.depth + 1});
+      for (const detail::TrianglePiece& child : piece.children()) stack.push_back(child);
       continue;
     }
     // Undecided at the depth limit, or pieces of opposite proved signs (the flux vanishes between).
@@ -604,6 +457,29 @@ int count_through(FlowProof& proof, const P3& z, const std::vector<std::array<do
                 z};
 }
 
+// ---- 5. the distances ----
+
+//! The distance bound of one triangle of a certified mesh: the least of e/G (the theorem) and the
+//! bounds of flow_distance.h within the radius e/G (always applicable: the arc from a point of the
+//! triangle to Σ is at most e/G long) and within `radius` if it is positive.
+double local_distance_bound(const FlowDistance& distance, const std::vector<Point3>& points,
+                            const std::array<std::size_t, 3>& triangle, double e, double min_gradient, double radius) {
+  double global;
+  {
+    RoundingGuard guard;
+    global = (Interval(e) / Interval(min_gradient)).sup();
+  }
+  if (!(global > 0)) return global;
+  const auto at = [&](int i) {
+    const Point3& p = points[triangle[i]];
+    return Vec3{p.x(), p.y(), p.z()};
+  };
+  double best = global;
+  for (double r : {global, radius})
+    if (r > 0 && std::isfinite(r)) best = std::min(best, distance.bound(at(0), at(1), at(2), r).distance);
+  return best;
+}
+
 }  // namespace
 
 FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
@@ -616,7 +492,7 @@ FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
   c.hausdorff_upper_bound = std::numeric_limits<double>::infinity();
   check_soup(points, triangles);
   try {
-    (void)validate_input(surface, box);
+    if (!options.surface_validated) (void)validate_input(surface, box);
     FlowProof proof(surface, box, options, c);
     // 1. A closed orientable 2-manifold, or a proof that M is not Σ's kind of surface: the
     //    validation above proved Σ a closed (orientable) level set of a regular value inside B.
@@ -712,10 +588,14 @@ FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
     // 5. Certified: the Hausdorff bounds, rounded up.
     c.status = FlowCertificateStatus::certified;
     RoundingGuard guard;
-    c.hausdorff_upper_bound = (Interval(c.epsilon) / Interval(c.min_gradient)).sup();
     c.triangle_distance_bounds.resize(triangles.size());
-    for (std::size_t t = 0; t < triangles.size(); ++t)
-      c.triangle_distance_bounds[t] = (Interval(e_bound[t]) / Interval(c.min_gradient)).sup();
+    c.hausdorff_upper_bound = 0;
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      proof.poll();
+      c.triangle_distance_bounds[t] = local_distance_bound(proof.distance(), points, triangles[t], e_bound[t],
+                                                           c.min_gradient, options.distance_radius);
+      c.hausdorff_upper_bound = std::max(c.hausdorff_upper_bound, c.triangle_distance_bounds[t]);
+    }
   } catch (const Verdict& v) {
     c.status = v.status;
     c.reason = v.reason;

@@ -45,7 +45,13 @@
 //! bump function in the flow parameter, is an ambient isotopy of B taking M onto Σ.  Along an
 //! arc |dx/ds| = 1/|∇E| ≤ 1/G, and the point x ∈ M reaches Σ after |E(x)| ≤ ε units of s: its
 //! distance to Σ is at most ε/G, and every point of Σ is that close to the one point of M on its
-//! arc.  The bound for one triangle is (max over τ of |E|)/G.  ∎
+//! arc.  ∎
+//!
+//! The bound for one triangle τ is e_τ/G with e_τ = max over τ of |E|, or the smaller bound of
+//! flow_distance.h on τ where that one is proved: the arc from a point of τ to Σ is at most
+//! e_τ/G long, so the lemma there applies within that radius, and within any radius it proves.
+//! hausdorff_upper_bound is the largest triangle bound: every point of Σ lies on the arc of one
+//! point of M.
 //!
 //! ## How each condition is proved
 //! All enclosures are interval arithmetic (CompiledSystem over {E, ∂xE, ∂yE, ∂zE}, whose Jacobian
@@ -68,6 +74,8 @@
 //!    axes), the enclosure of ⟨∇E, g⟩ over the box (natural ∩ mean value) with lower bound ℓ > 0
 //!    gives |∇E| ≥ ℓ there.  A box is cut until ℓ ≥ tolerances::flow_gradient_quality · |∇E(c)|
 //!    (or it reaches the minimum width, where any ℓ > 0 is kept); G is the least ℓ kept.
+//!  - the distances: per triangle, the least of e_τ/G and the bounds of flow_distance.h within
+//!    the radii e_τ/G and FlowCertificateOptions::distance_radius.
 //!  - (e): the critical points come from the seed solve of sample_topology.h (certified, no
 //!    undecided region; generic directions seeded by FlowCertificateOptions::seed).  The root box
 //!    X_c must lie in T.  γ_c follows the flow from z, the root's midpoint, both ways: each
@@ -122,6 +130,13 @@ struct FlowCertificateOptions {
   //! If given, the certificate stops at its next test after it has passed (status undecided,
   //! `time_limited`); the seed solve gets it too.
   std::optional<std::chrono::steady_clock::time_point> deadline;
+  //! If positive, each triangle's distance bound is also tried by flow_distance.h within this
+  //! radius (`delmesh mesh --max-distance` passes its δ, the radius its refinement proved).
+  double distance_radius = 0;
+  //! The caller has already run validate_input(surface, box) with success (the mesher, or
+  //! certify_topology after the restricted-Delaunay certificate): it is not run again.  The
+  //! proof still rests on that validation.
+  bool surface_validated = false;
 };
 
 struct [[nodiscard]] FlowCertificate {
@@ -134,11 +149,12 @@ struct [[nodiscard]] FlowCertificate {
   double epsilon = 0;        //!< ε: the largest certified bound of |E| over the triangles
   double tube = 0;           //!< ε′ = tolerances::flow_tube_factor · ε (T's half-width in E)
   double min_gradient = 0;   //!< G: certified lower bound of |∇E| on T (0: not proved)
-  //! ε/G when certified (else infinity): the two-sided Hausdorff distance between M and Σ is at most this.
+  //! The largest of triangle_distance_bounds (≤ ε/G) when certified, else infinity: the two-sided
+  //! Hausdorff distance between M and Σ is at most this.
   double hausdorff_upper_bound = 0;
   double box_diagonal = 0;
-  //! Per triangle of the soup (its index order): (bound of |E| on it)/G, a bound on the distance
-  //! from its points to Σ along the flow; empty unless certified.
+  //! Per triangle of the soup (its index order): a bound on the distance from its points to Σ
+  //! along the flow (see "The bound for one triangle" above); empty unless certified.
   std::vector<double> triangle_distance_bounds;
 
   std::size_t mesh_components = 0;

@@ -8,6 +8,7 @@
 #include "common/errors.h"
 #include "common/tolerances.h"
 #include "meshing/detail/vec3.h"
+#include "meshing/flow_distance.h"
 #include "solvers/homotopy_solver.h"
 #include "solvers/query_geometry.h"
 #include "solvers/subdivision_solver.h"
@@ -41,6 +42,8 @@ struct ImplicitOracle::Impl {
   std::unique_ptr<LinePolynomial> line_polynomial;
   std::unique_ptr<CompiledSystem> gradient;  // E with its Jacobian ∇E and its Hessian
   std::mutex statistics_mutex;                 // statistics updates from concurrent calls
+  std::once_flag distance_once;                // builds `distance` at the first flow_distance()
+  std::unique_ptr<FlowDistance> distance;
   // The registry indices of the primitives with a method of their own.
   std::size_t surface_critical = registry_index("surface_critical"), surface_line = registry_index("surface_line"),
               surface_plane_contact = registry_index("surface_plane_contact"),
@@ -84,6 +87,11 @@ ImplicitOracle::ImplicitOracle(ImplicitOracle&&) noexcept = default;
 ImplicitOracle& ImplicitOracle::operator=(ImplicitOracle&&) noexcept = default;
 
 const Surface& ImplicitOracle::surface() const { return impl_->surface; }
+
+const FlowDistance* ImplicitOracle::flow_distance() const {
+  std::call_once(impl_->distance_once, [this] { impl_->distance = std::make_unique<FlowDistance>(impl_->surface); });
+  return impl_->distance.get();
+}
 
 void ImplicitOracle::set_run_controls(std::uint64_t seed, std::optional<std::chrono::steady_clock::time_point> deadline) {
   seed_ = seed;

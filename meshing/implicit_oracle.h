@@ -121,6 +121,8 @@ class ImplicitOracle final : public SurfaceOracle {
   ConeAnswer gradient_cone_slope(const AffineChart& chart, const Domain& domain, const Vec3& w,
                                  double target) override;
   bool bounds_cone_slopes() const override { return true; }
+  //! Built at the first call.
+  const FlowDistance* flow_distance() const override;
   //! The proved sign of ⟨∇E, w⟩ on the segment [a, b], or 0 (solvers/gradient_cone.h).
   int gradient_sign(const Vec3& a, const Vec3& b, const Vec3& w) const override;
   //! The proved sign of E(x), or 0 if E(x) is zero up to rounding (solvers/gradient_cone.h).

@@ -76,4 +76,13 @@ std::optional<Witness> size_witness(RestrictedDelaunay& restricted, const Triang
   return Witness{rec.dual_point(), CheckKind::size, t[0], false};
 }
 
+std::optional<Witness> distance_witness(RestrictedDelaunay& restricted, const TriangleKey& t, double max_distance,
+                                        const FlowDistance& flow_distance) {
+  const auto& rec = restricted.voronoi_edge_record(t);
+  if (!rec.restricted) return std::nullopt;
+  const auto& del = restricted.delaunay();
+  if (flow_distance.bound(del.point(t[0]), del.point(t[1]), del.point(t[2]), max_distance).proved) return std::nullopt;
+  return Witness{rec.dual_point(), CheckKind::distance, t[0], false};
+}
+
 }  // namespace delmesh

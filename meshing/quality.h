@@ -1,9 +1,10 @@
 #pragma once
 //! \file quality.h
-//! Quality (§6.1, after Chew) and the size control beyond the paper.
+//! Quality (§6.1, after Chew) and the size and distance controls beyond the paper.
 
 #include <optional>
 
+#include "meshing/flow_distance.h"
 #include "meshing/restricted_delaunay.h"
 #include "meshing/witness.h"
 
@@ -26,5 +27,15 @@ std::optional<Witness> quality_witness(RestrictedDelaunay& restricted, const Tri
 //! the topological guarantee; the distance bound of Theorem 6.1's proof is replaced by H for the
 //! points it inserts, so termination follows from packing at scale min(H, λ·lfs).
 std::optional<Witness> size_witness(RestrictedDelaunay& restricted, const TriangleKey& t, double size_bound);
+
+//! Distance control (`--max-distance δ`): if t ∈ Tri S|Σ is not proved within δ of Σ by the flow
+//! distance bound (flow_distance.h, radius δ), its dual point on Σ.  Like size_witness it inserts
+//! only points of Σ on dual Voronoi edges of restricted triangles, so the topological guarantee
+//! is kept.  Termination: as the sample densifies, the triangles of Tri S|Σ shrink and |E| on them
+//! falls quadratically with their size while |∇E| stays bounded away from 0 near Σ, so the bound
+//! holds once the sample is fine enough; the termination floor bounds the insertions regardless.
+//! Precondition: δ > 0 (PreconditionViolation from FlowDistance::bound otherwise).
+std::optional<Witness> distance_witness(RestrictedDelaunay& restricted, const TriangleKey& t, double max_distance,
+                                        const FlowDistance& flow_distance);
 
 }  // namespace delmesh

@@ -57,11 +57,17 @@ void Refinement::set_last_edge_step() {
     if (steps_[k].enabled && steps_[k].row->face == FaceKind::edge) last_edge_step_ = static_cast<int>(k);
 }
 
-void Refinement::enable_geometry(double lambda, std::optional<double> size_bound) {
+void Refinement::enable_geometry(double lambda, std::optional<double> size_bound, std::optional<double> max_distance) {
   if (!(lambda > 0 && lambda < alpha_lambda_bound)) throw PreconditionViolation("enable_geometry: lambda out of (0, 1/3)");
   if (size_bound && !(*size_bound > 0)) throw PreconditionViolation("enable_geometry: size bound not positive");
+  if (max_distance && !(*max_distance > 0 && std::isfinite(*max_distance)))
+    throw PreconditionViolation("enable_geometry: distance bound not positive");
+  if (max_distance && !oracle_.flow_distance())
+    throw PreconditionViolation("enable_geometry: the oracle bounds no distance to its surface");
   lambda_ = lambda;
   size_bound_ = size_bound;
+  max_distance_ = max_distance;
+  flow_distance_ = max_distance ? oracle_.flow_distance() : nullptr;
   geometry_enabled_ = true;
   for (auto& step : steps_)
     if (step.row->phase == CheckPhase::geometry) step.enabled = !step.row->runs_at || step.row->runs_at(lambda);
@@ -383,7 +389,7 @@ MeshStatus Refinement::run() {
     // Silhouette's facet shortcut rests on FacetContact and FacetCycle being clean on every facet
     // of V_p.  Their queues come first and are empty when Silhouette's turn comes, so only a facet
     // left unsettled can break the premise.
-    CheckContext context{restricted_, row.kind, lambda_, size_bound_,
+    CheckContext context{restricted_, row.kind, lambda_, size_bound_, max_distance_, flow_distance_,
                          /*cell_faces_clean=*/row.kind != CheckKind::silhouette || silhouette_premise(item[0])};
     bool inserted = false, retry = false;
     do {
@@ -552,9 +558,9 @@ nlohmann::json Refinement::insertions_json() const {
 }
 
 double Refinement::floor_for(CheckKind kind) const {
-  // The phase of the row whose witness it is: size-bound witnesses are the Quality row's, and a
-  // seed (no row) belongs to the topology phase.
-  const CheckKind row_kind = kind == CheckKind::size ? CheckKind::quality : kind;
+  // The phase of the row whose witness it is: size- and distance-bound witnesses are the Quality
+  // row's, and a seed (no row) belongs to the topology phase.
+  const CheckKind row_kind = kind == CheckKind::size || kind == CheckKind::distance ? CheckKind::quality : kind;
   const auto step = std::find_if(steps_.begin(), steps_.end(), [&](const Step& s) { return s.row->kind == row_kind; });
   const bool geometry = step != steps_.end() && step->row->phase == CheckPhase::geometry;
   return geometry ? limits_.min_spacing : tolerances::topology_floor_fraction * limits_.min_spacing;

@@ -203,11 +203,14 @@ class Refinement {
   //! Deletes p from S (a seed, Lemma 5.4) and queues every face within its former neighbours.
   void remove(VertexId p);
 
-  //! Turns on the geometry rows (Quality with the size bound H if given; Smooth is skipped for
+  //! Turns on the geometry rows (Quality with the size bound H and the distance bound δ if given,
+  //! the latter with the oracle's flow_distance(); Smooth is skipped for
   //! λ ≥ 1/6, where β(λ) is undefined: CheckInfo::runs_at), and queues every current face each
   //! of them would examine (for Quality and Smooth: every restricted triangle).
-  //! Precondition: 0 < lambda < 1/3, size_bound > 0 if given.
-  void enable_geometry(double lambda, std::optional<double> size_bound);
+  //! Precondition: 0 < lambda < 1/3, size_bound > 0 if given, max_distance > 0 if given and then
+  //! the oracle bounds distances (SurfaceOracle::flow_distance() not null).
+  void enable_geometry(double lambda, std::optional<double> size_bound,
+                       std::optional<double> max_distance = std::nullopt);
   //! True once the deadline has passed or the interrupt flag is set (the clock read now).  For
   //! loops outside run() that insert or queue many faces (seed insertion); run() itself reads
   //! them at its own clock readings.
@@ -374,6 +377,8 @@ class Refinement {
   detail::ParallelFor parallel_;
   double lambda_ = 0;
   std::optional<double> size_bound_;
+  std::optional<double> max_distance_;
+  const FlowDistance* flow_distance_ = nullptr;
   bool geometry_enabled_ = false;
   int last_edge_step_ = -1;  //!< the last enabled edge row (it releases the facets), or −1
   std::vector<InsertionRecord> log_;

@@ -44,6 +44,8 @@
 
 namespace delmesh {
 
+class FlowDistance;  // flow_distance.h
+
 class SurfaceOracle {
  public:
   virtual ~SurfaceOracle() = default;
@@ -145,6 +147,10 @@ class SurfaceOracle {
   virtual Vec3 normal(const Vec3& x) const = 0;
   //! A point of Σ near x (within the box), or nothing if the implementation cannot find one.
   virtual std::optional<Vec3> project(const Vec3& x) const = 0;
+  //! The certified distance bound of triangles to Σ along the flow of ∇E (flow_distance.h), or
+  //! null for an oracle without a gradient field (the default).  Safe to call from several
+  //! threads; the object lives as long as the oracle.
+  virtual const FlowDistance* flow_distance() const { return nullptr; }
 
   //! Whether some answer given so far rests on a computation that is not certified: then the
   //! answers may miss a point of Σ on a face (a missed root is not reported as undecided), and a

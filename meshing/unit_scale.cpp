@@ -53,6 +53,7 @@ Box3 scaled_box(const Box3& box, int e) {
 DelMeshOptions unit_scale_options(DelMeshOptions options, int k) {
   options.min_spacing = std::ldexp(options.min_spacing, -k);
   if (options.size_bound) options.size_bound = std::ldexp(*options.size_bound, -k);
+  if (options.max_distance) options.max_distance = std::ldexp(*options.max_distance, -k);
   return options;
 }
 

@@ -27,7 +27,7 @@ void scale_mesh(SurfaceMesh& mesh, int e);
 //! `box` times 2^e.
 Box3 scaled_box(const Box3& box, int e);
 
-//! The options of a run at unit scale: min_spacing and size_bound times 2^-k.
+//! The options of a run at unit scale: min_spacing, size_bound and max_distance times 2^-k.
 DelMeshOptions unit_scale_options(DelMeshOptions options, int k);
 
 //! A run at unit scale brought back to the input's scale: the output mesh's vertices and the

@@ -13,10 +13,10 @@
 
 namespace delmesh {
 
-//! Which procedure produced a sample point: a seed, a check of the paper, or (the values after
-//! size) a check registered by the program (meshing/check_registry.h: CheckRegistration, which
+//! Which procedure produced a sample point: a seed, a check of the paper, the size and distance
+//! controls of the Quality row (quality.h), or (the values after distance) a check registered by the program (meshing/check_registry.h: CheckRegistration, which
 //! also gives the number of kinds, check_kind_count()).
-enum class CheckKind : int { seed, vor_edge, facet_contact, topo_disk, facet_cycle, silhouette, quality, smooth, size };
+enum class CheckKind : int { seed, vor_edge, facet_contact, topo_disk, facet_cycle, silhouette, quality, smooth, size, distance };
 //! The names of the paper's kinds; a registered kind is named by its registry row (check_kind_name).
 constexpr auto enum_names(CheckKind) {
   return name_table<CheckKind>("CheckKind", {{CheckKind::seed, "seed"}, {CheckKind::vor_edge, "vor_edge"},
@@ -24,7 +24,8 @@ constexpr auto enum_names(CheckKind) {
                                              {CheckKind::topo_disk, "topo_disk"},
                                              {CheckKind::facet_cycle, "facet_cycle"},
                                              {CheckKind::silhouette, "silhouette"}, {CheckKind::quality, "quality"},
-                                             {CheckKind::smooth, "smooth"}, {CheckKind::size, "size"}});
+                                             {CheckKind::smooth, "smooth"}, {CheckKind::size, "size"},
+                                             {CheckKind::distance, "distance"}});
 }
 //! The kind's name in the statistics (check_kind_name; defined with the registry,
 //! meshing/check_registry.cpp).

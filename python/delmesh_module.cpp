@@ -261,7 +261,7 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
                 const py::object& input_mesh, const py::object& lam, const py::object& size_bound,
                 const std::string& phase, const py::object& seed, const py::object& max_points,
                 const py::object& time_limit, const py::object& threads, const py::object& progress,
-                const std::string& solver) {
+                const std::string& solver, const py::object& max_distance) {
   MeshRequest request;
   if (!surface.is_none()) request.surface.surface = surface.cast<std::string>();
   if (!expr.is_none()) request.surface.expr = expr.cast<std::string>();
@@ -269,6 +269,7 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
   if (!input_mesh.is_none()) request.input_mesh = path_option(input_mesh);
   request.lambda = finite_option("--lambda", lam);
   if (!size_bound.is_none()) request.size_bound = finite_option("--size-bound", size_bound);
+  if (!max_distance.is_none()) request.max_distance = finite_option("--max-distance", max_distance);
   request.phase = phase;
   request.solver = solver;
   request.seed = whole_option("--seed", seed, 0, std::numeric_limits<std::uint64_t>::max());
@@ -557,7 +558,7 @@ PYBIND11_MODULE(delmesh, m) {
         py::arg("surface") = py::none(), py::arg("input_mesh") = py::none(), py::arg("lam") = delmesh::lambda0,
         py::arg("size_bound") = py::none(), py::arg("phase") = "all", py::arg("seed") = 1,
         py::arg("max_points") = py::none(), py::arg("time_limit") = py::none(), py::arg("threads") = py::none(),
-        py::arg("progress") = py::none(), py::arg("solver") = "subdivision",
+        py::arg("progress") = py::none(), py::arg("solver") = "subdivision", py::arg("max_distance") = py::none(),
         R"doc(Mesh a surface with DelMesh, as `delmesh mesh` does; returns a MeshResult.
 
 Give exactly one of expr (E(x,y,z) as text, the surface is E = 0) with box, surface (a catalog
@@ -570,6 +571,9 @@ box: "x0,x1,y0,y1,z0,z1" or six numbers; the surface must lie strictly inside.
 lam: lambda in (0, 1/3); Theorem 6.1 covers (0, 0.06] (guaranteed topology, radius-edge ratio
   <= 1+lam, roughness <= 2 beta(lam)); larger values run with a RuntimeWarning.
 size_bound: also refine triangles whose surface Delaunay ball radius exceeds it.
+max_distance: (expr or surface only) also refine until the mesh is proved within it of the
+  surface; complete only if the gradient-flow certificate proves that two-sided Hausdorff bound
+  (statistics["distance"], which every expr or surface run reports).
 phase: "topology" (SampleTopology only) or "all" (DelMesh).
 seed: 0 <= seed < 2**64; the same input and seed give the same mesh as the program.
 max_points, time_limit (seconds; 0 or None: none): a run stopped by a limit returns its partial

@@ -32,7 +32,7 @@ double field(const Vec3& x, const Box3& box) {
 }
 
 CheckResult run_check(CheckFixture& f, const TriangleKey& t) {
-  const CheckContext context{f.restricted, row().kind, 0.06, std::nullopt, true};
+  const CheckContext context{f.restricted, row().kind, 0.06, std::nullopt, std::nullopt, nullptr, true};
   return row().check(context, t);
 }
 
@@ -57,9 +57,9 @@ BOOST_AUTO_TEST_CASE(row_is_registered_after_the_paper_checks) {
   const auto& rows = check_registry();
   BOOST_TEST(rows.size() == builtin_checks().size() + 1);
   BOOST_TEST(rows.back().name == "sizing_field");
-  BOOST_TEST(static_cast<int>(row().kind) == static_cast<int>(CheckKind::size) + 1);
+  BOOST_TEST(static_cast<int>(row().kind) == static_cast<int>(CheckKind::distance) + 1);
   BOOST_TEST(check_kind_name(row().kind) == "sizing_field");
-  BOOST_TEST(check_kind_count() == static_cast<int>(CheckKind::size) + 2);
+  BOOST_TEST(check_kind_count() == static_cast<int>(CheckKind::distance) + 2);
   BOOST_TEST((row().face == FaceKind::triangle));
   BOOST_TEST((row().dirtied == Dirtied::restricted_triangles));
   BOOST_TEST((row().phase == CheckPhase::geometry));

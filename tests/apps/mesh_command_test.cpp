@@ -83,9 +83,33 @@ BOOST_AUTO_TEST_CASE(bad_options_are_invalid_input) {
   require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--phase", "everything"}), "--phase");
   require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--solver", "newton"}), "--solver");
   require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--size-bound", "0"}), "--size-bound");
+  require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--max-distance", "0"}), "--max-distance");
+  require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--max-distance", "0.01", "--phase", "topology"}),
+                        "--max-distance");
   require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--time-limit", "-1"}), "--time-limit");
   require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--max-points", "0"}), "--max-points");
   require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--threads", "-1"}), "--threads");
+}
+
+// Every implicit run reports the gradient-flow certificate of its output; --max-distance makes
+// the bound a requirement of a complete run.
+BOOST_AUTO_TEST_CASE(the_distance_certificate_is_in_the_statistics) {
+  TempDir dir;
+  const RunResult plain = run_delmesh({"mesh", "--surface", "sphere", "--out", "a.off", "--stats", "a.json"}, dir.path);
+  BOOST_TEST_REQUIRE(plain.exit_code == 0, plain.err);
+  const nlohmann::json a = nlohmann::json::parse(read_text(dir / "a.json"));
+  BOOST_TEST(a["distance"]["status"] == "certified");
+  BOOST_TEST(a["distance"]["max_distance"].is_null());
+  BOOST_TEST(plain.err.find("distance to the surface <=") != std::string::npos, plain.err);
+  const RunResult bounded = run_delmesh(
+      {"mesh", "--surface", "sphere", "--max-distance", "0.005", "--out", "b.off", "--stats", "b.json"}, dir.path);
+  BOOST_TEST_REQUIRE(bounded.exit_code == 0, bounded.err);
+  const nlohmann::json b = nlohmann::json::parse(read_text(dir / "b.json"));
+  check_complete(b);
+  BOOST_TEST(b["distance"]["status"] == "certified");
+  BOOST_TEST(b["distance"]["hausdorff_upper_bound"].get<double>() <= 0.005);
+  BOOST_TEST(a["distance"]["hausdorff_upper_bound"].get<double>() > 0.005);
+  BOOST_TEST(b["vertices"].get<int>() > a["vertices"].get<int>());
 }
 
 BOOST_AUTO_TEST_CASE(input_mesh_is_validated_then_remeshed) {
@@ -96,6 +120,8 @@ BOOST_AUTO_TEST_CASE(input_mesh_is_validated_then_remeshed) {
   require_invalid_input(run_delmesh({"mesh", "--input-mesh", "corrupt.off"}, dir.path));
   require_invalid_input(run_delmesh({"mesh", "--input-mesh", "octahedron.off", "--surface", "sphere"}, dir.path));
   require_invalid_input(run_delmesh({"mesh", "--input-mesh", "octahedron.off", "--certify"}, dir.path), "--certify");
+  require_invalid_input(run_delmesh({"mesh", "--input-mesh", "octahedron.off", "--max-distance", "0.1"}, dir.path),
+                        "--max-distance");
   require_invalid_input(run_delmesh({"mesh", "--input-mesh", "octahedron.off", "--min-spacing", "-1"}, dir.path),
                         "--min-spacing");
   // The octahedron's cone vertices and creases cannot be made smooth: refinement reaches the

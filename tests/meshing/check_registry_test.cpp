@@ -25,7 +25,7 @@ BOOST_AUTO_TEST_CASE(paper_rows_in_the_drivers_order) {
   BOOST_TEST_REQUIRE(rows.size() == names.size());
   // meshing_tests registers no check: the registry is the paper's rows.
   BOOST_TEST(check_registry().size() == rows.size());
-  BOOST_TEST(check_kind_count() == static_cast<int>(CheckKind::size) + 1);
+  BOOST_TEST(check_kind_count() == static_cast<int>(CheckKind::distance) + 1);
   for (std::size_t i = 0; i < rows.size(); ++i) {
     BOOST_TEST(rows[i].name == names[i]);
     BOOST_TEST(check_kind_name(rows[i].kind) == names[i]);
@@ -45,6 +45,7 @@ BOOST_AUTO_TEST_CASE(paper_rows_in_the_drivers_order) {
   BOOST_TEST(!find_check("smooth").runs_at(0.2));
   BOOST_TEST(check_kind_name(CheckKind::seed) == "seed");
   BOOST_TEST(check_kind_name(CheckKind::size) == "size");
+  BOOST_TEST(check_kind_name(CheckKind::distance) == "distance");
 }
 
 // VorEdge is a function of the record: it can fire on a tangency candidate or on two crossings,

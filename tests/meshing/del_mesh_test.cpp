@@ -136,6 +136,70 @@ BOOST_AUTO_TEST_CASE(size_bound_refines) {
   BOOST_TEST(largest <= H, "largest circumradius " << largest);
 }
 
+// The distance control: every triangle proved within δ of the torus, the run complete only with
+// the gradient-flow certificate's two-sided bound ≤ δ, and both sides of that bound hold against
+// the exact distance (mesh points to the torus, and torus points to the mesh).
+BOOST_AUTO_TEST_CASE(max_distance_bounds_the_hausdorff_distance_both_ways) {
+  const auto& entry = catalog_entry("torus");  // R = 1, r = 0.4 about the z-axis
+  const double delta = 0.01;
+  DelMeshOptions options;
+  options.max_distance = delta;
+  const auto result = del_mesh(entry.surface(), entry.box, options);
+  check_complete(result.statistics);
+  const auto& d = result.statistics["distance"];
+  BOOST_TEST_REQUIRE(d["status"].get<std::string>() == "certified");
+  const double bound = d["hausdorff_upper_bound"].get<double>();
+  BOOST_TEST(bound <= delta);
+  BOOST_TEST(d["max_distance"].get<double>() == delta);
+  BOOST_TEST(result.statistics["insertions"]["distance"].get<int>() > 0);
+  const auto r = check_mesh(result.mesh);
+  BOOST_TEST(r.genus_per_component == std::vector<int>{1}, boost::test_tools::per_element());
+
+  const auto to_torus = [](double x, double y, double z) {
+    return std::abs(std::hypot(std::hypot(x, y) - 1, z) - 0.4);
+  };
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  mesh_to_soup(result.mesh, points, triangles);
+  double mesh_to_surface = 0;
+  for (const auto& t : triangles)
+    for (int i = 0; i <= 4; ++i)
+      for (int j = 0; i + j <= 4; ++j) {
+        const double u = i / 4.0, v = j / 4.0, w = 1 - u - v;
+        const Point3 &a = points[t[0]], &b = points[t[1]], &c = points[t[2]];
+        mesh_to_surface = std::max(mesh_to_surface, to_torus(w * a.x() + u * b.x() + v * c.x(),
+                                                             w * a.y() + u * b.y() + v * c.y(),
+                                                             w * a.z() + u * b.z() + v * c.z()));
+      }
+  BOOST_TEST(mesh_to_surface <= bound);
+  std::vector<Kernel::Triangle_3> faces;
+  for (const auto& t : triangles) faces.emplace_back(points[t[0]], points[t[1]], points[t[2]]);
+  const double pi = std::acos(-1.0);
+  double surface_to_mesh = 0;
+  for (int i = 0; i < 48; ++i)
+    for (int j = 0; j < 16; ++j) {
+      const double theta = 2 * pi * (i + 0.5) / 48, phi = 2 * pi * (j + 0.25) / 16;
+      const Point3 y((1 + 0.4 * std::cos(phi)) * std::cos(theta), (1 + 0.4 * std::cos(phi)) * std::sin(theta),
+                     0.4 * std::sin(phi));
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const Kernel::Triangle_3& f : faces) nearest = std::min(nearest, CGAL::squared_distance(y, f));
+      surface_to_mesh = std::max(surface_to_mesh, std::sqrt(nearest));
+    }
+  BOOST_TEST(surface_to_mesh <= bound);
+  BOOST_TEST(bound <= 10 * std::max(mesh_to_surface, surface_to_mesh));
+}
+
+// Without a gradient field (an oracle that has no flow_distance()) the option is refused; out of
+// range it is refused like every option.
+BOOST_AUTO_TEST_CASE(max_distance_out_of_range_is_invalid_input) {
+  const auto& entry = catalog_entry("sphere");
+  DelMeshOptions options;
+  for (double bad : {0.0, -1.0, std::numeric_limits<double>::infinity()}) {
+    options.max_distance = bad;
+    BOOST_CHECK_THROW((void)del_mesh(entry.surface(), entry.box, options), InvalidInput);
+  }
+}
+
 // The bound on the quantity the size control measures: for every triangle of Tri S|Σ at the
 // end of the run, the distance from its dual point on Σ to its vertices is at most H.  The run
 // repeats del_mesh's steps; del_mesh itself gives a mesh of exactly these triangles.

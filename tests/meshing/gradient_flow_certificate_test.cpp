@@ -150,8 +150,7 @@ BOOST_AUTO_TEST_CASE(bad_soups_are_invalid_input) {
 }
 
 // delmesh's own mesh of the torus of the catalog at size bound 0.1 is certified by the flow as
-// well.  (Its coarsest mesh is not: |E| reaches about 1 on it, and the tube |E| ≤ 1.25 touches
-// the box's faces z = ±0.65, where E is as low as 1.05.)
+// well.
 BOOST_AUTO_TEST_CASE(delmesh_output_is_certified) {
   const CatalogEntry& entry = catalog_entry("torus");
   const Surface surface = entry.surface();
@@ -165,6 +164,22 @@ BOOST_AUTO_TEST_CASE(delmesh_output_is_certified) {
   const FlowCertificate c = certify_gradient_flow(points, triangles, surface, entry.box);
   BOOST_TEST(c.status == FlowCertificateStatus::certified, c.reason);
   BOOST_TEST(c.hausdorff_upper_bound / entry.box.diagonal() < 0.01);
+}
+
+// The local bounds of flow_distance.h only tighten the theorem's ε/G, and a distance radius the
+// triangles meet tightens them further; the bound stays above the sampled distance.
+BOOST_AUTO_TEST_CASE(local_distance_bounds_tighten_the_hausdorff_bound) {
+  const test::Soup m = test::icosphere(3);
+  const FlowCertificate plain = certify(m, unit_sphere, sphere_box);
+  BOOST_TEST_REQUIRE(plain.status == FlowCertificateStatus::certified, plain.reason);
+  BOOST_TEST(plain.hausdorff_upper_bound <= plain.epsilon / plain.min_gradient * (1 + 1e-12));
+  FlowCertificateOptions options;
+  options.distance_radius = 2 * sampled_distance_to_unit_sphere(m);
+  const FlowCertificate tight = certify_gradient_flow(m.points, m.triangles, Surface::parse(unit_sphere), sphere_box, options);
+  BOOST_TEST_REQUIRE(tight.status == FlowCertificateStatus::certified, tight.reason);
+  BOOST_TEST(tight.hausdorff_upper_bound <= plain.hausdorff_upper_bound);
+  BOOST_TEST(tight.hausdorff_upper_bound <= options.distance_radius);
+  BOOST_TEST(tight.hausdorff_upper_bound >= sampled_distance_to_unit_sphere(m));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -160,10 +160,71 @@ OutputSet::~OutputSet() {
 }
 
 void OutputSet::discard(Output& output) noexcept {
+  if (!output.kept.empty()) {
+    ::unlink(output.kept.c_str());
+    unregister_temporary(output.kept_slot);
+    output.kept.clear();
+  }
   if (output.temporary.empty()) return;
   ::unlink(output.temporary.c_str());
   unregister_temporary(output.slot);
   output.temporary.clear();
+}
+
+void OutputSet::keep_previous(Output& output) {
+  const std::string base =
+      output.directory + (output.directory == "/" ? "" : "/") + "." + name_of(output.target) + ".old" +
+      std::to_string(::getpid());
+  output.previous = Previous::not_kept;
+  for (int attempt = 0; attempt <= 100; ++attempt) {
+    const std::string candidate = attempt == 0 ? base : base + "-" + std::to_string(attempt);
+    std::size_t slot = 0;
+    try {
+      slot = register_temporary(candidate);
+    } catch (const std::length_error&) {
+      return;
+    }
+    if (::link(output.target.c_str(), candidate.c_str()) == 0) {
+      output.previous = Previous::kept;
+      output.kept = candidate;
+      output.kept_slot = slot;
+      return;
+    }
+    const int error = errno;
+    unregister_temporary(slot);
+    if (error == ENOENT) {
+      output.previous = Previous::none;
+      return;
+    }
+    if (error != EEXIST) return;
+  }
+}
+
+std::string OutputSet::roll_back(std::size_t failed) noexcept {
+  std::string lost;
+  for (std::size_t i = failed; i-- > 0;) {
+    Output& output = outputs_[i];
+    if (output.kind != Kind::replace) continue;
+    bool restored = false;
+    if (output.previous == Previous::kept) {
+      restored = ::rename(output.kept.c_str(), output.target.c_str()) == 0;
+      if (restored) {
+        unregister_temporary(output.kept_slot);
+        output.kept.clear();
+      }
+    } else if (output.previous == Previous::none) {
+      restored = ::unlink(output.target.c_str()) == 0;
+    }
+    if (restored) continue;
+    lost += (lost.empty() ? "" : ", ") + output.path;
+    if (!output.kept.empty()) {
+      // Left on disk: now the only name of the previous file.
+      lost += " (its previous content is in " + output.kept + ")";
+      unregister_temporary(output.kept_slot);
+      output.kept.clear();
+    }
+  }
+  return lost;
 }
 
 std::size_t OutputSet::add(const std::string& option, const std::string& path) {
@@ -328,19 +389,22 @@ void OutputSet::commit() {
     }
   }
   DeferredExit renames_first;
-  std::string replaced;
-  for (Output& output : outputs_) {
+  for (Output& output : outputs_)
+    if (!output.temporary.empty()) keep_previous(output);
+  for (std::size_t i = 0; i < outputs_.size(); ++i) {
+    Output& output = outputs_[i];
     if (output.temporary.empty()) continue;
     if (::rename(output.temporary.c_str(), output.target.c_str()) != 0) {
       const int error = errno;
+      const std::string lost = roll_back(i);
       throw OutputError(output.option + ": cannot replace " + output.path + ": " + errno_text(error) +
-                        (replaced.empty() ? std::string() : " (" + replaced + " was already replaced)"));
+                        (lost.empty() ? std::string() : " (" + lost + " was already replaced and could not be restored)"));
     }
     unregister_temporary(output.slot);
     output.temporary.clear();
-    replaced += (replaced.empty() ? "" : ", ") + output.path;
   }
-  // The locks go with `directories`, after the renames.
+  // The previous files' second names go; the locks go with `directories`, after the renames.
+  for (Output& output : outputs_) discard(output);
 }
 
 namespace {

@@ -13,6 +13,11 @@
 //! OutputSet::write() writes every temporary file first, then every in-place output, and renames
 //! the temporaries over their targets only after all of that succeeded: an output that cannot be
 //! written (disk full, permission denied, a closed pipe) leaves every existing file as it was.
+//! Before the renames, each file about to be replaced gets a second name (a hard link
+//! `.<name>.old<pid>` beside it); if a rename fails after others succeeded (the directory changed
+//! under the run), the replaced files are renamed back from those links and the new files that
+//! had no predecessor are removed, so the group is still all or nothing.  Only a file that could
+//! not be linked (a file system without hard links) cannot be put back; the message names it.
 //! Temporary files are registered with apps/interrupt.h, so they are removed on every way out:
 //! an exception, a second signal, std::terminate.  A second signal that arrives during the
 //! renames ends the process only once they are all done.
@@ -68,13 +73,15 @@ class OutputSet {
 
   //! Writes output i with writers[i] and commits the group as the file comment says.  Throws
   //! OutputError (exit code 6) if an output cannot be written or renamed, and passes on what a
-  //! writer throws; either way every existing file is left as it was, unless a rename fails
-  //! after others succeeded (the directory changed under the run), which the message says.
+  //! writer throws; either way every existing file is left as it was (but for a file that could
+  //! not be linked before the renames, which the message names).
   //! \pre writers.size() equals the number of outputs added, and write() was not called before.
   void write(const std::vector<Writer>& writers);
 
  private:
   enum class Kind { standard_output, in_place, replace };
+  //! What stood at a replace output's target before the renames.
+  enum class Previous { none, kept, not_kept };
   struct Output {
     std::string option, path;  // as given
     Kind kind = Kind::replace;
@@ -87,10 +94,19 @@ class OutputSet {
     mode_t mode = 0666;        // the mode of the temporary file (the target's if it exists)
     std::string temporary;     // while written
     std::size_t slot = 0;      // its registration (apps/interrupt.h)
+    Previous previous = Previous::none;
+    std::string kept;          // the second name of the previous file while the group commits
+    std::size_t kept_slot = 0;
   };
   void write_temporary(Output& output, const Writer& writer);
   void write_in_place(const Output& output, const Writer& writer);
   void commit();
+  //! Gives the file at output.target a second name (Previous::kept), or records that there is no
+  //! file (none) or that it could not be linked (not_kept).
+  void keep_previous(Output& output);
+  //! After the renames of outputs_[0, failed) succeeded and that of outputs_[failed] did not:
+  //! puts the kept files back and removes the new ones; returns the targets it could not restore.
+  std::string roll_back(std::size_t failed) noexcept;
   void discard(Output& output) noexcept;
 
   std::vector<Output> outputs_;

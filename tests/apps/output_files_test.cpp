@@ -237,6 +237,33 @@ BOOST_AUTO_TEST_CASE(a_failing_output_leaves_every_file_untouched) {
   }
 }
 
+// A rename that fails after another one succeeded (here the statistics' name became a directory
+// while the run was meshing) puts the replaced mesh back: the group stays all or nothing, and no
+// temporary file or second name of the old file is left.
+BOOST_AUTO_TEST_CASE(a_failed_rename_puts_the_replaced_files_back) {
+  TempDir dir;
+  write_text(dir / "k.off", old_mesh);
+  const pid_t pid = spawn_delmesh({"mesh", "--surface", "torus", "--size-bound", "0.01", "--time-limit", "4", "--out",
+                                   "k.off", "--stats", "new.json"},
+                                  dir.path);
+  // The outputs are checked before meshing starts, and the first progress line says it has.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (read_text(dir / ".spawn.stderr").find("delmesh: meshing") == std::string::npos &&
+         std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  fs::create_directory(dir / "new.json");
+  write_text(dir / "new.json" / "inside", "a directory cannot be replaced by a file\n");
+  const RunResult r = wait_delmesh(pid, dir.path);
+  BOOST_TEST(!r.signalled);
+  BOOST_TEST(r.exit_code == 6, r.err);
+  BOOST_TEST(r.err.find("--stats: cannot replace new.json") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("could not be restored") == std::string::npos, r.err);
+  BOOST_TEST(read_text(dir / "k.off") == old_mesh);
+  BOOST_TEST(temporaries_in(dir.path).empty());
+  for (const auto& entry : fs::directory_iterator(dir.path))
+    BOOST_TEST(entry.path().filename().string().find(".old") == std::string::npos, entry.path());
+}
+
 // Whatever a subcommand prints, a standard output that cannot take it (a full device, a closed
 // pipe) gives exit code 6 and one `error:` line, never exit code 0 or death by SIGPIPE.
 BOOST_AUTO_TEST_CASE(standard_output_errors_are_io_errors) {

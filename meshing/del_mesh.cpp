@@ -316,9 +316,21 @@ void certify_distance(DelMeshResult& result, const Surface& surface, const Box3&
     j["distance"] = to_json(certificate);
     const bool within = certificate.status == FlowCertificateStatus::certified &&
                         (!options.max_distance || certificate.hausdorff_upper_bound <= *options.max_distance);
-    if (options.max_distance && !within && result.status == MeshStatus::complete) {
-      result.status = MeshStatus::uncertified;
-      j["status"] = text_of(result.status);
+    if (options.max_distance && !within) {
+      // Unsettled like a check's finding, so that an uncertified run always says why.
+      auto& unsettled = j["unsettled"];
+      unsettled["count"] = unsettled["count"].get<std::size_t>() + 1;
+      unsettled["by_reason"]["distance_not_certified"] = unsettled["by_reason"].value("distance_not_certified", 0) + 1;
+      const std::string reason = certificate.status == FlowCertificateStatus::certified
+                                     ? "the certified Hausdorff bound exceeds max_distance"
+                                     : certificate.reason;
+      unsettled["regions"].push_back({{"check", "distance"}, {"reason", reason},
+                                      {"location", certificate.location ? nlohmann::json(*certificate.location)
+                                                                        : nlohmann::json()}});
+      if (result.status == MeshStatus::complete) {
+        result.status = MeshStatus::uncertified;
+        j["status"] = text_of(result.status);
+      }
     }
   }
   j["distance"]["max_distance"] = options.max_distance ? nlohmann::json(*options.max_distance) : nlohmann::json();

@@ -189,6 +189,23 @@ BOOST_AUTO_TEST_CASE(max_distance_bounds_the_hausdorff_distance_both_ways) {
   BOOST_TEST(bound <= 10 * std::max(mesh_to_surface, surface_to_mesh));
 }
 
+// The chair's gradient is small near (0, 0, −0.866), inside the thin tube of a fine mesh too: the
+// flow certificate stays undecided, so --max-distance cannot end complete, and the statistics
+// list why under "unsettled".
+BOOST_AUTO_TEST_CASE(max_distance_not_certified_is_unsettled, *boost::unit_test::label("slow")) {
+  const auto& entry = catalog_entry("chair");
+  DelMeshOptions options;
+  options.max_distance = 1e-3 * entry.box.diagonal();
+  const auto result = del_mesh(entry.surface(), entry.box, options);
+  BOOST_TEST(result.status == MeshStatus::uncertified);
+  const auto& j = result.statistics;
+  BOOST_TEST(j["status"] == "uncertified");
+  BOOST_TEST(j["distance"]["status"] != "certified");
+  BOOST_TEST(j["unsettled"]["by_reason"]["distance_not_certified"].get<int>() == 1);
+  BOOST_TEST(j["unsettled"]["regions"].back()["check"] == "distance");
+  BOOST_TEST(j["unsettled"]["regions"].back()["reason"] == j["distance"]["reason"]);
+}
+
 // Without a gradient field (an oracle that has no flow_distance()) the option is refused; out of
 // range it is refused like every option.
 BOOST_AUTO_TEST_CASE(max_distance_out_of_range_is_invalid_input) {

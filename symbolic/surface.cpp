@@ -159,6 +159,27 @@ bool is_allowed_function(const std::string& name) {
   return false;
 }
 
+//! For a function that is not C² (abs, min, max, sign, floor, ceil, in the spellings of C, GiNaC
+//! and sympy's str()): why it is refused and the smooth blend to write instead, e.g. "is not
+//! smooth: E must be C² (use …)"; "" for any other name.
+std::string non_smooth_reason(const std::string& name) {
+  const std::string small_c = ", with a small c > 0)";
+  if (name == "abs" || name == "Abs" || name == "fabs")
+    return "is not smooth: E must be C² (use a smooth blend, e.g. sqrt(x^2+c^2) for |x|" + small_c;
+  if (name == "min" || name == "Min" || name == "fmin")
+    return "is not smooth: E must be C² (use a smooth blend, e.g. (a+b-sqrt((a-b)^2+c^2))/2 for min(a,b)" + small_c;
+  if (name == "max" || name == "Max" || name == "fmax")
+    return "is not smooth: E must be C² (use a smooth blend, e.g. (a+b+sqrt((a-b)^2+c^2))/2 for max(a,b)" + small_c;
+  if (name == "sign" || name == "csgn" || name == "step" || name == "Heaviside")
+    return "is not continuous: E must be C² (use a smooth blend, e.g. x/sqrt(x^2+c^2) for sign(x)" + small_c;
+  if (name == "floor" || name == "ceil" || name == "ceiling" || name == "round")
+    return "is not continuous: E must be C² (write E without it)";
+  return "";
+}
+
+//! The two spellings of the power operator: '^' and '**' (Python's, which sympy's str() prints).
+bool is_power(const std::string& op) { return op == "^" || op == "**"; }
+
 enum class TokenKind { number, identifier, op, lparen, rparen, end };
 struct Token {
   TokenKind kind;
@@ -209,6 +230,16 @@ std::vector<Token> tokenize(const std::string& text) {
     } else if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
       while (i < n && (std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '_')) ++i;
       tokens.push_back({TokenKind::identifier, text.substr(start, i - start), start + 1});
+      // A call of a function that is not C² is refused here, before its arguments (min(x, y)
+      // has a comma) can stop the tokenizer with a less helpful message.
+      std::size_t k = i;
+      while (k < n && std::isspace(static_cast<unsigned char>(text[k]))) ++k;
+      const std::string reason = non_smooth_reason(tokens.back().text);
+      if (k < n && text[k] == '(' && !reason.empty())
+        throw InvalidInput(tokens.back().text + " " + where(text, start + 1) + " " + reason);
+    } else if (c == '*' && i + 1 < n && text[i + 1] == '*') {
+      tokens.push_back({TokenKind::op, "**", start + 1});
+      i += 2;
     } else if (c == '+' || c == '-' || c == '*' || c == '/' || c == '^') {
       tokens.push_back({TokenKind::op, std::string(1, c), start + 1});
       ++i;
@@ -220,7 +251,7 @@ std::vector<Token> tokenize(const std::string& text) {
       ++i;
     } else {
       throw InvalidInput(std::string("unexpected character '") + c + "' " + where(text, start + 1) +
-                         "; allowed: numbers, x y z, Pi, exp sqrt sin cos log, + - * / ^ and parentheses");
+                         "; allowed: numbers, x y z, Pi, exp sqrt sin cos log, + - * / ^ (or **) and parentheses");
     }
   }
   tokens.push_back({TokenKind::end, "", n + 1});
@@ -232,7 +263,7 @@ std::vector<Token> tokenize(const std::string& text) {
 //! reject constructs GiNaC accepts with surprising meaning:
 //!   expression := unary (binop unary)*        binop ∈ { + - * / }
 //!   unary      := [+|-] factor                only at the start of an expression
-//!   factor     := primary [ '^' exponent ]    (a^b^c is rejected as ambiguous)
+//!   factor     := primary [ power exponent ]  power ∈ { ^ ** } (a^b^c is rejected as ambiguous)
 //!   exponent   := number | '(' [+|-] exponent ')'    an integer
 //!   primary    := number | x | y | z | Pi | pi | f '(' expression ')' | '(' expression ')'
 //! GiNaC parses a sign after a binary operator as applying to the rest of the expression
@@ -269,7 +300,7 @@ class Recognizer {
     factor();
     while (peek().kind == TokenKind::op) {
       const Token& op = next();
-      if (op.text == "^") fail("a^b^c is ambiguous, use parentheses; '^'", op);
+      if (is_power(op.text)) fail("a" + op.text + "b" + op.text + "c is ambiguous, use parentheses; '" + op.text + "'", op);
       if (peek().kind == TokenKind::op && (peek().text == "+" || peek().text == "-"))
         fail("sign '" + peek().text + "' directly after operator '" + op.text +
                  "' (write it in parentheses, e.g. x*(-y))",
@@ -280,18 +311,16 @@ class Recognizer {
 
   void factor() {
     primary();
-    if (peek().kind == TokenKind::op && peek().text == "^") {
-      next();
-      exponent(0);
-    }
+    if (peek().kind == TokenKind::op && is_power(peek().text)) exponent(next().text, 0);
   }
 
-  void exponent(int depth) {
+  //! The exponent after the power operator `power` ("^" or "**", as written, for the messages).
+  void exponent(const std::string& power, int depth) {
     const Token& t = next();
     if (t.kind == TokenKind::lparen) {
       open(t);
       if (peek().kind == TokenKind::op && (peek().text == "+" || peek().text == "-")) next();
-      exponent(depth + 1);
+      exponent(power, depth + 1);
       const Token& close = next();
       if (close.kind != TokenKind::rparen) fail("non-integer power: expected ')' after the exponent, got " + describe(close), close);
       --depth_;
@@ -299,13 +328,14 @@ class Recognizer {
     }
     if (t.kind == TokenKind::number) {
       GiNaC::numeric value = decimal_to_rational(t.text);
-      if (!value.is_integer()) fail("non-integer power '^" + t.text + "'", t);
+      if (!value.is_integer()) fail("non-integer power '" + power + t.text + "'", t);
       if (GiNaC::abs(value) > kMaxPower)
-        fail("power '^" + t.text + "' too large (at most " + std::to_string(kMaxPower) + ")", t);
+        fail("power '" + power + t.text + "' too large (at most " + std::to_string(kMaxPower) + ")", t);
       return;
     }
     if (t.kind == TokenKind::op && (t.text == "+" || t.text == "-"))
-      fail("sign after '^' must be in parentheses, e.g. x^(-2); got '" + t.text + "'", t);
+      fail("sign after '" + power + "' must be in parentheses, e.g. x" + power + "(-2); got '" + t.text + "'", t);
+    if (t.kind == TokenKind::op) fail("expected an integer exponent after '" + power + "', got '" + t.text + "'", t);
     fail("non-integer power: the exponent must be an integer literal, got " + describe(t), t);
   }
 
@@ -411,6 +441,7 @@ void validate(const GiNaC::ex& e, const std::string& text) {
   }
   if (is_a<function>(e)) {
     const std::string name = ex_to<function>(e).get_name();
+    if (!non_smooth_reason(name).empty()) throw InvalidInput(name + in + " " + non_smooth_reason(name));
     if (name != "exp" && name != "sin" && name != "cos" && name != "log")
       throw InvalidInput("unknown function '" + name + "'" + in + "; allowed: exp, sqrt, sin, cos, log");
     validate(e.op(0), text);
@@ -563,6 +594,8 @@ GiNaC::ex parse_text(const std::string& text) {
     if (t.kind == TokenKind::end) break;
     if (t.kind == TokenKind::number) {
       exact += "(" + print(decimal_to_rational(t.text)) + ")";
+    } else if (t.kind == TokenKind::op && is_power(t.text)) {
+      exact += '^';
     } else {
       exact += t.text;
     }

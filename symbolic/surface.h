@@ -39,16 +39,19 @@ struct Box3 {
 class Surface {
  public:
   //! Parses E(x, y, z) with GiNaC's parser.  Decimal literals become exact rationals
-  //! (0.16 → 4/25, 1.5e-3 → 3/2000).  Allowed: + - * / ^ with integer exponents, parentheses,
-  //! exp sqrt sin cos log (one argument each), the named constant Pi (also spelled pi).
+  //! (0.16 → 4/25, 1.5e-3 → 3/2000).  Allowed: + - * / ^ with integer exponents (** is the same
+  //! operator as ^, so the str() of a sympy expression parses), parentheses, exp sqrt sin cos log
+  //! (one argument each), the named constant Pi (also spelled pi).
   //! Grammar (a sign is allowed only at the start of an expression or parenthesis, because GiNaC
   //! reads "2*-x+y" as 2*(-x+y); write 2*(-x)+y):
   //!   expression := [+|-] factor ((+|-|*|/) factor)*
-  //!   factor     := primary [^ exponent]     exponent := integer | '(' [+|-] exponent ')'
+  //!   factor     := primary [(^|**) exponent]     exponent := integer | '(' [+|-] exponent ')'
   //!   primary    := number | x | y | z | Pi | pi | f '(' expression ')' | '(' expression ')'
   //! Throws InvalidInput (message quotes the offending token and its 1-based position) on a
   //! syntax error, an unknown symbol or function, a non-integer power (x^0.5, x^y, a^b^c), an
   //! empty or constant expression (3, x-x), or an expression with complex constants (sqrt(-1)).
+  //! A function that is not C² (abs, min, max, sign, floor, ceil, also as sympy spells them: Abs,
+  //! Min, Max, ceiling) is refused with a one-line hint naming a smooth blend to use instead.
   //! Input limits (so that no input can exhaust the stack, the memory or the time of the exact
   //! arithmetic): at most max_length characters, parentheses nested at most max_nesting deep,
   //! integer powers |n| ≤ max_power, decimal exponents |e| ≤ max_decimal_exponent, and the size

@@ -104,6 +104,23 @@ BOOST_AUTO_TEST_CASE(expressions_and_boxes_beyond_the_limits) {
   BOOST_TEST(r.out.find("roots:     2") != std::string::npos, r.out);
 }
 
+// Expressions: a function that is not C² gets the one `error:` line with the smooth blend to use;
+// ** is the power operator, as in sympy's str() output.
+BOOST_AUTO_TEST_CASE(non_smooth_functions_and_python_powers) {
+  const std::string box = "-2,2,-2,2,-2,2";
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--expr", "abs(x)+y^2+z^2-1", "--box", box},
+       "error: abs at position 1 of \"abs(x)+y^2+z^2-1\" is not smooth: E must be C² (use a smooth blend, e.g. "
+       "sqrt(x^2+c^2) for |x|, with a small c > 0)"},
+      {{"--expr", "max(x^2, y^2)+z^2-1", "--box", box}, "error: max at position 1"},
+      {{"--expr", "x***2+y**2+z**2-1", "--box", box}, "expected an integer exponent after '**', got '*'"},
+  };
+  for (const auto& [extra, mention] : cases) require_mesh_refused(extra, mention);
+  const RunResult r = run_delmesh({"solve", "--expr", "x**2 + y**2 + z**2 - 1", "--box", box, "--primitive", "surface_critical"});
+  BOOST_TEST(r.exit_code == 0, r.err);
+  BOOST_TEST(r.out.find("roots:     2") != std::string::npos, r.out);
+}
+
 // Paths: a directory as --out or --stats, a missing folder, an unknown extension.
 BOOST_AUTO_TEST_CASE(output_paths) {
   TempDir dir;

@@ -97,6 +97,67 @@ BOOST_AUTO_TEST_CASE(accepted_syntax) {
   BOOST_TEST(Surface::parse("x^2+y^2+z^2-1").text() == "x^2+y^2+z^2-1");
 }
 
+// ** is ^ with the same precedence and associativity, so sympy's str() output parses.
+BOOST_AUTO_TEST_CASE(double_star_is_the_power_operator) {
+  const std::vector<std::pair<std::string, std::string>> pairs = {
+      {"x**2 + y**2 + z**2 - 1", "x^2 + y^2 + z^2 - 1"},
+      {"2*x**3*y - z", "2*x^3*y - z"},
+      {"-x**2+y", "-x^2+y"},
+      {"x**(-2)*y - 1", "x^(-2)*y - 1"},
+      {"(x+y)**2*z**3 - 1", "(x+y)^2*z^3 - 1"},
+      {"x/2**3 + y", "x/2^3 + y"},
+      {"sqrt(x**2 + 1)*exp(-y**2) - pi*z", "sqrt(x^2 + 1)*exp(-y^2) - pi*z"},
+      {"x**2.0 + y**2 ** 1 - 1", "x^2.0 + y^2 ^ 1 - 1"},
+  };
+  for (const auto& [stars, carets] : pairs) {
+    BOOST_TEST_CONTEXT(stars) {
+      if (stars.find("** 1") != std::string::npos) {  // a**b**c is refused as a^b^c is
+        BOOST_TEST(parse_error(stars).find("ambiguous") != std::string::npos);
+        BOOST_TEST(parse_error(carets).find("ambiguous") != std::string::npos);
+        continue;
+      }
+      const Surface a = Surface::parse(stars), b = Surface::parse(carets);
+      BOOST_TEST(a.E().is_equal(b.E()));
+      BOOST_TEST(a.text() == stars);
+    }
+  }
+  BOOST_TEST(same(Surface::parse("-x**2+y").E(), y - x * x));
+  BOOST_TEST(same(Surface::parse("x/2**3 + y").E(), x / 8 + y));
+}
+
+// A function that is not C² gets one line naming the smooth blend to write instead.
+BOOST_AUTO_TEST_CASE(non_smooth_functions_are_refused_with_a_hint) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"abs(x) + y - 1", "abs at position 1 of \"abs(x) + y - 1\" is not smooth: E must be C² (use a smooth blend, "
+                         "e.g. sqrt(x^2+c^2) for |x|, with a small c > 0)"},
+      {"Abs(x) + y - 1", "Abs at position 1"},
+      {"y - min(x, z)", "min at position 5 of \"y - min(x, z)\" is not smooth: E must be C² (use a smooth blend, "
+                        "e.g. (a+b-sqrt((a-b)^2+c^2))/2 for min(a,b), with a small c > 0)"},
+      {"max(x,y)-z", "e.g. (a+b+sqrt((a-b)^2+c^2))/2 for max(a,b)"},
+      {"Max(x,y)-z", "Max at position 1"},
+      {"sign(x)+y", "sign at position 1 of \"sign(x)+y\" is not continuous: E must be C² (use a smooth blend, "
+                    "e.g. x/sqrt(x^2+c^2) for sign(x)"},
+      {"floor(x)+y", "floor at position 1 of \"floor(x)+y\" is not continuous: E must be C² (write E without it)"},
+      {"ceil(x)+y", "is not continuous"},
+      {"ceiling(x)+y", "is not continuous"},
+  };
+  for (const auto& [text, fragment] : cases) {
+    const std::string message = parse_error(text);
+    BOOST_TEST_CONTEXT("text \"" << text << "\", message \"" << message << "\"") {
+      BOOST_TEST(message.find(fragment) != std::string::npos);
+      BOOST_TEST(message.find('\n') == std::string::npos);
+    }
+  }
+  // The same hint for a built expression.
+  try {
+    (void)Surface(GiNaC::abs(x) + y);
+    BOOST_FAIL("abs(x) + y was accepted");
+  } catch (const InvalidInput& error) {
+    BOOST_TEST(std::string(error.what()).find("abs in \"") == 0, error.what());
+    BOOST_TEST(std::string(error.what()).find("is not smooth: E must be C²") != std::string::npos, error.what());
+  }
+}
+
 BOOST_AUTO_TEST_CASE(polynomial_and_degree) {
   BOOST_TEST(Surface::parse("x^2+y^2+z^2-1").degree() == 2);
   BOOST_TEST(Surface::parse("(x^2-x^4-y^2)^2+z^2-0.02").degree() == 8);
@@ -115,7 +176,7 @@ BOOST_AUTO_TEST_CASE(malformed_expressions_throw_and_name_the_problem) {
       {"x+w", "'w'"},
       {"x+w", "position 3"},
       {"tan(x)", "'tan'"},
-      {"abs(x)", "'abs'"},
+      {"abs(x)", "abs at position 1"},
       {"x^0.5", "0.5"},
       {"x^y", "'y'"},
       {"x^(1/2)", "'/'"},
@@ -131,7 +192,12 @@ BOOST_AUTO_TEST_CASE(malformed_expressions_throw_and_name_the_problem) {
       {"Euler*x", "'Euler'"},
       {"sqrt(-1)*x", "complex"},
       {"log(-2)+x", "complex"},
-      {"x**2", "'*'"},
+      {"x***2", "expected an integer exponent after '**', got '*'"},
+      {"**x", "unexpected '**' at position 1"},
+      {"x**2**3", "ambiguous"},
+      {"x**0.5", "non-integer power '**0.5'"},
+      {"x**-2", "x**(-2)"},
+      {"x* *2", "unexpected '*'"},
       {"x+", "end"},
       {"(x+y", "')'"},
       {"x)", "')'"},

@@ -17,17 +17,29 @@
 //!  2. coarsest: delmesh at λ = 0.06 without size bound against CGAL at the coarsest of a ladder of
 //!     settings that still gives the right topology;
 //!  3. demo: CGAL at coarse settings on thin_handle / two_blobs / near_sheets, where it loses a
-//!     handle or a component, against delmesh without size bound.
+//!     handle or a component, against delmesh without size bound;
+//!  4. distance (only when --experiments names it): for each of --surfaces and each relative
+//!     distance r of --relative-distances, δ = r · the catalog box's diagonal; delmesh (λ from
+//!     --lambda, no size bound) with max_distance δ, so with the gradient-flow certificate, which
+//!     must prove a two-sided Hausdorff bound ≤ δ for the run to be complete, against Mesh_3
+//!     (facet_angle from --angle, facet_distance δ, no facet size bound).  Both outputs also get
+//!     sampled estimates of their two one-sided distances to Σ (sampled_distances(): estimates,
+//!     not bounds).  One row per surface and δ in <out-dir>/distance.csv and distance.md.
 //! CGAL's implicit oracles locate surface points by bisection, stopped when the segment is shorter
 //! than a relative error bound times the bounding sphere's diameter.  CGAL's own default, 1e-3,
 //! is about 0.005 on the torus's sphere: no finer than the facet distance H/10 at H ≤ 0.05, so
 //! Mesh_3's distance criterion then refines on bisection error (at H = 0.02 it made 520 209
 //! vertices where 1e-6 gives about 26 000, as many as Surface_mesher and delmesh).  So the
-//! benchmark runs CGAL with --cgal-error-bound (default 1e-6; delmesh's points are certified roots
-//! to full double precision); coarsest and demo keep CGAL's default, the setting users meet.
+//! benchmark and distance (whose default δ, 1e-3 of the box diagonal, is no larger) run CGAL with
+//! --cgal-error-bound (default 1e-6; delmesh's points are certified roots to full double
+//! precision); coarsest and demo keep CGAL's default, the setting users meet.
 //! Every mesh is judged by the independent checker (meshing/mesh_checker.h) against the catalog's
-//! topology.  Output: <out-dir>/compare_cgal.csv (and the meshes under <out-dir>/meshes/).
+//! topology.  Output: <out-dir>/compare_cgal.csv, one row per run of every experiment (and the
+//! meshes under <out-dir>/meshes/); distance also writes distance.csv and distance.md.
 
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Complex_2_in_triangulation_3.h>
 #include <CGAL/Implicit_surface_3.h>
 #include <CGAL/Labeled_mesh_domain_3.h>
@@ -44,6 +56,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -65,6 +79,8 @@ using namespace delmesh::experiments;
 namespace fs = std::filesystem;
 
 struct CgalSettings {
+  //! radius 0: no size bound, for Mesh_3 only (Mesh_facet_criteria_3 adds no size criterion for a
+  //! facet_size of 0, as when it is not given); Surface_mesher needs a positive radius.
   double angle_deg = 30, radius = 0.05, distance = 0.005;
   //! The bisection of CGAL's implicit oracles stops when the segment is shorter than this times
   //! the bounding sphere's diameter; CGAL's default, and named in text() only when it differs.
@@ -72,7 +88,13 @@ struct CgalSettings {
   double relative_error_bound = cgal_default_error_bound;
   std::string text() const {
     std::ostringstream out;
-    out << "angle=" << angle_deg << ";radius=" << radius << ";distance=" << distance;
+    out << "angle=" << angle_deg << ";radius=";
+    if (radius > 0) {
+      out << radius;
+    } else {
+      out << "none";
+    }
+    out << ";distance=" << distance;
     if (relative_error_bound != cgal_default_error_bound) out << ";relative_error_bound=" << relative_error_bound;
     return out.str();
   }
@@ -184,8 +206,19 @@ std::string threads_used(const Run& run, int requested) {
   return field(run.statistics.is_object() ? run.statistics.value("threads", requested) : requested);
 }
 
+//! `text` with the characters that would break a CSV field or a Markdown cell (',', '|', newline)
+//! replaced by ';'.
+std::string cell_text(std::string text) {
+  for (char& c : text)
+    if (c == ',' || c == '|' || c == '\n') c = ';';
+  return text;
+}
+
+//! A delmesh run at λ with size bound H and distance bound δ where given.  The gradient-flow
+//! certificate runs only with δ (del_mesh runs it then, as the run is complete only if it proves
+//! the bound); without δ the run is timed against meshers that certify nothing.
 Run run_delmesh(const CatalogEntry& entry, double lambda, std::optional<double> size_bound,
-                const DelMeshOptions& base) {
+                const DelMeshOptions& base, std::optional<double> max_distance = std::nullopt) {
   Run run;
   run.method = "delmesh";
   std::ostringstream parameters;
@@ -195,12 +228,14 @@ Run run_delmesh(const CatalogEntry& entry, double lambda, std::optional<double> 
   } else {
     parameters << "none";
   }
+  if (max_distance) parameters << ";max_distance=" << *max_distance;
   parameters << ";seed=" << base.seed;
   run.parameters = parameters.str();
   DelMeshOptions options = base;
   options.lambda = lambda;
   options.size_bound = size_bound;
-  options.distance_certificate = false;  // timed against meshers that certify nothing
+  options.max_distance = max_distance;
+  options.distance_certificate = false;
   const Stopwatch clock;
   try {
     DelMeshResult result = del_mesh(entry.surface(), entry.box, options);
@@ -212,9 +247,7 @@ Run run_delmesh(const CatalogEntry& entry, double lambda, std::optional<double> 
     mesh_to_soup(result.mesh, run.soup.points, run.soup.triangles);
   } catch (const std::exception& e) {
     run.seconds = clock.seconds();
-    run.status = std::string("error: ") + e.what();
-    for (char& c : run.status)
-      if (c == ',' || c == '\n') c = ';';
+    run.status = cell_text(std::string("error: ") + e.what());
   }
   run.parameters += ";threads=" + threads_used(run, options.threads);
   return run;
@@ -309,18 +342,346 @@ std::string field_list(const std::vector<double>& values) {
   return text;
 }
 
+//! A catalog surface ready for the meshers: its entry, compiled E, and the CGAL meshers' bounding
+//! sphere (a centre inside Σ and a squared radius that contains the box).
+struct Prepared {
+  const CatalogEntry* entry;
+  CompiledE E;
+  std::array<double, 3> centre;
+  double squared_radius;
+};
+
+Prepared prepare(const std::string& name) {
+  const CatalogEntry& entry = catalog_entry(name);
+  CompiledE E(entry.surface());
+  const auto centre = inside_point(E, entry.box);
+  return Prepared{&entry, E, centre, enclosing_squared_radius(centre, entry.box)};
+}
+
+// --- sampled distances between a mesh and Σ ------------------------------------------------------
+//! Intervals per triangle edge of the barycentric grid of mesh → Σ samples ((n+1)(n+2)/2 points a
+//! triangle; n a multiple of 3, so the centroid is one of them).
+constexpr int mesh_samples_per_edge = 6;
+//! Grid cells along the box's longest side for the Σ → mesh samples.
+constexpr int surface_sample_cells = 160;
+
+//! A point of Σ reached from p by Newton steps p ← p − E ∇E/|∇E|² (each at most 0.05 of the
+//! box diagonal long), once |E|/|∇E| < 1e-10 of the diagonal; nothing if that takes more than 50
+//! steps or ∇E vanishes on the way.
+std::optional<std::array<double, 3>> newton_onto_surface(const CompiledE& E, std::array<double, 3> p,
+                                                         double diagonal) {
+  for (int step = 0; step < 50; ++step) {
+    std::array<double, 3> g{};
+    const double e = E.value_and_gradient(p, g);
+    const double gg = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
+    if (!(gg > 0) || !std::isfinite(e)) return std::nullopt;
+    const double first_order = std::abs(e) / std::sqrt(gg);
+    if (first_order < 1e-10 * diagonal) return p;
+    const double scale = std::min(1.0, 0.05 * diagonal / first_order) * e / gg;
+    for (int k = 0; k < 3; ++k) p[k] -= scale * g[k];
+  }
+  return std::nullopt;
+}
+
+//! Points of Σ independent of any mesh: the nodes of a regular grid of the box
+//! (surface_sample_cells cells along its longest side) whose first-order distance |E|/|∇E| is
+//! below one cell, moved onto Σ by newton_onto_surface (a node that does not converge is left
+//! out).  Their covering radius of Σ is about one cell.
+std::vector<Point3> surface_sample(const CompiledE& E, const Box3& box) {
+  double longest = 0;
+  for (int k = 0; k < 3; ++k) longest = std::max(longest, box.hi[k] - box.lo[k]);
+  const double cell = longest / surface_sample_cells;
+  std::array<int, 3> nodes{};
+  for (int k = 0; k < 3; ++k) nodes[k] = static_cast<int>(std::ceil((box.hi[k] - box.lo[k]) / cell)) + 1;
+  std::vector<Point3> sample;
+  for (int i = 0; i < nodes[0]; ++i)
+    for (int j = 0; j < nodes[1]; ++j)
+      for (int k = 0; k < nodes[2]; ++k) {
+        const std::array<double, 3> p{box.lo[0] + i * cell, box.lo[1] + j * cell, box.lo[2] + k * cell};
+        std::array<double, 3> g{};
+        const double e = E.value_and_gradient(p, g);
+        if (!(std::abs(e) < cell * std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]))) continue;
+        if (const auto q = newton_onto_surface(E, p, box.diagonal())) sample.emplace_back((*q)[0], (*q)[1], (*q)[2]);
+      }
+  return sample;
+}
+
+//! Sampled estimates (not bounds) of the two one-sided distances between a mesh and Σ.
+//! mesh_to_surface: the largest |x − p| over the points x of a barycentric grid on every triangle
+//! (mesh_samples_per_edge per edge) and p = newton_onto_surface(x), a point of Σ, so each term is
+//! at least x's distance to Σ (equal when p is x's nearest point, which the projection along ∇E
+//! approximates to second order); x between the grid points is not seen.  surface_to_mesh: the
+//! largest exact distance (CGAL AABB tree) from a point of surface_sample() to the mesh: as those
+//! points lie on Σ (up to the projection's 1e-10 of the diagonal), a lower bound on the one-sided
+//! Hausdorff distance from Σ, short of it by at most about the sample's covering radius.
+struct SampledDistance {
+  double mesh_to_surface = std::numeric_limits<double>::quiet_NaN();
+  double surface_to_mesh = std::numeric_limits<double>::quiet_NaN();
+  std::size_t unprojected = 0;  //!< mesh samples whose projection did not converge (left out)
+  double hausdorff() const { return std::max(mesh_to_surface, surface_to_mesh); }
+};
+
+double sampled_mesh_to_surface(const TriangleSoup& soup, const CompiledE& E, double diagonal,
+                               std::size_t& unprojected) {
+  constexpr int n = mesh_samples_per_edge;
+  double largest = 0;
+  for (const auto& t : soup.triangles) {
+    const Point3 &a = soup.points[t[0]], &b = soup.points[t[1]], &c = soup.points[t[2]];
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) {
+        const Point3 x = a + (b - a) * (static_cast<double>(i) / n) + (c - a) * (static_cast<double>(j) / n);
+        const auto p = newton_onto_surface(E, {x.x(), x.y(), x.z()}, diagonal);
+        if (!p) {
+          ++unprojected;
+          continue;
+        }
+        largest = std::max(largest, std::sqrt(CGAL::squared_distance(x, Point3((*p)[0], (*p)[1], (*p)[2]))));
+      }
+  }
+  return largest;
+}
+
+SampledDistance sampled_distances(const TriangleSoup& soup, const CompiledE& E, double diagonal,
+                                  const std::vector<Point3>& surface_points) {
+  SampledDistance d;
+  if (soup.triangles.empty()) return d;
+  d.mesh_to_surface = sampled_mesh_to_surface(soup, E, diagonal, d.unprojected);
+  using Triangles = std::vector<Kernel::Triangle_3>;
+  using Primitive = CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterator>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+  Triangles triangles;
+  triangles.reserve(soup.triangles.size());
+  for (const auto& t : soup.triangles)
+    triangles.emplace_back(soup.points[t[0]], soup.points[t[1]], soup.points[t[2]]);
+  Tree tree(triangles.begin(), triangles.end());
+  tree.accelerate_distance_queries();
+  d.surface_to_mesh = 0;
+  for (const Point3& p : surface_points) d.surface_to_mesh = std::max(d.surface_to_mesh, tree.squared_distance(p));
+  d.surface_to_mesh = std::sqrt(d.surface_to_mesh);
+  return d;
+}
+
+// --- experiment distance -------------------------------------------------------------------------
+//! The numbers of a comma-separated list; throws InvalidInput (naming `option`) for an item that
+//! is not a positive finite number.
+std::vector<double> positive_numbers(const std::string& option, const std::string& text) {
+  std::vector<double> values;
+  for (const std::string& item : split(text)) {
+    std::size_t used = 0;
+    double value = std::numeric_limits<double>::quiet_NaN();
+    try {
+      value = std::stod(item, &used);
+    } catch (const std::exception&) {
+    }
+    if (used != item.size() || !(std::isfinite(value) && value > 0))
+      throw InvalidInput(option + ": expected positive numbers, got '" + item + "'");
+    values.push_back(value);
+  }
+  if (values.empty()) throw InvalidInput(option + ": no value given");
+  return values;
+}
+
+//! The settings of the distance experiment (main() reads them from the command line).
+struct DistanceExperiment {
+  std::vector<std::string> surfaces;
+  std::vector<double> relative_distances;
+  double lambda = lambda0;
+  DelMeshOptions base;
+  double cgal_angle = 30, cgal_error_bound = 1e-6;
+  bool skip_delmesh = false;
+};
+
+//! One mesher's output in the distance experiment.
+struct DistanceMeasure {
+  std::string status = "not run";
+  std::size_t vertices = 0;
+  bool topology_correct = false;
+  double seconds = std::numeric_limits<double>::quiet_NaN();
+  SampledDistance sampled;
+};
+
+//! One row of distance.csv: a surface and δ, both meshers, and delmesh's certificate (its
+//! statistics' "distance": status, hausdorff_upper_bound, reason, seconds).
+struct DistanceRow {
+  std::string surface;
+  double relative = 0, delta = 0;
+  DistanceMeasure delmesh, mesh_3;
+  std::string certificate_status = "not run", certificate_reason;
+  double certified_bound = std::numeric_limits<double>::quiet_NaN();
+  double certificate_seconds = std::numeric_limits<double>::quiet_NaN();
+};
+
+//! A column of distance.csv with its value in full (CSV) and short (Markdown) form; `shown`: also
+//! a column of distance.md.
+struct Cell {
+  std::string name, csv, markdown;
+  bool shown;
+};
+
+Cell text_cell(const std::string& name, const std::string& value, bool shown) {
+  return {name, cell_text(value), cell_text(value), shown};
+}
+//! Markdown shows `digits` significant digits (6 where a value is compared with δ, so that a bound
+//! just below δ does not read as δ).
+Cell number_cell(const std::string& name, double value, bool shown, int digits = 4) {
+  std::ostringstream brief;
+  brief << std::setprecision(digits) << value;
+  return {name, field(value), std::isnan(value) ? "–" : brief.str(), shown};
+}
+
+void append_measure(std::vector<Cell>& cells, const std::string& prefix, const DistanceMeasure& m) {
+  cells.push_back(text_cell(prefix + "_status", m.status, prefix == "delmesh"));
+  cells.push_back(text_cell(prefix + "_vertices", field(m.vertices), true));
+  cells.push_back(text_cell(prefix + "_topology_correct", field(m.topology_correct), true));
+  cells.push_back(number_cell(prefix + "_seconds", m.seconds, true));
+  cells.push_back(number_cell(prefix + "_sampled_mesh_to_surface_estimate", m.sampled.mesh_to_surface, true));
+  cells.push_back(number_cell(prefix + "_sampled_surface_to_mesh", m.sampled.surface_to_mesh, true));
+  cells.push_back(number_cell(prefix + "_sampled_hausdorff_estimate", m.sampled.hausdorff(), false));
+  cells.push_back(text_cell(prefix + "_unprojected_samples", field(m.sampled.unprojected), false));
+}
+
+//! The cells of a row, in column order (the column names are those of any row).
+std::vector<Cell> distance_cells(const DistanceRow& r) {
+  std::vector<Cell> cells{text_cell("surface", r.surface, true), number_cell("relative_distance", r.relative, true),
+                          number_cell("delta", r.delta, true, 6)};
+  append_measure(cells, "delmesh", r.delmesh);
+  cells.push_back(text_cell("certificate_status", r.certificate_status, true));
+  cells.push_back(number_cell("certified_hausdorff_bound", r.certified_bound, true, 6));
+  cells.push_back(number_cell("certified_bound_over_delta", r.certified_bound / r.delta, true, 6));
+  cells.push_back(number_cell("certificate_seconds", r.certificate_seconds, false));
+  cells.push_back(text_cell("certificate_reason", r.certificate_reason, false));
+  append_measure(cells, "mesh_3", r.mesh_3);
+  const double vertices_ratio = r.mesh_3.vertices ? static_cast<double>(r.delmesh.vertices) / r.mesh_3.vertices
+                                                  : std::numeric_limits<double>::quiet_NaN();
+  cells.push_back(number_cell("vertices_ratio", vertices_ratio, true));
+  cells.push_back(number_cell("seconds_ratio", r.delmesh.seconds / r.mesh_3.seconds, true));
+  return cells;
+}
+
+std::vector<std::string> distance_columns() {
+  std::vector<std::string> names;
+  for (const Cell& c : distance_cells(DistanceRow{})) names.push_back(c.name);
+  return names;
+}
+
+//! Records a run (record()) and measures its sampled distances.
+DistanceMeasure measure(Context& context, const Prepared& s, Run& run, const std::vector<Point3>& surface_points) {
+  const MeshReport report = record(context, "distance", *s.entry, run, s.E);
+  DistanceMeasure m;
+  m.status = run.status;
+  m.vertices = report.vertices;
+  m.topology_correct = report.has_topology(s.entry->genus_per_component);
+  m.seconds = run.seconds;
+  m.sampled = sampled_distances(run.soup, s.E, s.entry->box.diagonal(), surface_points);
+  return m;
+}
+
+DistanceRow distance_row(Context& context, const DistanceExperiment& x, const Prepared& s,
+                         const std::vector<Point3>& surface_points, double relative) {
+  DistanceRow row;
+  row.surface = s.entry->name;
+  row.relative = relative;
+  row.delta = relative * s.entry->box.diagonal();
+  if (!x.skip_delmesh) {
+    Run dm = run_delmesh(*s.entry, x.lambda, std::nullopt, x.base, row.delta);
+    row.delmesh = measure(context, s, dm, surface_points);
+    const nlohmann::json none = nlohmann::json::object();
+    const nlohmann::json certificate = dm.statistics.is_object() ? dm.statistics.value("distance", none) : none;
+    row.certificate_status = certificate.value("status", std::string("none"));
+    row.certificate_reason = certificate.value("reason", std::string());
+    row.certified_bound = certificate.value("hausdorff_upper_bound", std::numeric_limits<double>::quiet_NaN());
+    row.certificate_seconds = certificate.value("seconds", std::numeric_limits<double>::quiet_NaN());
+  }
+  const CgalSettings settings{x.cgal_angle, 0, row.delta, x.cgal_error_bound};
+  Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings);
+  row.mesh_3 = measure(context, s, m3, surface_points);
+  std::cout << "distance " << row.surface << " delta=" << row.delta << ": delmesh " << row.delmesh.status << ", "
+            << row.delmesh.vertices << " vertices, " << row.delmesh.seconds << " s, certificate "
+            << row.certificate_status << " bound " << row.certified_bound << " (" << row.certified_bound / row.delta
+            << " delta)" << (row.certificate_reason.empty() ? "" : ", reason: " + row.certificate_reason)
+            << ", sampled " << row.delmesh.sampled.hausdorff() << "; Mesh_3 " << row.mesh_3.vertices << " vertices, "
+            << row.mesh_3.seconds << " s, sampled " << row.mesh_3.sampled.hausdorff() << std::endl;
+  // The sampled surface-to-mesh distance is a lower bound up to the projection tolerance.
+  if (row.certificate_status == "certified" &&
+      row.delmesh.sampled.surface_to_mesh > row.certified_bound + 1e-9 * s.entry->box.diagonal())
+    std::cout << "distance " << row.surface << " delta=" << row.delta << ": UNSOUND? the sampled surface-to-mesh "
+              << "distance " << row.delmesh.sampled.surface_to_mesh << " exceeds the certified bound" << std::endl;
+  return row;
+}
+
+//! distance.md: a title, a line on the settings, and the rows' shown cells as a table.
+void write_distance_markdown(const fs::path& path, const DistanceExperiment& x, const std::vector<DistanceRow>& rows) {
+  std::ofstream out(path);
+  out << "# compare_cgal distance (git " << git_revision() << ", CGAL " << CGAL_VERSION_STR << ", " << utc_now()
+      << ")\n\n"
+      << "delta = relative_distance x the box diagonal. delmesh: lambda=" << x.lambda
+      << ", max_distance=delta (complete only if the gradient-flow certificate proves a two-sided Hausdorff "
+         "bound <= delta), seconds including the certificate. Mesh_3: facet_angle="
+      << x.cgal_angle << ", facet_distance=delta, no facet size bound, relative_error_bound=" << x.cgal_error_bound
+      << ", no perturb, no exude. Sampled distances (compare_cgal.cpp, sampled_distances): "
+         "*_sampled_mesh_to_surface_estimate from Newton projections of a grid on every triangle, an estimate; "
+         "*_sampled_surface_to_mesh the largest exact distance from sampled points of the surface to the mesh, a "
+         "lower bound on the two-sided Hausdorff distance. Ratios: delmesh over Mesh_3.\n\n";
+  std::string header, rule;
+  for (const Cell& c : distance_cells(DistanceRow{}))
+    if (c.shown) {
+      header += "| " + c.name + " ";
+      rule += "|---";
+    }
+  out << header << "|\n" << rule << "|\n";
+  for (const DistanceRow& row : rows) {
+    for (const Cell& c : distance_cells(row))
+      if (c.shown) out << "| " << c.markdown << " ";
+    out << "|\n";
+  }
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+void run_distance_experiment(Context& context, const DistanceExperiment& x) {
+  CsvWriter csv(context.out_dir / "distance.csv", "compare_cgal",
+                {{"experiment", "distance"},
+                 {"lambda", field(x.lambda)},
+                 {"cgal_angle", field(x.cgal_angle)},
+                 {"cgal_error_bound", field(x.cgal_error_bound)},
+                 {"mesh_samples_per_edge", field(mesh_samples_per_edge)},
+                 {"surface_sample_cells", field(surface_sample_cells)},
+                 {"seed", field(static_cast<long long>(x.base.seed))},
+                 {"cgal_seed", field(static_cast<long long>(cgal_seed))},
+                 {"time_limit", field(x.base.time_limit_seconds)},
+                 {"cgal", CGAL_VERSION_STR}},
+                distance_columns());
+  std::vector<DistanceRow> rows;
+  for (const std::string& name : x.surfaces) {
+    const Prepared s = prepare(name);
+    const std::vector<Point3> surface_points = surface_sample(s.E, s.entry->box);
+    std::cout << "distance " << name << ": " << surface_points.size() << " points of the surface sample" << std::endl;
+    for (double relative : x.relative_distances) {
+      rows.push_back(distance_row(context, x, s, surface_points, relative));
+      std::vector<std::string> fields;
+      for (const Cell& c : distance_cells(rows.back())) fields.push_back(c.csv);
+      csv.row(fields);
+    }
+  }
+  csv.close();
+  write_distance_markdown(context.out_dir / "distance.md", x, rows);
+  std::cout << "wrote " << csv.path().string() << " and " << (context.out_dir / "distance.md").string() << std::endl;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   delmesh::back_heap_with_huge_pages();
   CLI::App app{"delmesh vs CGAL Surface_mesher and Mesh_3 (seconds-per-vertex benchmark, coarsest-topology "
-               "comparison and the topology demo); writes <out-dir>/compare_cgal.csv"};
+               "comparison, the topology demo, and on request the distance comparison: delmesh's certified "
+               "--max-distance against Mesh_3's facet_distance); writes <out-dir>/compare_cgal.csv, and for "
+               "distance <out-dir>/distance.csv and distance.md"};
   std::string surfaces = "torus,genus2", demo_surfaces = "thin_handle,two_blobs,near_sheets";
   std::string experiments_to_run = "benchmark,coarsest,demo";
   double lambda = lambda0;
   std::string cases = "torus:0.05,genus2:0.05,torus:0.02";
   double cgal_angle = 30;
   double cgal_error_bound = 1e-6;
+  std::string relative_distances = "1e-3";
   std::vector<double> coarse_radii{0.5, 1.0};
   std::vector<double> ladder{0.8, 0.4, 0.2, 0.1, 0.05};
   std::string out_dir = "out";
@@ -328,9 +689,10 @@ int main(int argc, char** argv) {
   int repeat = 1;
   DelMeshOptions base;
   base.progress = nullptr;
-  app.add_option("--surfaces", surfaces, "benchmark surfaces (catalog names, comma separated)")->capture_default_str();
+  app.add_option("--surfaces", surfaces, "surfaces of coarsest and distance (catalog names, comma separated)")
+      ->capture_default_str();
   app.add_option("--demo-surfaces", demo_surfaces, "demo surfaces")->capture_default_str();
-  app.add_option("--experiments", experiments_to_run, "any of benchmark,coarsest,demo")->capture_default_str();
+  app.add_option("--experiments", experiments_to_run, "any of benchmark,coarsest,demo,distance")->capture_default_str();
   app.add_option("--lambda", lambda, "delmesh lambda")->capture_default_str();
   app.add_option("--cases", cases,
                  "benchmark cases SURFACE:H, comma separated: delmesh with size bound H against CGAL with "
@@ -341,11 +703,16 @@ int main(int argc, char** argv) {
                  "gives the median, least and greatest ratio")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  app.add_option("--relative-distances", relative_distances,
+                 "distance: the distance bounds, comma separated, each times the surface's box diagonal: delmesh's "
+                 "max_distance and Mesh_3's facet_distance")
+      ->capture_default_str();
   app.add_option("--angle", cgal_angle, "CGAL facet angle bound (deg)")->capture_default_str();
   app.add_option("--cgal-error-bound", cgal_error_bound,
-                 "benchmark only: relative error bound of CGAL's implicit-surface bisection (times the bounding "
-                 "sphere's diameter; CGAL's own default 1e-3, which coarsest and demo keep, exceeds the facet "
-                 "distance H/10 on the catalog boxes for H <= 0.05)")
+                 "benchmark and distance only: relative error bound of CGAL's implicit-surface bisection (times "
+                 "the bounding sphere's diameter; CGAL's own default 1e-3, which coarsest and demo keep, exceeds "
+                 "the facet distance H/10 on the catalog boxes for H <= 0.05, and is about distance's default "
+                 "delta)")
       ->capture_default_str()
       ->check(CLI::Range(1e-15, 1e-1));
   app.add_option("--coarse-radii", coarse_radii, "CGAL radius bounds of the demo (distance = radius/10)")
@@ -384,6 +751,7 @@ int main(int argc, char** argv) {
                    {"cgal_error_bound", field(cgal_error_bound)},
                    {"demo_radii", field_list(coarse_radii)},
                    {"ladder_radii", field_list(ladder)},
+                   {"relative_distances", relative_distances},
                    {"seed", field(static_cast<long long>(base.seed))},
                    {"cgal_seed", field(static_cast<long long>(cgal_seed))},
                    {"time_limit", field(base.time_limit_seconds)},
@@ -393,19 +761,6 @@ int main(int argc, char** argv) {
     const auto wanted = split(experiments_to_run);
     auto wants = [&wanted](const std::string& name) {
       return std::find(wanted.begin(), wanted.end(), name) != wanted.end();
-    };
-
-    struct Prepared {
-      const CatalogEntry* entry;
-      CompiledE E;
-      std::array<double, 3> centre;
-      double squared_radius;
-    };
-    auto prepare = [](const std::string& name) {
-      const CatalogEntry& entry = catalog_entry(name);
-      CompiledE E(entry.surface());
-      const auto centre = inside_point(E, entry.box);
-      return Prepared{&entry, E, centre, enclosing_squared_radius(centre, entry.box)};
     };
 
     if (wants("benchmark")) {
@@ -528,6 +883,9 @@ int main(int argc, char** argv) {
         }
       }
     }
+    if (wants("distance"))
+      run_distance_experiment(context, {split(surfaces), positive_numbers("--relative-distances", relative_distances),
+                                        lambda, base, cgal_angle, cgal_error_bound, skip_delmesh});
     csv.close();
     std::cout << "wrote " << csv.path().string() << std::endl;
   });

@@ -81,6 +81,10 @@ struct MeshInputPlan {
 //! (read_input_mesh: one InvalidInput naming the defect).  --solver is not read.  The minimum
 //! spacing defaults to tolerances::min_spacing_median_edge_fraction times the mesh's median edge.
 MeshInputPlan plan_mesh_input(const MeshRequest& request);
+//! The same for a mesh already read and validated (validate_input_mesh), named `name` (the
+//! plan's name, and its path when the request has no --input-mesh); request.input_mesh is not
+//! read.
+MeshInputPlan plan_mesh_input(const MeshRequest& request, InputMesh mesh, const std::string& name);
 
 //! DelMesh on the plan's mesh through a MeshOracle (meshing/mesh_oracle.h), with `options`
 //! (the plan's, plus progress and interrupt).  The statistics are del_mesh's, with "input_mesh":

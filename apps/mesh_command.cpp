@@ -177,16 +177,20 @@ MeshPlan plan_mesh(const MeshRequest& r) {
 }
 
 MeshInputPlan plan_mesh_input(const MeshRequest& r) {
-  const bool covered = check_lambda(r.lambda);
   if (!r.input_mesh) throw PreconditionViolation("plan_mesh_input: the request has no --input-mesh");
+  // The default outputs <stem>_remeshed.off and .json never replace the input.
+  return plan_mesh_input(r, read_input_mesh(*r.input_mesh),
+                         std::filesystem::path(*r.input_mesh).stem().string() + "_remeshed");
+}
+
+MeshInputPlan plan_mesh_input(const MeshRequest& r, InputMesh mesh, const std::string& name) {
+  const bool covered = check_lambda(r.lambda);
   if (r.surface.surface || r.surface.expr || r.surface.box)
     throw InvalidInput("--input-mesh excludes --surface, --expr and --box");
   if (r.max_distance)
     throw InvalidInput("--max-distance needs --surface or --expr: an input mesh has no E whose gradient bounds "
                        "the distance");
-  // The default outputs <stem>_remeshed.off and .json never replace the input.
-  MeshInputPlan plan{std::filesystem::path(*r.input_mesh).stem().string() + "_remeshed", *r.input_mesh,
-                     read_input_mesh(*r.input_mesh), common_options(r), {}};
+  MeshInputPlan plan{name, r.input_mesh.value_or(name), std::move(mesh), common_options(r), {}};
   plan.options.min_spacing = tolerances::min_spacing_median_edge_fraction * plan.mesh.median_edge_length;
   limit_options(r, plan.options);
   if (!covered) plan.warnings.push_back(lambda_warning(r.lambda));

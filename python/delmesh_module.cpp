@@ -2,7 +2,7 @@
 //! The Python module `delmesh`: mesh, check, solve and surfaces on numpy arrays.  Each function
 //! runs the computation of the matching `delmesh` subcommand (apps/commands.h), so the same input
 //! and seed give the same mesh, and an input the program refuses raises ValueError with the text
-//! of the program's `error:` line.  Numbers are validated from their Python text (str(value)) by
+//! of the program's `error:` line in Python's terms (argument names for flags: python_terms).  Numbers are validated from their Python text (str(value)) by
 //! the program's own option checks, so lam=float("nan") is refused as --lambda nan is.
 //!
 //! Threads: every call releases the GIL while the library works.  The library builds its
@@ -30,6 +30,7 @@
 #include <limits>
 #include <mutex>
 #include <optional>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -38,10 +39,13 @@
 
 #include "apps/command_line.h"
 #include "apps/commands.h"
+#include "apps/output_files.h"
 #include "common/errors.h"
 #include "common/run_limits.h"
 #include "meshing/del_mesh.h"
 #include "meshing/mesh_checker.h"
+#include "meshing/mesh_io.h"
+#include "meshing/input_mesh.h"
 #include "solvers/primitive_registry.h"
 
 namespace py = pybind11;
@@ -130,9 +134,39 @@ std::string list_option(const py::handle& value) {
   return text;
 }
 
+//! The text of E: a str (sympy expressions through str()).  Throws TypeError for anything else,
+//! with a word on callables, which cannot be differentiated exactly.
+std::string expr_text(const py::object& expr) {
+  if (py::isinstance<py::str>(expr)) return expr.cast<std::string>();
+  const std::string type = py::str(py::type::of(expr).attr("__name__"));
+  const std::string module = py::str(py::type::of(expr).attr("__module__"));
+  if (module.rfind("sympy", 0) == 0) return py::str(expr);
+  if (PyCallable_Check(expr.ptr()))
+    throw py::type_error("expr must be E(x, y, z) as a string (e.g. 'x**2+y**2+z**2-1') or a sympy expression, "
+                         "not a Python function: delmesh differentiates E exactly, which a function does not allow");
+  throw py::type_error("expr must be E(x, y, z) as a string or a sympy expression, not " + type);
+}
+
 //! A path (str or os.PathLike).
 std::string path_option(const py::handle& value) {
   return py::module_::import("os").attr("fspath")(value).cast<std::string>();
+}
+
+//! A message of the program in Python's terms: each flag --some-option becomes the argument
+//! some_option (--lambda becomes lam), so that "--expr needs --box" reads "expr needs box".
+std::string python_terms(const std::string& message) {
+  static const std::regex flag("--([a-z][a-z0-9]*(-[a-z0-9]+)*)");
+  std::string out;
+  auto last = message.cbegin();
+  for (std::sregex_iterator it(message.begin(), message.end(), flag), end; it != end; ++it) {
+    out.append(last, (*it)[0].first);
+    std::string name = (*it)[1].str();
+    std::replace(name.begin(), name.end(), '-', '_');
+    out += name == "lambda" ? "lam" : name;
+    last = (*it)[0].second;
+  }
+  out.append(last, message.cend());
+  return out;
 }
 
 py::object from_json(const std::string& dumped) { return py::module_::import("json").attr("loads")(dumped); }
@@ -151,6 +185,45 @@ py::array_t<T> rows_of_three(std::size_t n, const At& at) {
 // ---------------------------------------------------------------------------------------------
 // mesh
 // ---------------------------------------------------------------------------------------------
+
+//! The soup of an N × 3 array of coordinates and an M × 3 array of integer vertex indices.
+//! Throws InvalidInput on other shapes, non-integer or negative indices.
+void read_soup(const py::object& vertices, const py::object& triangles, std::vector<Point3>& points,
+               std::vector<std::array<std::size_t, 3>>& faces) {
+  const py::module_ np = py::module_::import("numpy");
+  const py::array v = np.attr("asarray")(vertices, "float64");
+  if (v.ndim() != 2 || v.shape(1) != 3) {
+    throw InvalidInput("vertices: expected an N x 3 array of coordinates, got shape " +
+                       text_of(py::tuple(v.attr("shape"))));
+  }
+  const py::array t_any = np.attr("asarray")(triangles);
+  if (t_any.size() > 0 && !np.attr("issubdtype")(t_any.dtype(), np.attr("integer")).cast<bool>()) {
+    throw InvalidInput("triangles: expected integer vertex indices, got dtype " + text_of(t_any.dtype()));
+  }
+  const py::array t = np.attr("asarray")(t_any, "int64");
+  if (t.ndim() != 2 || t.shape(1) != 3) {
+    throw InvalidInput("triangles: expected an M x 3 array of vertex indices, got shape " +
+                       text_of(py::tuple(t.attr("shape"))));
+  }
+  const auto vv = py::array_t<double, py::array::c_style | py::array::forcecast>(v).unchecked<2>();
+  const auto tt = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>(t).unchecked<2>();
+  points.clear();
+  points.reserve(static_cast<std::size_t>(vv.shape(0)));
+  for (py::ssize_t i = 0; i < vv.shape(0); ++i) points.emplace_back(vv(i, 0), vv(i, 1), vv(i, 2));
+  faces.clear();
+  faces.reserve(static_cast<std::size_t>(tt.shape(0)));
+  for (py::ssize_t i = 0; i < tt.shape(0); ++i) {
+    std::array<std::size_t, 3> f{};
+    for (int k = 0; k < 3; ++k) {
+      if (tt(i, k) < 0) {
+        throw InvalidInput("triangles: triangle " + std::to_string(i) + " has the negative index " +
+                           std::to_string(tt(i, k)));
+      }
+      f[k] = static_cast<std::size_t>(tt(i, k));
+    }
+    faces.push_back(f);
+  }
+}
 
 struct MeshResult {
   py::array_t<double> vertices;        // N × 3
@@ -181,10 +254,13 @@ struct CallControls {
 //! compiling E, reading and validating an input mesh and the run itself all see them.  The
 //! caller keeps serving progress and signals (file comment).  A phase stopped before the run
 //! throws RunStopped, which reaches Python as TimeoutError (or the KeyboardInterrupt that set
-//! the flag).
+//! the flag).  When a Python exception stops the call after `work` has returned its result (a
+//! run stopped by the interrupt flag returns its partial mesh), that result goes to `partial`
+//! if given, and the exception is raised.
 template <class Result>
 Result run_on_worker(double time_limit, const py::object& progress,
-                     const std::function<Result(const CallControls&)>& work) {
+                     const std::function<Result(const CallControls&)>& work,
+                     std::optional<Result>* partial = nullptr) {
   std::atomic<bool> interrupt{false};
   const RunLimits limits = RunLimits::after(time_limit, &interrupt);
   std::mutex m;
@@ -250,6 +326,7 @@ Result run_on_worker(double time_limit, const py::object& progress,
   }
   worker.thread.join();
   if (python_error) {
+    if (partial && result) partial->emplace(std::move(*result));
     py::gil_scoped_acquire gil;
     throw std::move(*python_error);
   }
@@ -264,9 +341,20 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
                 const std::string& solver, const py::object& max_distance) {
   MeshRequest request;
   if (!surface.is_none()) request.surface.surface = surface.cast<std::string>();
-  if (!expr.is_none()) request.surface.expr = expr.cast<std::string>();
+  if (!expr.is_none()) request.surface.expr = expr_text(expr);
   if (!box.is_none()) request.surface.box = list_option(box);
-  if (!input_mesh.is_none()) request.input_mesh = path_option(input_mesh);
+  // input_mesh: a path, or (vertices, triangles) arrays.
+  std::optional<std::pair<std::vector<Point3>, std::vector<std::vector<std::size_t>>>> input_soup;
+  if (!input_mesh.is_none() && (py::isinstance<py::tuple>(input_mesh) || py::isinstance<py::list>(input_mesh))) {
+    const py::sequence pair = input_mesh;
+    if (pair.size() != 2) throw InvalidInput("input_mesh: expected a path or a pair (vertices, triangles)");
+    std::vector<std::array<std::size_t, 3>> triangles;
+    input_soup.emplace();
+    read_soup(pair[0], pair[1], input_soup->first, triangles);
+    for (const auto& t : triangles) input_soup->second.push_back({t[0], t[1], t[2]});
+  } else if (!input_mesh.is_none()) {
+    request.input_mesh = path_option(input_mesh);
+  }
   request.lambda = finite_option("--lambda", lam);
   if (!size_bound.is_none()) request.size_bound = finite_option("--size-bound", size_bound);
   if (!max_distance.is_none()) request.max_distance = finite_option("--max-distance", max_distance);
@@ -282,38 +370,56 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
   std::vector<std::array<std::size_t, 3>> faces;
   std::string statistics, status;
   std::vector<std::string> warnings;
+  std::optional<py::error_already_set> stopped;
   {
     LibraryCall call;
     // Planning (parsing and compiling E, or reading and validating the mesh) runs on the worker
     // too, under the call's limits; its warnings are issued once the call has the GIL again.
     std::optional<DelMeshResult> result;
-    result = run_on_worker<DelMeshResult>(request.time_limit, progress, [&](const CallControls& controls) {
-      if (request.input_mesh) {
-        // A triangle mesh, remeshed through its MeshOracle as `delmesh mesh --input-mesh` does.
-        const MeshInputPlan plan = plan_mesh_input(request);
-        warnings = plan.warnings;
-        DelMeshResult r = remesh(plan, controls.applied_to(plan.options));
-        statistics = run_statistics(r, request.seed, std::nullopt).dump();
-        return r;
-      }
-      const MeshPlan plan = plan_mesh(request);
-      warnings = plan.warnings;
-      DelMeshResult r = del_mesh(plan.input.surface, plan.input.box, controls.applied_to(plan.options));
-      statistics = mesh_statistics(r, plan.input, request.seed, std::nullopt).dump();
-      return r;
-    });
+    try {
+      result = run_on_worker<DelMeshResult>(
+          request.time_limit, progress,
+          [&](const CallControls& controls) {
+            if (request.input_mesh || input_soup) {
+              // A triangle mesh, remeshed through its MeshOracle as `delmesh mesh --input-mesh` does.
+              const MeshInputPlan plan =
+                  input_soup ? plan_mesh_input(request, validate_input_mesh(input_soup->first, input_soup->second,
+                                                                            "input_mesh"),
+                                               "input_mesh")
+                             : plan_mesh_input(request);
+              warnings = plan.warnings;
+              DelMeshResult r = remesh(plan, controls.applied_to(plan.options));
+              statistics = run_statistics(r, request.seed, std::nullopt).dump();
+              return r;
+            }
+            const MeshPlan plan = plan_mesh(request);
+            warnings = plan.warnings;
+            DelMeshResult r = del_mesh(plan.input.surface, plan.input.box, controls.applied_to(plan.options));
+            statistics = mesh_statistics(r, plan.input, request.seed, std::nullopt).dump();
+            return r;
+          },
+          &result);
+    } catch (py::error_already_set& e) {
+      // Ctrl-C (or a progress callback's exception) after the run returned its partial mesh.
+      if (!result) throw;
+      stopped.emplace(std::move(e));
+    }
     mesh_to_soup(result->mesh, points, faces);
     std::ostringstream s;
     s << result->status;
     status = s.str();
   }
 
-  warn_all(warnings);
   MeshResult out;
   out.vertices = rows_of_three<double>(points.size(), [&](std::size_t i, int k) { return points[i][k]; });
   out.triangles = rows_of_three<std::int64_t>(faces.size(), [&](std::size_t i, int k) { return faces[i][k]; });
   out.stats = from_json(statistics);
   out.status = status;
+  if (stopped) {
+    py::setattr(stopped->value(), "partial", py::cast(out));
+    throw std::move(*stopped);
+  }
+  warn_all(warnings);
   return out;
 }
 
@@ -321,43 +427,25 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
 // check
 // ---------------------------------------------------------------------------------------------
 
-//! The soup of an N × 3 array of coordinates and an M × 3 array of integer vertex indices.
-//! Throws InvalidInput on other shapes, non-integer or negative indices.
-void read_soup(const py::object& vertices, const py::object& triangles, std::vector<Point3>& points,
-               std::vector<std::array<std::size_t, 3>>& faces) {
-  const py::module_ np = py::module_::import("numpy");
-  const py::array v = np.attr("asarray")(vertices, "float64");
-  if (v.ndim() != 2 || v.shape(1) != 3) {
-    throw InvalidInput("vertices: expected an N x 3 array of coordinates, got shape " +
-                       text_of(py::tuple(v.attr("shape"))));
-  }
-  const py::array t_any = np.attr("asarray")(triangles);
-  if (t_any.size() > 0 && !np.attr("issubdtype")(t_any.dtype(), np.attr("integer")).cast<bool>()) {
-    throw InvalidInput("triangles: expected integer vertex indices, got dtype " + text_of(t_any.dtype()));
-  }
-  const py::array t = np.attr("asarray")(t_any, "int64");
-  if (t.ndim() != 2 || t.shape(1) != 3) {
-    throw InvalidInput("triangles: expected an M x 3 array of vertex indices, got shape " +
-                       text_of(py::tuple(t.attr("shape"))));
-  }
-  const auto vv = py::array_t<double, py::array::c_style | py::array::forcecast>(v).unchecked<2>();
-  const auto tt = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>(t).unchecked<2>();
-  points.clear();
-  points.reserve(static_cast<std::size_t>(vv.shape(0)));
-  for (py::ssize_t i = 0; i < vv.shape(0); ++i) points.emplace_back(vv(i, 0), vv(i, 1), vv(i, 2));
-  faces.clear();
-  faces.reserve(static_cast<std::size_t>(tt.shape(0)));
-  for (py::ssize_t i = 0; i < tt.shape(0); ++i) {
-    std::array<std::size_t, 3> f{};
-    for (int k = 0; k < 3; ++k) {
-      if (tt(i, k) < 0) {
-        throw InvalidInput("triangles: triangle " + std::to_string(i) + " has the negative index " +
-                           std::to_string(tt(i, k)));
-      }
-      f[k] = static_cast<std::size_t>(tt(i, k));
-    }
-    faces.push_back(f);
-  }
+// ---------------------------------------------------------------------------------------------
+// save
+// ---------------------------------------------------------------------------------------------
+
+void save(const py::object& path, const py::object& vertices, const py::object& triangles) {
+  const std::string file = path_option(path);
+  TriangleSoup soup;
+  read_soup(vertices, triangles, soup.points, soup.triangles);
+  for (std::size_t f = 0; f < soup.triangles.size(); ++f)
+    for (std::size_t i : soup.triangles[f])
+      if (i >= soup.points.size())
+        throw InvalidInput("triangles: triangle " + std::to_string(f) + " refers to vertex " + std::to_string(i) +
+                           " of " + std::to_string(soup.points.size()));
+  const MeshFormat format = mesh_format(file);
+  // Written as the program writes its outputs: to a temporary file renamed over the target.
+  OutputSet outputs;
+  outputs.add("path", file);
+  const py::gil_scoped_release release;
+  outputs.write({[&](std::ostream& s) { write_triangle_soup(soup, s, format); }});
 }
 
 py::object check(const py::object& vertices, const py::object& triangles, const py::object& lam) {
@@ -391,7 +479,7 @@ py::object certify(const py::object& vertices, const py::object& triangles, cons
                    const py::object& seed, const py::object& time_limit) {
   SurfaceArguments arguments;
   if (!surface.is_none()) arguments.surface = surface.cast<std::string>();
-  if (!expr.is_none()) arguments.expr = expr.cast<std::string>();
+  if (!expr.is_none()) arguments.expr = expr_text(expr);
   if (!box.is_none()) arguments.box = list_option(box);
   const CertifyMethod chosen = parse_enum<CertifyMethod>(method, "method");
   const std::uint64_t seed_value = whole_option("--seed", seed, 0, std::numeric_limits<std::uint64_t>::max());
@@ -437,7 +525,7 @@ SolveAnswer solve(const std::string& primitive, const py::object& expr, const py
   SolveRequest request;
   request.primitive = primitive;
   if (!surface.is_none()) request.surface.surface = surface.cast<std::string>();
-  if (!expr.is_none()) request.surface.expr = expr.cast<std::string>();
+  if (!expr.is_none()) request.surface.expr = expr_text(expr);
   if (!box.is_none()) request.surface.box = list_option(box);
   const std::pair<const char*, const py::object*> parameters[] = {{"--direction", &direction},
                                                                   {"--direction2", &direction2},
@@ -517,7 +605,9 @@ PYBIND11_MODULE(delmesh, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const std::invalid_argument& e) {
-      PyErr_SetString(PyExc_ValueError, delmesh::app::one_line(e.what()).c_str());
+      PyErr_SetString(PyExc_ValueError, python_terms(delmesh::app::one_line(e.what())).c_str());
+    } catch (const delmesh::app::OutputError& e) {
+      PyErr_SetString(PyExc_OSError, delmesh::app::one_line(e.what()).c_str());
     } catch (const delmesh::RunStopped& e) {
       // A limit passed before there was a mesh to return (while compiling E or validating an input).
       PyErr_SetString(e.reason() == delmesh::StopReason::interrupted ? PyExc_KeyboardInterrupt : PyExc_TimeoutError,
@@ -561,11 +651,12 @@ PYBIND11_MODULE(delmesh, m) {
         py::arg("progress") = py::none(), py::arg("solver") = "subdivision", py::arg("max_distance") = py::none(),
         R"doc(Mesh a surface with DelMesh, as `delmesh mesh` does; returns a MeshResult.
 
-Give exactly one of expr (E(x,y,z) as text, the surface is E = 0) with box, surface (a catalog
-name, see surfaces(); a box replaces the catalog's) or input_mesh (the path of a closed mesh,
-OFF/PLY/OBJ, polygons triangulated: it is read, validated and remeshed as by
-`delmesh mesh --input-mesh FILE`, with the same default termination floor, and the statistics
-carry "input_mesh").
+Give exactly one of expr (E(x,y,z) as a string, or a sympy expression, the surface is E = 0; a
+Python function raises TypeError) with box, surface (a catalog name, see surfaces(); a box
+replaces the catalog's) or input_mesh (the path of a closed mesh, OFF/PLY/OBJ, polygons
+triangulated, or a pair (vertices, triangles) of N x 3 and M x 3 arrays: it is validated and
+remeshed as by `delmesh mesh --input-mesh FILE`, with the same default termination floor, and the
+statistics carry "input_mesh", whose "file" is "input_mesh" for arrays).
 
 box: "x0,x1,y0,y1,z0,z1" or six numbers; the surface must lie strictly inside.
 lam: lambda in (0, 1/3); Theorem 6.1 covers (0, 0.06] (guaranteed topology, radius-edge ratio
@@ -584,8 +675,20 @@ progress: called with each progress line (about every 0.5 s), on the calling thr
 solver: "subdivision" or "homotopy" (polynomial E only).
 
 The GIL is released while meshing.  Ctrl-C (any exception raised by a signal handler or by
-progress) stops the run at its next check and is raised once the run has stopped.
-Raises ValueError, with the program's error message, on invalid input.)doc");
+progress) stops the run at its next check and is raised once the run has stopped; when the run
+had begun, the exception's attribute `partial` holds the partial MeshResult (status
+interrupted), the mesh the program writes on Ctrl-C.
+Raises ValueError, with the program's error message in Python's terms (argument names for the
+program's flags), on invalid input.)doc");
+
+  m.def("save", &save, py::arg("path"), py::arg("vertices"), py::arg("triangles"),
+        R"doc(Write a triangle mesh as `delmesh mesh --out` does: OFF, PLY or OBJ by the extension of path
+(str or os.PathLike), through a temporary file renamed over the target, so an existing file is
+replaced only by a complete one.
+
+vertices: N x 3 coordinates; triangles: M x 3 integer vertex indices (as MeshResult gives them).
+Raises ValueError on an unknown extension, bad shapes or indices, OSError if the file cannot be
+written.)doc");
 
   m.def("check", &check, py::arg("vertices"), py::arg("triangles"), py::arg("lam") = py::none(),
         R"doc(The independent checker on a triangle soup, as `delmesh check --json` reports it; returns a dict.

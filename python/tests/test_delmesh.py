@@ -7,6 +7,7 @@ the program of the same build; by hand:
 
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -35,6 +36,14 @@ def cli_error(*args):
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: "), err
     return lines[0][len("error: "):]
+
+
+def python_terms(message):
+    """The program's message as the module words it: each flag --some-option becomes the
+    argument some_option (--lambda becomes lam)."""
+    def name(m):
+        return "lam" if m.group(1) == "lambda" else m.group(1).replace("-", "_")
+    return re.sub(r"--([a-z][a-z0-9]*(?:-[a-z0-9]+)*)", name, message)
 
 
 def read_off(path):
@@ -190,7 +199,50 @@ class MeshTest(unittest.TestCase):
                                         "--stats", os.path.join(d, "m.json"), "--quiet")
                     with self.assertRaises(ValueError) as caught:
                         delmesh.mesh(**kwargs)
-                    self.assertEqual(str(caught.exception), message)
+                    self.assertEqual(str(caught.exception), python_terms(message))
+                    self.assertNotIn("--", str(caught.exception))
+
+    def test_expr_must_be_text(self):
+        with self.assertRaisesRegex(TypeError, "not a Python function"):
+            delmesh.mesh(expr=lambda x, y, z: x * x + y * y + z * z - 1, box="-2,2,-2,2,-2,2")
+        with self.assertRaisesRegex(TypeError, "not int"):
+            delmesh.mesh(expr=1, box="-2,2,-2,2,-2,2")
+
+    def test_input_mesh_as_arrays_is_remeshed_as_the_file(self):
+        sphere = delmesh.mesh(surface="sphere", size_bound=0.5)
+        from_arrays = delmesh.mesh(input_mesh=(sphere.vertices, sphere.triangles))
+        self.assertEqual(from_arrays.stats["input_mesh"]["file"], "input_mesh")
+        self.assertEqual(from_arrays.stats["input_mesh"]["vertices"], len(sphere.vertices))
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "s.off")
+            delmesh.save(path, sphere.vertices, sphere.triangles)
+            from_file = delmesh.mesh(input_mesh=path)
+        np.testing.assert_array_equal(from_arrays.vertices, from_file.vertices)
+        np.testing.assert_array_equal(from_arrays.triangles, from_file.triangles)
+        with self.assertRaisesRegex(ValueError, "input_mesh"):
+            delmesh.mesh(input_mesh=(sphere.vertices,))
+
+    def test_save_writes_what_the_program_reads(self):
+        torus = delmesh.mesh(surface="torus")
+        with tempfile.TemporaryDirectory() as d:
+            for ext in ("off", "ply", "obj"):
+                path = os.path.join(d, "t." + ext)
+                delmesh.save(path, torus.vertices, torus.triangles)
+                code, out, err = run_cli("check", path, "--json")
+                self.assertEqual(code, 0, err)
+                report = json.loads(out)
+                self.assertEqual(report["vertices"], len(torus.vertices))
+                self.assertEqual(report["genus_per_component"], [1])
+            with self.assertRaisesRegex(ValueError, "extension"):
+                delmesh.save(os.path.join(d, "t.xyz"), torus.vertices, torus.triangles)
+            with self.assertRaisesRegex(ValueError, "triangles"):
+                delmesh.save(os.path.join(d, "u.off"), torus.vertices, torus.triangles[:, :2])
+
+    def test_max_distance_is_certified(self):
+        result = delmesh.mesh(surface="sphere", max_distance=0.01)
+        self.assertEqual(result.status, "complete")
+        self.assertEqual(result.stats["distance"]["status"], "certified")
+        self.assertLessEqual(result.stats["distance"]["hausdorff_upper_bound"], 0.01)
 
     def test_lambda_beyond_the_theorem_warns(self):
         with self.assertWarnsRegex(RuntimeWarning, "Theorem 6.1 does not cover"):
@@ -245,7 +297,7 @@ class ThreadsTest(unittest.TestCase):
         sender = threading.Thread(target=interrupt)
         sender.start()
         try:
-            with self.assertRaises(KeyboardInterrupt):
+            with self.assertRaises(KeyboardInterrupt) as caught:
                 # A run of several seconds (about 27 000 vertices), so that it is still running
                 # when the first progress report (after 0.5 s) sends the signal.
                 delmesh.mesh(surface="torus", size_bound=0.02, progress=progress)
@@ -258,6 +310,12 @@ class ThreadsTest(unittest.TestCase):
         self.assertIsInstance(lines[0], str)
         self.assertIn("points", lines[0])
         self.assertLess(stopped - sent[0], 2.0)
+        # The exception carries the partial mesh, as the program writes it.
+        partial = caught.exception.partial
+        self.assertEqual(partial.status, "interrupted")
+        self.assertEqual(partial.stats["status"], "interrupted")
+        self.assertEqual(partial.stats["vertices"], len(partial.vertices))
+        self.assertGreater(len(partial.triangles), 0)
         # The library is usable again: the worker was joined and the lock released.
         self.assertEqual(delmesh.mesh(surface="sphere").status, "complete")
 
@@ -328,7 +386,7 @@ class CheckTest(unittest.TestCase):
             message = cli_error("check", off, "--lambda", "0.2")
         with self.assertRaises(ValueError) as caught:
             delmesh.check(vertices, triangles, lam=0.2)
-        self.assertEqual(str(caught.exception), message)
+        self.assertEqual(str(caught.exception), python_terms(message))
 
 
 class CertifyTest(unittest.TestCase):
@@ -407,7 +465,7 @@ class SolveTest(unittest.TestCase):
                 message = cli_error("solve", "--surface", "torus", *args)
                 with self.assertRaises(ValueError) as caught:
                     delmesh.solve(**kwargs)
-                self.assertEqual(str(caught.exception), message)
+                self.assertEqual(str(caught.exception), python_terms(message))
 
 
 class ExampleTest(unittest.TestCase):

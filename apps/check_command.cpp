@@ -253,8 +253,9 @@ ExitCode run_check(const CheckOptions& o) {
   PhaseWatchdog watchdog(limits);
   std::optional<PhaseWatchdog::Phase> phase;  // (destroyed before the watchdog it arms)
   phase.emplace(watchdog, "reading and checking the mesh");
-  // Read as a soup: open, non-manifold and non-orientable meshes are reported, not refused.
-  const TriangleSoup soup = read_triangle_soup(o.mesh);
+  // Read as a soup: open, non-manifold and non-orientable meshes are reported, not refused; faces
+  // of more than three vertices are triangulated as `mesh --input-mesh` does.
+  const TriangleSoup soup = triangulate_polygons(read_polygon_soup(o.mesh), o.mesh);
   const CheckVerdict verdict = check_verdict(check_mesh(soup.points, soup.triangles),
                                              with_bounds ? std::optional<double>(o.lambda) : std::nullopt);
   std::optional<TopologyCertificates> certificates;
@@ -347,7 +348,8 @@ Command add_check_command(CLI::App& parent) {
   CLI::App* sub =
       parent.add_subcommand("check", "Check a mesh file independently (topology, quality, bounds, certificate)");
   sub->footer(
-      "Check a triangle mesh file (OFF, PLY or OBJ) from the file alone: components, Euler characteristic, "
+      "Check a mesh file (OFF, PLY or OBJ; polygons are triangulated as by mesh --input-mesh) from the file "
+      "alone: components, Euler characteristic, "
       "genus per component (where defined: closed orientable 2-manifold components), closed / manifold / "
       "orientable with the counts of boundary edges and loops and of non-manifold edges and vertices, minimum "
       "angle, maximum radius-edge ratio, maximum roughness. Open, non-manifold and non-orientable meshes are "
@@ -369,7 +371,7 @@ Command add_check_command(CLI::App& parent) {
               "--time-limit or a signal such as SIGINT or SIGTERM (during the certificate it stops and the report "
               "says undecided; before it nothing is printed; while the report is printed it is finished "
               "first), 4 internal error, 6 the report could not be written to standard output.");
-  sub->add_option("MESH", o->mesh, "The mesh file (.off, .ply or .obj)")->required();
+  sub->add_option("MESH", o->mesh, "The mesh file (.off, .ply or .obj; polygons are triangulated)")->required();
   o->lambda_option = sub->add_option("--lambda", o->lambda,
                                      "lambda in (0, 1/6): compare with min angle >= asin(1/(2+2 lambda)), "
                                      "radius-edge ratio <= 1+lambda, roughness <= 2 beta(lambda)")->type_name("L")

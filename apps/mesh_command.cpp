@@ -1,6 +1,6 @@
 //! \file mesh_command.cpp
 //! `delmesh mesh`: DelMesh (meshing/del_mesh.h) on a catalog surface or an expression; writes the
-//! mesh (OFF/PLY/OBJ by extension) and the statistics JSON.  Exit code 3 when a limit stopped the
+//! mesh (OFF/PLY/OBJ/STL/VTP by extension) and the statistics JSON.  Exit code 3 when a limit stopped the
 //! run, 5 when it ended uncertified: the mesh and statistics are still written.  The two outputs are
 //! written as a group (apps/output_files.h): both replace the old files once both are complete, or
 //! neither does (exit code 2 or 6), and existing files are left untouched.
@@ -22,6 +22,7 @@
 #include "apps/interrupt.h"
 #include "apps/output_files.h"
 #include "apps/phase_watchdog.h"
+#include "apps/surface_normals.h"
 #include "common/enum_names.h"
 #include "common/errors.h"
 #include "common/run_limits.h"
@@ -306,8 +307,8 @@ std::pair<std::string, std::string> output_files(const MeshOptions& o, const std
   const std::string out = o.out_option->count() > 0 ? o.out : name + ".off";
   const std::string stats = o.stats_option->count() > 0 ? o.stats : name + ".json";
   const std::string extension = extension_of(out);
-  if (extension != ".off" && extension != ".ply" && extension != ".obj") {
-    throw InvalidInput("--out: the extension must be .off, .ply or .obj, got '" + out + "'");
+  if (extension != ".off" && extension != ".ply" && extension != ".obj" && extension != ".stl" && extension != ".vtp") {
+    throw InvalidInput("--out: the extension must be .off, .ply, .obj, .stl or .vtp, got '" + out + "'");
   }
   if (out == "-") throw InvalidInput("--out: a mesh file name is required (\"-\" is only for --stats)");
   outputs.add("--out", out);
@@ -446,6 +447,13 @@ void print_distance(const nlohmann::json& statistics) {
     std::cerr << "delmesh: distance to the surface not certified: " << (*d)["reason"].get<std::string>() << std::endl;
 }
 
+//! Writes the run's mesh in `format`.  A .vtp of an implicit surface carries the unit normals
+//! ∇E/|∇E| at its vertices (surface_normals.h); one of an input mesh has no normals.
+void write_run_mesh(const MeshRun& run, const DelMeshResult& result, std::ostream& out, MeshFormat format) {
+  const bool normals = format == MeshFormat::vtp && run.plan;
+  write_mesh(result.mesh, out, format, normals ? surface_normals(run.plan->input.surface, result.mesh) : PointNormals{});
+}
+
 //! The steps: plan the run and check its outputs (every option valid from then on, so a warning
 //! cannot precede an `error:` about them), mesh, certify if asked, write, and map the status.
 ExitCode run_mesh(const MeshOptions& o) {
@@ -489,7 +497,7 @@ ExitCode run_mesh(const MeshOptions& o) {
 
   // Both files or neither: a file that cannot be written leaves the other one as it was.
   const MeshFormat format = mesh_format(out);
-  outputs.write({[&](std::ostream& s) { write_mesh(result.mesh, s, format); },
+  outputs.write({[&](std::ostream& s) { write_run_mesh(run, result, s, format); },
                  [&](std::ostream& s) { s << statistics.dump(2) << "\n"; }});
 
   if (!o.quiet) {
@@ -558,8 +566,9 @@ Command add_mesh_command(CLI::App& parent) {
       "then proves the two-sided Hausdorff distance <= delta (statistics \"distance\")")->type_name("DELTA")
       ->check(finite_number());
   o->out_option = sub->add_option("--out", o->out,
-                                  "Mesh file, format by extension .off|.ply|.obj (default: <name>.off, <name> = "
-                                  "the catalog name or 'surface' for --expr)")->type_name("FILE");
+                                  "Mesh file, format by extension .off|.ply|.obj|.stl (binary)|.vtp (VTK XML PolyData, with "
+                                  "the unit normals grad E/|grad E| at the vertices for --surface/--expr) (default: "
+                                  "<name>.off, <name> = the catalog name or 'surface' for --expr)")->type_name("FILE");
   o->stats_option =
       sub->add_option("--stats", o->stats, "Statistics JSON file, or - for stdout (default: <name>.json)")->type_name("FILE|-");
   sub->add_option("--max-points", o->max_points,

@@ -19,7 +19,9 @@
 #include <CGAL/IO/OBJ.h>
 #include <CGAL/IO/OFF.h>
 #include <CGAL/IO/PLY.h>
+#include <CGAL/IO/STL.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 
 #include "common/errors.h"
 #include "meshing/detail/mesh_readers.h"
@@ -30,19 +32,57 @@ namespace {
 
 namespace fs = std::filesystem;
 
-enum class Format { off, ply, obj };
-
 //! Significant digits that make every double round-trip through text.
 constexpr int full_double_precision = 17;
 
-Format format_of(const std::string& path) {
+//! The extension of path, in lower case ("" if none).
+std::string lower_extension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".off") return Format::off;
-  if (ext == ".ply") return Format::ply;
-  if (ext == ".obj") return Format::obj;
-  throw InvalidInput("mesh file '" + path + "': unknown extension '" + ext +
-                     "' (expected .off, .ply or .obj)");
+  return ext;
+}
+
+//! The format of a file to read: the formats written but .stl and .vtp.
+MeshFormat read_format(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".off") return MeshFormat::off;
+  if (ext == ".ply") return MeshFormat::ply;
+  if (ext == ".obj") return MeshFormat::obj;
+  throw InvalidInput("mesh file '" + path + "': unknown extension '" + ext + "' (expected .off, .ply or .obj" +
+                     (ext == ".stl" || ext == ".vtp" ? std::string("; ") + ext + " files are written, not read)" : ")"));
+}
+
+//! The soup as VTK XML PolyData, ASCII: the points, the triangles as Polys (connectivity and
+//! offsets) and, if given, the point data "Normals" (Float64, three components).
+void write_vtp(const TriangleSoup& soup, std::ostream& out, const PointNormals& normals) {
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "  <PolyData>\n"
+      << "    <Piece NumberOfPoints=\"" << soup.points.size() << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
+      << "NumberOfStrips=\"0\" NumberOfPolys=\"" << soup.triangles.size() << "\">\n";
+  if (!normals.empty()) {
+    out << "      <PointData Normals=\"Normals\">\n"
+        << "        <DataArray type=\"Float64\" Name=\"Normals\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (const auto& n : normals) out << "          " << n[0] << ' ' << n[1] << ' ' << n[2] << '\n';
+    out << "        </DataArray>\n"
+        << "      </PointData>\n";
+  }
+  out << "      <Points>\n"
+      << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (const Point3& p : soup.points) out << "          " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+  out << "        </DataArray>\n"
+      << "      </Points>\n"
+      << "      <Polys>\n"
+      << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+  for (const auto& t : soup.triangles) out << "          " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+  out << "        </DataArray>\n"
+      << "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+  for (std::size_t f = 1; f <= soup.triangles.size(); ++f) out << "          " << 3 * f << '\n';
+  out << "        </DataArray>\n"
+      << "      </Polys>\n"
+      << "    </Piece>\n"
+      << "  </PolyData>\n"
+      << "</VTKFile>\n";
 }
 
 [[noreturn]] void corrupt(const std::string& path, const std::string& why) { detail::mesh_file_error(path, why); }
@@ -129,18 +169,21 @@ PolygonSoup read_obj(const std::string& path) {
 }  // namespace
 
 MeshFormat mesh_format(const std::string& path) {
-  switch (format_of(path)) {
-    case Format::off: return MeshFormat::off;
-    case Format::ply: return MeshFormat::ply;
-    case Format::obj: return MeshFormat::obj;
-  }
-  throw PreconditionViolation("mesh_format: unknown format");
+  const std::string ext = lower_extension(path);
+  if (ext == ".stl") return MeshFormat::stl;
+  if (ext == ".vtp") return MeshFormat::vtp;
+  if (ext == ".off" || ext == ".ply" || ext == ".obj") return read_format(path);
+  throw InvalidInput("mesh file '" + path + "': unknown extension '" + ext +
+                     "' (expected .off, .ply, .obj, .stl or .vtp)");
 }
 
-void write_triangle_soup(const TriangleSoup& soup, std::ostream& out, MeshFormat format) {
+void write_triangle_soup(const TriangleSoup& soup, std::ostream& out, MeshFormat format, const PointNormals& normals) {
   for (const auto& t : soup.triangles)
     for (std::size_t v : t)
       if (v >= soup.points.size()) throw PreconditionViolation("write_triangle_soup: vertex index out of range");
+  if (!normals.empty() && normals.size() != soup.points.size())
+    throw PreconditionViolation("write_triangle_soup: " + std::to_string(normals.size()) + " normals for " +
+                                std::to_string(soup.points.size()) + " points");
   out.imbue(std::locale::classic());
   out.precision(full_double_precision);
   const auto np = CGAL::parameters::stream_precision(full_double_precision);
@@ -155,13 +198,20 @@ void write_triangle_soup(const TriangleSoup& soup, std::ostream& out, MeshFormat
     case MeshFormat::obj:
       CGAL::IO::write_OBJ(out, soup.points, soup.triangles, np);
       break;
+    case MeshFormat::stl:
+      CGAL::IO::set_mode(out, CGAL::IO::BINARY);
+      CGAL::IO::write_STL(out, soup.points, soup.triangles);
+      break;
+    case MeshFormat::vtp:
+      write_vtp(soup, out, normals);
+      break;
   }
 }
 
-void write_mesh(const SurfaceMesh& mesh, std::ostream& out, MeshFormat format) {
+void write_mesh(const SurfaceMesh& mesh, std::ostream& out, MeshFormat format, const PointNormals& normals) {
   TriangleSoup soup;
   mesh_to_soup(mesh, soup.points, soup.triangles);
-  write_triangle_soup(soup, out, format);
+  write_triangle_soup(soup, out, format, normals);
 }
 
 void write_triangle_soup(const TriangleSoup& soup, const std::string& path) {
@@ -205,7 +255,7 @@ void write_mesh(const SurfaceMesh& mesh, const std::string& path) {
 }
 
 PolygonSoup read_polygon_soup(const std::string& path) {
-  const Format format = format_of(path);
+  const MeshFormat format = read_format(path);
   std::error_code error;
   if (fs::is_directory(path, error)) corrupt(path, "is a directory, not a mesh file");
   if (!fs::exists(path, error)) corrupt(path, "no such file");
@@ -214,7 +264,7 @@ PolygonSoup read_polygon_soup(const std::string& path) {
   if (error) corrupt(path, "cannot read its size: " + error.message());
   if (bytes == 0) corrupt(path, "is empty");
   PolygonSoup soup;
-  if (format == Format::obj) {
+  if (format == MeshFormat::obj) {
     soup = read_obj(path);
   } else {
     // OFF and PLY: our own readers, on the whole file (no declared count reaches an allocation).
@@ -222,7 +272,7 @@ PolygonSoup read_polygon_soup(const std::string& path) {
     if (!in) corrupt(path, "cannot be opened for reading");
     std::string contents(static_cast<std::size_t>(bytes), '\0');
     if (!in.read(contents.data(), static_cast<std::streamsize>(bytes))) corrupt(path, "cannot be read");
-    soup = format == Format::off ? detail::read_off(path, contents) : detail::read_ply(path, contents);
+    soup = format == MeshFormat::off ? detail::read_off(path, contents) : detail::read_ply(path, contents);
   }
   if (soup.faces() == 0) corrupt(path, "has no faces");
   std::vector<std::size_t> sorted;
@@ -235,9 +285,9 @@ PolygonSoup read_polygon_soup(const std::string& path) {
         // The readers store a negative index of the file as its wrapped-around unsigned value.
         const std::string index = v > std::numeric_limits<std::size_t>::max() / 2
                                       ? "-" + std::to_string(std::numeric_limits<std::size_t>::max() - v + 1)
-                                      : std::to_string(format == Format::obj ? v + 1 : v);
+                                      : std::to_string(format == MeshFormat::obj ? v + 1 : v);
         corrupt(path, "face " + std::to_string(f) + " refers to vertex " + index + ", but " +
-                          vertex_range(soup.points.size(), format == Format::obj ? 1 : 0));
+                          vertex_range(soup.points.size(), format == MeshFormat::obj ? 1 : 0));
       }
     }
     sorted.assign(first, last);
@@ -265,6 +315,59 @@ TriangleSoup read_triangle_soup(const std::string& path) {
   }
   soup.points = std::move(polygons.points);
   return soup;
+}
+
+TriangleSoup triangulate_polygons(const PolygonSoup& soup, const std::string& source) {
+  for (std::size_t index : soup.corners)
+    if (index >= soup.points.size()) throw PreconditionViolation("triangulate_polygons: vertex index out of range");
+  // The faces of more than three vertices, each with its own copies of its points, in one mesh;
+  // each is triangulated on its own, and its triangles replace it in the face order.
+  SurfaceMesh polygons;
+  std::vector<std::size_t> point_of;  // the soup's point of each vertex of `polygons`
+  std::vector<SurfaceMesh::Face_index> face_of(soup.faces());
+  std::vector<SurfaceMesh::Vertex_index> corners;
+  for (std::size_t f = 0; f < soup.faces(); ++f) {
+    if (soup.face_size(f) == 3) continue;
+    corners.clear();
+    for (const std::size_t* c = soup.face(f); c != soup.face(f) + soup.face_size(f); ++c) {
+      corners.push_back(polygons.add_vertex(soup.points[*c]));
+      point_of.push_back(*c);
+    }
+    face_of[f] = polygons.add_face(corners);
+  }
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  std::vector<std::vector<std::array<std::size_t, 3>>> triangles_of(soup.faces());
+  for (std::size_t f = 0; f < soup.faces(); ++f) {
+    if (soup.face_size(f) == 3) continue;
+    if (!PMP::triangulate_face(face_of[f], polygons))
+      corrupt(source, "face " + std::to_string(f) + " (" + std::to_string(soup.face_size(f)) +
+                          " vertices) could not be triangulated (a degenerate polygon)");
+  }
+  // A vertex belongs to one face of the soup: the first corner of a triangle names its face.
+  std::vector<std::size_t> face_of_vertex(point_of.size());
+  for (std::size_t f = 0, v = 0; f < soup.faces(); ++f)
+    if (soup.face_size(f) != 3)
+      for (std::size_t k = 0; k < soup.face_size(f); ++k) face_of_vertex[v++] = f;
+  for (SurfaceMesh::Face_index t : polygons.faces()) {
+    std::array<std::size_t, 3> triangle{};
+    std::size_t k = 0;
+    for (SurfaceMesh::Vertex_index v : CGAL::vertices_around_face(polygons.halfedge(t), polygons))
+      triangle[k++] = static_cast<std::size_t>(v);
+    const std::size_t f = face_of_vertex[triangle[0]];
+    for (std::size_t& v : triangle) v = point_of[v];
+    triangles_of[f].push_back(triangle);
+  }
+  TriangleSoup out;
+  out.points = soup.points;
+  for (std::size_t f = 0; f < soup.faces(); ++f) {
+    if (soup.face_size(f) == 3) {
+      const std::size_t* c = soup.face(f);
+      out.triangles.push_back({c[0], c[1], c[2]});
+    } else {
+      out.triangles.insert(out.triangles.end(), triangles_of[f].begin(), triangles_of[f].end());
+    }
+  }
+  return out;
 }
 
 SurfaceMesh read_mesh(const std::string& path) {

@@ -1,8 +1,10 @@
 #pragma once
 //! \file mesh_io.h
-//! Reading and writing triangle meshes as OFF, PLY or OBJ, chosen by the file extension
-//! (case-insensitive).  Output is ASCII with 17 significant digits (every double round-trips, and
-//! the same mesh always gives the same bytes) and is readable by MeshLab and ParaView.
+//! Reading and writing triangle meshes, the format chosen by the file extension (case-insensitive).
+//! OFF, PLY and OBJ are read and written; binary STL and VTK XML PolyData (.vtp) are written only.
+//! OFF, PLY, OBJ and VTP output is ASCII with 17 significant digits (every double round-trips, and
+//! the same mesh always gives the same bytes); STL output is binary, with float32 coordinates as
+//! the format has them.  All are readable by MeshLab or ParaView (.vtp by ParaView and meshio).
 
 #include <array>
 #include <cstddef>
@@ -16,25 +18,41 @@
 
 namespace delmesh {
 
-//! The mesh file formats, chosen by the file extension (case-insensitive): .off, .ply, .obj.
-enum class MeshFormat { off, ply, obj };
+//! The mesh file formats written, chosen by the file extension (case-insensitive): .off, .ply,
+//! .obj, .stl (binary STL, CGAL::IO::write_STL: an 80-byte header, then per triangle its unit
+//! normal and corners as float32), .vtp (VTK XML PolyData, ASCII: the points, the triangles as
+//! Polys and, when given, the point data "Normals").
+enum class MeshFormat { off, ply, obj, stl, vtp };
 constexpr auto enum_names(MeshFormat) {
-  return name_table<MeshFormat>("MeshFormat", {{MeshFormat::off, "off"}, {MeshFormat::ply, "ply"}, {MeshFormat::obj, "obj"}});
+  return name_table<MeshFormat>("MeshFormat", {{MeshFormat::off, "off"},
+                                               {MeshFormat::ply, "ply"},
+                                               {MeshFormat::obj, "obj"},
+                                               {MeshFormat::stl, "stl"},
+                                               {MeshFormat::vtp, "vtp"}});
 }
 inline std::ostream& operator<<(std::ostream& out, MeshFormat format) { return write_enum(out, format); }
 
 //! The format of a mesh file named `path`, by its extension.  Throws InvalidInput for another
-//! extension (or none).
+//! extension (or none), with a message that lists .off, .ply, .obj, .stl and .vtp.
 MeshFormat mesh_format(const std::string& path);
+
+//! One vector per point of a soup (per live vertex of a mesh, in index order): the unit normals
+//! a .vtp file carries as its point data "Normals".  Empty: none.
+using PointNormals = std::vector<std::array<double, 3>>;
 
 //! Writes the soup to `out` in `format` (the points in index order, then the triangles), and
 //! nothing else: opening, renaming and checking `out` for a failed write are the caller's.
-//! \pre every index is below soup.points.size() (else PreconditionViolation).
-void write_triangle_soup(const TriangleSoup& soup, std::ostream& out, MeshFormat format);
+//! `normals` are written by MeshFormat::vtp only; the other formats ignore them (OFF, PLY and
+//! OBJ are the same bytes with or without them).
+//! \pre every index is below soup.points.size(), and normals is empty or has one vector per
+//! point (else PreconditionViolation).
+void write_triangle_soup(const TriangleSoup& soup, std::ostream& out, MeshFormat format,
+                         const PointNormals& normals = {});
 //! The same for the live vertices and the faces of mesh (InvalidInput for a non-triangle face).
-void write_mesh(const SurfaceMesh& mesh, std::ostream& out, MeshFormat format);
+void write_mesh(const SurfaceMesh& mesh, std::ostream& out, MeshFormat format, const PointNormals& normals = {});
 
-//! Writes mesh to path (.off, .ply or .obj; the live vertices in index order, then the faces).
+//! Writes mesh to path (.off, .ply, .obj, .stl or .vtp; the live vertices in index order, then
+//! the faces).
 //! Throws InvalidInput for another extension or a non-triangle face, and std::runtime_error if the
 //! file cannot be written.  Writes to a temporary file in the same directory and renames it, so an
 //! existing file is never left half-written (the program's outputs go through
@@ -47,14 +65,23 @@ void write_triangle_soup(const TriangleSoup& soup, const std::string& path);
 //! Reads a polygon soup from path (OFF, ASCII or binary PLY, OBJ).  Throws InvalidInput, with
 //! the path and the reason, if the file is missing, unreadable, truncated or corrupt, has no
 //! faces, has a face with fewer than three vertices or one that repeats a vertex, has an index
-//! out of range or a non-finite coordinate, or has an unknown extension.  Works for any soup
-//! (non-manifold too).
+//! out of range or a non-finite coordinate, or has another extension (.stl and .vtp, which are
+//! written, included).  Works for any soup (non-manifold too).
 PolygonSoup read_polygon_soup(const std::string& path);
 
 //! Reads a triangle soup from path: read_polygon_soup, and throws InvalidInput also for a face
 //! that is not a triangle.  Works for any soup (non-manifold too), so that the checker can report
 //! on bad meshes.
 TriangleSoup read_triangle_soup(const std::string& path);
+
+//! The soup with every face of more than three vertices triangulated as read_input_mesh does it
+//! (meshing/input_mesh.h: PMP::triangulate_faces, a constrained Delaunay triangulation of the
+//! face in its best-fitting plane, no convexity needed), each face on its own, so that any soup
+//! (open, non-manifold, inconsistently oriented) can be triangulated: the triangles of a face
+//! keep its orientation and replace it in the face order; triangles are kept as they are, and so
+//! are the points.  Throws InvalidInput naming `source` (a path) for a face that cannot be
+//! triangulated (a degenerate polygon).  \pre every index is below soup.points.size().
+TriangleSoup triangulate_polygons(const PolygonSoup& soup, const std::string& source);
 
 //! Reads a triangle mesh from path: read_triangle_soup, then builds the Surface_mesh.  Throws
 //! InvalidInput additionally if the soup is not a polygon mesh (an edge in more than two

@@ -138,10 +138,11 @@ BOOST_AUTO_TEST_CASE(output_paths) {
   require_invalid_input(
       run_delmesh({"mesh", "--surface", "sphere", "--out", "missing/m.off", "--stats", "keep.json", "--quiet"}, dir.path),
       "--out: directory missing does not exist");
-  require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--out", "m.stl", "--quiet"}, dir.path),
-                        "the extension must be .off, .ply or .obj");
+  require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--out", "m.stp", "--quiet"}, dir.path),
+                        "--out: the extension must be .off, .ply, .obj, .stl or .vtp, got 'm.stp'");
   BOOST_TEST(read_text(dir / "keep.json") == "old statistics");
   BOOST_TEST(!std::filesystem::exists(dir / "m.off"));
+  BOOST_TEST(!std::filesystem::exists(dir / "m.stp"));
 }
 
 // Mesh files given to `delmesh check`: each corrupt file gets one line saying what is wrong.
@@ -189,8 +190,6 @@ BOOST_AUTO_TEST_CASE(corrupt_mesh_files) {
       {"negative.obj", "line 4: a face refers to vertex -4, but 3 vertices are defined before it"},
       {"no_faces.obj", "has no faces"},
       {"no_faces.off", "has no faces"},
-      {"quad.off", "face 0 has 4 vertices; only triangle meshes are supported"},
-      {"quad.obj", "face 0 has 4 vertices; only triangle meshes are supported"},
       {"huge.off", "face count '99999999999999999999' is not a whole number"},
       {"negative_count.off", "the header declares a negative vertex count (-3)"},
       {"negative.off", "face 0 refers to vertex -1, but the file has 3 vertices (numbered 0 to 2)"},
@@ -202,10 +201,12 @@ BOOST_AUTO_TEST_CASE(corrupt_mesh_files) {
       {"folder.off", "is a directory, not a mesh file"},
       {"missing.off", "'missing.off': no such file"},
       {"good.txt", "unknown extension '.txt'"},
+      {"good.vtp", "unknown extension '.vtp' (expected .off, .ply or .obj; .vtp files are written, not read)"},
   };
   for (const auto& [file, mention] : cases)
     BOOST_TEST_CONTEXT(file) { require_invalid_input(run_delmesh({"check", file, "--json"}, dir.path), mention); }
-  for (const char* file : {"good.ply", "relative.obj"})
+  // A quadrilateral is triangulated, as by `mesh --input-mesh`.
+  for (const char* file : {"good.ply", "relative.obj", "quad.off", "quad.obj"})
     BOOST_TEST_CONTEXT(file) { BOOST_TEST(run_delmesh({"check", file}, dir.path).exit_code == 0); }
 }
 

@@ -62,6 +62,38 @@ BOOST_AUTO_TEST_CASE(octahedron_has_genus_zero) {
   BOOST_TEST(text.out.find("genus per component:   0") != std::string::npos, text.out);
 }
 
+// Polygons are triangulated as `mesh --input-mesh` does: a cube of six quadrilaterals (OFF) and an
+// open grid of quadrilaterals (OBJ, reported, not refused).
+BOOST_AUTO_TEST_CASE(polygon_meshes_are_triangulated) {
+  TempDir dir;
+  write_text(dir / "cube.off",
+             "OFF\n8 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+             "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 2 3 7 6\n4 1 2 6 5\n4 0 4 7 3\n");
+  const RunResult r = run_delmesh({"check", "cube.off", "--json"}, dir.path);
+  BOOST_TEST(r.exit_code == 0, r.err);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  BOOST_TEST(j.at("vertices").get<int>() == 8);
+  BOOST_TEST(j.at("triangles").get<int>() == 12);
+  BOOST_TEST(j.at("edges").get<int>() == 18);
+  BOOST_TEST((j.at("genus_per_component").get<std::vector<int>>() == std::vector<int>{0}));
+  BOOST_TEST(j.at("closed").get<bool>());
+  BOOST_TEST(j.at("manifold").get<bool>());
+  BOOST_TEST(j.at("oriented").get<bool>());
+  BOOST_TEST(std::abs(j.at("min_angle_deg").get<double>() - 45.0) < 1e-9);
+
+  write_text(dir / "grid.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nf 1 2 5 4\nf 2 3 6 5\n");
+  const RunResult grid = run_delmesh({"check", "grid.obj", "--json"}, dir.path);
+  BOOST_TEST(grid.exit_code == 0, grid.err);
+  const nlohmann::json g = nlohmann::json::parse(grid.out);
+  BOOST_TEST(g.at("triangles").get<int>() == 4);
+  BOOST_TEST(!g.at("closed").get<bool>());
+  BOOST_TEST(g.at("boundary_loops").get<int>() == 1);
+
+  write_text(dir / "flat.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n4 0 1 2 3\n");
+  require_invalid_input(run_delmesh({"check", "flat.off"}, dir.path),
+                        "mesh file 'flat.off': face 0 (4 vertices) could not be triangulated (a degenerate polygon)");
+}
+
 BOOST_AUTO_TEST_CASE(theorem_bounds_pass_and_fail_per_bound) {
   TempDir dir;
   write_text(dir / "octahedron.off", octahedron_off);

@@ -10,6 +10,8 @@
 #include "meshing/mesh_io.h"
 #include "tests/apps/run_delmesh.h"
 #include "tests/meshing/check_fixture.h"
+#include "tests/meshing/mesh_io_vtp_reader.h"
+#include "symbolic/surface.h"
 
 using namespace delmesh::test;
 
@@ -78,7 +80,7 @@ BOOST_AUTO_TEST_CASE(bad_options_are_invalid_input) {
   require_invalid_input(run_delmesh({"mesh", "--expr", "x^0.5+y^2+z^2-1", "--box", "-2,2,-2,2,-2,2"}));
   require_invalid_input(run_delmesh({"mesh", "--expr", "x^2+y^2+z^2-1", "--box", "-2,2,-2,2,2,-2"}));
   require_invalid_input(run_delmesh({"mesh"}));
-  require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--out", "sphere.stl"}), ".stl");
+  require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--out", "sphere.stp"}), ".stp");
   require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--out", "no/such/dir/sphere.off"}), "--out");
   require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--phase", "everything"}), "--phase");
   require_invalid_input(run_delmesh({"mesh", "--surface", "sphere", "--solver", "newton"}), "--solver");
@@ -170,6 +172,50 @@ BOOST_AUTO_TEST_CASE(polygon_input_mesh_is_remeshed) {
   BOOST_TEST(stats["genus_per_component"] == nlohmann::json::array({1}));
   delmesh::TriangleSoup soup;
   BOOST_TEST(read_and_check(dir / "quads_remeshed.off", soup).has_topology({1}));
+}
+
+// --out by extension: binary STL, and VTK XML PolyData whose point data "Normals" are the unit
+// normals grad E/|grad E| at the vertices (compared here with GiNaC's evaluation of the exact
+// gradient); a remeshed input mesh has no normals.
+BOOST_AUTO_TEST_CASE(stl_and_vtp_outputs) {
+  TempDir dir;
+  const std::string expr = "x**2 + 2*y**2 + 3*z**2 - 1 + sin(x)*z/5";
+  const RunResult r = run_delmesh({"mesh", "--expr", expr, "--box", "-2,2,-2,2,-2,2", "--quiet", "--out", "e.vtp",
+                                   "--stats", "e.json"},
+                                  dir.path);
+  BOOST_TEST(r.exit_code == 0, r.err);
+  const nlohmann::json stats = nlohmann::json::parse(read_text(dir / "e.json"));
+  const VtpFile vtp = read_vtp((dir / "e.vtp").string());
+  BOOST_TEST(vtp.points == stats["vertices"].get<std::size_t>());
+  BOOST_TEST(vtp.polys == stats["triangles"].get<std::size_t>());
+  const std::vector<double>& P = vtp.arrays.at("Points");
+  const std::vector<double>& N = vtp.arrays.at("Normals");
+  BOOST_REQUIRE(P.size() == 3 * vtp.points);
+  BOOST_REQUIRE(N.size() == 3 * vtp.points);
+  const delmesh::Surface surface = delmesh::Surface::parse(expr);
+  double worst = 0;
+  for (std::size_t i = 0; i < vtp.points; ++i) {
+    const GiNaC::lst at{delmesh::coordinate_x() == GiNaC::numeric(P[3 * i]),
+                        delmesh::coordinate_y() == GiNaC::numeric(P[3 * i + 1]),
+                        delmesh::coordinate_z() == GiNaC::numeric(P[3 * i + 2])};
+    std::array<double, 3> g{};
+    for (int k = 0; k < 3; ++k) g[k] = GiNaC::ex_to<GiNaC::numeric>(surface.gradient()[k].subs(at).evalf()).to_double();
+    const double length = std::hypot(g[0], g[1], g[2]);
+    for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(N[3 * i + k] - g[k] / length));
+  }
+  BOOST_TEST(worst <= 1e-12);
+
+  const RunResult stl = run_delmesh({"mesh", "--surface", "sphere", "--quiet", "--out", "s.STL", "--stats", "s.json"}, dir.path);
+  BOOST_TEST(stl.exit_code == 0, stl.err);
+  const nlohmann::json sphere = nlohmann::json::parse(read_text(dir / "s.json"));
+  BOOST_TEST(std::filesystem::file_size(dir / "s.STL") == 84 + 50 * sphere["triangles"].get<std::size_t>());
+
+  write_text(dir / "octahedron.off", octahedron_off);
+  const RunResult remeshed = run_delmesh({"mesh", "--input-mesh", "octahedron.off", "--quiet", "--out", "o.vtp"}, dir.path);
+  BOOST_TEST(remeshed.exit_code == 5, remeshed.err);
+  const VtpFile o = read_vtp((dir / "o.vtp").string());
+  BOOST_TEST(o.polys > 0u);
+  BOOST_TEST(o.arrays.count("Normals") == 0u);
 }
 
 BOOST_AUTO_TEST_CASE(a_failing_run_leaves_existing_outputs_untouched) {

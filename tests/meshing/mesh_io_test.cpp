@@ -6,14 +6,18 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
 #include <sstream>
 #include <string>
 
 #include <boost/test/unit_test.hpp>
 
+#include <CGAL/IO/STL.h>
+
 #include "common/errors.h"
 #include "meshing/mesh_checker.h"
 #include "tests/meshing/known_meshes.h"
+#include "tests/meshing/mesh_io_vtp_reader.h"
 #include "tests/temp_dir.h"
 
 using namespace delmesh;
@@ -98,9 +102,163 @@ BOOST_AUTO_TEST_CASE(overwrite_replaces_the_file) {
 BOOST_AUTO_TEST_CASE(write_errors) {
   TempDir dir;
   const SurfaceMesh mesh = test::octahedron().to_surface_mesh();
-  BOOST_CHECK_THROW(write_mesh(mesh, dir.file("m.stl")), InvalidInput);
+  BOOST_CHECK_THROW(write_mesh(mesh, dir.file("m.stp")), InvalidInput);
   BOOST_CHECK_THROW(write_mesh(mesh, dir.file("m")), InvalidInput);
   BOOST_CHECK_THROW(write_mesh(mesh, dir.file("no/such/dir/m.off")), std::runtime_error);
+}
+
+BOOST_AUTO_TEST_CASE(format_by_extension) {
+  BOOST_TEST(mesh_format("a.off") == MeshFormat::off);
+  BOOST_TEST(mesh_format("a.PLY") == MeshFormat::ply);
+  BOOST_TEST(mesh_format("dir.x/a.obj") == MeshFormat::obj);
+  BOOST_TEST(mesh_format("a.STL") == MeshFormat::stl);
+  BOOST_TEST(mesh_format("a.vtp") == MeshFormat::vtp);
+  try {
+    (void)mesh_format("a.vtk");
+    BOOST_ERROR("mesh_format accepted .vtk");
+  } catch (const InvalidInput& e) {
+    BOOST_TEST(std::string(e.what()).find("unknown extension '.vtk' (expected .off, .ply, .obj, .stl or .vtp)") !=
+               std::string::npos, e.what());
+  }
+  // .stl and .vtp are written, not read.
+  TempDir dir;
+  write_mesh(test::octahedron().to_surface_mesh(), dir.file("o.stl"));
+  try {
+    (void)read_polygon_soup(dir.file("o.stl"));
+    BOOST_ERROR("read_polygon_soup read an STL file");
+  } catch (const InvalidInput& e) {
+    BOOST_TEST(std::string(e.what()).find(".stl files are written, not read") != std::string::npos, e.what());
+  }
+}
+
+// Binary STL through CGAL's writer: 80-byte header, triangle count, 50 bytes per triangle; CGAL's
+// reader gives back the same triangles, corners in the same order, as float32 coordinates.
+BOOST_AUTO_TEST_CASE(binary_stl_round_trip) {
+  TempDir dir;
+  const SurfaceMesh mesh = awkward_torus();
+  const std::string path = dir.file("t.stl");
+  write_mesh(mesh, path);
+  const std::string bytes = slurp(path);
+  BOOST_TEST(bytes.size() == 84 + 50 * mesh.number_of_faces());
+  BOOST_TEST(bytes.rfind("solid", 0) != 0u);  // a binary file must not start like an ASCII one
+  std::uint32_t count = 0;
+  std::memcpy(&count, bytes.data() + 80, 4);
+  BOOST_TEST(count == mesh.number_of_faces());
+
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  std::ifstream in(path, std::ios::binary);
+  BOOST_REQUIRE(CGAL::IO::read_STL(in, points, triangles));
+  std::vector<Point3> written_points;
+  std::vector<std::array<std::size_t, 3>> written;
+  mesh_to_soup(mesh, written_points, written);
+  BOOST_REQUIRE(triangles.size() == written.size());
+  const auto as_float = [](const Point3& p) {
+    return Point3(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
+  };
+  bool same = true;
+  for (std::size_t t = 0; t < written.size(); ++t)
+    for (int k = 0; k < 3; ++k) same = same && points[triangles[t][k]] == as_float(written_points[written[t][k]]);
+  BOOST_TEST(same);
+  // The float32 points are distinct here, so CGAL's reader (which merges equal points) gives
+  // back one point per vertex.
+  BOOST_TEST(points.size() == written_points.size());
+  BOOST_TEST(slurp(path) == bytes);  // reproducible
+  write_mesh(mesh, dir.file("again.stl"));
+  BOOST_TEST(slurp(dir.file("again.stl")) == bytes);
+}
+
+// VTK XML PolyData: every coordinate and normal as written, the triangles as Polys; without
+// normals no PointData.  Normals leave the bytes of OFF, PLY and OBJ unchanged.
+BOOST_AUTO_TEST_CASE(vtp_carries_points_triangles_and_normals) {
+  TempDir dir;
+  const SurfaceMesh mesh = awkward_torus();
+  TriangleSoup soup;
+  mesh_to_soup(mesh, soup.points, soup.triangles);
+  PointNormals normals;
+  for (const Point3& p : soup.points) {
+    const double r = std::sqrt(p.x() * p.x() + p.y() * p.y() + p.z() * p.z());
+    normals.push_back({p.x() / r, p.y() / r, p.z() / r});
+  }
+  std::ostringstream out;
+  write_mesh(mesh, out, MeshFormat::vtp, normals);
+  const std::string path = dir.write("t.vtp", out.str());
+  const test::VtpFile vtp = test::read_vtp(path);
+  BOOST_TEST(vtp.points == soup.points.size());
+  BOOST_TEST(vtp.polys == soup.triangles.size());
+  const std::vector<double>& P = vtp.arrays.at("Points");
+  const std::vector<double>& N = vtp.arrays.at("Normals");
+  const std::vector<double>& C = vtp.arrays.at("connectivity");
+  const std::vector<double>& O = vtp.arrays.at("offsets");
+  BOOST_REQUIRE(P.size() == 3 * soup.points.size());
+  BOOST_REQUIRE(N.size() == 3 * soup.points.size());
+  BOOST_REQUIRE(C.size() == 3 * soup.triangles.size());
+  BOOST_REQUIRE(O.size() == soup.triangles.size());
+  bool exact = true;
+  for (std::size_t i = 0; i < soup.points.size(); ++i)
+    for (int k = 0; k < 3; ++k) exact = exact && P[3 * i + k] == soup.points[i][k] && N[3 * i + k] == normals[i][k];
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+    exact = exact && O[t] == static_cast<double>(3 * (t + 1));
+    for (int k = 0; k < 3; ++k) exact = exact && C[3 * t + k] == static_cast<double>(soup.triangles[t][k]);
+  }
+  BOOST_TEST(exact);
+  // The same bytes to a file.
+  write_mesh(mesh, dir.file("again.vtp"));
+  const std::string plain = slurp(dir.file("again.vtp"));
+  BOOST_TEST(plain.find("<PointData") == std::string::npos);
+  BOOST_TEST(test::read_vtp(dir.file("again.vtp")).arrays.count("Normals") == 0u);
+  for (MeshFormat format : {MeshFormat::off, MeshFormat::ply, MeshFormat::obj}) {
+    std::ostringstream with, without;
+    write_mesh(mesh, with, format, normals);
+    write_mesh(mesh, without, format);
+    BOOST_TEST(with.str() == without.str(), format);
+  }
+  // One normal per point, or none.
+  normals.pop_back();
+  std::ostringstream ignored;
+  BOOST_CHECK_THROW(write_mesh(mesh, ignored, MeshFormat::vtp, normals), PreconditionViolation);
+}
+
+// Faces of more than three vertices are triangulated each on its own, in place, keeping its
+// orientation; triangles and points stay as they are.  A degenerate polygon is refused.
+BOOST_AUTO_TEST_CASE(polygons_are_triangulated_in_place) {
+  PolygonSoup pyramid;
+  pyramid.points = {Point3(0, 0, 0), Point3(1, 0, 0), Point3(1, 1, 0), Point3(0, 1, 0), Point3(0.5, 0.5, 1)};
+  for (const std::vector<std::size_t>& face :
+       std::vector<std::vector<std::size_t>>{{0, 1, 4}, {0, 3, 2, 1}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}}) {
+    pyramid.corners.insert(pyramid.corners.end(), face.begin(), face.end());
+    pyramid.offsets.push_back(pyramid.corners.size());
+  }
+  const TriangleSoup soup = triangulate_polygons(pyramid, "pyramid.off");
+  BOOST_TEST((soup.points == pyramid.points));
+  BOOST_REQUIRE(soup.triangles.size() == 6u);
+  BOOST_TEST((soup.triangles[0] == std::array<std::size_t, 3>{0, 1, 4}));
+  BOOST_TEST((soup.triangles[3] == std::array<std::size_t, 3>{1, 2, 4}));
+  BOOST_TEST((soup.triangles[5] == std::array<std::size_t, 3>{3, 0, 4}));
+  // The quadrilateral's two triangles cover its four corners and face down, as it does.
+  std::set<std::size_t> corners;
+  for (int t = 1; t <= 2; ++t) {
+    const auto& tri = soup.triangles[t];
+    corners.insert(tri.begin(), tri.end());
+    const Vector3 n = CGAL::cross_product(soup.points[tri[1]] - soup.points[tri[0]], soup.points[tri[2]] - soup.points[tri[0]]);
+    BOOST_TEST(n.z() < 0);
+  }
+  BOOST_TEST(corners.size() == 4u);
+  const MeshReport report = check_mesh(soup.points, soup.triangles);
+  BOOST_TEST((report.closed && report.manifold));
+  BOOST_TEST(report.oriented);
+
+  PolygonSoup flat;
+  flat.points = {Point3(0, 0, 0), Point3(1, 0, 0), Point3(2, 0, 0), Point3(3, 0, 0)};
+  flat.corners = {0, 1, 2, 3};
+  flat.offsets.push_back(4);
+  try {
+    (void)triangulate_polygons(flat, "flat.off");
+    BOOST_ERROR("a degenerate polygon was triangulated");
+  } catch (const InvalidInput& e) {
+    BOOST_TEST(std::string(e.what()).find("mesh file 'flat.off': face 0 (4 vertices) could not be triangulated") !=
+               std::string::npos, e.what());
+  }
 }
 
 BOOST_AUTO_TEST_CASE(reads_a_binary_ply) {

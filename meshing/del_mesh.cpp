@@ -316,7 +316,12 @@ void certify_distance(DelMeshResult& result, const Surface& surface, const Box3&
     j["distance"] = to_json(certificate);
     const bool within = certificate.status == FlowCertificateStatus::certified &&
                         (!options.max_distance || certificate.hausdorff_upper_bound <= *options.max_distance);
-    if (options.max_distance && !within) {
+    const bool stopped = certificate.interrupted || certificate.time_limited;
+    if (options.max_distance && stopped && result.status == MeshStatus::complete) {
+      // The bound is part of the run's end: a limit that stops its proof stops the run.
+      result.status = certificate.interrupted ? MeshStatus::interrupted : MeshStatus::time_limit;
+      j["status"] = text_of(result.status);
+    } else if (options.max_distance && !within) {
       // Unsettled like a check's finding, so that an uncertified run always says why.
       auto& unsettled = j["unsettled"];
       unsettled["count"] = unsettled["count"].get<std::size_t>() + 1;

@@ -110,7 +110,9 @@ DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOpt
 //! {status: "not attempted", reason} after any other ending, and max_distance (null if not given).
 //! With max_distance, a complete run becomes uncertified unless the certificate proves a
 //! two-sided Hausdorff bound ≤ δ; that failure is listed under "unsettled" (reason
-//! distance_not_certified in by_reason, check "distance" with the certificate's reason in regions).  Precondition: validate_input(surface, box) succeeded (the run
+//! distance_not_certified in by_reason, check "distance" with the certificate's reason in regions).
+//! A certificate stopped by the interrupt flag or the time limit makes such a run interrupted or
+//! time_limit instead.  Precondition: validate_input(surface, box) succeeded (the run
 //! did it).  A caller of del_mesh(oracle, …) on an implicit surface calls this itself.
 void certify_distance(DelMeshResult& result, const Surface& surface, const Box3& box, const DelMeshOptions& options,
                       std::chrono::steady_clock::time_point start);

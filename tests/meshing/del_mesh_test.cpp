@@ -1,6 +1,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "check_fixture.h"
@@ -204,6 +205,24 @@ BOOST_AUTO_TEST_CASE(max_distance_not_certified_is_unsettled, *boost::unit_test:
   BOOST_TEST(j["unsettled"]["by_reason"]["distance_not_certified"].get<int>() == 1);
   BOOST_TEST(j["unsettled"]["regions"].back()["check"] == "distance");
   BOOST_TEST(j["unsettled"]["regions"].back()["reason"] == j["distance"]["reason"]);
+}
+
+// With --max-distance the bound is part of the run's end: the interrupt flag, raised once the
+// refinement is done and the certificate starts, stops the run as interrupted.
+BOOST_AUTO_TEST_CASE(max_distance_certificate_stopped_by_the_interrupt_flag) {
+  const auto& entry = catalog_entry("sphere");
+  std::atomic<bool> flag{false};
+  DelMeshOptions options;
+  options.max_distance = 0.01;
+  options.interrupt = &flag;
+  options.progress = [&](const std::string& line) {
+    if (line.find("certifying the distance") != std::string::npos) flag = true;
+  };
+  const auto result = del_mesh(entry.surface(), entry.box, options);
+  BOOST_TEST(result.status == MeshStatus::interrupted);
+  BOOST_TEST(result.statistics["status"] == "interrupted");
+  BOOST_TEST(result.statistics["distance"]["interrupted"] == true);
+  BOOST_TEST(result.mesh.number_of_faces() > 0u);
 }
 
 // Without a gradient field (an oracle that has no flow_distance()) the option is refused; out of

@@ -682,9 +682,9 @@ Raises ValueError, with the program's error message in Python's terms (argument 
 program's flags), on invalid input.)doc");
 
   m.def("save", &save, py::arg("path"), py::arg("vertices"), py::arg("triangles"),
-        R"doc(Write a triangle mesh as `delmesh mesh --out` does: OFF, PLY or OBJ by the extension of path
-(str or os.PathLike), through a temporary file renamed over the target, so an existing file is
-replaced only by a complete one.
+        R"doc(Write a triangle mesh as `delmesh mesh --out` does: OFF, PLY, OBJ, binary STL or VTK XML
+PolyData (.vtp, without normals) by the extension of path (str or os.PathLike), through a
+temporary file renamed over the target, so an existing file is replaced only by a complete one.
 
 vertices: N x 3 coordinates; triangles: M x 3 integer vertex indices (as MeshResult gives them).
 Raises ValueError on an unknown extension, bad shapes or indices, OSError if the file cannot be

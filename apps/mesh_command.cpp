@@ -15,6 +15,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 
 #include "apps/command_line.h"
@@ -22,6 +24,7 @@
 #include "apps/interrupt.h"
 #include "apps/output_files.h"
 #include "apps/phase_watchdog.h"
+#include "apps/progress_line.h"
 #include "apps/surface_normals.h"
 #include "common/enum_names.h"
 #include "common/errors.h"
@@ -316,24 +319,22 @@ std::pair<std::string, std::string> output_files(const MeshOptions& o, const std
   return {out, stats};
 }
 
-//! Progress on stderr, after a header that goes out with the first report, i.e. once del_mesh
-//! has accepted the surface: a surface rejected as invalid input gives the single `error:` line only.
-void report_progress(const MeshOptions& o, MeshRun& run) {
+//! Progress on stderr (apps/progress_line.h: one line rewritten in place on a terminal, plain
+//! lines every few seconds elsewhere), after a header that goes out with the first report, i.e.
+//! once del_mesh has accepted the surface: a surface rejected as invalid input gives the single
+//! `error:` line only.  The caller finishes the line before it writes anything else.
+std::shared_ptr<ProgressLine> report_progress(const MeshOptions& o, MeshRun& run) {
   DelMeshOptions& options = run.options();
   const std::string what =
       run.plan ? run.plan->input.name + " (" + run.plan->input.surface.text() + " = 0) in " +
                      format_box(run.plan->input.box)
                : run.mesh_plan->path + " (" + std::to_string(run.mesh_plan->mesh.report.triangles) + " triangles) in " +
                      format_box(run.mesh_plan->mesh.box) + ", min spacing " + format_number(options.min_spacing);
-  auto header = std::make_shared<std::string>("delmesh: meshing " + what + ", lambda " + format_number(o.lambda) +
-                                              ", phase " + o.phase);
-  options.progress = [header](const std::string& message) {
-    if (!header->empty()) {
-      std::cerr << *header << std::endl;
-      header->clear();
-    }
-    std::cerr << "delmesh: " << message << std::endl;
-  };
+  auto line = std::make_shared<ProgressLine>(
+      std::cerr, "delmesh: meshing " + what + ", lambda " + format_number(o.lambda) + ", phase " + o.phase,
+      ::isatty(STDERR_FILENO) == 1);
+  options.progress = [line](const std::string& message) { line->report(message); };
+  return line;
 }
 
 //! The certificate of the finished mesh (meshing/certificate.h), from the mesh alone, into the
@@ -477,12 +478,13 @@ ExitCode run_mesh(const MeshOptions& o) {
   const std::string& out = files.first;
   const std::string& stats = files.second;
   for (const std::string& warning : run.warnings()) print_warning(warning);
-  if (!o.quiet) report_progress(o, run);
+  const std::shared_ptr<ProgressLine> progress = o.quiet ? nullptr : report_progress(o, run);
 
   DelMeshOptions& options = run.options();
   options.interrupt = &interrupt_flag();
   DelMeshResult result = run.plan ? mesh_surface(*run.plan, options, watchdog, limits)
                                   : remesh_input(*run.mesh_plan, options, watchdog, limits);
+  if (progress) progress->finish();
 
   nlohmann::json statistics =
       run.plan ? mesh_statistics(result, run.plan->input, o.seed, out) : run_statistics(result, o.seed, out);

@@ -114,6 +114,34 @@ BOOST_AUTO_TEST_CASE(the_distance_certificate_is_in_the_statistics) {
   BOOST_TEST(b["vertices"].get<int>() > a["vertices"].get<int>());
 }
 
+// Progress written to a file (not a terminal): the header, then plain lines, the refinement's at
+// most one per 5 s (apps/progress_line.h), each with points, rate and elapsed seconds and without
+// the internal queue names; the distance certificate is announced.
+BOOST_AUTO_TEST_CASE(progress_in_a_file_is_plain_and_sparse) {
+  TempDir dir;
+  const RunResult r = run_delmesh(
+      {"mesh", "--surface", "torus", "--size-bound", "0.02", "--out", "t.off", "--stats", "t.json"}, dir.path);
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  const double seconds = nlohmann::json::parse(read_text(dir / "t.json"))["seconds"].get<double>();
+  std::istringstream lines(r.err);
+  std::size_t refinement_lines = 0;
+  bool header = false, announced = false;
+  for (std::string line; std::getline(lines, line);) {
+    BOOST_TEST(line.find('\r') == std::string::npos);
+    BOOST_TEST(line.find("queued") == std::string::npos, line);
+    header = header || line.rfind("delmesh: meshing torus", 0) == 0;
+    announced = announced || line.find("certifying the distance") != std::string::npos;
+    if (line.find(" points/s, ") != std::string::npos) {
+      ++refinement_lines;
+      BOOST_TEST((line.rfind("delmesh: topology: ", 0) == 0 || line.rfind("delmesh: geometry: ", 0) == 0), line);
+    }
+  }
+  BOOST_TEST(header);
+  BOOST_TEST(announced);
+  BOOST_TEST(refinement_lines >= 1u, r.err);
+  BOOST_TEST(refinement_lines <= 1 + seconds / 5, r.err);
+}
+
 BOOST_AUTO_TEST_CASE(input_mesh_is_validated_then_remeshed) {
   TempDir dir;
   write_text(dir / "octahedron.off", octahedron_off);

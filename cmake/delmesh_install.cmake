@@ -3,7 +3,8 @@
 #   lib/libdelmesh_{common,symbolic,solvers,meshing}.a   the libraries;
 #   include/delmesh/{common,symbolic,solvers,meshing}/   their headers, included as in the sources
 #                                                 ("meshing/del_mesh.h");
-#   lib/cmake/delmesh/                            delmeshConfig.cmake and the exported targets,
+#   lib/cmake/delmesh/                            delmeshConfig.cmake and the exported targets;
+#   lib/python3/dist-packages/delmesh.*.so        the Python module, when it is built,
 # so that a CMake project uses the libraries with
 #   find_package(delmesh 0.1 REQUIRED)
 #   target_link_libraries(app PRIVATE delmesh::meshing)
@@ -36,3 +37,18 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/delmeshConfigVersion.cmak
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/delmeshConfig.cmake ${PROJECT_BINARY_DIR}/delmeshConfigVersion.cmake
         DESTINATION ${DELMESH_INSTALL_CMAKEDIR})
+
+# A Debian package of the same files under /usr: `cpack -G DEB` in the build directory writes
+# delmesh_<version>_<arch>.deb, its dependencies on shared libraries found by dpkg-shlibdeps.
+set(CPACK_PACKAGE_NAME delmesh)
+set(CPACK_PACKAGE_VENDOR "The delmesh developers")
+set(CPACK_PACKAGE_CONTACT "The delmesh developers")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Certified meshing of smooth implicit surfaces (DelMesh)")
+set(CPACK_RESOURCE_FILE_LICENSE ${PROJECT_SOURCE_DIR}/LICENSE)
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION science)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3-numpy")
+include(CPack)

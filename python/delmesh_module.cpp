@@ -334,11 +334,25 @@ Result run_on_worker(double time_limit, const py::object& progress,
   return std::move(*result);
 }
 
+//! certify()'s certificates (method auto) of a finished run's mesh, as JSON; null for a run
+//! stopped by a limit or without triangles.  Runs on the worker, under the call's controls.
+nlohmann::json certificate_of(const DelMeshResult& r, const SurfaceInput& input, std::uint64_t seed,
+                              const CallControls& controls) {
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> faces;
+  mesh_to_soup(r.mesh, points, faces);
+  const bool ended = r.status == MeshStatus::complete || r.status == MeshStatus::uncertified;
+  if (!ended || faces.empty()) return nullptr;
+  const TopologyCertificates c = certify_topology(points, faces, input, CertifyMethod::automatic, seed,
+                                                  controls.interrupt, controls.limits->deadline());
+  return nlohmann::json::parse(c.to_json().dump());
+}
+
 MeshResult mesh(const py::object& expr, const py::object& box, const py::object& surface,
                 const py::object& input_mesh, const py::object& lam, const py::object& size_bound,
                 const std::string& phase, const py::object& seed, const py::object& max_points,
                 const py::object& time_limit, const py::object& threads, const py::object& progress,
-                const std::string& solver, const py::object& max_distance) {
+                const std::string& solver, const py::object& max_distance, bool certify) {
   MeshRequest request;
   if (!surface.is_none()) request.surface.surface = surface.cast<std::string>();
   if (!expr.is_none()) request.surface.expr = expr_text(expr);
@@ -365,6 +379,8 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
   if (!time_limit.is_none()) request.time_limit = finite_option("--time-limit", time_limit);
   if (!threads.is_none()) request.threads = static_cast<int>(whole_option("--threads", threads, 0, max_threads));
   if (!progress.is_none() && !PyCallable_Check(progress.ptr())) throw py::type_error("progress must be callable");
+  if (certify && (request.input_mesh || input_soup))
+    throw InvalidInput("certify needs expr or surface (the certificate is proved on an implicit surface)");
 
   std::vector<Point3> points;
   std::vector<std::array<std::size_t, 3>> faces;
@@ -395,7 +411,9 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
             const MeshPlan plan = plan_mesh(request);
             warnings = plan.warnings;
             DelMeshResult r = del_mesh(plan.input.surface, plan.input.box, controls.applied_to(plan.options));
-            statistics = mesh_statistics(r, plan.input, request.seed, std::nullopt).dump();
+            nlohmann::json stats = mesh_statistics(r, plan.input, request.seed, std::nullopt);
+            if (certify) stats["certificate"] = certificate_of(r, plan.input, request.seed, controls);
+            statistics = stats.dump();
             return r;
           },
           &result);
@@ -649,6 +667,7 @@ PYBIND11_MODULE(delmesh, m) {
         py::arg("size_bound") = py::none(), py::arg("phase") = "all", py::arg("seed") = 1,
         py::arg("max_points") = py::none(), py::arg("time_limit") = py::none(), py::arg("threads") = py::none(),
         py::arg("progress") = py::none(), py::arg("solver") = "subdivision", py::arg("max_distance") = py::none(),
+        py::arg("certify") = false,
         R"doc(Mesh a surface with DelMesh, as `delmesh mesh` does; returns a MeshResult.
 
 Give exactly one of expr (E(x,y,z) as a string, or a sympy expression, the surface is E = 0; a
@@ -662,6 +681,9 @@ box: "x0,x1,y0,y1,z0,z1" or six numbers; the surface must lie strictly inside.
 lam: lambda in (0, 1/3); Theorem 6.1 covers (0, 0.06] (guaranteed topology, radius-edge ratio
   <= 1+lam, roughness <= 2 beta(lam)); larger values run with a RuntimeWarning.
 size_bound: also refine triangles whose surface Delaunay ball radius exceeds it.
+certify: (expr or surface only) certify the output from scratch as certify() does (method
+  "auto") and put that dict under stats["certificate"] (None for a run stopped by a limit or
+  without triangles).
 max_distance: (expr or surface only) also refine until the mesh is proved within it of the
   surface; complete only if the gradient-flow certificate proves that two-sided Hausdorff bound
   (statistics["distance"], which every expr or surface run reports).

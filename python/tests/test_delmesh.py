@@ -238,6 +238,16 @@ class MeshTest(unittest.TestCase):
             with self.assertRaisesRegex(ValueError, "triangles"):
                 delmesh.save(os.path.join(d, "u.off"), torus.vertices, torus.triangles[:, :2])
 
+    def test_certify_gives_the_certificates_of_certify(self):
+        result = delmesh.mesh(surface="torus", certify=True)
+        expected = delmesh.certify(result.vertices, result.triangles, surface="torus")
+        self.assertEqual(result.stats["certificate"]["topology"], expected["topology"])
+        self.assertEqual(result.stats["certificate"]["topology"]["verdict"], "certified")
+        self.assertIsNone(delmesh.mesh(surface="torus", certify=True, max_points=20).stats["certificate"])
+        sphere = delmesh.mesh(surface="sphere")
+        with self.assertRaisesRegex(ValueError, "certify needs expr or surface"):
+            delmesh.mesh(input_mesh=(sphere.vertices, sphere.triangles), certify=True)
+
     def test_max_distance_is_certified(self):
         result = delmesh.mesh(surface="sphere", max_distance=0.01)
         self.assertEqual(result.status, "complete")

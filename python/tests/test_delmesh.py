@@ -6,6 +6,7 @@ the program of the same build; by hand:
 """
 
 import json
+import math
 import os
 import re
 import signal
@@ -478,13 +479,127 @@ class SolveTest(unittest.TestCase):
                 self.assertEqual(str(caught.exception), python_terms(message))
 
 
-class ExampleTest(unittest.TestCase):
-    SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+CHECKED = "<!-- output checked by python/tests/test_delmesh.py -->"
 
-    def test_the_readme_example_runs_and_its_mesh_checks(self):
+
+def checked_blocks(text):
+    """The fenced blocks of a Markdown text that follow a line CHECKED, as (language, lines, the
+    lines of the next fenced block)."""
+    lines = text.split("\n")
+
+    def fence(start):
+        begin = next(i for i in range(start, len(lines)) if lines[i].startswith("```"))
+        end = next(i for i in range(begin + 1, len(lines)) if lines[i].startswith("```"))
+        return lines[begin][3:].strip(), lines[begin + 1:end], end + 1
+
+    blocks = []
+    for i, line in enumerate(lines):
+        if line.strip() == CHECKED:
+            language, body, after = fence(i + 1)
+            blocks.append((language, body, fence(after)[1] if language == "python" else None))
+    return blocks
+
+
+def output_matches(expected, found):
+    """Whether the lines found match the lines expected, where a line '...' stands for any number
+    of lines and '…' within a line for any text."""
+    def line(e, f):
+        return re.fullmatch(".*".join(re.escape(part) for part in e.split("…")), f) is not None
+
+    def match(i, j):
+        if i == len(expected):
+            return j == len(found)
+        if expected[i] == "...":
+            return any(match(i + 1, k) for k in range(j, len(found) + 1))
+        return j < len(found) and line(expected[i], found[j]) and match(i + 1, j + 1)
+    return match(0, 0)
+
+
+def uv_sphere_off(rings, sectors):
+    """The latitude-longitude sphere of tests/apps/check_command_test.cpp, as the same OFF text."""
+    vertices = ["0 0 1"]
+    for i in range(1, rings):
+        for j in range(sectors):
+            theta, phi = math.pi * i / rings, 2 * math.pi * j / sectors
+            vertices.append("%.17g %.17g %.17g" % (math.sin(theta) * math.cos(phi),
+                                                    math.sin(theta) * math.sin(phi), math.cos(theta)))
+    vertices.append("0 0 -1")
+    south = 1 + (rings - 1) * sectors
+
+    def at(i, j):
+        return 1 + (i - 1) * sectors + j % sectors
+    faces = [f"3 0 {at(1, j)} {at(1, j + 1)}" for j in range(sectors)]
+    for i in range(1, rings - 1):
+        for j in range(sectors):
+            faces += [f"3 {at(i, j)} {at(i + 1, j)} {at(i, j + 1)}",
+                      f"3 {at(i, j + 1)} {at(i + 1, j)} {at(i + 1, j + 1)}"]
+    faces += [f"3 {south} {at(rings - 1, j + 1)} {at(rings - 1, j)}" for j in range(sectors)]
+    return f"OFF\n{south + 1} {len(faces)} 0\n" + "\n".join(vertices + faces) + "\n"
+
+
+class ExampleTest(unittest.TestCase):
+    """The examples of README.md and docs/*.md: python/example.py is shown verbatim, and every
+    block marked CHECKED prints what it shows."""
+    SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    BUILD = os.path.dirname(os.path.abspath(DELMESH_BINARY))
+    DOCUMENTS = ["README.md"] + sorted(os.path.join("docs", name) for name in os.listdir(
+        os.path.join(SOURCE, "docs")) if name.endswith(".md"))
+
+    # The subprocesses import the module this test imported, whatever their directory.
+    ENVIRONMENT = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.abspath(delmesh.__file__)))
+
+    def read(self, document):
+        with open(os.path.join(self.SOURCE, document)) as f:
+            return f.read()
+
+    def command(self, line):
+        """A documented command line, with build/, python3 and python/ resolved for this build."""
+        line = re.sub(r"^(PYTHONPATH=build/python )?python3 ", lambda m: sys.executable + " ", line)
+        line = line.replace("python/example.py", os.path.join(self.SOURCE, "python", "example.py"))
+        return re.sub(r"(?<![\w/.])build/", self.BUILD + "/", line)
+
+    def run_session(self, lines, directory):
+        """Runs each '$ ' line of a block in directory; compares stdout with the lines after it."""
+        while lines:
+            self.assertTrue(lines[0].startswith("$ "), lines[0])
+            end = next((k for k in range(1, len(lines)) if lines[k].startswith("$ ")), len(lines))
+            command, expected = lines[0][2:], lines[1:end]
+            if expected and expected[-1] == "drew ./torus.png" and not has_matplotlib():
+                expected = expected[:-1] + ["matplotlib is not installed: no picture"]
+            p = subprocess.run(["bash", "-o", "pipefail", "-c", self.command(command)], cwd=directory,
+                               env=self.ENVIRONMENT, capture_output=True, text=True, check=False)
+            self.assertEqual(p.returncode, 0, f"{command}\n{p.stderr}")
+            found = p.stdout.rstrip("\n").split("\n") if p.stdout else []
+            self.assertTrue(output_matches(expected, found),
+                            f"{command}\nshows:\n" + "\n".join(expected) + "\nprints:\n" + p.stdout)
+            lines = lines[end:]
+
+    def test_the_documented_outputs_are_printed(self):
+        counts = {}
+        for document in self.DOCUMENTS:
+            for language, body, output in checked_blocks(self.read(document)):
+                counts[document] = counts.get(document, 0) + 1
+                with self.subTest(document=document, block=body[0]), tempfile.TemporaryDirectory() as d:
+                    with open(os.path.join(d, "uv_sphere.off"), "w") as f:
+                        f.write(uv_sphere_off(8, 16))
+                    if language == "python":
+                        p = subprocess.run([sys.executable, "-c", "\n".join(body)], cwd=d,
+                                           env=self.ENVIRONMENT, capture_output=True, text=True,
+                                           check=False)
+                        self.assertEqual(p.returncode, 0, p.stderr)
+                        self.assertTrue(output_matches(output, p.stdout.rstrip("\n").split("\n")),
+                                        "shows:\n" + "\n".join(output) + "\nprints:\n" + p.stdout)
+                    else:
+                        self.run_session(body, d)
+        # The blocks the documents mark: a missing marker must not pass silently.
+        self.assertEqual(counts, {"README.md": 2, "docs/certificates.md": 1, "docs/cli.md": 2,
+                                  "docs/extending.md": 2, "docs/python.md": 1})
+
+    def test_the_python_example_is_shown_and_its_mesh_checks(self):
         example = os.path.join(self.SOURCE, "python", "example.py")
-        with open(example) as f, open(os.path.join(self.SOURCE, "README.md")) as readme:
-            self.assertIn(f.read(), readme.read(), "the README shows python/example.py verbatim")
+        with open(example) as f:
+            self.assertIn(f.read(), self.read(os.path.join("docs", "python.md")),
+                          "docs/python.md shows python/example.py verbatim")
         with tempfile.TemporaryDirectory() as d:
             p = subprocess.run([sys.executable, example, d], capture_output=True, text=True, check=False)
             self.assertEqual(p.returncode, 0, p.stderr)
@@ -494,6 +609,14 @@ class ExampleTest(unittest.TestCase):
             report = json.loads(out)
         self.assertEqual(report["genus_per_component"], [1])
         self.assertTrue(report["pass"]["all"])
+
+
+def has_matplotlib():
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        return False
+    return True
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 // Every bad input gets exit code 2, one `error:` line naming the problem in the user's terms, and
 // leaves existing output files untouched; the program never dies by a signal.  One case per row
-// of the README's table of bad inputs.
+// of the table of bad inputs in docs/cli.md.
 #include <filesystem>
 #include <string>
 #include <utility>

@@ -1,6 +1,6 @@
 // `delmesh solve` and the primitive registry: every registered primitive is listed by
 // `delmesh solve --help` and solvable from the command line (its row's known-answer query), and
-// the README's table of primitives is the one the registry generates.  Compiled into apps_tests
+// the table of primitives in docs/cli.md is the one the registry generates.  Compiled into apps_tests
 // (with delmesh) and into extending_tests (with delmesh_extending, examples/extending).
 
 #include <cmath>
@@ -67,14 +67,14 @@ BOOST_AUTO_TEST_CASE(every_known_answer_is_found_from_the_command_line) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(the_readme_table_is_the_generated_one) {
-  std::ifstream in(std::string(DELMESH_SOURCE_DIR) + "/README.md");
-  std::stringstream readme;
-  readme << in.rdbuf();
+BOOST_AUTO_TEST_CASE(the_documented_table_is_the_generated_one) {
+  std::ifstream in(std::string(DELMESH_SOURCE_DIR) + "/docs/cli.md");
+  std::stringstream doc;
+  doc << in.rdbuf();
   const std::string expected = primitive_table_markdown(builtin_primitives());
   const std::string found =
-      block_between(readme.str(), "<!-- primitive table: generated", "<!-- end of primitive table -->");
-  BOOST_TEST(found == expected, "README.md's table of primitives is out of date; it should read:\n" << expected);
+      block_between(doc.str(), "<!-- primitive table: generated", "<!-- end of primitive table -->");
+  BOOST_TEST(found == expected, "docs/cli.md's table of primitives is out of date; it should read:\n" << expected);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

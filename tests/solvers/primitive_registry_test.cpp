@@ -60,7 +60,7 @@ BOOST_AUTO_TEST_CASE(every_row_is_complete_and_its_name_unique) {
       BOOST_TEST(!row.domain.empty());
       BOOST_TEST(static_cast<bool>(row.builder));
       BOOST_TEST(static_cast<bool>(row.make_query));
-      // The table cells of the help and the README: no '|' and no line breaks.
+      // The table cells of the help and docs/cli.md: no '|' and no line breaks.
       for (const std::string& text : {row.summary, row.domain}) BOOST_TEST(text.find_first_of("|\n") == std::string::npos);
       std::set<QueryOption> read;
       for (const OptionUse& use : row.options) {

@@ -4,7 +4,7 @@
 //! (--surface | --expr with --box), parsing of vectors, and messages.  Output files are
 //! apps/output_files.h, signals apps/interrupt.h.
 //!
-//! Exit codes (the program's contract, also listed in the README):
+//! Exit codes (the program's contract, also listed in docs/cli.md):
 //!   0  complete;
 //!   1  `delmesh check --lambda L` ran and some bound of Theorem 6.1 failed;
 //!   2  invalid input or usage: exactly one line on stderr, beginning `error:`;

@@ -25,8 +25,9 @@
 //!     homeomorphic to Σ; it bounds no distance between the mesh and Σ.
 //!  3. Every solver answer is certified (interval arithmetic, Krawczyk; the subdivision backend
 //!     is always used, never homotopy continuation), relative to the floating-point Voronoi
-//!     constructions of meshing/voronoi_geometry.h, as for the mesher (README, "What certified
-//!     means").  Σ is first validated smooth and strictly inside B (input_validation.h).
+//!     constructions of meshing/voronoi_geometry.h, as for the mesher (docs/certificates.md,
+//!     "What certified means").  Σ is first validated smooth and strictly inside B
+//!     (input_validation.h).
 //!
 //! **Procedure.**  The referenced vertices of the soup, in index order, become S (ids 0, 1, …;
 //! unreferenced points are left out; coincident points are one sample).  Del S is built, and on a

@@ -108,7 +108,7 @@ struct CheckInfo {
   //! The check's key in the statistics (insertions, checks, seconds_per_check, unsettled), e.g.
   //! "vor_edge"; a registered row's CheckKind prints as this name.
   std::string name;
-  std::string summary;  //!< one line: the condition checked and the witness (README, --help)
+  std::string summary;  //!< one line: the condition checked and the witness (docs/extending.md, --help)
   FaceKind face = FaceKind::triangle;
   Dirtied dirtied = Dirtied::new_faces;
   CheckPhase phase = CheckPhase::topology;

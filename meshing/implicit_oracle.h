@@ -21,7 +21,7 @@
 //! The primitives and the certificate may be called from several threads at once: the compiled
 //! systems keep their scratch per thread, and the statistics are updated under a lock.
 //!
-//! Policy for undecided regions (README, section What "certified" means): a region that the
+//! Policy for undecided regions (docs/certificates.md, What "certified" means): a region that the
 //! solver can neither exclude nor certify is a candidate witness.  project() moves its centre onto
 //! Σ by Newton steps along ∇E; the caller inserts the projected point if it lies in the Voronoi
 //! face under test.  Inserting a false witness is harmless (§3, Lemma 5.1).  Undecided regions

@@ -103,7 +103,7 @@ void mesh_to_soup(const SurfaceMesh& mesh, std::vector<Point3>& points,
                   std::vector<std::array<std::size_t, 3>>& triangles);
 
 //! Every field but misoriented_edges and the first-defect locations, with the key names of the
-//! statistics JSON (README): vertices, edges, triangles, components, euler_characteristic,
+//! statistics JSON (docs/cli.md): vertices, edges, triangles, components, euler_characteristic,
 //! genus_per_component, closed, manifold, closed_manifold, orientable, oriented, min_angle_deg, max_radius_edge_ratio, max_roughness_rad…
 //! plus boundary_edges, boundary_loops, nonmanifold_edges, nonmanifold_vertices (also per
 //! component).  A radius-edge ratio of +∞ and an undefined genus are written as null.

@@ -4,7 +4,7 @@
 //! about it — its name, a one-line summary, the builder of its system, the query options it
 //! reads and which it requires, the domain it searches, make_query (options and box → parameters
 //! and domain) and a query with a known answer.  `delmesh solve` (its option checks, dispatch and
-//! help), the mesher's oracle (meshing/surface_oracle.h), bench_solvers and the README's table of
+//! help), the mesher's oracle (meshing/surface_oracle.h), bench_solvers and docs/cli.md's table of
 //! primitives all read this registry; there is no other list of primitives.
 //!
 //! The registry holds, in order, the rows of builtin_primitives() (solvers/primitives.cpp: the
@@ -96,7 +96,7 @@ PrimitiveSystem build_primitive(const std::string& name, const Surface& surface)
 //! The options of a row as text, e.g. "--point p (a point of the line) --direction v ...":
 //! each option's flag and meaning, optional ones in brackets.
 std::string options_text(const PrimitiveInfo& row);
-//! Rows as a Markdown table | `--primitive` | solves | options | domain searched |: the README's
+//! Rows as a Markdown table | `--primitive` | solves | options | domain searched |: docs/cli.md's
 //! table is primitive_table_markdown(builtin_primitives()) (tests/apps checks it is up to date).
 std::string primitive_table_markdown(const std::vector<PrimitiveInfo>& rows);
 //! Rows as plain text for `delmesh solve --help`: per row its name and summary, then its options

@@ -1,4 +1,4 @@
-// A worked check (README, "Extending"): graded sizing by a user field h.  A restricted triangle
+// A worked check (docs/extending.md): graded sizing by a user field h.  A restricted triangle
 // t fails it when its surface Delaunay ball (centre c, the point where t's dual Voronoi edge
 // meets Σ; radius r, the distance from c to the vertices of t) is larger than the field there,
 // r > h(c); the witness is c, a point of Σ on the dual edge of a restricted triangle, as for

@@ -1,5 +1,5 @@
 //! \file surface_distance_critical.cpp
-//! A seventh primitive, added the way the README's "Extending" section describes: one builder
+//! A seventh primitive, added the way docs/extending.md describes: one builder
 //! function and one registry row, in one file.  The build compiles this file into the variants
 //! delmesh_extending, bench_solvers_extending and extending_tests (examples/extending/CMakeLists.txt).
 //!

@@ -273,10 +273,18 @@ inline constexpr int mesher_height_direction_retries = 6;
 inline constexpr int projection_iterations = 30;
 inline constexpr double projection_relative_tolerance = 1e-13;
 //! A candidate point is accepted as lying in a Voronoi face's polytope if it violates no
-//! half-space by more than this fraction of the box diagonal.  The computed faces are off by a
-//! few units in the last place of the box size (meshing/voronoi_geometry.h), so this leaves a
-//! wide margin, while staying far below the gaps one meshes (sheets 10⁻⁶ of the box apart).
+//! half-space by more than this fraction of the box diagonal.  It covers the rounding of the
+//! constructions of one face (a few units in the last place of the box size), while staying far
+//! below the gaps one meshes (sheets 10⁻⁶ of the box apart).  It does not cover the error of a
+//! circumcentre, which for a sliver can exceed it many times: the shortcuts that compare faces
+//! built in different ways widen it to twice the certified error radii of the Voronoi vertices
+//! involved where those are larger (meshing/voronoi_geometry.h: certified_voronoi_vertex()).
 inline constexpr double face_membership_relative_tolerance = 1e-10;
+//! A Voronoi vertex whose certified error radius exceeds this fraction of its distance to its
+//! sites (a nearly flat cell: a sliver, or a cell across a narrow gap) is constructed exactly
+//! and rounded to doubles instead (meshing/voronoi_geometry.h: voronoi_vertex()).  For cells
+//! smaller than a tenth of the box this keeps every vertex within the membership margin above.
+inline constexpr double voronoi_vertex_exact_relative_error = 1e-9;
 //! Clipping a Voronoi cell's polytope by a half-space (meshing/detail/convex_polytope.h): a vertex
 //! within this fraction of the largest vertex distance to the plane counts as on the plane, and
 //! cut points that close together are one vertex.  The distance is floored at

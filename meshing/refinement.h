@@ -54,6 +54,14 @@
 //!     such record is computed at once; VorEdge is a function of the record alone, so a new
 //!     triangle waits for it only if its record has a witness (the row's may_fire), and Quality,
 //!     size and Smooth wait only for restricted triangles.
+//! The faces in the lemma are those of Vor S.  Each computed face holds its exact face: the
+//! half-spaces are the exact bisectors moved outwards only, and the boxes built from Voronoi
+//! vertices are widened by their certified error radii (voronoi_geometry.h), so a check that
+//! found no witness in the computed F found none in the exact F ⊇ F′.  The computed F′ need not
+//! lie in the computed F (its cuts hold the new circumcentres, whose errors no constant margin
+//! bounds for slivers), and nothing relies on it.  A Voronoi edge as the faces see it has
+//! connectors from its line to its shared vertices (restricted_delaunay.h): e′'s connector to the
+//! new vertex is not part of e, so a kept record of e′ is checked on it (prepare_star()).
 //! In the registry's terms: parts 1–3 are Dirtied::new_faces, part 4 is Dirtied::restricted_star
 //! (TopoDisk) and Dirtied::restricted_triangles (Quality, Smooth).
 //! Conditions: the checks' generic choices depend only on the face's sites (so it is for the

@@ -51,6 +51,7 @@ VoronoiEdgeRecord& VoronoiEdgeRecord::operator=(const VoronoiEdgeRecord& other) 
   if (this != &other) {
     restricted = other.restricted;
     shrunk = other.shrunk;
+    segment_signed = other.segment_signed;
     edge = other.edge;
     lists_ = copy(other);
   }
@@ -113,6 +114,23 @@ bool excludes_zero_on(const SurfaceOracle& oracle, const Vec3& lo, const Vec3& h
 //! The record's (valid) edge meets Σ nowhere, and nothing on it is unsettled.
 bool misses_surface(const VoronoiEdgeRecord& r) {
   return r.edge.valid && r.crossings().empty() && r.candidates().empty() && r.unresolved().empty();
+}
+
+//! The proved sign of E on the connector [v, a] of an edge's end a = at(t) at the shared Voronoi
+//! vertex v (restricted_delaunay.h), from its bounding box; 0 if none is proved.
+int connector_sign(const SurfaceOracle& oracle, const Vec3& a, const Vec3& v) {
+  if (a == v) return oracle.value_sign(a);
+  BoundingBox b;
+  b.add(a);
+  b.add(v);
+  return oracle.value_sign(b.lo, b.hi);
+}
+
+//! Whether x lies in the box {lo, hi} = box[0], box[1].
+bool in_box(const Vec3& x, const std::array<Vec3, 2>& box) {
+  for (int k = 0; k < 3; ++k)
+    if (!(x[k] >= box[0][k] && x[k] <= box[1][k])) return false;
+  return true;
 }
 
 }  // namespace
@@ -202,6 +220,18 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
   // solved in parallel, one slot each, and installed in the star's order.  (References into the
   // table survive later insertions into it.)
   std::vector<StarRecord> out(star.size());
+  // The new vertex: the one vertex of every star triangle that contains it (its Voronoi vertices
+  // are the new ones, whose connectors a kept record has not seen).
+  VertexId x = -1;
+  for (const auto& first : star) {
+    if (!first.contains_vertex) continue;
+    for (VertexId v : first.key)
+      if (std::all_of(star.begin(), star.end(), [&](const Delaunay::StarTriangle& st) {
+            return !st.contains_vertex || st.key[0] == v || st.key[1] == v || st.key[2] == v;
+          }))
+        x = v;
+    break;
+  }
   std::vector<std::size_t> to_solve;
   to_solve.reserve(star.size());
   for (const auto& s : star) edges_.prefetch(s.key);
@@ -220,7 +250,12 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
     }
     if (misses_surface(*cached)) {
       // e ∩ Σ = ∅ on a valid edge e, so e′ ∩ Σ = ∅ for e′ ⊆ e: the record stays as it is
-      // (its edge is not needed once it holds no point of Σ).
+      // (its edge is not needed once it holds no point of Σ) if E keeps its sign on the
+      // connectors of e′ to its shared vertices too (the new vertex's is new); else it is solved.
+      if (!kept_connectors_clean(*cached, s.key, s.apexes, x)) {
+        to_solve.push_back(i);
+        continue;
+      }
       ++records_restricted_;
       cached->shrunk = false;
       out[i].record = cached;
@@ -252,8 +287,8 @@ void RestrictedDelaunay::add_facets(const std::vector<EdgeKey>& edges) {
 bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>& ring,
                                               const std::vector<const VoronoiEdgeRecord*>& boundary) {
   if (boundary.empty()) return false;
-  // The vertices of F ∩ B of the first two kinds: the ends of the valid Voronoi edges of F.  An
-  // edge that meets Σ puts a point of Σ in F; a degenerate one proves nothing.
+  // Step 1: the vertices of F ∩ B of the first two kinds: the ends of the valid Voronoi edges of
+  // F.  An edge that meets Σ puts a point of Σ in F; a degenerate one proves nothing.
   BoundingBox ends;
   bool inside_box = true;  // every Voronoi edge of F valid, with both ends at Voronoi vertices
   for (const VoronoiEdgeRecord* r : boundary) {
@@ -273,8 +308,8 @@ bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vecto
   }
   const double margin = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
   if (!inside_box) {
-    // The third kind: points y of Π ∩ (edges of B) in F, i.e. on p's side of the bisector of p
-    // and each r (up to the margin, so that rounding can only add points).
+    // Step 2: the third kind: points y of Π ∩ (edges of B) in F, i.e. on p's side of the
+    // bisector of p and each r (up to the margin, so that rounding can only add points).
     const Vec3& p = del_.point(e[0]);
     const Vec3& q = del_.point(e[1]);
     for (const Vec3& y : plane_box_edge_points(0.5 * (p + q), q - p, oracle_.clip_box())) {
@@ -287,8 +322,53 @@ bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vecto
     }
   }
   if (ends.empty()) return false;
-  ends.enlarge(margin);
-  if (!excludes_zero_on(oracle_, ends.lo, ends.hi, tolerances::facet_miss_box_budget)) return false;
+  // Step 3: E of one sign on the box enlarged by the margin (needed in any case).
+  BoundingBox box = ends;
+  box.enlarge(margin);
+  if (!excludes_zero_on(oracle_, box.lo, box.hi, tolerances::facet_miss_box_budget)) return false;
+  // Step 4: the largest δ = dist(v, box of the points) + ρ(v) over the Voronoi vertices v that
+  // may lie in B (those farther than ρ(v) from B are not vertices of F ∩ B): every exact Voronoi
+  // vertex of F ∩ B lies within δ of that box.  If 2δ exceeds the margin, the proof is redone
+  // on the box enlarged by 2δ when every edge of F ends at Voronoi vertices, and not attempted
+  // otherwise.
+  auto outside = [](const Vec3& x, const Vec3& lo, const Vec3& hi) {
+    double out = 0;
+    for (int k = 0; k < 3; ++k) out += std::pow(std::max({0.0, lo[k] - x[k], x[k] - hi[k]}), 2);
+    return std::sqrt(out);
+  };
+  const Box3& clip = oracle_.clip_box();
+  // The cells t·apex of the Voronoi vertices of F's valid edges (apexes from the ring).
+  thread_local std::vector<std::array<VertexId, 4>> cells;
+  cells.clear();
+  for (const VoronoiEdgeRecord* r : boundary) {
+    const VoronoiEdge& edge = r->edge;
+    if (!edge.valid || (!edge.at_vertex0 && !edge.at_vertex1)) continue;
+    const TriangleKey& t = edge.triangle;
+    const auto in_ring = std::find_if(ring.begin(), ring.end(), [&](const Delaunay::RingTriangle& x) {
+      return x.third != e[0] && x.third != e[1] && (x.third == t[0] || x.third == t[1] || x.third == t[2]);
+    });
+    if (in_ring == ring.end()) return false;
+    for (VertexId apex : in_ring->apexes)
+      if (apex >= 0) cells.push_back({t[0], t[1], t[2], apex});
+  }
+  // (The static radii are asked first, up to a quarter of the margin; the interval ones if δ
+  // is then too large.)
+  double reach = 0;
+  for (const double enough : {0.25 * margin, 0.0}) {
+    reach = 0;
+    for (const auto& c : cells) {
+      const VoronoiVertex v = certified_voronoi_vertex(del_, c, enough);
+      if (!(outside(v.centre, clip.lo, clip.hi) > v.radius))
+        reach = std::max(reach, outside(v.centre, ends.lo, ends.hi) + v.radius);
+    }
+    if (2 * reach <= margin) break;
+  }
+  if (!std::isfinite(reach)) return false;
+  if (2 * reach > margin) {
+    if (!inside_box) return false;
+    ends.enlarge(2 * reach);
+    if (!excludes_zero_on(oracle_, ends.lo, ends.hi, tolerances::facet_miss_box_budget)) return false;
+  }
   ++facets_missing_surface_;
   return true;
 }
@@ -646,6 +726,30 @@ std::optional<double> monotone_zero(const SurfaceOracle& oracle, const VoronoiEd
 
 }  // namespace
 
+bool RestrictedDelaunay::kept_connectors_clean(const VoronoiEdgeRecord& r, const TriangleKey& t,
+                                               const std::array<VertexId, 2>& apexes, VertexId x) const {
+  const VoronoiEdge& e = r.edge;
+  const bool x_is_apex = apexes[0] == x || apexes[1] == x;
+  // The bounding box of e's computed ends lies in segment_box(e) (rounding to nearest is above
+  // rounding down and below rounding up, and the operations are monotone).
+  std::optional<std::array<Vec3, 2>> box;
+  for (VertexId apex : apexes) {
+    if (apex < 0 || (x_is_apex && apex != x)) continue;
+    if (r.segment_signed && !box) {
+      BoundingBox b;
+      b.add(e.at(e.t0));
+      b.add(e.at(e.t1));
+      box = std::array<Vec3, 2>{b.lo, b.hi};
+    }
+    // The vertex v of the cell t·apex and its connector [v, a] to e's line (a ∈ e where e′ ends at v).
+    const Vec3 v = voronoi_vertex(del_, {t[0], t[1], t[2], apex});
+    const Vec3 a = e.at(dot(v - e.point, e.direction));
+    if (box && in_box(v, *box) && in_box(a, *box)) continue;
+    if (connector_sign(oracle_, a, v) == 0) return false;
+  }
+  return true;
+}
+
 VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes) const {
   VoronoiEdgeRecord r;
   // The lists are gathered here (one scratch per thread), then packed into the record.
@@ -655,7 +759,8 @@ VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::a
     r.set_lists(lists);
     return std::move(r);
   };
-  r.edge = voronoi_edge(del_, t, oracle_.clip_box(), apexes);
+  std::array<Vec3, 2> shared{};
+  r.edge = voronoi_edge(del_, t, oracle_.clip_box(), apexes, &shared);
   if (r.edge.degenerate) {
     // The edge is numerically the point v: Σ passes through it unless SurfaceLine excludes a
     // segment of length 2δ about v along the edge's line.
@@ -665,24 +770,57 @@ VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::a
   }
   if (!r.edge.valid) return finish();
   const auto& e = r.edge;
-  // E keeps one sign on a box holding e: e ∩ Σ = ∅, which is all SurfaceLine could answer.
+  // The edge as the other faces see it: the polyline v0, at(t0), at(t1), v1, whose ends v_i at
+  // Voronoi vertices are the shared points of voronoi_edge_ends() (at(t0) and at(t1) otherwise).
+  // The connector from v_i to at(t_i) is as long as v_i's distance from e's line, which the
+  // circumcentre's error can make far longer than a rounding.
+  auto shared_ends = [&]() -> const std::array<Vec3, 2>& { return shared; };
+  // The proved sign of E on the connector of end i, or 0.
+  auto end_sign = [&](int i) { return connector_sign(oracle_, e.at(i == 0 ? e.t0 : e.t1), shared_ends()[i]); };
+  // E keeps one sign on a box holding the segment and on the connectors: the polyline misses Σ,
+  // which is all SurfaceLine could answer.  Tried first on the box that also holds the shared
+  // vertices (one evaluation), then on the segment's box with the connectors proved apart.
   const auto box = segment_box(e);
-  if (oracle_.value_sign(box[0], box[1]) != 0) return finish();
+  std::array<Vec3, 2> wide = box;
+  for (int i = 0; i < 2; ++i)
+    if (i == 0 ? e.at_vertex0 : e.at_vertex1)
+      for (int k = 0; k < 3; ++k) {
+        wide[0][k] = std::min(wide[0][k], shared_ends()[i][k]);
+        wide[1][k] = std::max(wide[1][k], shared_ends()[i][k]);
+      }
+  const bool widened = wide != box;
+  if (oracle_.value_sign(wide[0], wide[1]) != 0) {
+    r.segment_signed = true;
+    return finish();
+  }
+  if (widened) {
+    if (const int sign = oracle_.value_sign(box[0], box[1]); sign != 0) {
+      bool connectors_agree = true;
+      for (int i = 0; i < 2 && connectors_agree; ++i)
+        if ((i == 0 ? e.at_vertex0 : e.at_vertex1) && !in_box(shared_ends()[i], box))
+          connectors_agree = end_sign(i) == sign;
+      if (connectors_agree) {
+        r.segment_signed = true;
+        return finish();
+      }
+    }
+  }
   const auto result = oracle_.surface_line(e.point, e.direction, e.t0, e.t1);
   const double face_tol = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
   // Zeros at Voronoi vertices: whether each would be excluded by §5.1 if it were the only one.
   std::vector<bool> vertex_root_excluded;
+  // Whether a zero next to each end's Voronoi vertex was settled (add_near_vertex()).
+  std::array<bool, 2> settled_at_vertex{false, false};
   // A zero of E in the parameter range [lo, hi] that may be at the Voronoi vertex v = e.at(tv)
   // (a certified root within the vertex tolerance, or a boundary_root region the isolator could
   // not separate from v), settled by interval proofs on the part R of [lo, hi] ∪ {tv} in e.
   // The vertex v is the point voronoi_edge_ends() shares with the other edges at it, so they all
-  // see the same sign of E(v).
-  std::optional<std::array<Vec3, 2>> ends;
+  // see the same sign of E(v).  R runs from v through the connector to at(tv), then along e.
   auto add_near_vertex = [&](double tv, bool at_start, double lo, double hi) {
     const double tf = at_start ? std::max(hi, tv) : std::min(lo, tv);  // the far end of R
     const Vec3 into = at_start ? e.direction : (-1.0) * e.direction;   // direction of u − v
-    if (!ends) ends = voronoi_edge_ends(del_, e, apexes);
-    const Vec3 v = (*ends)[at_start ? 0 : 1];
+    settled_at_vertex[at_start ? 0 : 1] = true;
+    const Vec3 v = shared_ends()[at_start ? 0 : 1];
     const int s = oracle_.gradient_sign(v, e.at(tf), into);
     const int sv = oracle_.value_sign(v);
     if (s == 0) {
@@ -733,6 +871,31 @@ VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::a
       }
     }
     lists.unresolved.push_back(u.world);
+  }
+  // A connector not settled above whose sign is not proved may hold a zero that SurfaceLine, on
+  // e's line, cannot see.  If E(v) = 0 up to rounding, the zero is at the vertex: settled by
+  // add_near_vertex() with R = [v, a], a = at(tv).  If E is proved strictly monotone along it
+  // (the sign of ⟨∇E, a − v⟩ on [v, a]) and non-zero at both ends, it holds one zero if the signs
+  // differ (a crossing, reported at a) and none otherwise; else several zeros are possible: a
+  // crossing at v, unresolved.
+  for (int i = 0; i < 2; ++i) {
+    if (!(i == 0 ? e.at_vertex0 : e.at_vertex1) || settled_at_vertex[i] || end_sign(i) != 0) continue;
+    const double tv = i == 0 ? e.t0 : e.t1;
+    const Vec3 a = e.at(tv), v = shared_ends()[i];
+    const int sv = oracle_.value_sign(v), sa = oracle_.value_sign(a);
+    if (sv == 0) {
+      // E(v) = 0 up to rounding: a zero at the Voronoi vertex, settled as above (§5.1).
+      add_near_vertex(tv, i == 0, tv, tv);
+      continue;
+    }
+    if (sa != 0 && oracle_.gradient_sign(v, a, a - v) != 0) {
+      if (sv == sa) continue;
+      lists.crossings.push_back(a);
+    } else {
+      lists.crossings.push_back(v);
+      lists.unresolved.push_back(v);
+    }
+    lists.crossing_range.push_back({tv, tv});
   }
   const bool lone_excluded_vertex =
       lists.crossings.size() == 1 && vertex_root_excluded.size() == 1 && vertex_root_excluded[0];

@@ -19,7 +19,9 @@
 //! has no unresolved region), the new record is the old one restricted to e′, with no solve.  Any
 //! enclosure near an end of e′ (a zero at a new Voronoi vertex, the §5.1 case) makes the record be
 //! solved again.  A record whose valid edge meets Σ nowhere (no crossing, candidate or unresolved
-//! region) is kept as it is: e′ ⊆ e misses Σ too, and such a record never reads its edge again.
+//! region) is kept as it is when E has a proved sign on the connectors of e′ (see Connectors
+//! below; the one to the new Voronoi vertex is new): e′ ⊆ e misses Σ too, and such a record never
+//! reads its edge again.  Otherwise it is solved again.
 //!
 //! Zeros at Voronoi vertices.  A zero of E that the isolator reports next to a Voronoi vertex v
 //! of the edge (a certified root within tolerances::duplicate_sample_relative_distance of v, or
@@ -32,7 +34,21 @@
 //!    bisection on proved signs, and no zero lies in R otherwise.
 //!  - if no sign is proved, R may hold several zeros: the zero is kept as a crossing at v and the
 //!    record lists v as unresolved (the run cannot end complete while the edge is in Vor S).
-//! Decisions are thus exact relative to the floating-point Voronoi vertex v.  Any other undecided
+//! Decisions are thus exact relative to the floating-point Voronoi vertex v.
+//!
+//! Connectors.  The edge the other faces see is the polyline v0, at(t0), at(t1), v1: its ends at
+//! Voronoi vertices are the shared points v_i of voronoi_edge_ends(), which lie off e's line by
+//! the circumcentres' errors (for a sliver, many times the membership margin), and SurfaceLine
+//! searches only the segment of the line.  So E having one sign on a box holding the segment
+//! proves the polyline misses Σ only together with the same proved sign on each connector
+//! [v_i, at(t_i)] (its bounding box) not inside that box — tried first as one sign on the box
+//! holding the segment and the v_i —; otherwise the edge is solved.  After a
+//! solve, a connector not settled as a zero next to its vertex and without a proved sign is
+//! settled alone: if E(v_i) = 0 up to rounding, as a zero at the vertex (above, with R the
+//! connector); with E strictly monotone along it (a proved sign of ⟨∇E, at(t_i) − v_i⟩) and
+//! E(v_i), E(at(t_i)) proved non-zero, it holds a crossing (reported at at(t_i)) iff they differ
+//! in sign; otherwise the record has a crossing at v_i, unresolved.  The parity of a record's
+//! crossings is thus the change of sign of E between its shared ends.  Any other undecided
 //! region on the edge (a tangency, Lemma 4.7(ii), or an exhausted budget) is projected onto Σ
 //! and kept as a candidate witness for VorEdge, or listed as unresolved if that fails.
 //! A degenerate edge (VoronoiEdge::degenerate, numerically a point) is unresolved unless
@@ -87,11 +103,18 @@ class VoronoiEdgeRecord {
  public:
   bool restricted = false;  //!< the triangle is in Tri S|Σ (with the §5.1 rule)
   bool shrunk = false;      //!< the dual edge shrank since: restrict or solve again on use
+  //! E has a proved sign on a box holding `edge`'s segment and its connectors (compute()'s first
+  //! step), so on every subset of that box.
+  bool segment_signed = false;
   VoronoiEdge edge;
 
   VoronoiEdgeRecord() = default;
   VoronoiEdgeRecord(const VoronoiEdgeRecord& other)
-      : restricted(other.restricted), shrunk(other.shrunk), edge(other.edge), lists_(copy(other)) {}
+      : restricted(other.restricted),
+        shrunk(other.shrunk),
+        segment_signed(other.segment_signed),
+        edge(other.edge),
+        lists_(copy(other)) {}
   VoronoiEdgeRecord& operator=(const VoronoiEdgeRecord& other);
   VoronoiEdgeRecord(VoronoiEdgeRecord&&) noexcept = default;
   VoronoiEdgeRecord& operator=(VoronoiEdgeRecord&&) noexcept = default;
@@ -170,19 +193,28 @@ class RestrictedDelaunay {
   void add_facets(const std::vector<EdgeKey>& edges);
   //! Whether Σ misses the facet F of the Delaunay edge e = pq, proved from `boundary`, the current
   //! records of all the triangles pqr, and `ring`, those triangles (as Delaunay::edge_ring(e), in
-  //! any order; only their third vertices r are read).  F ∩ B is a convex polygon
+  //! any order, with their apexes).  F ∩ B is a convex polygon
   //! (F = Π ∩ ⋂_r {|x − p| ≤ |x − r|}, Π the bisector plane of pq: each edge of F is the Voronoi
   //! edge of one pqr), so it lies in the bounding box of its vertices, which are of three
   //! kinds: (1) Voronoi vertices of F in B and (2) points where an edge of F leaves B — together
   //! the ends of the valid Voronoi edges of F —, and, only when F reaches ∂B, (3) points where the
   //! relative interior of F meets an edge of B: the points of Π ∩ (edges of B) on p's side of every
   //! bisector of p and r, each taken if it violates none by more than the margin
-  //! tolerances::face_membership_relative_tolerance·diag (rounding can add points, never lose
-  //! one).  E keeping one sign on that box enlarged by the same margin (the rounding of the
-  //! constructed points), proved by interval arithmetic on at most
-  //! tolerances::facet_miss_box_budget sub-boxes, proves F ∩ Σ = ∅.  False proves nothing; it is
-  //! returned at once when a Voronoi edge of F meets Σ (crossings, candidates or unresolved
-  //! regions: then F ∩ Σ ≠ ∅ or undecided) or is degenerate.  Counted (facets_missing_surface()).
+  //! M = tolerances::face_membership_relative_tolerance·diag (rounding can add points, never lose
+  //! one).  The computed ends at(t) of the edges stand for those vertices: an exact Voronoi vertex
+  //! v* of F lies within δ(v) = dist(v, box of the ends) + ρ(v) of that box, v its computed
+  //! point (voronoi_vertex(), the point F's cuts hold) and ρ(v) its certified error radius
+  //! (certified_voronoi_vertex(); the records' edges may be older and longer than the current
+  //! ones, which only makes the box larger); vertices farther than ρ(v) outside the clip box are
+  //! not vertices of F ∩ B.  So the box enlarged by max(M, 2δ), δ the largest δ(v) (twice, for
+  //! the rounding of δ and of the enlargement), holds F when every edge of F ends at Voronoi
+  //! vertices.  The points of the kinds (2) and (3) rest on the rounding of the edges' lines
+  //! and of Π (the circumcentres of the triangles and their normals, not certified), which M
+  //! covers; when F reaches ∂B and 2δ > M no proof is attempted (false).  E keeping one sign on
+  //! the enlarged box, proved by interval arithmetic on at most tolerances::facet_miss_box_budget
+  //! sub-boxes, proves F ∩ Σ = ∅.  False proves nothing; it is returned at once when a Voronoi
+  //! edge of F meets Σ (crossings, candidates or unresolved regions: then F ∩ Σ ≠ ∅ or undecided),
+  //! is degenerate, or its triangle is not in `ring`.  Counted (facets_missing_surface()).
   bool facet_misses_surface(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>& ring,
                             const std::vector<const VoronoiEdgeRecord*>& boundary);
   //! Whether the facet of e is cached, its geometry or only its section certificate (then e is
@@ -214,9 +246,14 @@ class RestrictedDelaunay {
   //! the in-plane direction w′.  (On a smooth surface the normals at the ends of a short chord
   //! tilt to opposite sides of it, so this holds for most facets across Σ, where the slope needs
   //! |⟨n_p, M⟩| / |M| below ρ_p and that can exceed any slope a cover proves.)  V_p only shrinks
-  //! while the proof is kept, so the three routes hold for the facets of the current V_p.  They rest on what the cell's proof rests on:
-  //! that the cell's domain holds V_p ∩ B (voronoi_geometry.h), which the faces of one computed
-  //! diagram do up to tolerances::face_membership_relative_tolerance.  Counted
+  //! while the proof is kept, so the three routes hold for the facets of the current V_p.  They
+  //! rest on what the cell's proof rests on: that the cell's domain holds the exact V_p ∩ B, so
+  //! that the exact F ⊆ V_p ∩ V_q lies in it.  Its half-spaces are the exact bisectors moved
+  //! outwards (up to the rounding of one dot product), and its box, when built from the Voronoi
+  //! vertices, is their bounding box enlarged by the membership margin or twice their largest
+  //! certified error radius if larger (voronoi_geometry.h), so it holds the exact vertices; the
+  //! computed F (whose cuts hold the computed vertices) need not lie in it, and is not what the
+  //! routes certify.  Counted
   //! (facets_certified_by_cell()).  This route reads no geometry of F, and holds whether F ∩ B is
   //! a polygon, degenerate or empty; it is tried first, and a facet it certifies is not built
   //! until facet() is asked for it.
@@ -328,6 +365,14 @@ class RestrictedDelaunay {
   //! a box holding the edge proves E ≠ 0 there (then e ∩ Σ = ∅).  Touches no member: safe to
   //! call from several threads at once.
   VoronoiEdgeRecord compute(const TriangleKey& t, const std::array<VertexId, 2>* apexes) const;
+  //! Whether E has a proved sign on the connector of the edge of t (apexes `apexes`, after the
+  //! insertion of x) to its new Voronoi vertex (that of the cell t·x; both if x is not an apex),
+  //! r being t's record, kept because its older edge missed Σ (the older vertex's connector was
+  //! settled when r was computed): the connector [v, a], a the projection of v onto the edge's
+  //! line, inside the box on which r's sign was proved (VoronoiEdgeRecord::segment_signed) or of
+  //! a proved sign itself.
+  bool kept_connectors_clean(const VoronoiEdgeRecord& r, const TriangleKey& t, const std::array<VertexId, 2>& apexes,
+                             VertexId x) const;
   //! The record of t restricted from its shrunk one, or nothing with `current` set to the
   //! cached record if it is up to date (nullptr if none or if it must be solved).
   std::optional<VoronoiEdgeRecord> update_without_solving(const TriangleKey& t, const std::array<VertexId, 2>* apexes,

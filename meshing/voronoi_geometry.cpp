@@ -14,6 +14,9 @@
 #include "meshing/detail/key_order.h"
 #include "meshing/detail/vec3.h"
 #include "solvers/query_geometry.h"
+#include "symbolic/scalar_types.h"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
 namespace delmesh {
 
@@ -113,10 +116,13 @@ CellEnds cell_ends(const Delaunay& del, const VoronoiEdge& e, const std::array<V
 
 // The edge of t in dimension 3 from the vertices of its two cells: a segment between them, or
 // (one cell infinite) a ray from the finite one away from its apex, clipped by the box.
-void edge_from_cells(const Delaunay& del, const std::array<VertexId, 2>& apexes, const Box3& box, VoronoiEdge& e) {
+// `shared`, if given, receives the Voronoi vertices of the ends at vertices (valid edges).
+void edge_from_cells(const Delaunay& del, const std::array<VertexId, 2>& apexes, const Box3& box, VoronoiEdge& e,
+                     std::array<Vec3, 2>* shared) {
   const auto clipped = clip_line_to_box(e.point, e.direction, box);
   if (!clipped) return;
   const CellEnds ends = cell_ends(del, e, apexes);
+  if (shared) *shared = {ends.lo_vertex, ends.hi_vertex};
   e.at_vertex0 = ends.lo > (*clipped)[0];
   e.at_vertex1 = ends.hi < (*clipped)[1];
   if (!(ends.lo < ends.hi)) {
@@ -132,7 +138,22 @@ void edge_from_cells(const Delaunay& del, const std::array<VertexId, 2>& apexes,
 
 }  // namespace
 
-Vec3 voronoi_vertex(const Delaunay& del, std::array<VertexId, 4> cell) {
+namespace {
+
+// A kept Voronoi vertex: its centre and, once asked for, its error radius (negative before).
+struct VertexMemo {
+  std::uint64_t serial = 0;  // no Delaunay has serial 0
+  std::array<VertexId, 4> cell{};
+  Vec3 centre{};
+  double radius = -1;
+  bool tight = false;  // radius is the interval bound (else the static one, or none)
+};
+
+void settle_centre(VertexMemo& m, const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s);
+
+// The memo entry of the cell (ids in ascending order on return), filled with its centre.  A
+// direct-mapped memo per thread: the faces at a Voronoi vertex ask for it one after another.
+VertexMemo& vertex_memo(const Delaunay& del, std::array<VertexId, 4>& cell) {
   // Ascending ids by a sorting network of four.
   auto order = [&](int i, int j) {
     if (cell[j] < cell[i]) std::swap(cell[i], cell[j]);
@@ -142,23 +163,152 @@ Vec3 voronoi_vertex(const Delaunay& del, std::array<VertexId, 4> cell) {
   order(0, 2);
   order(1, 3);
   order(1, 2);
-  // A direct-mapped memo per thread: the faces at a Voronoi vertex ask for it one after another.
-  struct Memo {
-    std::uint64_t serial = 0;  // no Delaunay has serial 0
-    std::array<VertexId, 4> cell{};
-    Vec3 centre{};
-  };
   constexpr std::size_t memo_size = 1024;
-  thread_local std::array<Memo, memo_size> memo;
+  thread_local std::array<VertexMemo, memo_size> memo;
   std::uint64_t hash = 0;
   for (VertexId v : cell) hash = (hash ^ static_cast<std::uint32_t>(v)) * 0x100000001b3ull;
-  Memo& m = memo[(hash >> 20) % memo_size];
+  VertexMemo& m = memo[(hash >> 20) % memo_size];
   if (m.serial != del.serial() || !detail::KeyEqual{}(m.cell, cell)) {
     m.serial = del.serial();
     m.cell = cell;
     m.centre = circumcentre(del.point(cell[0]), del.point(cell[1]), del.point(cell[2]), del.point(cell[3]));
+    m.radius = -1;
+    m.tight = false;
+    settle_centre(m, del.point(cell[0]), del.point(cell[1]), del.point(cell[2]), del.point(cell[3]));
   }
-  return m.centre;
+  return m;
+}
+
+// Upper bound of √(x0² + x1² + x2²) for non-negative doubles (under the caller's upward rounding).
+double upper_norm(const std::array<double, 3>& x) {
+  return CGAL::sqrt(Interval(x[0]) * x[0] + Interval(x[1]) * x[1] + Interval(x[2]) * x[2]).sup();
+}
+
+// A forward error bound on circumcentre(p, q, r, s) = centre, from the standard model
+// fl(x ∘ y) = (x ∘ y)(1 + δ), |δ| ≤ u = 2⁻⁵³, or nothing where it does not apply (M below or
+// above the range where no intermediate underflows or overflows, or d not safely away from 0).
+// With M* = 1.001 M bounding every |component| of the exact differences a*, b*, c* (M the
+// largest computed one): the cross products are off by at most 9uM*² (|b×c| ≤ 2M*²), d = 2⟨a, b×c⟩
+// by Δd ≤ 128uM*³, |a|² by 16uM*², each numerator component n by Δn ≤ 256uM*⁴ (so |n*| ≤
+// |n| + Δn); then n/d is off by Δn/|d| + (|n| + Δn)Δd/(|d|(|d| − Δd)), its two roundings add 2.01u|n/d|
+// and the final sum 1.01u|centre_k|.  The bound of each coordinate is doubled to cover the
+// rounding of its own evaluation.
+std::optional<double> static_circumcentre_radius(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s,
+                                                 const Vec3& centre) {
+  const Vec3 a = q - p, b = r - p, c = s - p;
+  double m = 0;
+  for (int k = 0; k < 3; ++k) m = std::max({m, std::abs(a[k]), std::abs(b[k]), std::abs(c[k])});
+  if (!(m > 1e-30 && m < 1e30)) return std::nullopt;
+  constexpr double u = 0x1p-53;
+  const double ms = 1.001 * m, m3 = ms * ms * ms, m4 = m3 * ms;
+  const double d = 2 * dot(a, cross(b, c));
+  const double dd = 128 * u * m3;
+  if (!(std::abs(d) > 2 * dd)) return std::nullopt;
+  const Vec3 num = dot(a, a) * cross(b, c) + dot(b, b) * cross(c, a) + dot(c, c) * cross(a, b);
+  const double dn = 256 * u * m4;
+  double sum = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double quotient_error = dn / std::abs(d) + (std::abs(num[k]) + dn) * dd / (std::abs(d) * (std::abs(d) - dd));
+    const double e = 2 * (quotient_error + 2.01 * u * std::abs(num[k] / d) + 1.01 * u * std::abs(centre[k]));
+    sum += e * e;
+  }
+  return 1.01 * std::sqrt(sum);
+}
+
+// The interval bound of certified_voronoi_vertex() on |centre − c*|, c* the exact circumcentre
+// of pqrs.
+double circumcentre_radius(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, const Vec3& centre) {
+  std::array<double, 3> far{};  // |centre − c*| per coordinate, bounded above
+  {
+    // Step 1: the formula of circumcentre() in intervals; its box holds c*.
+    RoundingGuard guard;
+    using I3 = std::array<Interval, 3>;
+    auto minus = [](const Vec3& x, const Vec3& y) {
+      return I3{Interval(x[0]) - y[0], Interval(x[1]) - y[1], Interval(x[2]) - y[2]};
+    };
+    auto cross3 = [](const I3& x, const I3& y) {
+      return I3{x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+    };
+    auto dot3 = [](const I3& x, const I3& y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+    const I3 a = minus(q, p), b = minus(r, p), c = minus(s, p);
+    const I3 bc = cross3(b, c), ca = cross3(c, a), ab = cross3(a, b);
+    const Interval d = 2 * dot3(a, bc);
+    if (d.inf() > 0 || d.sup() < 0) {
+      const Interval aa = dot3(a, a), bb = dot3(b, b), cc = dot3(c, c);
+      for (int k = 0; k < 3; ++k) {
+        const Interval x = Interval(p[k]) + (aa * bc[k] + bb * ca[k] + cc * ab[k]) / d;
+        far[k] = std::max(x.sup() - centre[k], centre[k] - x.inf());  // rounded upwards
+      }
+      const double radius = upper_norm(far);
+      if (std::isfinite(radius)) return radius;
+    }
+  }
+  // Step 2: the sites are coplanar up to the intervals' rounding: c* constructed exactly (none
+  // if the sites are coplanar).
+  using Exact = CGAL::Exact_predicates_exact_constructions_kernel;
+  auto exact = [](const Vec3& x) { return Exact::Point_3(x[0], x[1], x[2]); };
+  if (CGAL::coplanar(exact(p), exact(q), exact(r), exact(s))) return std::numeric_limits<double>::infinity();
+  const Exact::Point_3 star = CGAL::circumcenter(exact(p), exact(q), exact(r), exact(s));
+  for (int k = 0; k < 3; ++k) far[k] = CGAL::to_interval(CGAL::exact(CGAL::abs(star[k] - centre[k]))).second;
+  RoundingGuard guard;
+  return upper_norm(far);
+}
+
+// Replaces a wild centre (voronoi_vertex()): when neither the static nor the interval bound is
+// within tolerances::voronoi_vertex_exact_relative_error of the centre's distance to p (or the
+// centre is not finite), the exact circumcentre rounded to doubles, with the bound of that
+// rounding; nothing if the sites are coplanar (the cell is flat; its radius stays unknown).
+void settle_centre(VertexMemo& m, const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
+  const bool finite = std::isfinite(m.centre[0]) && std::isfinite(m.centre[1]) && std::isfinite(m.centre[2]);
+  const double allowed = tolerances::voronoi_vertex_exact_relative_error * distance(m.centre, p);
+  if (finite) {
+    if (const auto bound = static_circumcentre_radius(p, q, r, s, m.centre)) {
+      m.radius = *bound;
+      if (*bound <= allowed) return;
+    }
+    const double tight = circumcentre_radius(p, q, r, s, m.centre);
+    m.radius = m.radius >= 0 ? std::min(m.radius, tight) : tight;
+    m.tight = true;
+    if (m.radius <= allowed) return;
+  }
+  using Exact = CGAL::Exact_predicates_exact_constructions_kernel;
+  auto exact = [](const Vec3& x) { return Exact::Point_3(x[0], x[1], x[2]); };
+  if (CGAL::coplanar(exact(p), exact(q), exact(r), exact(s))) return;
+  const Exact::Point_3 star = CGAL::circumcenter(exact(p), exact(q), exact(r), exact(s));
+  std::array<double, 3> far{};
+  for (int k = 0; k < 3; ++k) {
+    const auto x = CGAL::exact(star[k]);
+    m.centre[k] = CGAL::to_double(x);
+    far[k] = CGAL::to_interval(CGAL::exact(CGAL::abs(star[k] - m.centre[k]))).second;
+  }
+  RoundingGuard guard;
+  m.radius = upper_norm(far);
+  m.tight = true;
+}
+
+}  // namespace
+
+Vec3 voronoi_vertex(const Delaunay& del, std::array<VertexId, 4> cell) { return vertex_memo(del, cell).centre; }
+
+VoronoiVertex certified_voronoi_vertex(const Delaunay& del, std::array<VertexId, 4> cell, double enough) {
+  VertexMemo& m = vertex_memo(del, cell);
+  if (m.tight || (m.radius >= 0 && m.radius <= enough)) return {m.centre, m.radius};
+  const Vec3 &p = del.point(cell[0]), &q = del.point(cell[1]), &r = del.point(cell[2]), &s = del.point(cell[3]);
+  // A centre that is not finite (a flat cell in doubles) has no bound.
+  if (!std::isfinite(m.centre[0]) || !std::isfinite(m.centre[1]) || !std::isfinite(m.centre[2])) {
+    m.radius = std::numeric_limits<double>::infinity();
+    m.tight = true;
+    return {m.centre, m.radius};
+  }
+  // Step 1: the static bound, enough if it is within `enough`.
+  if (m.radius < 0)
+    if (const auto bound = static_circumcentre_radius(p, q, r, s, m.centre)) m.radius = *bound;
+  if (m.radius >= 0 && m.radius <= enough) return {m.centre, m.radius};
+  // Step 2: the interval bound (exact construction as its fallback), the tighter of the two.
+  const double tight = circumcentre_radius(p, q, r, s, m.centre);
+  m.radius = m.radius >= 0 ? std::min(m.radius, tight) : tight;
+  m.tight = true;
+  return {m.centre, m.radius};
 }
 
 bool half_spaces_contain(const Domain& domain, const std::vector<double>& u, double tolerance) {
@@ -205,7 +355,7 @@ bool VoronoiCell::contains(const Vec3& x, double tolerance) const {
 }
 
 VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& t, const Box3& box,
-                         const std::array<VertexId, 2>* known_apexes) {
+                         const std::array<VertexId, 2>* known_apexes, std::array<Vec3, 2>* shared) {
   VoronoiEdge e;
   e.triangle = t;
   const Vec3& p = del.point(t[0]);
@@ -216,7 +366,11 @@ VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& t, const Box3& 
   e.point = circumcentre(p, q, r);
   e.direction = normalized(n);
   if (const auto apexes = known_apexes ? std::optional(*known_apexes) : del.triangle_apexes(t)) {
-    edge_from_cells(del, *apexes, box, e);
+    edge_from_cells(del, *apexes, box, e, shared);
+    if (shared) {
+      if (!e.at_vertex0) (*shared)[0] = e.at(e.t0);
+      if (!e.at_vertex1) (*shared)[1] = e.at(e.t1);
+    }
     return e;
   }
   const auto clipped = clip_line_to_box(e.point, e.direction, box);
@@ -234,6 +388,7 @@ VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& t, const Box3& 
   e.at_vertex0 = line.cut0;
   e.at_vertex1 = line.cut1;
   e.valid = line.nonempty();
+  if (shared) *shared = {e.at(e.t0), e.at(e.t1)};
   return e;
 }
 
@@ -444,11 +599,19 @@ HalfSpace bisector(const Vec3& p, const Vec3& q) {
   return HalfSpace{{w[0], w[1], w[2]}, dot(w, 0.5 * (q + p))};
 }
 
-// The Voronoi vertices of the cells of p (unused entries for infinite cells).
-std::vector<Vec3> cell_corners(const Delaunay& del, const std::vector<std::array<VertexId, 4>>& cells) {
+// The Voronoi vertices of the cells of p (unused entries for infinite cells), and the largest
+// error radius among them (certified_voronoi_vertex()).
+// Radii up to `enough` may be the static ones (certified_voronoi_vertex()).
+std::vector<Vec3> cell_corners(const Delaunay& del, const std::vector<std::array<VertexId, 4>>& cells, double enough,
+                               double& largest_radius) {
   std::vector<Vec3> corners(cells.size());
+  largest_radius = 0;
   for (std::size_t k = 0; k < cells.size(); ++k)
-    if (cells[k][1] >= 0 && cells[k][2] >= 0 && cells[k][3] >= 0) corners[k] = voronoi_vertex(del, cells[k]);
+    if (cells[k][1] >= 0 && cells[k][2] >= 0 && cells[k][3] >= 0) {
+      const VoronoiVertex v = certified_voronoi_vertex(del, cells[k], enough);
+      corners[k] = v.centre;
+      largest_radius = std::max(largest_radius, v.radius);
+    }
   return corners;
 }
 
@@ -477,13 +640,13 @@ void hold_vertices(const std::vector<std::array<VertexId, 4>>& cells, const std:
   }
 }
 
-// The cell of `site` on the box `points` (a bounding box of V_p ∩ B before rounding), enlarged
-// by a margin for the rounding of the points and intersected with B, cut by the bisectors of p
-// and all its `neighbours` (a neighbour whose facet in B has no area adds a redundant
-// half-space).  Nothing if the box ∩ B is empty.
+// The cell of `site` on the box `points` (a bounding box of V_p ∩ B up to the errors of the
+// points), enlarged by `enlargement` (at least those errors) and intersected with B, cut by the
+// bisectors of p and all its `neighbours` (a neighbour whose facet in B has no area adds a
+// redundant half-space).  Nothing if the box ∩ B is empty.
 std::optional<VoronoiCell> cell_in_bounds(const Delaunay& del, VertexId site, const Box3& box, BoundingBox points,
-                                          std::vector<VertexId> neighbours) {
-  points.enlarge(tolerances::face_membership_relative_tolerance * box.diagonal());
+                                          std::vector<VertexId> neighbours, double enlargement) {
+  points.enlarge(enlargement);
   std::vector<std::array<double, 2>> bounds;
   bounds.reserve(3);
   for (int k = 0; k < 3; ++k) {
@@ -502,19 +665,21 @@ std::optional<VoronoiCell> cell_in_bounds(const Delaunay& del, VertexId site, co
 }
 
 // V_p from its vertices, when it is bounded: in dimension 3 the vertices of V_p are the Voronoi
-// vertices of the cells incident to p, so V_p ∩ B lies in their bounding box ∩ B.  Nothing if a
+// vertices of the cells incident to p, so V_p ∩ B lies in their exact bounding box ∩ B, which
+// the bounding box of the computed vertices enlarged by their largest error radius holds.
+// `enlargement` is max(membership margin, 2 · that radius) (voronoi_geometry.h).  Nothing if a
 // cell of p is infinite (V_p is unbounded) or the box ∩ B is empty.
 std::optional<VoronoiCell> cell_from_vertices(const Delaunay& del, VertexId site, const Box3& box,
                                               const std::vector<std::array<VertexId, 4>>& cells,
                                               const std::vector<Vec3>& corners,
-                                              const std::vector<VertexId>& neighbours) {
+                                              const std::vector<VertexId>& neighbours, double enlargement) {
   if (del.dimension() != 3) return std::nullopt;
   BoundingBox vertices;
   for (std::size_t k = 0; k < cells.size(); ++k) {
     if (cells[k][1] < 0 || cells[k][2] < 0 || cells[k][3] < 0) return std::nullopt;
     vertices.add(corners[k]);
   }
-  return cell_in_bounds(del, site, box, vertices, neighbours);
+  return cell_in_bounds(del, site, box, vertices, neighbours, enlargement);
 }
 
 // Adds to `points` the ends of the part of the segment {a + t v : t ∈ [t0, t1]} in B (t1 = +∞
@@ -632,7 +797,7 @@ std::optional<VoronoiCell> cell_from_dual(const Delaunay& del, VertexId site, co
     }
   }
   if (points.empty()) return std::nullopt;
-  return cell_in_bounds(del, site, box, points, neighbours);
+  return cell_in_bounds(del, site, box, points, neighbours, margin);
 }
 
 // V_p ∩ B by clipping B with the bisectors of p and its neighbours, nearest first (their
@@ -684,9 +849,15 @@ VoronoiCell voronoi_cell(const Delaunay& del, VertexId site, const Box3& box) {
 VoronoiCell voronoi_cell(const Delaunay& del, VertexId site, const Box3& box,
                          const std::vector<std::array<VertexId, 4>>& cells, const std::vector<VertexId>& neighbours) {
   // Both ways, the half-spaces and the box are then moved out to hold the cell's Voronoi vertices.
-  const auto corners = cell_corners(del, cells);
-  auto from_vertices = cell_from_vertices(del, site, box, cells, corners, neighbours);
-  if (!from_vertices) from_vertices = cell_from_dual(del, site, box, cells, corners, neighbours);
+  // Step 1: the vertices and their largest error radius ρ.
+  const double margin = tolerances::face_membership_relative_tolerance * box.diagonal();
+  double radius = 0;
+  const auto corners = cell_corners(del, cells, 0.5 * margin, radius);
+  // Step 2: the box from the vertices, enlarged by the membership margin or 2ρ if larger; from
+  // the dual only when 2ρ is within the margin (its clip points rest on the margin); else by
+  // clipping, which reads no circumcentre.
+  auto from_vertices = cell_from_vertices(del, site, box, cells, corners, neighbours, std::max(margin, 2 * radius));
+  if (!from_vertices && 2 * radius <= margin) from_vertices = cell_from_dual(del, site, box, cells, corners, neighbours);
   VoronoiCell cell = from_vertices ? std::move(*from_vertices) : clipped_cell(del, site, box, neighbours);
   if (cell.valid) hold_vertices(cells, corners, box, cell);
   return cell;

@@ -33,9 +33,25 @@
 //!   of p and q moved outwards just enough to hold the vertices of the facet F_pq.
 //! The faces are therefore closed sets that overlap on the shared vertices and edges of the
 //! computed diagram: a point of Σ on a shared vertex or edge lies in every face that contains
-//! it, up to the rounding of one projection (a few units in the last place of the box size),
-//! far below tolerances::face_membership_relative_tolerance.  The moves are the rounding errors
-//! of the circumcentres (zero in exact arithmetic), so the faces are those of Vor S up to them.
+//! it, up to the rounding of one projection.  The moves are the errors of the circumcentres
+//! (zero in exact arithmetic), so the faces are those of Vor S up to them.  These errors are not
+//! a few units in the last place: for four nearly cospherical sites (a sliver) the formula loses
+//! as many digits as the cell is flat, and the double circumcentre can be off by many times
+//! tolerances::face_membership_relative_tolerance · diag(B).  certified_voronoi_vertex() therefore
+//! gives each Voronoi vertex v a certified error radius ρ(v) ≥ |v − v*| (v* the exact
+//! circumcentre), and every shortcut that compares faces built in different ways widens its
+//! margin by the radii of the vertices involved (see each one's contract).  Here:
+//! - V_p's box, built from the Voronoi vertices of p's cells (bounded V_p), is their bounding box
+//!   enlarged by max(face_membership_relative_tolerance · diag(B), 2ρ), ρ the largest radius of
+//!   those vertices: V_p = conv{v*} lies in the bounding box of the v enlarged by ρ, and the
+//!   second term covers the rounding of the enlargement itself whenever it exceeds the first.
+//!   The box read off the Delaunay dual (unbounded V_p) also uses the points where the computed
+//!   Voronoi edges cross ∂B, which the radii do not bound; it is used only when 2ρ is within the
+//!   membership margin, and V_p is clipped from the bisectors (which no circumcentre enters)
+//!   otherwise.
+//! - The half-spaces of the faces are the exact bisectors (up to the rounding of one dot product)
+//!   moved outwards only, so each computed face holds the exact one up to that rounding, whatever
+//!   the circumcentres' errors.
 //! The rays and the faces of an unbounded cell (pq on the convex hull of S) are cut by B.
 
 #include <array>
@@ -51,10 +67,32 @@
 namespace delmesh {
 
 //! The Voronoi vertex dual to a finite Delaunay cell: the circumcentre of its four sites,
-//! computed from the sites in increasing id order (the same point for every face at it).  The
+//! computed from the sites in increasing id order (the same point for every face at it), by the
+//! formula in doubles — or, when its certified error (certified_voronoi_vertex()) exceeds
+//! tolerances::voronoi_vertex_exact_relative_error of its distance to the sites (a nearly flat
+//! cell), constructed exactly and rounded to doubles.  The
 //! last ones computed on each thread are kept under (Delaunay::serial(), ids) and returned again.
 //! \pre the four ids are distinct vertices of Del S, not coplanar.
 Vec3 voronoi_vertex(const Delaunay& del, std::array<VertexId, 4> cell);
+
+//! A Voronoi vertex with a certified bound on its error.
+struct VoronoiVertex {
+  Vec3 centre{};    //!< voronoi_vertex() of the cell, bit for bit
+  double radius{};  //!< ρ ≥ |centre − c*|, c* the exact circumcentre of the four sites (+∞ if unknown)
+};
+//! voronoi_vertex() of the cell with its error radius ρ.  The circumcentre formula
+//! c = p + (|a|² b×c′ + |b|² c′×a + |c′|² a×b) / (2⟨a, b×c′⟩), a = q−p, b = r−p, c′ = s−p, is
+//! evaluated once more in interval arithmetic (CGAL::Interval_nt under upward rounding) from the
+//! sites, which are exact doubles: the box it returns holds c*, so the distance from `centre` to
+//! the box's farthest corner, rounded upwards, bounds |centre − c*|.  When the interval of the
+//! denominator holds 0 (the four sites are coplanar up to the rounding of the intervals) c* is
+//! constructed exactly (CGAL's exact kernel) and ρ is |centre − c*| rounded upwards.  A cheaper
+//! static bound (the standard rounding model applied to the formula, in doubles; far looser for
+//! flat cells) is tried first, and returned when it is at most `enough`: callers that only ask
+//! whether ρ is below a threshold pass it.  The radius is kept with the centre (one double per
+//! kept vertex) and computed on first request.
+//! \pre as for voronoi_vertex().
+VoronoiVertex certified_voronoi_vertex(const Delaunay& del, std::array<VertexId, 4> cell, double enough = 0);
 
 //! The Voronoi edge dual to a Delaunay triangle: {point + t·direction : t ∈ [t0, t1]}.
 //! (The members are ordered so that the ids and flags share the last 16 bytes: 80 in all.)
@@ -118,8 +156,9 @@ struct VoronoiCell {
 
 //! `apexes`, if given, are Delaunay::triangle_apexes(triangle) (known to the caller, e.g. from
 //! Delaunay::closed_star); otherwise they are looked up.
+//! `shared`, if given, receives voronoi_edge_ends() of the edge when it is valid.
 VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& triangle, const Box3& box,
-                         const std::array<VertexId, 2>* apexes = nullptr);
+                         const std::array<VertexId, 2>* apexes = nullptr, std::array<Vec3, 2>* shared = nullptr);
 //! The ends of an edge built by voronoi_edge(): at(t0) and at(t1), except that an end at a Voronoi
 //! vertex is voronoi_vertex() of its cell (on the line up to rounding), the point shared with
 //! the other faces at it.  `apexes` as for voronoi_edge().

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
+#include <string>
 
 #include "check_fixture.h"
 #include "common/errors.h"
 #include "meshing/detail/vec3.h"
 #include "meshing/restricted_delaunay.h"
+#include "sliver_fixture.h"
 
 using namespace delmesh;
 using delmesh::test::CheckFixture;
@@ -382,6 +385,52 @@ BOOST_AUTO_TEST_CASE(facet_missing_surface_is_claimed_only_off_the_surface) {
   BOOST_TEST(cleared_reaching_box > 0);
   BOOST_TEST(kept > 0);
   BOOST_TEST(f.restricted.facets_missing_surface() == static_cast<std::size_t>(cleared));
+}
+
+// A Voronoi edge of a sliver, with Σ a plane between the edge's line and the circumcentre by
+// the formula in doubles v′, which lies off that line by several times the membership margin: E
+// has one sign on the whole segment and the other at v′.  Were v′ the Voronoi vertex shared with
+// the other faces at it, the edge as they see it would cross Σ on the connector from v′ to the
+// line, which SurfaceLine never searches.  The record's crossings have the parity of the change of
+// sign of E between the edge's shared ends (voronoi_edge_ends()).
+BOOST_AUTO_TEST_CASE(a_plane_between_a_sliver_vertex_and_its_edge_keeps_the_crossing_parity) {
+  using namespace delmesh::detail;
+  const std::vector<Vec3> points = test::sliver_points();
+  const std::vector<Vec3> four(points.begin(), points.begin() + 4);
+  const Vec3 formula = test::formula_circumcentre(four);
+  const Box3 box = Box3::cube(test::sliver_half_width);
+  Delaunay del;
+  for (const Vec3& p : points) del.insert(p, false);
+  // The triangle of the sliver whose line is farthest from v′, and the foot a of v′ on it.
+  TriangleKey best{};
+  double best_offset = 0;
+  Vec3 foot{};
+  for (const TriangleKey t : std::vector<TriangleKey>{{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}}) {
+    BOOST_TEST_REQUIRE(del.triangle_apexes(t).has_value());
+    const VoronoiEdge e = voronoi_edge(del, t, box);
+    BOOST_TEST_REQUIRE(e.valid);
+    const Vec3 a = e.at(dot(formula - e.point, e.direction));
+    if (distance(formula, a) > best_offset) best = t, best_offset = distance(formula, a), foot = a;
+  }
+  const double margin = tolerances::face_membership_relative_tolerance * box.diagonal();
+  BOOST_TEST_REQUIRE(best_offset > 2 * margin);
+  const VoronoiEdge e = voronoi_edge(del, best, box);
+  // The plane ⟨m, x⟩ = ⟨m, (v′ + a)/2⟩ with m the part of v′ − a orthogonal to the line.
+  Vec3 m = formula - foot;
+  m = m - dot(m, e.direction) * e.direction;
+  m = (1.0 / norm(m)) * m;
+  const Vec3 mid = 0.5 * (formula + foot);
+  char equation[256];
+  std::snprintf(equation, sizeof equation, "(%.17g)*x+(%.17g)*y+(%.17g)*z-(%.17g)", m[0], m[1], m[2], dot(m, mid));
+  CheckFixture f(equation, test::sliver_half_width, points);
+  BOOST_TEST_REQUIRE(f.oracle.value_sign(foot) == -f.oracle.value_sign(formula));
+  const auto& record = f.restricted.voronoi_edge_record(best);
+  BOOST_TEST_REQUIRE(record.edge.valid);
+  const auto ends = voronoi_edge_ends(f.del, record.edge);
+  const int s0 = f.oracle.value_sign(ends[0]), s1 = f.oracle.value_sign(ends[1]);
+  BOOST_TEST_REQUIRE(s0 * s1 != 0);
+  BOOST_TEST(record.crossings().size() % 2 == (s0 != s1 ? 1u : 0u));
+  BOOST_TEST(record.restricted == (s0 != s1));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

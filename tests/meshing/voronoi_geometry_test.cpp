@@ -8,6 +8,7 @@
 #include "meshing/detail/vec3.h"
 #include "meshing/restricted_delaunay.h"
 #include "meshing/voronoi_geometry.h"
+#include "sliver_fixture.h"
 
 using namespace delmesh;
 
@@ -235,6 +236,41 @@ BOOST_AUTO_TEST_CASE(faces_share_their_voronoi_vertices) {
   BOOST_TEST(edge_ends > 150);
   BOOST_TEST(facets > 200);
   BOOST_TEST(cells > 150);
+}
+
+// The error radius of a Voronoi vertex encloses the exact circumcentre: for a regular
+// tetrahedron it is a few units in the last place.  A sliver whose circumcentre by the formula in
+// doubles is off by more than the membership margin (so that no constant margin covers it) gets
+// its Voronoi vertex constructed exactly: within the margin of the exact point, and its radius
+// encloses that point.  The centre is voronoi_vertex()'s, bit for bit.  The cells of the sliver's
+// sites hold the exact circumcentre in their box.
+BOOST_AUTO_TEST_CASE(certified_voronoi_vertex_encloses_the_exact_circumcentre) {
+  Delaunay regular;
+  const std::vector<Vec3> corners{{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+  for (const Vec3& p : corners) regular.insert({p[0] + 0.1, p[1] - 0.3, p[2] + 0.7}, false);
+  const VoronoiVertex v = certified_voronoi_vertex(regular, {0, 1, 2, 3});
+  BOOST_TEST(v.radius < 1e-14);
+  BOOST_TEST(detail::distance(v.centre, Vec3{0.1, -0.3, 0.7}) <= v.radius);
+
+  const std::vector<Vec3> points = test::sliver_points();
+  const std::vector<Vec3> four(points.begin(), points.begin() + 4);
+  Delaunay del;
+  for (const Vec3& p : points) del.insert(p, false);
+  const double margin =
+      tolerances::face_membership_relative_tolerance * Box3::cube(test::sliver_half_width).diagonal();
+  BOOST_TEST(!test::exact_circumcentre_within(four, test::formula_circumcentre(four), margin));  // the premise
+  for (int round = 0; round < 2; ++round) {  // computed, then kept
+    const VoronoiVertex s = certified_voronoi_vertex(del, {3, 1, 0, 2});
+    BOOST_TEST(s.centre == voronoi_vertex(del, {0, 1, 2, 3}));
+    BOOST_TEST(test::exact_circumcentre_within(four, s.centre, s.radius));
+    BOOST_TEST(test::exact_circumcentre_within(four, s.centre, margin));
+    BOOST_TEST(s.radius <= margin);
+  }
+  for (VertexId p = 0; p < 4; ++p) {
+    const VoronoiCell cell = voronoi_cell(del, p, Box3::cube(test::sliver_half_width));
+    BOOST_TEST_REQUIRE(cell.valid);
+    BOOST_TEST(test::exact_circumcentre_in_box(four, cell.domain.box.bounds));
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()

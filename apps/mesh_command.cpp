@@ -370,6 +370,16 @@ std::optional<MeshStatus> certify_result(const MeshOptions& o, const MeshPlan& p
   return std::nullopt;
 }
 
+//! "N findings were not settled (R1 n1, R2 n2; statistics: "unsettled")" from the statistics'
+//! "unsettled" object, the reasons in the order the statistics list them.
+std::string unsettled_summary(const nlohmann::json& unsettled) {
+  const auto count = unsettled["count"].get<std::size_t>();
+  std::string text = std::to_string(count) + (count == 1 ? " finding was" : " findings were") + " not settled (";
+  for (const auto& [reason, n] : unsettled["by_reason"].items())
+    text += reason + " " + std::to_string(n.get<std::size_t>()) + "; ";
+  return text + "statistics: \"unsettled\")";
+}
+
 //! The exit code of a finished run, with its warning.
 ExitCode exit_code(MeshStatus status, const nlohmann::json& statistics, double min_spacing) {
   switch (status) {
@@ -382,8 +392,8 @@ ExitCode exit_code(MeshStatus status, const nlohmann::json& statistics, double m
       if (!statistics["solver_certified"].get<bool>())
         print_warning("--solver homotopy: its path tracking is not certified, so the run cannot be complete "
                       "(statistics: \"solver_certified\")");
-      print_warning("uncertified: the run ended, but " + std::to_string(statistics["unsettled"]["count"].get<std::size_t>()) +
-                    " findings were not settled (statistics: \"unsettled\"); the mesh carries no guarantee");
+      print_warning("uncertified: the run ended, but " + unsettled_summary(statistics["unsettled"]) +
+                    "; the mesh carries no guarantee");
       return ExitCode::uncertified;
     case MeshStatus::interrupted:
       print_warning("interrupted by a signal: the mesh is partial");

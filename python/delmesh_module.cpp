@@ -345,7 +345,7 @@ nlohmann::json certificate_of(const DelMeshResult& r, const SurfaceInput& input,
   if (!ended || faces.empty()) return nullptr;
   const TopologyCertificates c = certify_topology(points, faces, input, CertifyMethod::automatic, seed,
                                                   controls.interrupt, controls.limits->deadline());
-  return nlohmann::json::parse(c.to_json().dump());
+  return nlohmann::json(c.to_json());
 }
 
 MeshResult mesh(const py::object& expr, const py::object& box, const py::object& surface,

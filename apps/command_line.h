@@ -63,6 +63,7 @@ Command add_surfaces_command(CLI::App& parent);
 Command add_solve_command(CLI::App& parent);
 Command add_mesh_command(CLI::App& parent);
 Command add_check_command(CLI::App& parent);
+Command add_report_command(CLI::App& parent);
 
 //! Ranges of the numeric options (input limits, not tolerances).  A count (--max-points,
 //! --max-boxes) is at most max_count; a time limit at most max_time_limit_seconds

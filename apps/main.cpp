@@ -1,5 +1,5 @@
 //! \file main.cpp
-//! The `delmesh` command line: subcommands surfaces, solve, mesh, check.  See command_line.h for
+//! The `delmesh` command line: subcommands surfaces, solve, mesh, check, report.  See command_line.h for
 //! the exit codes.  Every failure ends as one `error:` line and an exit code: the program never
 //! dies by a signal or an abort.  The signal handlers (apps/interrupt.h) are installed before
 //! anything else (before the shared libraries are initialised, and again first in main), SIGPIPE is ignored (a closed pipe is a write error), std::terminate is
@@ -90,6 +90,7 @@ int main(int argc, char** argv) {
     commands.push_back(delmesh::app::add_solve_command(app));
     commands.push_back(delmesh::app::add_mesh_command(app));
     commands.push_back(delmesh::app::add_check_command(app));
+    commands.push_back(delmesh::app::add_report_command(app));
   } catch (const std::exception& e) {
     delmesh::app::print_error(std::string("internal: ") + e.what());
     return code(ExitCode::internal_error);

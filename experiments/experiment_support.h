@@ -1,12 +1,8 @@
 #pragma once
 //! \file experiment_support.h
 //! What every experiment program shares (header only: each experiments/*.cpp is one program):
-//! the git revision for CSV headers, a CSV writer whose first line is a `# ` comment with the
-//! revision and the parameters, E compiled for fast double evaluation, a point inside Σ, and the
-//! checker columns.
-//!
-//! CSV convention: line 1 `# program=NAME git=REV date=ISO8601 key=value ...`, line 2 the column
-//! names, then one row per run; numbers with 17 significant digits; fields never contain commas.
+//! the CSV files with their metadata (experiments/csv_writer.h), the error policy and command-line
+//! parsing, E compiled for fast double evaluation, a point inside Σ, and the checker columns.
 
 #include <array>
 #include <chrono>
@@ -27,81 +23,12 @@
 #include <CLI/CLI.hpp>
 
 #include "common/errors.h"
+#include "experiments/csv_writer.h"
 #include "meshing/mesh_checker.h"
 #include "symbolic/compiled_system.h"
 #include "symbolic/surface.h"
 
 namespace delmesh::experiments {
-
-//! `git rev-parse --short HEAD` of the source tree this program was built from (plus "-dirty" if
-//! tracked files differ), or "unknown" if that tree is gone or not a repository.
-inline std::string git_revision() {
-  const std::string source_dir = std::filesystem::path(__FILE__).parent_path().string();
-  auto run = [](const std::string& command) {
-    std::string text;
-    if (FILE* pipe = ::popen(command.c_str(), "r")) {
-      char buffer[256];
-      while (std::fgets(buffer, sizeof buffer, pipe)) text += buffer;
-      ::pclose(pipe);
-    }
-    while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-    return text;
-  };
-  const std::string git = "git -C '" + source_dir + "' ";
-  std::string revision = run(git + "rev-parse --short HEAD 2>/dev/null");
-  if (revision.empty()) return "unknown";
-  if (!run(git + "status --porcelain --untracked-files=no 2>/dev/null").empty()) revision += "-dirty";
-  return revision;
-}
-
-inline std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  return text;
-}
-
-//! A CSV file: a comment header line, the column names, then rows.  Written to a temporary name
-//! and renamed by close() (or the destructor), so a crashed run never leaves a half file under the
-//! final name.
-class CsvWriter {
- public:
-  CsvWriter(const std::filesystem::path& path, const std::string& program,
-            const std::vector<std::pair<std::string, std::string>>& parameters,
-            const std::vector<std::string>& columns)
-      : path_(path), temporary_(path.string() + ".partial"), columns_(columns.size()) {
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-    out_.open(temporary_);
-    if (!out_) throw std::runtime_error("cannot write " + temporary_.string());
-    out_ << "# program=" << program << " git=" << git_revision() << " date=" << utc_now();
-    for (const auto& [key, value] : parameters) out_ << ' ' << key << '=' << value;
-    out_ << '\n';
-    for (std::size_t i = 0; i < columns.size(); ++i) out_ << (i ? "," : "") << columns[i];
-    out_ << '\n';
-  }
-  ~CsvWriter() { close(); }
-  CsvWriter(const CsvWriter&) = delete;
-  CsvWriter& operator=(const CsvWriter&) = delete;
-
-  //! One row; the number of fields must equal the number of columns.
-  void row(const std::vector<std::string>& fields) {
-    if (fields.size() != columns_) throw std::logic_error("CSV row has the wrong number of fields");
-    for (std::size_t i = 0; i < fields.size(); ++i) out_ << (i ? "," : "") << fields[i];
-    out_ << '\n';
-    out_.flush();
-  }
-  void close() {
-    if (!out_.is_open()) return;
-    out_.close();
-    std::filesystem::rename(temporary_, path_);
-  }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_, temporary_;
-  std::size_t columns_;
-  std::ofstream out_;
-};
 
 //! Runs an experiment's body with the programs' error policy: InvalidInput → `error: …` on stderr
 //! and exit code 2; any other exception → `error: …` and exit code 1; otherwise 0.
@@ -141,26 +68,6 @@ inline std::vector<std::string> split(const std::string& text) {
   while (std::getline(in, part, ','))
     if (!part.empty()) parts.push_back(part);
   return parts;
-}
-
-inline std::string field(double value) {
-  if (!std::isfinite(value)) return std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf");
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  return out.str();
-}
-inline std::string field(long long value) { return std::to_string(value); }
-inline std::string field(std::size_t value) { return std::to_string(value); }
-inline std::string field(int value) { return std::to_string(value); }
-inline std::string field(bool value) { return value ? "1" : "0"; }
-inline std::string field(const std::string& value) { return value; }
-inline std::string field(const char* value) { return value; }
-//! A list of integers as "a;b;c" (semicolons keep the CSV comma-separated).
-inline std::string field(const std::vector<int>& values) {
-  std::string text;
-  for (std::size_t i = 0; i < values.size(); ++i) text += (i ? ";" : "") + std::to_string(values[i]);
-  return text;
 }
 
 //! Seconds of wall-clock time since construction.

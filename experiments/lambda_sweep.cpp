@@ -27,8 +27,9 @@
 //!
 //! Output in <out-dir>: lambda_sweep.csv (one row per surface and λ), eps_sample.csv (one row per
 //! surface, λ and ε), eps_reference.csv (one row per surface and ε: the ε-samples and the lfs
-//! estimate's error), lfs_estimate.csv (a subsample of R: lfs estimate and exact lfs), meshes
-//! under meshes/.  --eps-only computes the reference files without meshing.
+//! estimate's error), lfs_estimate.csv (a subsample of R: lfs estimate and exact lfs), each with
+//! its metadata NAME.csv.json (experiments/csv_writer.h); meshes under meshes/.  --eps-only
+//! computes the reference files without meshing.
 
 #include <CLI/CLI.hpp>
 
@@ -257,16 +258,26 @@ void write_eps_reference(CsvWriter& csv, const std::string& name, const EpsRefer
 }
 
 //! The rows of an eps_reference.csv for surface `name` (written by an earlier run with the same
-//! sampling parameters: the file's header line must carry them); throws InvalidInput if the file
-//! cannot be read, its parameters differ, or it has no row for the surface.
-EpsReference read_eps_reference(const std::string& path, const std::string& name, const std::string& expected) {
+//! sampling parameters: its metadata file eps_reference.csv.json must carry them, each `expected`
+//! key with the same value); throws InvalidInput if either file cannot be read, a parameter
+//! differs, or the file has no row for the surface.
+EpsReference read_eps_reference(const std::string& path, const std::string& name,
+                                const std::vector<std::pair<std::string, std::string>>& expected) {
+  nlohmann::json meta;
+  try {
+    meta = read_metadata(path);
+  } catch (const std::exception& e) {
+    throw InvalidInput("--eps-reference: " + std::string(e.what()));
+  }
+  for (const auto& [key, value] : expected) {
+    const nlohmann::json& parameters = meta["parameters"];
+    if (!parameters.is_object() || !parameters.contains(key) || parameters[key] != value)
+      throw InvalidInput("--eps-reference file '" + path + "' was made with other sampling parameters (want " +
+                         key + "=" + value + ")");
+  }
   std::ifstream in(path);
   if (!in) throw InvalidInput("cannot read --eps-reference file '" + path + "'");
   std::string line;
-  std::getline(in, line);
-  if (line.find(expected) == std::string::npos)
-    throw InvalidInput("--eps-reference file '" + path + "' was made with other sampling parameters (want '" +
-                       expected + "')");
   std::getline(in, line);
   const std::vector<std::string> header = split(line);
   auto column = [&header, &path](const std::string& key) {
@@ -404,9 +415,7 @@ int main(int argc, char** argv) {
           r = eps_reference(s, eps, *lfs_csv);
           write_eps_reference(*reference_csv, s.name, r);
         } else {
-          std::string expected;
-          for (const auto& [key, value] : sampling_parameters) expected += (expected.empty() ? "" : " ") + key + "=" + value;
-          r = read_eps_reference(eps_reference_path, s.name, expected);
+          r = read_eps_reference(eps_reference_path, s.name, sampling_parameters);
         }
         std::cout << s.name << ": reference sample " << r.reference_points << " points, lfs " << r.lfs_source;
         if (r.error)

@@ -2,7 +2,7 @@
 """The topology demo of experiments/compare_cgal: CGAL's Surface_mesher and Mesh_3 at coarse
 settings against delmesh on thin_handle, two_blobs and near_sheets, each mesh captioned with the
 components and genera the independent checker found.  Reads <out>/compare_cgal.csv and the OFF files
-it names (<out>/meshes/compare_demo_*.off); writes <out>/figures/topology_demo.png."""
+it names (<out>/meshes/compare_demo_*.off); writes <out>/figures/topology_demo.pdf and .png."""
 
 import argparse
 import os
@@ -57,7 +57,7 @@ def main():
     fig.suptitle("Coarse CGAL settings vs delmesh: topology found by the independent checker "
                  "(expected: thin_handle genus 1; two_blobs, near_sheets two spheres)", fontsize=11)
     fig.subplots_adjust(left=0, right=1, bottom=0, top=0.86, wspace=0, hspace=0.12)
-    save_figure(fig, args.out, "topology_demo.png", dpi=130)
+    save_figure(fig, args.out, "topology_demo", dpi=130)
 
 
 if __name__ == "__main__":

@@ -2,7 +2,7 @@
 """Fig. 12 of the paper: DelMesh meshes of a smooth sphere, torus and metaball given by implicit
 equations.  Reads the OFF files written by experiments/lambda_sweep (out/meshes/sweep_<name>_l<λ>.off)
 and the sweep CSV (for the vertex counts and checker results in the captions); writes
-<out>/figures/fig12.png."""
+<out>/figures/fig12.pdf and .png."""
 
 import argparse
 import os
@@ -43,7 +43,7 @@ def main():
         render_mesh(ax, points, triangles, caption)
     fig.suptitle("DelMesh on implicit surfaces (cf. Fig. 12)", fontsize=11)
     fig.subplots_adjust(left=0, right=1, bottom=0, top=0.86, wspace=0, hspace=0.12)
-    save_figure(fig, args.out, "fig12.png")
+    save_figure(fig, args.out, "fig12")
 
 
 if __name__ == "__main__":

@@ -3,7 +3,7 @@
 columns: the input; the mesh after SampleTopology (topology phase); the mesh after Quality and
 Smooth (final).  Reads what experiments/remesh writes: <out>/remesh/<name>_{input,topology,final}.off
 and <out>/remesh.csv (vertex counts, status, genus and quality for the captions); writes
-<out>/figures/fig13.png."""
+<out>/figures/fig13.pdf and .png."""
 
 import argparse
 import os
@@ -71,7 +71,7 @@ def main():
             render_mesh(ax, points, triangles, caption(name, column, points, row), edge_width=0.1)
     fig.suptitle("DelMesh remeshing triangulated surfaces (cf. Fig. 13)", fontsize=11, y=0.995)
     fig.subplots_adjust(left=0, right=1, bottom=0, top=1 - 1.2 / fig.get_figheight(), wspace=0, hspace=0.3)
-    save_figure(fig, args.out, "fig13.png")
+    save_figure(fig, args.out, "fig13")
 
 
 if __name__ == "__main__":

@@ -3,10 +3,10 @@
 minimum angle, maximum radius-edge ratio and maximum roughness of every surface against the
 theorem's bounds arcsin(1/(2+2λ)), 1+λ, 2β(λ); and the size |S| λ² / ∫ dA/lfs², which Theorem
 6.1(iii) predicts to stay bounded (O(1/λ²) scaling).  Reads <out>/lambda_sweep.csv; writes
-<out>/figures/lambda_bounds.png and <out>/figures/lambda_size.png.  Where the sweep built ε-samples,
-also reads <out>/eps_sample.csv, eps_reference.csv and lfs_estimate.csv and writes
-<out>/figures/size_ratio.png (size_ratio = |S| λ² / (|ε-sample| ε²) against λ for every surface and
-ε: mean over the seeds, bars from the smallest to the largest) and <out>/figures/lfs_estimate.png
+<out>/figures/lambda_bounds and <out>/figures/lambda_size (each figure as .pdf and .png).  Where
+the sweep built ε-samples, also reads <out>/eps_sample.csv, eps_reference.csv and lfs_estimate.csv and writes
+<out>/figures/size_ratio (size_ratio = |S| λ² / (|ε-sample| ε²) against λ for every surface and
+ε: mean over the seeds, bars from the smallest to the largest) and <out>/figures/lfs_estimate
 (the Voronoi-pole estimate of lfs against the exact lfs where one is known, and its relative
 error per surface).  With several seeds per λ the lines of the first two figures join the means."""
 
@@ -19,7 +19,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from paper_common import loglog_slope, read_csv, save_figure, surface_color  # noqa: E402
+from paper_common import loglog_slope, read_csv, readable_log_ticks, save_figure, surface_color  # noqa: E402
 
 
 def completed(rows):
@@ -61,6 +61,7 @@ def size_ratio_figure(out):
         ax.set_ylabel("size_ratio = |S| λ² / (|ε-sample| ε²)")
         ax.set_title(f"ε = {eps:g}")
         ax.set_yscale("log")
+        readable_log_ticks(ax.yaxis)
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=7)
     seeds = sorted({int(r["seed"]) for r in rows})
@@ -68,7 +69,7 @@ def size_ratio_figure(out):
                  f"(filled: analytic lfs, open: Voronoi-pole estimate; {len(seeds)} seed(s), bars min–max; "
                  f"git {meta.get('git', '?')})", fontsize=10)
     fig.tight_layout()
-    save_figure(fig, out, "size_ratio.png")
+    save_figure(fig, out, "size_ratio")
 
 
 def lfs_estimate_figure(out):
@@ -88,6 +89,8 @@ def lfs_estimate_figure(out):
         ax.loglog([lo, hi], [lo, hi], "k--", lw=1, label="estimate = lfs")
         ax.loglog([lo, hi], [1.1 * lo, 1.1 * hi], "k:", lw=0.8, label="±10 %")
         ax.loglog([lo, hi], [0.9 * lo, 0.9 * hi], "k:", lw=0.8)
+    readable_log_ticks(ax.xaxis)
+    readable_log_ticks(ax.yaxis)
     ax.set_xlabel("exact lfs (closed form)")
     ax.set_ylabel("Voronoi-pole estimate")
     ax.grid(alpha=0.3, which="both")
@@ -110,7 +113,7 @@ def lfs_estimate_figure(out):
     ax.grid(alpha=0.3, which="both", axis="y")
     fig.suptitle("lfs from the poles of the Voronoi diagram of a dense sample (Amenta–Bern)", fontsize=11)
     fig.tight_layout()
-    save_figure(fig, out, "lfs_estimate.png")
+    save_figure(fig, out, "lfs_estimate")
 
 
 def main():
@@ -159,7 +162,7 @@ def main():
     axes[0].legend(fontsize=8)
     fig.suptitle(f"Measured quality vs Theorem 6.1 (git {meta.get('git', '?')})", fontsize=11)
     fig.tight_layout()
-    save_figure(fig, args.out, "lambda_bounds.png")
+    save_figure(fig, args.out, "lambda_bounds")
 
     sized = [r for r in rows if isinstance(r["lfs_integral"], float) and not math.isnan(r["lfs_integral"])]
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
@@ -173,6 +176,8 @@ def main():
     anchor = min(((1 / float(r["lambda"]), r["vertices"]) for r in rows if r["surface"] == biggest))
     ref = sorted(1 / l for l in lambdas)
     axes[0].loglog(ref, [anchor[1] * (x / anchor[0]) ** 2 for x in ref], "k:", label="∝ 1/λ² (Theorem 6.1(iii))")
+    readable_log_ticks(axes[0].xaxis, ref)  # the sweep's 1/λ, plainly
+    readable_log_ticks(axes[0].yaxis)
     axes[0].set_xlabel("1/λ")
     axes[0].set_ylabel("vertices |S|")
     axes[0].grid(alpha=0.3, which="both")
@@ -191,7 +196,7 @@ def main():
     axes[1].legend(fontsize=8)
     fig.suptitle("Size: Theorem 6.1(iii)", fontsize=11)
     fig.tight_layout()
-    save_figure(fig, args.out, "lambda_size.png")
+    save_figure(fig, args.out, "lambda_size")
 
     if os.path.exists(os.path.join(args.out, "eps_sample.csv")):
         size_ratio_figure(args.out)

@@ -1,27 +1,43 @@
-"""Shared helpers of the figure and table scripts: read the experiments' CSV files (first line a
-`# key=value ...` comment with the git revision and parameters) and OFF meshes.  Nothing else is
-read: every figure comes from those files only."""
+"""Shared helpers of the figure and table scripts: read the experiments' CSV files (a line of
+column names, then rows; beside each NAME.csv its metadata NAME.csv.json with the program, the git
+revision, the date and the parameters) and OFF meshes.  Nothing else is read: every figure comes
+from those files only.  Every figure is written as PDF and PNG."""
 
 import csv
+import json
 import math
 import os
 
 
+def read_metadata(path):
+    """The metadata of the CSV file `path` (PATH.json): program, git, date and the like at the top
+    level, with the entries of its "parameters" object added beside them (not replacing any).
+    Empty if there is no such file."""
+    try:
+        with open(path + ".json") as f:
+            meta = json.load(f)
+    except FileNotFoundError:
+        return {}
+    if not isinstance(meta, dict):
+        raise ValueError(f"{path}.json: not a JSON object")
+    for key, value in (meta.get("parameters") or {}).items():
+        meta.setdefault(key, value)
+    return meta
+
+
 def read_csv(path):
-    """Returns (metadata dict from the comment line, list of row dicts with numbers converted)."""
+    """Returns (metadata dict as read_metadata gives it, list of row dicts with numbers converted).
+    Raises ValueError for a file whose first line is a '#' comment rather than the column names."""
     with open(path, newline="") as f:
         first = f.readline()
-        if not first.startswith("#"):
-            raise ValueError(f"{path}: first line is not the '# key=value' header")
-        meta = {}
-        for token in first[1:].split():
-            if "=" in token:
-                key, value = token.split("=", 1)
-                meta[key] = value
+        if first.startswith("#"):
+            raise ValueError(f"{path}: first line is a '#' comment, not the column names "
+                             "(written by an older experiment program: run it again)")
+        f.seek(0)
         rows = []
         for row in csv.DictReader(f):
             rows.append({key: _convert(value) for key, value in row.items()})
-    return meta, rows
+    return read_metadata(path), rows
 
 
 def _convert(value):
@@ -119,6 +135,49 @@ def loglog_slope(xs, ys):
     return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sxx if sxx > 0 else float("nan")
 
 
+def plain_number(value):
+    """value with 3 significant digits, without an exponent between 10^-4 and 10^7 (2000, not 2e+03)."""
+    text = f"{value:.3g}"
+    if "e" in text and 1e-4 <= abs(value) < 1e7:
+        text = f"{float(text):f}".rstrip("0").rstrip(".")
+    return text
+
+
+def readable_log_ticks(axis, values=None, max_ticks=8):
+    """Labels a log-scale axis (ax.xaxis or ax.yaxis, after plotting) with at most max_ticks
+    plain numbers (3 significant digits), at least 1/max_ticks of the axis's log range apart, so
+    that no two labels overlap; minor ticks keep no label.  The ticks are `values` (e.g. the 1/λ of
+    a sweep) where given, else round numbers (1, 2, 5 × 10^k, finer where the range is narrow)
+    within the axis's limits."""
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
+
+    lo, hi = sorted(axis.get_view_interval())
+    if axis.get_scale() != "log" or not lo > 0:
+        return
+    if values is None:
+        values = []
+        for mantissas in ((1, 2, 5), (1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6, 8), [round(1 + 0.1 * i, 1) for i in range(90)]):
+            values = [m * 10.0 ** k for k in range(math.floor(math.log10(lo)), math.ceil(math.log10(hi)) + 1)
+                      for m in mantissas if lo <= m * 10.0 ** k <= hi]
+            if len(values) >= 3:
+                break
+        if len(values) < 2:
+            values = [lo, hi]
+    values = sorted({v for v in values if v > 0})
+    if not values:
+        return
+    gap = math.log(hi / lo) / max_ticks
+    chosen = [values[0]]
+    for v in values[1:]:
+        if math.log(v / chosen[-1]) >= gap:
+            chosen.append(v)
+    if chosen[-1] != values[-1]:  # keep the largest value, in place of a too-close neighbour
+        chosen[-1 if len(chosen) > 1 else len(chosen):] = [values[-1]]
+    axis.set_major_locator(FixedLocator(chosen))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: plain_number(v)))
+    axis.set_minor_formatter(NullFormatter())
+
+
 def output_path(out_dir, *parts):
     path = os.path.join(out_dir, *parts)
     os.makedirs(os.path.dirname(path), exist_ok=True)
@@ -126,8 +185,12 @@ def output_path(out_dir, *parts):
 
 
 def save_figure(fig, out_dir, name, dpi=150):
-    """Writes fig as <out_dir>/figures/<name> and reports the path."""
-    target = output_path(out_dir, "figures", name)
-    fig.savefig(target, dpi=dpi)
-    print("wrote", target)
-    return target
+    """Writes fig as <out_dir>/figures/<name>.pdf and <name>.png (dpi for the PNG and for the
+    PDF's rasterized parts), reports both paths and returns them."""
+    targets = []
+    for kind in ("pdf", "png"):
+        target = output_path(out_dir, "figures", f"{name}.{kind}")
+        fig.savefig(target, dpi=dpi)
+        print("wrote", target)
+        targets.append(target)
+    return targets

@@ -2,7 +2,9 @@
 # Builds delmesh (Release) and runs every test: the fast tier and the slow tier (the catalog's
 # topology, Theorem 6.1 at lambda 0.06 and 0.03 on every catalog surface, the recheck lemma).
 # Pass --fast to run the fast tier only.  Both then dry-run (snakemake -n) the full sweep workflow
-# experiments/Snakefile (every surface, λ and seed of its defaults) against the built lambda_sweep.
+# experiments/Snakefile (every surface, λ and seed of its defaults) against the built lambda_sweep,
+# locally and through the Slurm profile experiments/profiles/slurm (scripts/test-slurm.sh runs
+# that profile on a real one-node Slurm).
 # Pass --sanitize to build the libraries, the program, the test suites and the libFuzzer targets of
 # fuzz/ with clang++, AddressSanitizer and UndefinedBehaviorSanitizer (-O1, in build-sanitize/,
 # experiments left out) and run the fast tier there; any sanitizer report fails the test that
@@ -46,4 +48,7 @@ command -v snakemake >/dev/null || { echo "test.sh: snakemake is missing (script
 mkdir -p "$build/snakemake-dry-run"
 snakemake -s experiments/Snakefile --directory "$build/snakemake-dry-run" -n --quiet --cores 2 \
   --config out="$(realpath "$build")/snakemake-dry-run/out" bin="$(realpath "$build")/experiments/lambda_sweep"
-echo "test.sh: dry run of experiments/Snakefile passed"
+snakemake -s experiments/Snakefile --directory "$build/snakemake-dry-run" -n --quiet \
+  --profile experiments/profiles/slurm \
+  --config out="$(realpath "$build")/snakemake-dry-run/out" bin="$(realpath "$build")/experiments/lambda_sweep"
+echo "test.sh: dry runs of experiments/Snakefile (local and through the Slurm profile) passed"

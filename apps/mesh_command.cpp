@@ -28,6 +28,7 @@
 #include "apps/surface_normals.h"
 #include "common/enum_names.h"
 #include "common/errors.h"
+#include "common/peak_memory.h"
 #include "common/run_limits.h"
 #include "meshing/certificate.h"
 #include "meshing/del_mesh.h"
@@ -264,6 +265,7 @@ nlohmann::json run_statistics(const DelMeshResult& result, std::uint64_t seed, c
   if (!statistics.contains("status")) statistics["status"] = to_text(result.status);
   if (!statistics.contains("seed")) statistics["seed"] = seed;
   if (mesh_file && !statistics.contains("mesh_file")) statistics["mesh_file"] = *mesh_file;
+  statistics["peak_memory_bytes"] = peak_resident_bytes();
   return statistics;
 }
 

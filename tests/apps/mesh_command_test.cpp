@@ -287,6 +287,8 @@ BOOST_AUTO_TEST_CASE(sphere_mesh_and_statistics_are_written) {
     BOOST_TEST(stats.contains(key), key);
   }
   check_complete(stats);
+  // The process's peak resident memory: at least the program and its libraries (a few MiB).
+  BOOST_TEST(stats.at("peak_memory_bytes").get<std::uint64_t>() > (std::uint64_t{1} << 20));
   delmesh::TriangleSoup soup;
   (void)read_and_check(dir / "sphere.off", soup);
   check_oriented_output(stats, soup.points, soup.triangles);

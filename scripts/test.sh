@@ -52,3 +52,4 @@ snakemake -s experiments/Snakefile --directory "$build/snakemake-dry-run" -n --q
   --profile experiments/profiles/slurm \
   --config out="$(realpath "$build")/snakemake-dry-run/out" bin="$(realpath "$build")/experiments/lambda_sweep"
 echo "test.sh: dry runs of experiments/Snakefile (local and through the Slurm profile) passed"
+/usr/bin/python3 paper/test_paper_common.py   # the figures' CSV reader, PDF and PNG, readable log axes

@@ -55,6 +55,7 @@ std::string describe(const Point3& c, double r) {
 //! piece), the triangles, and the anchors.
 class FeatureGeometry {
  public:
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
   FeatureGeometry(const SurfaceMesh& mesh, const FeatureSet& features, const ProtectionOptions& options)
       : mesh_(mesh), options_(options) {
     // Anchors: corners, kinks, starts of closed curves without corner.
@@ -154,7 +155,9 @@ class FeatureGeometry {
   }
 
   //! lfs(c) of protecting_balls.h (G), or `upper` when it is at least that.
-  double lfs(const Point3& c, const std::vector<Vertex>& near, double upper) const {
+  //! `piece`: the ball's piece (curve balls), or npos (anchor balls): the feature edges of other
+  //! pieces count even when they have a vertex in N.
+  double lfs(const Point3& c, const std::vector<Vertex>& near, std::size_t piece, double upper) const {
     const auto excluded = [&](Vertex v) { return std::find(near.begin(), near.end(), v) != near.end(); };
     double best = upper;
     for (std::size_t a : isolated_anchors_)
@@ -179,8 +182,9 @@ class FeatureGeometry {
         segments.clear();
         segment_tree_.all_intersected_primitives(box, std::back_inserter(segments));
         for (SegmentIterator it : segments) {
-          const auto& ends = segment_ends_[static_cast<std::size_t>(it - segments_.cbegin())];
-          if (excluded(ends[0]) || excluded(ends[1])) continue;
+          const std::size_t k = static_cast<std::size_t>(it - segments_.cbegin());
+          const auto& ends = segment_ends_[k];
+          if ((excluded(ends[0]) || excluded(ends[1])) && (piece == npos || segment_piece_[k] == piece)) continue;
           best = std::min(best, std::sqrt(CGAL::squared_distance(c, *it)));
         }
       }
@@ -200,9 +204,9 @@ class FeatureGeometry {
   }
 
   //! The radius allowed at c by (G), before any scale.
-  double allowed(const Point3& c, const std::vector<Vertex>& near) const {
+  double allowed(const Point3& c, const std::vector<Vertex>& near, std::size_t piece = npos) const {
     const double upper = std::isfinite(options_.size) ? options_.size / options_.lfs_fraction : 2 * diagonal_;
-    return std::min(options_.size, options_.lfs_fraction * lfs(c, near, upper));
+    return std::min(options_.size, options_.lfs_fraction * lfs(c, near, piece, upper));
   }
 
  private:
@@ -310,7 +314,7 @@ void check_all(const FeatureGeometry& geometry, const Protection& protection, co
     });
     if (!(b.radius <= options.size * (1 + m)))
       report('G', i, i, "(G) the radius exceeds the size bound: " + name(i));
-    else if (!(b.radius <= (1 + m) * geometry.allowed(c, near)))
+    else if (!(b.radius <= (1 + m) * geometry.allowed(c, near, i < protection.anchors ? FeatureGeometry::npos : b.piece)))
       report('G', i, i, "(G) the radius exceeds lfs_fraction times the local feature size: " + name(i));
   }
 }
@@ -341,7 +345,7 @@ Protection place(const FeatureGeometry& geometry, const std::vector<double>& pie
     const double end_radius = protection.balls[end].radius;
     const auto radius_at = [&](double s) {
       const auto [c, near] = geometry.at(p, s);
-      return piece_scale[p] * geometry.allowed(c, near);
+      return piece_scale[p] * geometry.allowed(c, near, p);
     };
     piece.balls.push_back(start);
     double s = 0, r = protection.balls[start].radius;
@@ -362,20 +366,24 @@ Protection place(const FeatureGeometry& geometry, const std::vector<double>& pie
       if (placed >= wanted && length - s <= (1 - m) * (r + end_radius) &&
           distance(here, end_centre) >= (1 + m) * std::max(r, end_radius))
         break;
-      double t = s + 1.5 * r, next = r;
-      for (int step = 0; step < 3; ++step) {
-        next = radius_at(t);
+      const double free = length - s - r - end_radius;  // arc left outside this ball and the end's
+      if (!(free > 0)) break;                             // cannot be finished: left to verification
+      // The next centre t and its radius: shrink the radius until the one allowed at t is at least it.
+      double next = radius_at(s + 1.5 * r), t = s;
+      for (int step = 0; step < 12; ++step) {
         t = s + std::max(r, next) + 0.5 * std::min(r, next);
+        const double there = radius_at(t);
+        if (there >= next) break;
+        next = there;
       }
-      next = std::min(next, radius_at(t));
-      const bool clear_of_end = t < length && length - t > std::max(next, end_radius) &&
-                                distance(geometry.at(p, t).first, end_centre) >= (1 + m) * std::max(next, end_radius);
-      if (!clear_of_end) {
-        // The last ball, midway in what is left.
-        const double middle = 0.5 * (s + length), h = 0.5 * (length - s);
-        const double wanted_radius = h - 0.5 * std::min(r, end_radius);
-        add(middle, std::min(radius_at(middle), wanted_radius > 0 ? wanted_radius : 0.5 * h));
-        break;
+      if (t + 0.5 * next >= length - end_radius) {
+        // The last ball: midway in the free arc, overlapping both neighbours.
+        const double middle = s + r + 0.5 * free;
+        add(middle, std::min(radius_at(middle), 0.5 * free + 0.5 * std::min(r, end_radius)));
+        if (placed >= wanted) break;
+        s = middle;
+        r = protection.balls.back().radius;
+        continue;
       }
       add(t, next);
       s = t;

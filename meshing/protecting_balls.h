@@ -42,8 +42,9 @@
 //!      by (B) and (C), any anchor).
 //!  (G) Size: r ≤ size (the user's bound, when given) and r ≤ α · lfs(c) (α =
 //!      ProtectionOptions::lfs_fraction, default 1/3), where the local feature size estimate
-//!      lfs(c) is the distance from c to the nearest input triangle, feature edge or anchor that
-//!      has no vertex in N(c) — N(c) = {v} for c at a mesh vertex v, {p, q} for c inside an
+//!      lfs(c) is the distance from c to the nearest input triangle or anchor that has no vertex
+//!      in N(c), and to the nearest feature edge that has no vertex in N(c) or (for a curve ball)
+//!      lies on another piece — N(c) = {v} for c at a mesh vertex v, {p, q} for c inside an
 //!      edge pq.  (The true local feature size of a polyhedron is zero on its creases; this is
 //!      the usual replacement: how close the input comes back to c from faces not incident to
 //!      it.)  For a fine tessellation near a crease it is about one edge length.
@@ -60,8 +61,9 @@
 //! ## Construction
 //! Anchor balls get r = min(size, α·lfs); each piece is walked from its start: from a ball of
 //! radius r at arc position s, the next centre is at s + max(r, r') + ½·min(r, r') with r' the
-//! radius allowed there (a fixed point of three steps), which gives (A) and, on straight stretches,
-//! (B); the last ball before the end anchor is placed midway in the remaining arc.  Then
+//! radius allowed there (shrunk until the radius allowed at the new centre is at least r'), which
+//! gives (A) and, on straight stretches, (B); the last ball before the end anchor is centred
+//! midway in the arc left outside its two neighbours, with a radius that reaches both.  Then
 //! verify_protection runs; every ball involved in a violation halves the scale of its piece (all
 //! radii allowed on it) or of its anchor, and the pieces are placed again, up to
 //! ProtectionOptions::max_rounds times.  What then still fails is reported in the result (the

@@ -181,6 +181,7 @@ struct Marker {
   double value;
   std::string label;
   bool dashed;
+  bool label_left = false;  //!< the label to the left of the line (it goes there anyway near the right end)
 };
 
 //! An SVG bar chart of `h` (bars coloured by `range`), with `outline` drawn as a step line over
@@ -235,14 +236,14 @@ void write_histogram(std::ostream& out, const Histogram& h, const ColorRange& ra
   for (double x = first_tick; x <= h.hi + 1e-9 * tick; x += tick)
     out << "<line class=\"axis\" x1=\"" << x_of(x) << "\" x2=\"" << x_of(x) << "\" y1=\"" << y_of(0) << "\" y2=\""
         << y_of(0) + 4 << "\"/><text class=\"tick\" x=\"" << x_of(x) << "\" y=\"" << y_of(0) + 16
-        << "\" text-anchor=\"middle\">" << number(x, tick_digits) << "</text>\n";
+        << "\" text-anchor=\"middle\">" << number(std::abs(x) < 1e-9 * tick ? 0.0 : x, tick_digits) << "</text>\n";
   out << "<text class=\"label\" x=\"" << left + plot_w / 2 << "\" y=\"" << height - 6 << "\" text-anchor=\"middle\">"
       << escape(x_label) << "</text>\n";
   int row = 0;
   for (const Marker& m : markers) {
     if (!(m.value >= h.lo && m.value <= h.hi)) continue;
     const double x = x_of(m.value);
-    const bool right_side = x > left + 0.7 * plot_w;
+    const bool right_side = m.label_left || x > left + 0.7 * plot_w;
     out << "<line class=\"marker" << (m.dashed ? " dashed" : "") << "\" x1=\"" << x << "\" x2=\"" << x << "\" y1=\""
         << top - 4 + 12 * row << "\" y2=\"" << y_of(0) << "\"/><text class=\"marker-label\" x=\""
         << x + (right_side ? -4 : 4) << "\" y=\"" << top + 6 + 12 * row << "\" text-anchor=\""
@@ -291,6 +292,8 @@ button { cursor: pointer; }
 #pick { font-size: 12.5px; font-variant-numeric: tabular-nums; min-height: 3.2em; }
 .toggles { display: flex; flex-direction: column; gap: 4px; }
 .buttons { display: flex; gap: 8px; }
+.panel table.kv th, .panel table.kv td { padding: 3px 4px; font-size: 13px; }
+.panel table.kv th { width: 42%; }
 .cards { display: grid; grid-template-columns: repeat(auto-fit, minmax(380px, 1fr)); gap: 16px; padding: 16px 28px 0; }
 .wide { grid-column: 1 / -1; }
 table.kv { border-collapse: collapse; width: 100%; font-variant-numeric: tabular-nums; }
@@ -388,10 +391,10 @@ model.add(edges);
 
 const scene = new THREE.Scene();
 scene.add(model);
-scene.add(new THREE.HemisphereLight(0xffffff, 0x8a8f99, 1.7));
+scene.add(new THREE.HemisphereLight(0xffffff, 0x6f7480, 1.25));
 const camera = new THREE.PerspectiveCamera(32, 1, 0.01, 100);
-const headlight = new THREE.DirectionalLight(0xffffff, 1.6);
-headlight.position.set(0.4, 0.8, 1);
+const headlight = new THREE.DirectionalLight(0xffffff, 2.1);
+headlight.position.set(0.5, 0.9, 1);
 camera.add(headlight);
 scene.add(camera);
 
@@ -446,14 +449,30 @@ function recolor(key) {
 
 // Orbit controls: drag rotates the model about the view's axes, the wheel zooms, right or
 // shift-drag pans, a double click resets.
-const fitDistance = 1.08 / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2));
-let distance = fitDistance;
+let fitDistance = 1, distance = 1;
 const target = new THREE.Vector3();
 const home = new THREE.Quaternion().setFromEuler(new THREE.Euler(-1.05, 0, -0.55, 'ZXY'));
+// The distance and target at which the model, as rotated now, fills the view with a margin.
+function fit() {
+  const ty = 0.86 * Math.tan(THREE.MathUtils.degToRad(camera.fov / 2)), tx = ty * camera.aspect;
+  const v = new THREE.Vector3(), lo = [Infinity, Infinity], hi = [-Infinity, -Infinity];
+  for (const i of T) {
+    v.set(P[3 * i], P[3 * i + 1], P[3 * i + 2]).applyQuaternion(model.quaternion);
+    lo[0] = Math.min(lo[0], v.x); hi[0] = Math.max(hi[0], v.x);
+    lo[1] = Math.min(lo[1], v.y); hi[1] = Math.max(hi[1], v.y);
+  }
+  if (!(hi[0] >= lo[0])) { lo[0] = lo[1] = -1; hi[0] = hi[1] = 1; }
+  target.set((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, 0);
+  let d = 0.01;
+  for (const i of T) {
+    v.set(P[3 * i], P[3 * i + 1], P[3 * i + 2]).applyQuaternion(model.quaternion);
+    d = Math.max(d, v.z + Math.abs(v.x - target.x) / tx, v.z + Math.abs(v.y - target.y) / ty);
+  }
+  fitDistance = distance = d;
+}
 function reset() {
   model.quaternion.copy(home);
-  distance = fitDistance;
-  target.set(0, 0, 0);
+  fit();
   requestRender();
 }
 let drag = null;
@@ -538,9 +557,10 @@ document.getElementById('save').addEventListener('click', () => {
   a.download = data.name.replace(/\.[^.]*$/, '') + '_view.png';
   a.click();
 });
-model.quaternion.copy(home);
 recolor(data.color);
 resize();
+reset();
+render();
 )js";
 
 //! The bounding box of the points used by triangles (all points if none is used).
@@ -690,7 +710,34 @@ void write_report_page(std::ostream& out, const ReportPage& page) {
          "<option value=\"area\">area</option><option value=\"none\">none</option></select></label></div>\n"
          "<div id=\"legend\"><div id=\"legend-title\"></div><div id=\"legend-bar\"></div><div id=\"legend-ticks\"></div>"
          "<div id=\"legend-ends\"></div><div id=\"legend-extra\"></div></div>\n"
-         "<div><h2>Display</h2><div class=\"toggles\"><label><input type=\"checkbox\" id=\"show-edges\" checked> "
+         ;
+  {
+    const MeshReport& c = page.check;
+    std::vector<std::pair<std::string, std::string>> glance;
+    const auto verdict = [&](std::optional<double> bound, bool pass) {
+      return bound ? " " + badge(pass ? "pass" : "fail") : std::string();
+    };
+    glance.emplace_back("min angle", number(c.min_angle_deg, 4) + "°" +
+                                         verdict(angle_bound, nt > 0 && angle_bound && c.min_angle_deg >= *angle_bound));
+    glance.emplace_back("max radius-edge", number(c.max_radius_edge_ratio, 4) +
+                                               verdict(ratio_bound, nt > 0 && ratio_bound && c.max_radius_edge_ratio <= *ratio_bound));
+    glance.emplace_back("max roughness", number(c.max_roughness_rad, 3) + " rad" +
+                                             verdict(roughness_bound, nt > 0 && roughness_bound && c.max_roughness_rad <= *roughness_bound));
+    glance.emplace_back("topology", (c.closed && c.manifold && c.orientable ? "closed 2-manifold" : std::string("not a closed 2-manifold")) +
+                                        ", genus " + escape(text_of(c.genus_per_component)));
+    if (stats)
+      if (const Json* d = find(*stats, "/distance"); d && d->is_object()) {
+        const Json* bound = find(*d, "/hausdorff_upper_bound");
+        const Json* state = find(*d, "/status");
+        if (state && state->is_string())
+          glance.emplace_back("distance to Σ", (bound && bound->is_number() ? "≤ " + number(bound->get<double>(), 3) + " " : std::string()) +
+                                                  badge(state->get<std::string>()));
+      }
+    out << "<div><h2>At a glance</h2>\n";
+    write_table(out, glance);
+    out << "</div>\n";
+  }
+  out <<          "<div><h2>Display</h2><div class=\"toggles\"><label><input type=\"checkbox\" id=\"show-edges\" checked> "
          "edges</label><label><input type=\"checkbox\" id=\"flat\"> flat shading</label></div></div>\n"
          "<div class=\"buttons\"><button id=\"reset\">Reset view</button><button id=\"save\">Save PNG</button></div>\n"
          "<div><h2>Picked triangle</h2><div id=\"pick\" class=\"muted\">Click a triangle to see its measures.</div></div>\n"
@@ -699,11 +746,15 @@ void write_report_page(std::ostream& out, const ReportPage& page) {
   // --- histograms ---
   out << "<section class=\"cards\">\n<div class=\"card\"><h2>Angles</h2>\n";
   {
-    const Histogram all = histogram(angles, 0, 180, 90);
-    const Histogram smallest = histogram(min_angles, 0, 180, 90);
+    double largest_angle = 0;
+    for (const double a : angles) largest_angle = std::max(largest_angle, a);
+    const double hi = std::clamp(30 * std::ceil(largest_angle / 30), 120.0, 180.0);
+    const auto bins = static_cast<std::size_t>(hi / 2);
+    const Histogram all = histogram(angles, 0, hi, bins);
+    const Histogram smallest = histogram(min_angles, 0, hi, bins);
     std::vector<Marker> markers;
-    if (nt > 0) markers.push_back({page.check.min_angle_deg, "min " + number(page.check.min_angle_deg, 4) + "°", false});
-    if (angle_bound) markers.push_back({*angle_bound, "bound " + number(*angle_bound, 4) + "°", true});
+    if (nt > 0) markers.push_back({page.check.min_angle_deg, "min " + number(page.check.min_angle_deg, 4) + "°", false, false});
+    if (angle_bound) markers.push_back({*angle_bound, "bound " + number(*angle_bound, 4) + "°", true, true});
     write_histogram(out, smallest, angle_range, &all, markers, 30, "angle (degrees)", 3);
     out << "<div class=\"caption\">Bars: the smallest angle of each triangle, coloured as in the view. Line: all "
         << 3 * nt << " angles. Bins of 2°.";
@@ -715,10 +766,10 @@ void write_report_page(std::ostream& out, const ReportPage& page) {
     const double hi = std::max(ratio_hi, ratio_bound ? std::ceil(*ratio_bound * 10) / 10 : 0.0);
     const Histogram h = histogram(ratios, 0.5, hi, 60);
     std::vector<Marker> markers;
-    markers.push_back({1 / std::sqrt(3.0), "equilateral 1/√3", true});
+    markers.push_back({1 / std::sqrt(3.0), "equilateral 1/√3", true, false});
     if (nt > 0 && std::isfinite(page.check.max_radius_edge_ratio))
-      markers.push_back({page.check.max_radius_edge_ratio, "max " + number(page.check.max_radius_edge_ratio, 4), false});
-    if (ratio_bound) markers.push_back({*ratio_bound, "bound " + number(*ratio_bound, 4), true});
+      markers.push_back({page.check.max_radius_edge_ratio, "max " + number(page.check.max_radius_edge_ratio, 4), false, true});
+    if (ratio_bound) markers.push_back({*ratio_bound, "bound " + number(*ratio_bound, 4), true, false});
     write_histogram(out, h, ratio_range, nullptr, markers, hi - 0.5 > 1.2 ? 0.5 : 0.1, "circumradius / shortest edge", 3);
     out << "<div class=\"caption\">One count per triangle, coloured as in the view; " << h.counts.size()
         << " bins from 0.5 to " << number(hi, 3) << ".";

@@ -294,7 +294,8 @@ button { cursor: pointer; }
 .buttons { display: flex; gap: 8px; }
 .panel table.kv th, .panel table.kv td { padding: 3px 4px; font-size: 13px; }
 .panel table.kv th { width: 42%; }
-.cards { display: grid; grid-template-columns: repeat(auto-fit, minmax(380px, 1fr)); gap: 16px; padding: 16px 28px 0; }
+.cards { display: grid; grid-template-columns: repeat(auto-fit, minmax(380px, 1fr)); gap: 16px; padding: 16px 28px 0;
+         align-items: start; }
 .wide { grid-column: 1 / -1; }
 table.kv { border-collapse: collapse; width: 100%; font-variant-numeric: tabular-nums; }
 table.kv th, table.kv td { text-align: left; padding: 4px 8px; border-bottom: 1px solid var(--line); vertical-align: top; }
@@ -387,6 +388,8 @@ const edgeGeometry = new THREE.BufferGeometry();
 edgeGeometry.setAttribute('position', new THREE.BufferAttribute(edgePositions, 3));
 const edges = new THREE.LineSegments(edgeGeometry,
   new THREE.LineBasicMaterial({color: 0x1c2230, transparent: true, opacity: nt > 200000 ? 0.12 : 0.32}));
+edges.visible = nt <= 50000;  // denser meshes would turn black
+document.getElementById('show-edges').checked = edges.visible;
 model.add(edges);
 
 const scene = new THREE.Scene();
@@ -602,10 +605,10 @@ std::string text_of(const std::vector<int>& values) {
 
 std::string yes_no(bool b) { return b ? "yes" : "no"; }
 
-//! Adds (label, value html) to rows if the statistics have a value at `pointer`.
+//! Adds (label, value html) to rows if the statistics have a value other than null at `pointer`.
 void add_if(std::vector<std::pair<std::string, std::string>>& rows, const Json& stats, const std::string& label,
             const std::string& pointer) {
-  if (const Json* v = find(stats, pointer)) {
+  if (const Json* v = find(stats, pointer); v && !v->is_null()) {
     if (v->is_string() && (pointer == "/status" || pointer.find("status") != std::string::npos))
       rows.emplace_back(label, badge(v->get<std::string>()));
     else if (is_scalar(*v))
@@ -849,7 +852,8 @@ void write_report_page(std::ostream& out, const ReportPage& page) {
     if (const Json* d = find(*stats, "/distance"); d && d->is_object()) {
       add_if(rows, *d, "status", "/status");
       add_if(rows, *d, "Hausdorff distance ≤", "/hausdorff_upper_bound");
-      add_if(rows, *d, "… of the box diagonal", "/hausdorff_relative");
+      if (const Json* r = find(*d, "/hausdorff_relative"); r && r->is_number())
+        rows.emplace_back("… relative to the box diagonal", number(100 * r->get<double>(), 3) + " %");
       add_if(rows, *d, "|E| on the mesh ≤ ε", "/epsilon");
       add_if(rows, *d, "tube |E| ≤", "/tube");
       add_if(rows, *d, "|∇E| on the tube ≥", "/min_gradient");
@@ -941,8 +945,9 @@ void write_report_page(std::ostream& out, const ReportPage& page) {
   write_values("area", areas, 4);
   data << "},\"ranges\":{";
   const std::array<std::pair<const ColorRange*, std::string>, 3> ranges{
-      {{&angle_range, "Triangles at or below " + number(angle_range.lo, 3) + "° are darkest; 60° is equilateral."},
-       {&ratio_range, "1/√3 ≈ 0.577 is equilateral; ratios at or above " + number(ratio_range.hi, 3) + " are darkest."},
+      {{&angle_range, (angle_range.lo > 0 ? "Darkest at " + number(angle_range.lo, 3) + "° and below" : std::string("Darkest at 0°")) +
+                         "; yellow at 60°, the equilateral triangle."},
+       {&ratio_range, "Yellow at 1/√3 ≈ 0.577, the equilateral triangle; darkest at " + number(ratio_range.hi, 3) + " and above."},
        {&area_range, "Relative to the mean triangle area."}}};
   for (std::size_t i = 0; i < ranges.size(); ++i) {
     const ColorRange& r = *ranges[i].first;

@@ -25,6 +25,12 @@
 //!     (facet_angle from --angle, facet_distance δ, no facet size bound).  Both outputs also get
 //!     sampled estimates of their two one-sided distances to Σ (sampled_distances(): estimates,
 //!     not bounds).  One row per surface and δ in <out-dir>/distance.csv and distance.md.
+//!  5. memory (only when --experiments names it): for each benchmark case, Mesh_3 and delmesh each
+//!     in a fresh child process of this program (--memory-child), and a child that only compiles
+//!     E (the baseline: the program, its libraries and the surface); each child's peak resident
+//!     memory from wait4, and bytes per output vertex net of the baseline.  One row per child in
+//!     <out-dir>/memory.csv; one summary line per case with delmesh's bytes per vertex over
+//!     Mesh_3's.
 //! CGAL's implicit oracles locate surface points by bisection, stopped when the segment is shorter
 //! than a relative error bound times the bounding sphere's diameter.  CGAL's own default, 1e-3,
 //! is about 0.005 on the torus's sphere: no finer than the facet distance H/10 at H ≤ 0.05, so
@@ -67,6 +73,7 @@
 
 #include "common/errors.h"
 #include "common/huge_page_heap.h"
+#include "experiments/child_process.h"
 #include "experiments/experiment_support.h"
 #include "meshing/del_mesh.h"
 #include "meshing/mesh_io.h"
@@ -667,6 +674,106 @@ void run_distance_experiment(Context& context, const DistanceExperiment& x) {
   std::cout << "wrote " << csv.path().string() << " and " << (context.out_dir / "distance.md").string() << std::endl;
 }
 
+//! SURFACE:H of --cases: the catalog name and the size bound.  Throws InvalidInput otherwise.
+std::pair<std::string, double> parse_case(const std::string& item) {
+  const auto colon = item.find(':');
+  if (colon == std::string::npos) throw InvalidInput("--cases: expected SURFACE:H, got '" + item + "'");
+  const std::vector<double> h = positive_numbers("--cases", item.substr(colon + 1));
+  if (h.size() != 1) throw InvalidInput("--cases: expected one positive H in '" + item + "'");
+  return {item.substr(0, colon), h.front()};
+}
+
+// --- memory --------------------------------------------------------------------------------------
+//! The mesher settings a memory child runs with (the parent's, passed on its command line).
+struct MemorySettings {
+  double lambda, cgal_angle, cgal_error_bound;
+  DelMeshOptions base;
+};
+
+//! The child's side: runs `method` (mesh_3, delmesh, or none: only compile E) on one case and
+//! prints "vertices N", "seconds S" and "status X" on stdout.
+void run_memory_child(const std::string& method, const std::string& item, const MemorySettings& m) {
+  const auto [name, h] = parse_case(item);
+  const Prepared s = prepare(name);
+  Run run;
+  if (method == "mesh_3") {
+    run = run_mesh_3(s.E, s.centre, s.squared_radius, CgalSettings{m.cgal_angle, h, h / 10, m.cgal_error_bound});
+  } else if (method == "delmesh") {
+    run = run_delmesh(*s.entry, m.lambda, h, m.base);
+  } else if (method != "none") {
+    throw InvalidInput("--memory-child: expected mesh_3, delmesh or none, got '" + method + "'");
+  }
+  std::cout << "vertices " << run.soup.points.size() << "\nseconds " << field(run.seconds) << "\nstatus "
+            << (method == "none" ? std::string("none") : run.status) << std::endl;
+}
+
+//! One memory child's report.
+struct MemoryRun {
+  std::string method, status;
+  std::size_t vertices = 0;
+  double seconds = 0;
+  std::uint64_t peak_bytes = 0;
+};
+
+//! Starts this program as a memory child and reads its report.  Throws std::runtime_error when
+//! the child fails.
+MemoryRun memory_child(const std::string& method, const std::string& item, const MemorySettings& m) {
+  const std::vector<std::string> arguments{
+      "--memory-child", method, "--cases", item, "--lambda", field(m.lambda), "--angle", field(m.cgal_angle),
+      "--cgal-error-bound", field(m.cgal_error_bound), "--cgal-seed", field(static_cast<long long>(cgal_seed)),
+      "--seed", field(static_cast<long long>(m.base.seed)), "--threads", field(m.base.threads),
+      "--time-limit", field(m.base.time_limit_seconds), "--max-points", field(m.base.max_points)};
+  const ChildResult child = run_child(fs::read_symlink("/proc/self/exe").string(), arguments);
+  if (child.exit_code != 0)
+    throw std::runtime_error("memory child " + method + " " + item + " exited with " + std::to_string(child.exit_code));
+  MemoryRun run;
+  run.method = method;
+  run.peak_bytes = child.peak_bytes;
+  std::istringstream lines(child.out);
+  std::string key;
+  while (lines >> key) {
+    if (key == "vertices") lines >> run.vertices;
+    else if (key == "seconds") lines >> run.seconds;
+    else if (key == "status") lines >> run.status;
+  }
+  return run;
+}
+
+void run_memory_experiment(const Context& context, const std::vector<std::string>& cases, const MemorySettings& m) {
+  CsvWriter csv(context.out_dir / "memory.csv", "compare_cgal",
+                {{"experiment", "memory"},
+                 {"lambda", field(m.lambda)},
+                 {"threads", field(m.base.threads)},
+                 {"cgal_angle", field(m.cgal_angle)},
+                 {"cgal_error_bound", field(m.cgal_error_bound)},
+                 {"seed", field(static_cast<long long>(m.base.seed))},
+                 {"cgal_seed", field(static_cast<long long>(cgal_seed))},
+                 {"cgal", CGAL_VERSION_STR}},
+                {"surface", "size_bound", "method", "status", "vertices", "seconds", "peak_bytes", "baseline_bytes",
+                 "bytes_per_vertex"});
+  for (const std::string& item : cases) {
+    const auto [name, h] = parse_case(item);
+    const MemoryRun baseline = memory_child("none", item, m);
+    std::map<std::string, double> per_vertex;
+    for (const std::string method : {"mesh_3", "delmesh"}) {
+      const MemoryRun run = memory_child(method, item, m);
+      const double net = static_cast<double>(run.peak_bytes) - static_cast<double>(baseline.peak_bytes);
+      per_vertex[method] = run.vertices ? net / static_cast<double>(run.vertices) : std::nan("");
+      csv.row({name, field(h), method, run.status, field(run.vertices), field(run.seconds),
+               field(static_cast<long long>(run.peak_bytes)), field(static_cast<long long>(baseline.peak_bytes)),
+               field(per_vertex[method])});
+      std::cout << "memory " << name << " H=" << h << ": " << method << " " << run.vertices << " vertices, peak "
+                << static_cast<double>(run.peak_bytes) / 1048576 << " MiB (baseline "
+                << static_cast<double>(baseline.peak_bytes) / 1048576 << " MiB), " << per_vertex[method]
+                << " bytes/vertex" << std::endl;
+    }
+    std::cout << "memory " << name << " H=" << h << ": delmesh bytes per vertex / Mesh_3's = "
+              << per_vertex["delmesh"] / per_vertex["mesh_3"] << std::endl;
+  }
+  csv.close();
+  std::cout << "wrote " << csv.path().string() << std::endl;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -692,7 +799,13 @@ int main(int argc, char** argv) {
   app.add_option("--surfaces", surfaces, "surfaces of coarsest and distance (catalog names, comma separated)")
       ->capture_default_str();
   app.add_option("--demo-surfaces", demo_surfaces, "demo surfaces")->capture_default_str();
-  app.add_option("--experiments", experiments_to_run, "any of benchmark,coarsest,demo,distance")->capture_default_str();
+  app.add_option("--experiments", experiments_to_run, "any of benchmark,coarsest,demo,distance,memory")
+      ->capture_default_str();
+  std::string memory_child_method;
+  app.add_option("--memory-child", memory_child_method,
+                 "internal (the memory experiment's child): run mesh_3, delmesh or none on the one case of --cases "
+                 "and print its vertices, seconds and status")
+      ->group("");
   app.add_option("--lambda", lambda, "delmesh lambda")->capture_default_str();
   app.add_option("--cases", cases,
                  "benchmark cases SURFACE:H, comma separated: delmesh with size bound H against CGAL with "
@@ -737,6 +850,9 @@ int main(int argc, char** argv) {
   app.add_flag("--skip-delmesh", skip_delmesh, "run only the CGAL meshers");
   if (const auto code = parse_command_line(app, argc, argv)) return *code;
 
+  const MemorySettings memory_settings{lambda, cgal_angle, cgal_error_bound, base};
+  if (!memory_child_method.empty())
+    return run_guarded([&] { run_memory_child(memory_child_method, cases, memory_settings); });
   return run_guarded([&] {
     Context context;
     context.out_dir = out_dir;
@@ -768,11 +884,7 @@ int main(int argc, char** argv) {
       // grow with the mesh (relative to the surface's first case).
       std::map<std::string, double> first_per_vertex;
       for (const std::string& item : split(cases)) {
-        const auto colon = item.find(':');
-        if (colon == std::string::npos) throw InvalidInput("--cases: expected SURFACE:H, got '" + item + "'");
-        const std::string name = item.substr(0, colon);
-        const double h = std::stod(item.substr(colon + 1));
-        if (!(h > 0)) throw InvalidInput("--cases: H must be positive in '" + item + "'");
+        const auto [name, h] = parse_case(item);
         const Prepared s = prepare(name);
         const CgalSettings settings{cgal_angle, h, h / 10, cgal_error_bound};
         Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, settings);
@@ -886,6 +998,7 @@ int main(int argc, char** argv) {
     if (wants("distance"))
       run_distance_experiment(context, {split(surfaces), positive_numbers("--relative-distances", relative_distances),
                                         lambda, base, cgal_angle, cgal_error_bound, skip_delmesh});
+    if (wants("memory")) run_memory_experiment(context, split(cases), memory_settings);
     csv.close();
     std::cout << "wrote " << csv.path().string() << std::endl;
   });

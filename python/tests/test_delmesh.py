@@ -62,11 +62,11 @@ def read_off(path):
 
 
 def without_timings(value):
-    """The statistics without what differs from run to run (seconds) or between the program and
-    the module by design (mesh_file)."""
+    """The statistics without what differs from run to run (seconds, the program's peak memory) or
+    between the program and the module by design (mesh_file)."""
     if isinstance(value, dict):
         return {k: without_timings(v) for k, v in value.items()
-                if not k.startswith("seconds") and k != "mesh_file"}
+                if not k.startswith("seconds") and k not in ("mesh_file", "peak_memory_bytes")}
     if isinstance(value, list):
         return [without_timings(v) for v in value]
     return value

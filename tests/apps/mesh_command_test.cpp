@@ -17,12 +17,14 @@ using namespace delmesh::test;
 
 namespace {
 
-//! The statistics without their timings: every key whose name begins with "seconds", at any depth.
+//! The statistics without their measurements: every key whose name begins with "seconds", at any
+//! depth, and the peak memory.
 nlohmann::json without_timings(nlohmann::json j) {
   if (!j.is_object()) return j;
   nlohmann::json kept = nlohmann::json::object();
   for (auto it = j.begin(); it != j.end(); ++it)
-    if (it.key().rfind("seconds", 0) != 0) kept[it.key()] = without_timings(it.value());
+    if (it.key().rfind("seconds", 0) != 0 && it.key() != "peak_memory_bytes")
+      kept[it.key()] = without_timings(it.value());
   return kept;
 }
 

@@ -25,7 +25,7 @@ fail() { echo "test-slurm.sh: FAILED: $*" >&2; exit 1; }
 
 [ "$(id -u)" = 0 ] || fail "needs root (it starts munged, slurmctld and slurmd)"
 [ -x "$bin" ] || fail "$bin is missing (cmake --build ${DELMESH_BUILD_DIR:-build} --target lambda_sweep)"
-command -v snakemake >/dev/null || fail "snakemake is missing (scripts/install-deps.sh)"
+command -v snakemake >/dev/null || fail "snakemake is missing (scripts/install-deps.sh --dev)"
 
 # --- packages ---------------------------------------------------------------------------------
 if ! command -v slurmctld >/dev/null || ! command -v slurmd >/dev/null || ! command -v sbatch >/dev/null ||

@@ -514,14 +514,26 @@ view.addEventListener('dblclick', reset);
 
 // A click on a triangle shows its measures.
 const raycaster = new THREE.Raycaster();
+const outline = new THREE.LineLoop(new THREE.BufferGeometry().setAttribute('position', new THREE.BufferAttribute(new Float32Array(9), 3)),
+  new THREE.LineBasicMaterial({color: 0xd62728, depthTest: false}));
+outline.visible = false;
+outline.renderOrder = 1;
+outline.add(new THREE.Mesh(outline.geometry, new THREE.MeshBasicMaterial({color: 0xd62728, transparent: true,
+  opacity: 0.55, side: THREE.DoubleSide, depthTest: false})));
+model.add(outline);
 function pick(e) {
   const rect = renderer.domElement.getBoundingClientRect();
   const ndc = new THREE.Vector2((e.clientX - rect.left) / rect.width * 2 - 1, -(e.clientY - rect.top) / rect.height * 2 + 1);
   raycaster.setFromCamera(ndc, camera);
   const hit = raycaster.intersectObject(model.children[0])[0];
   const out = document.getElementById('pick');
+  outline.visible = !!hit;
+  requestRender();
   if (!hit) { out.textContent = 'Click a triangle to see its measures.'; return; }
   const t = hit.faceIndex, m = data.measures;
+  outline.geometry.attributes.position.array.set(position.subarray(9 * t, 9 * t + 9));
+  outline.geometry.attributes.position.needsUpdate = true;
+  outline.geometry.computeBoundingSphere();
   const fmt = (x, d) => x === null ? '∞ (degenerate)' : (+x).toPrecision(d);
   out.innerHTML = `<b>triangle ${t}</b> (vertices ${T[3 * t]}, ${T[3 * t + 1]}, ${T[3 * t + 2]})<br>` +
     `min angle ${fmt(m['min-angle'][t], 4)}° · radius-edge ${fmt(m['radius-edge'][t], 4)} · ` +

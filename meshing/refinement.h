@@ -26,107 +26,31 @@
 //! enable_geometry() (DelMesh step 2 starts after SampleTopology).  run() returns complete when
 //! every queue is empty.
 //!
-//! **Lemma (recheck only new faces).**  Let x be inserted into S (no deletion), Del S of
-//! dimension 3 before and after.  Then:
-//!  1. (Bowyer–Watson) the Delaunay simplices that do not contain x and survive are exactly those
-//!     not strictly inside the cavity; the dual Voronoi face of a surviving simplex σ is
-//!     V(σ) ∩ {y : |y − s| ≤ |y − x|} for any vertex s of σ, a subset of the old face in the same
-//!     affine hull (equal unless σ is on the cavity boundary).
-//!  2. Each topology check's witness set W(f) of a face f is monotone: f′ ⊆ f ⇒ W(f′) ⊆ W(f)
-//!     restricted to f′, provided the check's generic directions depend only on the face's
-//!     defining sites.  VorEdge: tangencies of Σ with e′ ⊆ e, and |e′ ∩ Σ| ≤ |e ∩ Σ| ≤ 1.
-//!     FacetContact: contacts of Σ with F′ ⊆ F.  FacetCycle: the critical points of Σ ∩ F′ in
-//!     direction d are those of Σ ∩ F lying in F′, and ℓ_y ∩ Σ ∩ F′ ⊆ ℓ_y ∩ Σ ∩ F (d is seeded by
-//!     the edge's ids).  Silhouette: J_{n_p} ∩ V′_p ⊆ J_{n_p} ∩ V_p = ∅ (n_p, d′ depend on p only),
-//!     and the facets of V′_p are subsets of V_p.
-//!  3. Hence a face whose check found no witness still has none, and only the faces dual to
-//!     simplices containing x need their topology checks: VorEdge on the triangles xqr,
-//!     FacetContact and FacetCycle on the edges xq, Silhouette on V_x.  Of these, an edge xq
-//!     whose facet F is proved to miss Σ (RestrictedDelaunay::facet_misses_surface, from the
-//!     records and third vertices of the triangles xqr, and the box) needs no FacetContact or
-//!     FacetCycle: both look for points of Σ ∩ F (rows marked silent_off_surface).
-//!  4. TopoDisk(p) is a function of the restricted star of p (and, for its witness, of the
-//!     crossings of p's triangles): it is re-queued for x and for the vertices of every triangle
-//!     that entered or left Tri S|Σ (new, destroyed, or shrunk with a lost crossing).  Quality,
-//!     size and Smooth read a triangle's restricted status and dual point (Smooth also its
-//!     neighbours across its edges, which are then re-queued themselves): they are re-queued for
-//!     the new triangles and the shrunk triangles whose status or dual point changed.  Every
-//!     such record is computed at once; VorEdge is a function of the record alone, so a new
-//!     triangle waits for it only if its record has a witness (the row's may_fire), and Quality,
-//!     size and Smooth wait only for restricted triangles.
-//! The faces in the lemma are those of Vor S.  Each computed face holds its exact face: the
-//! half-spaces are the exact bisectors moved outwards only, and the boxes built from Voronoi
-//! vertices are widened by their certified error radii (voronoi_geometry.h), so a check that
-//! found no witness in the computed F found none in the exact F ⊇ F′.  The computed F′ need not
-//! lie in the computed F (its cuts hold the new circumcentres, whose errors no constant margin
-//! bounds for slivers), and nothing relies on it.  A Voronoi edge as the faces see it has
-//! connectors from its line to its shared vertices (restricted_delaunay.h): e′'s connector to the
-//! new vertex is not part of e, so a kept record of e′ is checked on it (prepare_star()).
-//! In the registry's terms: parts 1–3 are Dirtied::new_faces, part 4 is Dirtied::restricted_star
-//! (TopoDisk) and Dirtied::restricted_triangles (Quality, Smooth).
-//! Conditions: the checks' generic choices depend only on the face's sites (so it is for the
-//! seeded frames of restricted_delaunay.h and silhouette.h, and for the in-plane direction of the
-//! facet certificate), and only a clean result is kept (an undecided region is a candidate
-//! witness, not a clean result; a face that gave a witness is queued again).  A deletion (seed deletion,
-//! Lemma 5.4) grows faces, so after deleting p every face dual to a simplex within N(p) is
-//! checked again (a kept Silhouette proof of a cell V_q, q ∈ N(p), is completed on V_q ∩ old V_p
-//! only: V_q grew into the old V_p and nowhere else; RestrictedDelaunay::invalidate()); so is
-//! everything when the change is not local (dimension < 3).
-//! RecheckPolicy::changed_faces re-queues the shrunk faces too, for the new_faces and
-//! restricted_star rows (for testing the lemma).
+//! Each row's witness set only shrinks with its face (the recheck lemma), so after inserting x
+//! only the faces dual to simplices containing x get the topology checks again (VorEdge on the
+//! triangles xqr, FacetContact and FacetCycle on the edges xq, Silhouette on V_x), TopoDisk is
+//! re-queued for the vertices of triangles that entered or left Tri S|Σ, and Quality, size and
+//! Smooth for the triangles whose restricted status or dual point changed.  Conditions: a check's
+//! generic choices depend only on its face's sites, only clean results are kept, and a deletion
+//! (Lemma 5.4) re-queues every face within N(p).  RecheckPolicy::changed_faces re-queues the
+//! shrunk faces too (for testing the lemma).
 //!
-//! Threads.  Each insertion's new and shrunk triangles get their records on several threads
-//! (RestrictedDelaunay::prepare_star), alongside the new vertex's cell certificate: each item is
-//! computed on its own from the current Del S and installed in a fixed order, so the run does the
-//! same work and writes the same mesh for every thread count.  The checks themselves run one at a
-//! time, in the table's order.  The facet of a new edge, and its section certificate, are
-//! computed when its first check asks (RestrictedDelaunay::add_facets), and kept until the last
-//! enabled edge row finds the edge clean.
+//! Threads: the records of each insertion's new and shrunk triangles are computed on several
+//! threads and installed in a fixed order, so the output does not depend on the thread count; the
+//! checks run one at a time, in the table's order.
 //!
-//! Witnesses within tolerances::duplicate_sample_relative_distance of an existing sample are not
-//! inserted (counted as `rejected_witnesses`), so the loop cannot cycle on a degenerate answer.
-//! A check lists its witnesses in order of preference; when the first is rejected the next is
-//! tried.  When all are, a row with a generic choice (CheckInfo::generic_choice: FacetCycle,
-//! Silhouette) is run on the face again at once with the next alternative choice
-//! (CheckContext::attempt), up to tolerances::generic_choice_attempts choices in all (counted as
-//! `generic_choice_retries`); a clean answer with any choice settles the face (by the lemma above
-//! it stays clean as the face shrinks, for that choice).  When no choice gives a witness that can
-//! be inserted, the face is left unsettled (rejected_witness).
+//! Witnesses within tolerances::duplicate_sample_relative_distance of a sample are not inserted
+//! (`rejected_witnesses`); the next witness of the check is tried, then (FacetCycle, Silhouette)
+//! the next generic choice, up to tolerances::generic_choice_attempts; a face with none left is
+//! unsettled (rejected_witness).  Opposite-sheet partners: after a witness w is inserted, the
+//! nearest other point y of Σ on the normal line of Σ at w may be inserted too (partner_of = w,
+//! `opposite_sheet`), under conditions that keep the guarantee and Lemma 5.1's termination.
 //!
-//! **Opposite-sheet partners.**  Where two sheets of Σ (two components, or the two sides of a
-//! thin part) are closer than the sample spacing, the Voronoi cells of one sheet's samples reach
-//! the other sheet, and the witnesses of VorEdge and TopoDisk, one at a time, drive the spacing
-//! down to the local gap: about π/g points for two unit spheres a gap g apart (Quality's, which
-//! break the pairs, then do the same).  A sample whose partner on the other sheet lies across the
-//! gap, near its mirror image, keeps its cell on its own side whatever the spacing.  So after a
-//! witness w of any row is inserted at distance d from its nearest sample, SurfaceLine searches
-//! the normal line of Σ at w within tolerances::opposite_sheet_reach·d of w, and the nearest
-//! other point y of Σ found there (if the search left nothing undecided) is inserted as well,
-//! provided |⟨n(w), n(y)⟩| ≥
-//! c = tolerances::opposite_sheet_min_cosine and every sample is at least
-//! s·|w − y| from y, s = tolerances::opposite_sheet_spacing.  y is logged with partner_of = w
-//! and counted as `opposite_sheet`, not as a witness of the check.  The search is skipped when
-//! three interval evaluations show that it has no y to find: ⟨∇E, n⟩ of one sign σ on the
-//! segment (SurfaceOracle::gradient_sign), so that E(w + t n) is strictly monotone in t there and
-//! has at most one zero, and E(w − δ n), E(w + δ n) of signs −σ and σ, δ the distance below which
-//! a root counts as w's own, so that its one zero is w's own.
-//!  - The guarantee does not change: y is a point of Σ (a certified root of SurfaceLine), and
-//!    the output theorem asks only that every check be clean on the final S, which the loop
-//!    establishes for whatever S it ends with.
-//!  - Termination does not change: lfs(y) ≤ |w − y|/(2c).  Proof: let ν be the unit normal at y
-//!    on the side of w, so ⟨w − y, ν⟩ = |w − y|·|cos φ| ≥ c|w − y| (w − y lies along n(w)).  The
-//!    ball tangent to Σ at y with centre y + rν holds w in its interior once
-//!    r > |w − y|²/(2⟨w − y, ν⟩), so the largest such ball with no point of Σ inside has
-//!    r ≤ |w − y|/(2c), and its centre is a point of the medial axis.  Hence y is at least
-//!    s·|w − y| ≥ 2cs·lfs(y) = lfs(y)/2 from every sample (with c = s = 1/2), and from the nearest
-//!    sample p at least lfs(p)/3 (lfs is 1-Lipschitz): the packing argument of Lemma 5.1 bounds
-//!    these insertions as it bounds the witnesses'.
+//! Unsettled faces stay on a list; when every queue is empty each is checked again if S changed
+//! since its check, and unsettled() lists what remains: del_mesh then reports uncertified.
 //!
-//! Unsettled faces.  A check that leaves something unsettled (witness.h: UnsettledReason) keeps
-//! its face on a list.  When every queue is empty, each face on the list that is still in Del S
-//! is checked again if S has changed since its check; the run ends when no such face remains.
-//! unsettled() then lists what the current faces' latest checks could not settle: the caller
-//! (del_mesh) reports the run as uncertified unless it is empty.
+//! The lemma with its proof, the threading, the witness policy and the partners' termination
+//! argument are in docs/refinement.md.
 
 #include <algorithm>
 #include <array>

@@ -788,7 +788,9 @@ void write_report_page(std::ostream& out, const ReportPage& page) {
     write_histogram(out, h, ratio_range, nullptr, markers, hi - 0.5 > 1.2 ? 0.5 : 0.1, "circumradius / shortest edge", 3);
     out << "<div class=\"caption\">One count per triangle, coloured as in the view; " << h.counts.size()
         << " bins from 0.5 to " << number(hi, 3) << ".";
-    if (h.above > degenerate) out << " " << h.above - degenerate << " triangles above " << number(hi, 3) << ".";
+    if (h.above > degenerate)
+      out << " " << h.above - degenerate << " triangles above " << number(hi, 3) << " (the largest ratio is "
+          << number(largest_ratio, 4) << ").";
     if (degenerate > 0) out << " " << degenerate << " degenerate (ratio ∞).";
     if (ratio_bound) out << " Dashed at right: the quality bound 1 + λ.";
     out << "</div>\n";

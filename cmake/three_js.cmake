@@ -23,6 +23,7 @@ if(DELMESH_REPORT)
   if(NOT NPM_PROGRAM)
     message(FATAL_ERROR "DELMESH_REPORT needs npm (Debian package npm) to fetch three.js; or -DDELMESH_REPORT=OFF")
   endif()
+  message(STATUS "delmesh report: three.js ${DELMESH_THREE_JS_VERSION} is fetched with ${NPM_PROGRAM} at build time")
   add_custom_command(
     OUTPUT ${DELMESH_THREE_JS_SOURCE}
     COMMAND ${CMAKE_COMMAND} -DNPM=${NPM_PROGRAM} -DVERSION=${DELMESH_THREE_JS_VERSION}

@@ -2,8 +2,16 @@
 #include "meshing/self_intersection_repair.h"
 
 #include <chrono>
+#include <cerrno>
+#include <csignal>
+#include <cstdint>
+#include <cstring>
 #include <iterator>
 #include <utility>
+
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
@@ -56,6 +64,145 @@ InputMesh validate_repaired(SurfaceMesh mesh, const std::string& source, const s
     throw InvalidInput("input mesh '" + source + "': --repair could not remove the self-intersections: the mesh " +
                        method + " gave is not valid: " + e.what());
   }
+}
+
+//! A CGAL repair run in a child process: whether it finished, CGAL's verdict and its mesh, or
+//! why it did not finish.
+struct Attempt {
+  bool finished = false;
+  bool fixed = false;
+  SurfaceMesh mesh;
+  std::string failure;
+};
+
+bool write_all(int fd, const char* data, std::size_t size) {
+  while (size > 0) {
+    const ssize_t n = ::write(fd, data, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    data += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+template <class T>
+void append(std::string& buffer, const T& value) {
+  buffer.append(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+template <class T>
+bool take(const std::string& buffer, std::size_t& at, T& value) {
+  if (buffer.size() - at < sizeof(T)) return false;
+  std::memcpy(&value, buffer.data() + at, sizeof(T));
+  at += sizeof(T);
+  return true;
+}
+
+//! Runs `repair` on a copy of `input` in a forked child process, so that a crash of CGAL's
+//! experimental code (autorefinement dies with SIGSEGV on CGAL's diplodocus.off) becomes a
+//! failed attempt instead of the end of the program.  The child sends back CGAL's verdict and the
+//! mesh as a triangle soup through a pipe; it dies with its parent (PR_SET_PDEATHSIG).
+Attempt run_isolated(const SurfaceMesh& input, const char* name, bool (*repair)(SurfaceMesh&)) {
+  Attempt attempt;
+  int fds[2];
+  if (::pipe(fds) != 0) {
+    attempt.failure = std::string(name) + " could not start (pipe: " + std::strerror(errno) + ")";
+    return attempt;
+  }
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    attempt.failure = std::string(name) + " could not start (fork: " + std::strerror(errno) + ")";
+    return attempt;
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    int code = 0;
+    try {
+      SurfaceMesh mesh = input;
+      const bool fixed = repair(mesh);
+      mesh.collect_garbage();
+      std::vector<Point3> points;
+      Polygons faces;
+      PMP::polygon_mesh_to_polygon_soup(mesh, points, faces);
+      std::string buffer;
+      append(buffer, std::uint8_t(fixed));
+      append(buffer, std::uint64_t(points.size()));
+      for (const Point3& p : points)
+        for (double x : {p.x(), p.y(), p.z()}) append(buffer, x);
+      append(buffer, std::uint64_t(faces.size()));
+      for (const auto& face : faces) {
+        append(buffer, std::uint64_t(face.size()));
+        for (std::size_t v : face) append(buffer, std::uint64_t(v));
+      }
+      code = write_all(fds[1], buffer.data(), buffer.size()) ? 0 : 2;
+    } catch (...) {
+      code = 1;
+    }
+    ::close(fds[1]);
+    ::_exit(code);
+  }
+  ::close(fds[1]);
+  std::string buffer;
+  char chunk[1 << 16];
+  while (true) {
+    const ssize_t n = ::read(fds[0], chunk, sizeof chunk);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    buffer.append(chunk, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status)) {
+    attempt.failure = std::string(name) + " crashed (signal " + std::to_string(WTERMSIG(status)) + ")";
+    return attempt;
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    attempt.failure = std::string(name) + " failed (an exception in CGAL)";
+    return attempt;
+  }
+  std::size_t at = 0;
+  std::uint8_t fixed = 0;
+  std::uint64_t count = 0;
+  bool ok = take(buffer, at, fixed) && take(buffer, at, count);
+  std::vector<Point3> points;
+  for (std::uint64_t i = 0; ok && i < count; ++i) {
+    double x = 0, y = 0, z = 0;
+    ok = take(buffer, at, x) && take(buffer, at, y) && take(buffer, at, z);
+    points.emplace_back(x, y, z);
+  }
+  Polygons faces;
+  ok = ok && take(buffer, at, count);
+  for (std::uint64_t i = 0; ok && i < count; ++i) {
+    std::uint64_t size = 0;
+    ok = take(buffer, at, size) && size <= points.size();
+    std::vector<std::size_t> face;
+    for (std::uint64_t k = 0; ok && k < size; ++k) {
+      std::uint64_t v = 0;
+      ok = take(buffer, at, v) && v < points.size();
+      face.push_back(static_cast<std::size_t>(v));
+    }
+    faces.push_back(std::move(face));
+  }
+  if (!ok || at != buffer.size() || !PMP::is_polygon_soup_a_polygon_mesh(faces)) {
+    attempt.failure = std::string(name) + " returned a mesh that is not a polygon mesh";
+    return attempt;
+  }
+  PMP::polygon_soup_to_polygon_mesh(points, faces, attempt.mesh);
+  attempt.finished = true;
+  attempt.fixed = fixed != 0;
+  return attempt;
+}
+
+bool autorefine(SurfaceMesh& mesh) { return PMP::experimental::autorefine_and_remove_self_intersections(mesh); }
+
+bool remove_locally(SurfaceMesh& mesh) {
+  return PMP::experimental::remove_self_intersections(mesh, CGAL::parameters::preserve_genus(true));
 }
 
 std::size_t components_of(const SurfaceMesh& mesh) {
@@ -122,10 +269,13 @@ RepairedInput repair_input_mesh(const std::vector<Point3>& points, const Polygon
   std::string failure;
   // Autorefinement: exact, keeps the outer surface.
   {
-    SurfaceMesh refined = *mesh;
-    const bool fixed = PMP::experimental::autorefine_and_remove_self_intersections(refined);
+    Attempt attempt = run_isolated(*mesh, "autorefinement", autorefine);
     limits.check(phase, true);
-    if (fixed && !refined.is_empty() && CGAL::is_closed(refined)) {
+    SurfaceMesh& refined = attempt.mesh;
+    const bool fixed = attempt.fixed;
+    if (!attempt.finished) {
+      failure = attempt.failure;
+    } else if (fixed && !refined.is_empty() && CGAL::is_closed(refined)) {
       refined.collect_garbage();
       failure = implausible(*mesh, refined);
       if (failure.empty()) {
@@ -143,11 +293,13 @@ RepairedInput repair_input_mesh(const std::vector<Point3>& points, const Polygon
   }
   // Local removal: moves the surface near the intersections.
   if (report.method == "none") {
-    SurfaceMesh local = *mesh;
-    const bool fixed =
-        PMP::experimental::remove_self_intersections(local, CGAL::parameters::preserve_genus(true));
+    Attempt attempt = run_isolated(*mesh, "local remeshing", remove_locally);
     limits.check(phase, true);
-    if (fixed && !local.is_empty() && CGAL::is_closed(local)) {
+    SurfaceMesh& local = attempt.mesh;
+    const bool fixed = attempt.fixed;
+    if (!attempt.finished) {
+      failure += "; " + attempt.failure;
+    } else if (fixed && !local.is_empty() && CGAL::is_closed(local)) {
       try {
         result.input = validate_repaired(local, source, "local remeshing");
         report.method = "local";

@@ -25,6 +25,9 @@
 //!     the intersecting faces and their neighbourhoods are smoothed or removed and the holes
 //!     refilled, with genus preserved, up to 7 growing rounds): method "local".  It moves and
 //!     replaces faces near the intersections, so the surface changes there.
+//! Steps 3 and 4 each run in a forked child process that sends its mesh back through a pipe
+//! (the experimental code can crash: autorefinement dies with SIGSEGV on CGAL's diplodocus.off);
+//! a child that dies is a failed attempt, named in the refusal.
 //!  5. The result, as a triangle soup, goes through validate_input_mesh: it must be closed,
 //!     manifold, without degenerate triangles and without self-intersections (rounding the
 //!     constructed points can create new ones).

@@ -37,6 +37,8 @@
 #include "meshing/mesh_checker.h"
 #include "meshing/mesh_io.h"
 #include "meshing/mesh_oracle.h"
+#include "meshing/self_intersection_repair.h"
+#include "meshing/sharp_features.h"
 #include "meshing/unit_scale.h"
 
 namespace delmesh::app {
@@ -59,6 +61,7 @@ struct MeshOptions {
   int threads = 0;
   bool quiet = false;
   bool certify = false;
+  bool repair = false;
   CLI::Option* input_mesh_option = nullptr;
   CLI::Option* size_bound_option = nullptr;
   CLI::Option* max_distance_option = nullptr;
@@ -223,6 +226,17 @@ nlohmann::json folded_vertices_json(const InputMesh& m) {
   return {{"count", m.folded_vertices.size()}, {"locations", locations}};
 }
 
+// The input's sharp features at the default feature angle (meshing/sharp_features.h): counts only.
+nlohmann::json features_json(const InputMesh& m) {
+  const FeatureSet f = detect_features(m.mesh, default_feature_angle_deg, m.folded_vertices);
+  return {{"angle_deg", f.angle_deg},
+          {"sharp_edges", f.sharp_edges},
+          {"curves", f.curves.size()},
+          {"closed_curves", f.closed_curves},
+          {"corners", f.corners.size()},
+          {"folded_corners", f.folded_corners}};
+}
+
 }  // namespace
 
 namespace {
@@ -246,6 +260,7 @@ DelMeshResult remesh_on(const MeshInputPlan& plan, MeshOracle& oracle, double se
                                      {"median_edge_length", m.median_edge_length},
                                      {"components_reversed", m.components_reversed},
                                      {"folded_vertices", folded_vertices_json(m)},
+                                     {"features", features_json(m)},
                                      {"seconds_oracle_build", seconds_oracle}};
   return result;
 }
@@ -287,6 +302,7 @@ namespace {
 struct MeshRun {
   std::optional<MeshPlan> plan;
   std::optional<MeshInputPlan> mesh_plan;
+  std::optional<RepairReport> repair;  //!< --repair: what it did to the input mesh
 
   const std::string& name() const { return plan ? plan->input.name : mesh_plan->name; }
   DelMeshOptions& options() { return plan ? plan->options : mesh_plan->options; }
@@ -296,7 +312,15 @@ struct MeshRun {
 MeshRun plan_run(const MeshOptions& o) {
   const MeshRequest request = request_of(o);
   MeshRun run;
-  if (request.input_mesh) {
+  if (o.repair && !request.input_mesh) throw InvalidInput("--repair needs --input-mesh");
+  if (request.input_mesh && o.repair) {
+    RepairedInput repaired = read_and_repair_input_mesh(*request.input_mesh);
+    run.repair = repaired.report;
+    run.mesh_plan = plan_mesh_input(request, std::move(repaired.input),
+                                    std::filesystem::path(*request.input_mesh).stem().string() + "_remeshed");
+    if (o.certify)
+      throw InvalidInput("--certify needs --surface or --expr (the certificate is proved on an implicit surface)");
+  } else if (request.input_mesh) {
     run.mesh_plan = plan_mesh_input(request);
     if (o.certify)
       throw InvalidInput("--certify needs --surface or --expr (the certificate is proved on an implicit surface)");
@@ -489,6 +513,7 @@ ExitCode run_mesh(const MeshOptions& o) {
   const std::pair<std::string, std::string> files = output_files(o, run.name(), outputs);
   const std::string& out = files.first;
   const std::string& stats = files.second;
+  if (run.repair && !o.quiet) std::cerr << "delmesh: --repair: " << run.repair->summary(run.mesh_plan->path) << std::endl;
   for (const std::string& warning : run.warnings()) print_warning(warning);
   const std::shared_ptr<ProgressLine> progress = o.quiet ? nullptr : report_progress(o, run);
 
@@ -500,6 +525,16 @@ ExitCode run_mesh(const MeshOptions& o) {
 
   nlohmann::json statistics =
       run.plan ? mesh_statistics(result, run.plan->input, o.seed, out) : run_statistics(result, o.seed, out);
+  if (run.repair && statistics.contains("input_mesh")) {
+    const RepairReport& r = *run.repair;
+    statistics["input_mesh"]["repair"] = {{"method", r.method},
+                                          {"intersecting_pairs", r.intersecting_pairs},
+                                          {"faces_before", r.faces_before},
+                                          {"faces_after", r.faces_after},
+                                          {"vertices_before", r.vertices_before},
+                                          {"vertices_after", r.vertices_after},
+                                          {"seconds", r.seconds}};
+  }
   const std::optional<MeshStatus> certificate_stopped =
       o.certify ? certify_result(o, *run.plan, result, limits, statistics) : std::nullopt;
   if (certificate_stopped) {
@@ -555,6 +590,13 @@ Command add_mesh_command(CLI::App& parent) {
       "manifold, consistently oriented and free of self-intersections (else exit code 2). The box is its "
       "bounding box enlarged by 0.1 of its diagonal; output vertices lie on the input surface. Default outputs: "
       "<stem>_remeshed.off and .json")->type_name("FILE");
+  sub->add_flag(
+      "--repair", o->repair,
+      "With --input-mesh: a closed mesh that intersects itself is repaired first (CGAL's autorefinement, which "
+      "keeps the surface bounding the union of what the mesh encloses, else its local self-intersection removal) "
+      "and then validated; one line on stderr says what changed, the statistics hold it under "
+      "input_mesh.repair. Refused (exit code 2) if the result still intersects itself or is not a closed "
+      "manifold; other defects are refused as without --repair");
   o->min_spacing_option = sub->add_option(
       "--min-spacing", o->min_spacing,
       "Termination floor H >= 0: a witness closer than H to the sample is recorded, not inserted, and the run "

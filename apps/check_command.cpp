@@ -348,7 +348,7 @@ Command add_check_command(CLI::App& parent) {
   CLI::App* sub =
       parent.add_subcommand("check", "Check a mesh file independently (topology, quality, bounds, certificate)");
   sub->footer(
-      "Check a mesh file (OFF, PLY or OBJ; polygons are triangulated as by mesh --input-mesh) from the file "
+      "Check a mesh file (OFF, PLY, OBJ or STL; polygons are triangulated as by mesh --input-mesh) from the file "
       "alone: components, Euler characteristic, "
       "genus per component (where defined: closed orientable 2-manifold components), closed / manifold / "
       "orientable with the counts of boundary edges and loops and of non-manifold edges and vertices, minimum "

@@ -42,30 +42,42 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-//! The format of a file to read: the formats written but .stl and .vtp.
+//! The format of a file to read: the formats written but .vtp.
 MeshFormat read_format(const std::string& path) {
   const std::string ext = lower_extension(path);
   if (ext == ".off") return MeshFormat::off;
   if (ext == ".ply") return MeshFormat::ply;
   if (ext == ".obj") return MeshFormat::obj;
-  throw InvalidInput("mesh file '" + path + "': unknown extension '" + ext + "' (expected .off, .ply or .obj" +
-                     (ext == ".stl" || ext == ".vtp" ? std::string("; ") + ext + " files are written, not read)" : ")"));
+  if (ext == ".stl") return MeshFormat::stl;
+  throw InvalidInput("mesh file '" + path + "': unknown extension '" + ext + "' (expected .off, .ply, .obj or .stl" +
+                     (ext == ".vtp" ? std::string("; .vtp files are written, not read)") : ")"));
 }
 
 //! The soup as VTK XML PolyData, ASCII: the points, the triangles as Polys (connectivity and
-//! offsets) and, if given, the point data "Normals" (Float64, three components).
-void write_vtp(const TriangleSoup& soup, std::ostream& out, const PointNormals& normals) {
+//! offsets) and, if given, the point data "Normals" (Float64, three components, the attribute
+//! Normals) and "certified_distance" (Float64, one component, the attribute Scalars).
+void write_vtp(const TriangleSoup& soup, std::ostream& out, const PointNormals& normals,
+               const PointDistances& distances) {
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <PolyData>\n"
       << "    <Piece NumberOfPoints=\"" << soup.points.size() << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
       << "NumberOfStrips=\"0\" NumberOfPolys=\"" << soup.triangles.size() << "\">\n";
-  if (!normals.empty()) {
-    out << "      <PointData Normals=\"Normals\">\n"
-        << "        <DataArray type=\"Float64\" Name=\"Normals\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-    for (const auto& n : normals) out << "          " << n[0] << ' ' << n[1] << ' ' << n[2] << '\n';
-    out << "        </DataArray>\n"
-        << "      </PointData>\n";
+  if (!normals.empty() || !distances.empty()) {
+    out << "      <PointData" << (normals.empty() ? "" : " Normals=\"Normals\"")
+        << (distances.empty() ? "" : " Scalars=\"certified_distance\"") << ">\n";
+    if (!normals.empty()) {
+      out << "        <DataArray type=\"Float64\" Name=\"Normals\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+      for (const auto& n : normals) out << "          " << n[0] << ' ' << n[1] << ' ' << n[2] << '\n';
+      out << "        </DataArray>\n";
+    }
+    if (!distances.empty()) {
+      out << "        <DataArray type=\"Float64\" Name=\"certified_distance\" NumberOfComponents=\"1\" "
+             "format=\"ascii\">\n";
+      for (double d : distances) out << "          " << d << '\n';
+      out << "        </DataArray>\n";
+    }
+    out << "      </PointData>\n";
   }
   out << "      <Points>\n"
       << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n";
@@ -170,20 +182,25 @@ PolygonSoup read_obj(const std::string& path) {
 
 MeshFormat mesh_format(const std::string& path) {
   const std::string ext = lower_extension(path);
-  if (ext == ".stl") return MeshFormat::stl;
   if (ext == ".vtp") return MeshFormat::vtp;
-  if (ext == ".off" || ext == ".ply" || ext == ".obj") return read_format(path);
+  if (ext == ".off" || ext == ".ply" || ext == ".obj" || ext == ".stl") return read_format(path);
   throw InvalidInput("mesh file '" + path + "': unknown extension '" + ext +
                      "' (expected .off, .ply, .obj, .stl or .vtp)");
 }
 
-void write_triangle_soup(const TriangleSoup& soup, std::ostream& out, MeshFormat format, const PointNormals& normals) {
+void write_triangle_soup(const TriangleSoup& soup, std::ostream& out, MeshFormat format, const PointNormals& normals,
+                         const PointDistances& distances) {
   for (const auto& t : soup.triangles)
     for (std::size_t v : t)
       if (v >= soup.points.size()) throw PreconditionViolation("write_triangle_soup: vertex index out of range");
   if (!normals.empty() && normals.size() != soup.points.size())
     throw PreconditionViolation("write_triangle_soup: " + std::to_string(normals.size()) + " normals for " +
                                 std::to_string(soup.points.size()) + " points");
+  if (!distances.empty() && distances.size() != soup.points.size())
+    throw PreconditionViolation("write_triangle_soup: " + std::to_string(distances.size()) + " distances for " +
+                                std::to_string(soup.points.size()) + " points");
+  for (double d : distances)
+    if (!(std::isfinite(d) && d >= 0)) throw PreconditionViolation("write_triangle_soup: a distance is not finite and >= 0");
   out.imbue(std::locale::classic());
   out.precision(full_double_precision);
   const auto np = CGAL::parameters::stream_precision(full_double_precision);
@@ -203,15 +220,16 @@ void write_triangle_soup(const TriangleSoup& soup, std::ostream& out, MeshFormat
       CGAL::IO::write_STL(out, soup.points, soup.triangles);
       break;
     case MeshFormat::vtp:
-      write_vtp(soup, out, normals);
+      write_vtp(soup, out, normals, distances);
       break;
   }
 }
 
-void write_mesh(const SurfaceMesh& mesh, std::ostream& out, MeshFormat format, const PointNormals& normals) {
+void write_mesh(const SurfaceMesh& mesh, std::ostream& out, MeshFormat format, const PointNormals& normals,
+                const PointDistances& distances) {
   TriangleSoup soup;
   mesh_to_soup(mesh, soup.points, soup.triangles);
-  write_triangle_soup(soup, out, format, normals);
+  write_triangle_soup(soup, out, format, normals, distances);
 }
 
 void write_triangle_soup(const TriangleSoup& soup, const std::string& path) {
@@ -267,12 +285,14 @@ PolygonSoup read_polygon_soup(const std::string& path) {
   if (format == MeshFormat::obj) {
     soup = read_obj(path);
   } else {
-    // OFF and PLY: our own readers, on the whole file (no declared count reaches an allocation).
+    // OFF, PLY and STL: our own readers, on the whole file (no declared count reaches an allocation).
     std::ifstream in(path, std::ios::binary);
     if (!in) corrupt(path, "cannot be opened for reading");
     std::string contents(static_cast<std::size_t>(bytes), '\0');
     if (!in.read(contents.data(), static_cast<std::streamsize>(bytes))) corrupt(path, "cannot be read");
-    soup = format == MeshFormat::off ? detail::read_off(path, contents) : detail::read_ply(path, contents);
+    soup = format == MeshFormat::off   ? detail::read_off(path, contents)
+           : format == MeshFormat::ply ? detail::read_ply(path, contents)
+                                       : detail::read_stl(path, contents);
   }
   if (soup.faces() == 0) corrupt(path, "has no faces");
   std::vector<std::size_t> sorted;

@@ -1,7 +1,8 @@
 #pragma once
 //! \file mesh_io.h
 //! Reading and writing triangle meshes, the format chosen by the file extension (case-insensitive).
-//! OFF, PLY and OBJ are read and written; binary STL and VTK XML PolyData (.vtp) are written only.
+//! OFF, PLY, OBJ and STL are read (STL binary or ASCII) and written (STL as binary); VTK XML
+//! PolyData (.vtp) is written only.
 //! OFF, PLY, OBJ and VTP output is ASCII with 17 significant digits (every double round-trips, and
 //! the same mesh always gives the same bytes); STL output is binary, with float32 coordinates as
 //! the format has them.  All are readable by MeshLab or ParaView (.vtp by ParaView and meshio).
@@ -21,7 +22,7 @@ namespace delmesh {
 //! The mesh file formats written, chosen by the file extension (case-insensitive): .off, .ply,
 //! .obj, .stl (binary STL, CGAL::IO::write_STL: an 80-byte header, then per triangle its unit
 //! normal and corners as float32), .vtp (VTK XML PolyData, ASCII: the points, the triangles as
-//! Polys and, when given, the point data "Normals").
+//! Polys and, when given, the point data "Normals" and "certified_distance").
 enum class MeshFormat { off, ply, obj, stl, vtp };
 constexpr auto enum_names(MeshFormat) {
   return name_table<MeshFormat>("MeshFormat", {{MeshFormat::off, "off"},
@@ -40,16 +41,23 @@ MeshFormat mesh_format(const std::string& path);
 //! a .vtp file carries as its point data "Normals".  Empty: none.
 using PointNormals = std::vector<std::array<double, 3>>;
 
+//! One number per point (per live vertex of a mesh, in index order): a proved upper bound on the
+//! distance from the point to the surface it approximates, which a .vtp file carries as its point
+//! data "certified_distance" (Float64, one component).  Empty: none.  The writer states no bound
+//! of its own: the caller passes only numbers a certificate proved.
+using PointDistances = std::vector<double>;
+
 //! Writes the soup to `out` in `format` (the points in index order, then the triangles), and
 //! nothing else: opening, renaming and checking `out` for a failed write are the caller's.
-//! `normals` are written by MeshFormat::vtp only; the other formats ignore them (OFF, PLY and
-//! OBJ are the same bytes with or without them).
-//! \pre every index is below soup.points.size(), and normals is empty or has one vector per
-//! point (else PreconditionViolation).
+//! `normals` and `distances` are written by MeshFormat::vtp only; the other formats ignore them
+//! (their bytes are the same with or without them), and so is a .vtp's without them.
+//! \pre every index is below soup.points.size(), normals is empty or has one vector per point,
+//! and distances is empty or has one finite number >= 0 per point (else PreconditionViolation).
 void write_triangle_soup(const TriangleSoup& soup, std::ostream& out, MeshFormat format,
-                         const PointNormals& normals = {});
+                         const PointNormals& normals = {}, const PointDistances& distances = {});
 //! The same for the live vertices and the faces of mesh (InvalidInput for a non-triangle face).
-void write_mesh(const SurfaceMesh& mesh, std::ostream& out, MeshFormat format, const PointNormals& normals = {});
+void write_mesh(const SurfaceMesh& mesh, std::ostream& out, MeshFormat format, const PointNormals& normals = {},
+                const PointDistances& distances = {});
 
 //! Writes mesh to path (.off, .ply, .obj, .stl or .vtp; the live vertices in index order, then
 //! the faces).
@@ -62,11 +70,14 @@ void write_mesh(const SurfaceMesh& mesh, const std::string& path);
 //! soup.points.size() (else PreconditionViolation).
 void write_triangle_soup(const TriangleSoup& soup, const std::string& path);
 
-//! Reads a polygon soup from path (OFF, ASCII or binary PLY, OBJ).  Throws InvalidInput, with
-//! the path and the reason, if the file is missing, unreadable, truncated or corrupt, has no
+//! Reads a polygon soup from path (OFF, ASCII or binary PLY, OBJ, binary or ASCII STL).  STL's
+//! triangles, which repeat their corners' coordinates, are indexed: exactly equal coordinates are
+//! one point, numbered in the order of first appearance (detail/mesh_readers.h: read_stl), so
+//! that the soup's connectivity can be checked like the other formats'.  Throws InvalidInput,
+//! with the path and the reason, if the file is missing, unreadable, truncated or corrupt, has no
 //! faces, has a face with fewer than three vertices or one that repeats a vertex, has an index
-//! out of range or a non-finite coordinate, or has another extension (.stl and .vtp, which are
-//! written, included).  Works for any soup (non-manifold too).
+//! out of range or a non-finite coordinate, or has another extension (.vtp, which is written,
+//! included).  Works for any soup (non-manifold too).
 PolygonSoup read_polygon_soup(const std::string& path);
 
 //! Reads a triangle soup from path: read_polygon_soup, and throws InvalidInput also for a face

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -9,6 +10,7 @@
 #include <limits>
 #include <string_view>
 #include <type_traits>
+#include <unordered_map>
 #include <vector>
 
 #include "common/errors.h"
@@ -391,6 +393,142 @@ class PlyBody {
   bool ascii_;
 };
 
+// ------------------------------------------------------------------------------------------------
+// STL
+// ------------------------------------------------------------------------------------------------
+
+//! Merges the corners of an STL file into shared points: exactly equal coordinates (after -0 is
+//! made +0) are one point, numbered in the order of first appearance.
+class CornerMerger {
+ public:
+  explicit CornerMerger(PolygonSoup& soup) : soup_(soup) {}
+
+  //! Adds the triangle of corners c[0..8]; throws for a non-finite coordinate.
+  void add_triangle(const std::string& path, std::uintmax_t triangle, const double* c) {
+    for (int k = 0; k < 9; ++k)
+      if (!std::isfinite(c[k]))
+        mesh_file_error(path, "triangle " + std::to_string(triangle) + " has a non-finite coordinate");
+    for (int corner = 0; corner < 3; ++corner) {
+      // Adding 0 turns -0 into +0, so that the two are one key as they are one number.
+      const Key key{c[3 * corner] + 0.0, c[3 * corner + 1] + 0.0, c[3 * corner + 2] + 0.0};
+      const auto [it, added] = index_.try_emplace(key, soup_.points.size());
+      if (added) soup_.points.emplace_back(key[0], key[1], key[2]);
+      soup_.corners.push_back(it->second);
+    }
+    soup_.offsets.push_back(soup_.corners.size());
+  }
+
+ private:
+  using Key = std::array<double, 3>;
+  struct KeyHash {
+    std::size_t operator()(const Key& key) const {
+      std::uint64_t h = 0x9e3779b97f4a7c15ull;
+      for (double x : key) {
+        std::uint64_t bits = 0;
+        std::memcpy(&bits, &x, sizeof bits);
+        h ^= bits + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+      }
+      return static_cast<std::size_t>(h);
+    }
+  };
+  PolygonSoup& soup_;
+  std::unordered_map<Key, std::size_t, KeyHash> index_;
+};
+
+constexpr std::size_t stl_header_bytes = 84, stl_record_bytes = 50;
+
+//! The file's size if it were binary STL with the count at byte 80 (size ≥ 84).
+std::uintmax_t binary_stl_size(const std::string& contents, std::uint32_t& count) {
+  ByteCursor in(contents, 80, /*big_endian=*/false);
+  (void)in.read(count);
+  return stl_header_bytes + std::uintmax_t{stl_record_bytes} * count;
+}
+
+PolygonSoup read_binary_stl(const std::string& path, const std::string& contents, std::uint32_t count) {
+  PolygonSoup soup;
+  soup.offsets.reserve(std::size_t{count} + 1);  // the size was checked: 50 bytes per triangle
+  soup.corners.reserve(3 * std::size_t{count});
+  CornerMerger merger(soup);
+  ByteCursor in(contents, stl_header_bytes, /*big_endian=*/false);
+  const RunLimits& limits = RunLimits::current();
+  for (std::uint32_t t = 0; t < count; ++t) {
+    limits.check("reading the mesh file");
+    double c[9];
+    in.skip(12);  // the normal
+    for (double& x : c) {
+      float value = 0;
+      if (!in.read(value)) truncated_in(path, "triangle", t, count);  // not reached: the size was checked
+      x = value;
+    }
+    in.skip(2);  // the attribute byte count
+    merger.add_triangle(path, t, c);
+  }
+  return soup;
+}
+
+//! A keyword of ASCII STL in any case.
+bool is_keyword(std::string_view word, std::string_view keyword) {
+  return word.size() == keyword.size() &&
+         std::equal(word.begin(), word.end(), keyword.begin(),
+                    [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+}
+
+//! Reads ASCII STL; `not_binary` is appended to every error (why the file is not binary STL
+//! either, or "").
+PolygonSoup read_ascii_stl(const std::string& path, const std::string& contents, const std::string& not_binary) {
+  const auto fail = [&](const std::string& why) { mesh_file_error(path, why + not_binary); };
+  TextCursor in(contents, 0, /*comments=*/false);
+  PolygonSoup soup;
+  CornerMerger merger(soup);
+  const RunLimits& limits = RunLimits::current();
+  std::uintmax_t facet = 0;
+  std::string where;
+  const auto expect = [&](std::string_view keyword) {
+    const std::string_view word = in.word();
+    if (word.empty()) fail("truncated: the file ends in " + where + " (expected '" + std::string(keyword) + "')");
+    if (!is_keyword(word, keyword))
+      fail(where + ": expected '" + std::string(keyword) + "', got '" + printable(std::string(word)) + "'");
+  };
+  where = "its first line";
+  expect("solid");
+  for (;;) {
+    in.finish_line();  // the solid's name
+    for (;;) {
+      where = "facet " + std::to_string(facet);
+      const std::string_view word = in.word();
+      if (word.empty()) fail("truncated: the file ends before 'endsolid' (after " + std::to_string(facet) + " facets)");
+      if (is_keyword(word, "endsolid")) break;
+      if (!is_keyword(word, "facet"))
+        fail(where + ": expected 'facet' or 'endsolid', got '" + printable(std::string(word)) + "'");
+      limits.check("reading the mesh file");
+      expect("normal");
+      for (int k = 0; k < 3; ++k)
+        if (in.word().empty()) fail("truncated: the file ends in " + where + "'s normal");
+      expect("outer");
+      expect("loop");
+      double c[9];
+      for (int corner = 0; corner < 3; ++corner) {
+        expect("vertex");
+        for (int k = 0; k < 3; ++k) {
+          const std::string_view number = in.word();
+          if (number.empty()) fail("truncated: the file ends in " + where + "'s vertex " + std::to_string(corner));
+          if (!parse_real(number, c[3 * corner + k]))
+            fail(where + ": '" + printable(std::string(number)) + "' is not a number");
+        }
+      }
+      expect("endloop");
+      expect("endfacet");
+      merger.add_triangle(path, facet, c);
+      ++facet;
+    }
+    in.finish_line();  // the solid's name again
+    const std::string_view next = in.word();
+    if (next.empty()) return soup;
+    if (!is_keyword(next, "solid"))
+      fail("after 'endsolid': expected 'solid' or the end of the file, got '" + printable(std::string(next)) + "'");
+  }
+}
+
 }  // namespace
 
 void mesh_file_error(const std::string& path, const std::string& why) {
@@ -626,6 +764,25 @@ PolygonSoup read_ply(const std::string& path, const std::string& contents) {
     }
   }
   return soup;
+}
+
+PolygonSoup read_stl(const std::string& path, const std::string& contents) {
+  std::size_t first = 0;
+  while (first < contents.size() && std::isspace(static_cast<unsigned char>(contents[first]))) ++first;
+  const bool solid = contents.size() - first >= 5 && is_keyword(std::string_view(contents).substr(first, 5), "solid");
+  if (contents.size() >= stl_header_bytes) {
+    std::uint32_t count = 0;
+    const std::uintmax_t size = binary_stl_size(contents, count);
+    if (size == contents.size()) return read_binary_stl(path, contents, count);
+    const std::string mismatch = "its 84-byte header declares " + std::to_string(count) +
+                                 " triangles, which take 84 + 50 x " + std::to_string(count) + " = " +
+                                 std::to_string(size) + " bytes, but the file has " + std::to_string(contents.size());
+    if (solid) return read_ascii_stl(path, contents, " (nor is it binary STL: " + mismatch + ")");
+    mesh_file_error(path, "binary STL: " + mismatch + " (truncated, or a corrupt count)");
+  }
+  if (solid) return read_ascii_stl(path, contents, "");
+  mesh_file_error(path, "truncated: binary STL has an 84-byte header, the file has " + std::to_string(contents.size()) +
+                            " bytes (and it is not ASCII STL, which begins with 'solid')");
 }
 
 }  // namespace delmesh::detail

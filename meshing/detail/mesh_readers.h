@@ -1,6 +1,6 @@
 #pragma once
 //! \file mesh_readers.h
-//! The OFF and PLY readers behind read_polygon_soup (meshing/mesh_io.h).  They parse the whole
+//! The OFF, PLY and STL readers behind read_polygon_soup (meshing/mesh_io.h).  They parse the whole
 //! file themselves, so that no declared count, list size, colour or index reaches an allocation or
 //! a conversion before it has been checked against the file: memory stays proportional to the
 //! file's size and every corrupt file ends as one InvalidInput that says what is wrong and where.
@@ -16,6 +16,13 @@
 //! "end_header".  The element "vertex" must have the scalar properties x, y, z; the element "face"
 //! a list property vertex_indices (or vertex_index).  Other elements and properties are read and
 //! skipped.
+//!
+//! STL, binary: an 80-byte header (any bytes, "solid" included), a little-endian uint32 triangle
+//! count N, then N records of 50 bytes (normal and three corners as little-endian float32, a
+//! uint16 attribute); the file is exactly 84 + 50·N bytes.  ASCII: "solid [name]", facets
+//! "facet normal nx ny nz / outer loop / vertex x y z (three times) / endloop / endfacet",
+//! "endsolid [name]", keywords in any case; several solids may follow each other.  The normals
+//! are skipped (the corners' order gives the orientation).
 
 #include <cstdint>
 #include <string>
@@ -54,5 +61,17 @@ PolygonSoup read_off(const std::string& path, const std::string& contents);
 //! Reads a PLY file (ASCII or binary) of the given contents, with the same guarantees as read_off.
 //! Throws InvalidInput naming path.
 PolygonSoup read_ply(const std::string& path, const std::string& contents);
+
+//! Reads an STL file (binary or ASCII) of the given contents into an indexed soup: corners with
+//! exactly equal coordinates (-0 and +0 equal) become one point, the points numbered in the order
+//! of their first appearance, the triangles in the file's order with their corners' order.  The
+//! file is binary when it has at least 84 bytes and its size is 84 + 50·N for the count N at byte
+//! 80, whatever its first bytes; otherwise it must be ASCII (begin with "solid", after blanks).
+//! A binary count is checked against the size before anything is allocated.  Throws InvalidInput
+//! naming path for a truncated or corrupt file (a size that fits neither layout, a malformed
+//! facet) and for a NaN or infinite coordinate; tests the command's limits at every triangle as
+//! the other readers do.  A triangle with two equal corners is left to the caller (who refuses it
+//! as a face that repeats a vertex), and so is an empty file of no triangles.
+PolygonSoup read_stl(const std::string& path, const std::string& contents);
 
 }  // namespace delmesh::detail

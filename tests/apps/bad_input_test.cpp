@@ -1,7 +1,9 @@
 // Every bad input gets exit code 2, one `error:` line naming the problem in the user's terms, and
 // leaves existing output files untouched; the program never dies by a signal.  One case per row
 // of the table of bad inputs in docs/cli.md.
+#include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -181,6 +183,27 @@ BOOST_AUTO_TEST_CASE(corrupt_mesh_files) {
   write_text(dir / "nan.off", "OFF\n3 1 0\n0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n");
   write_text(dir / "empty.off", "");
   write_text(dir / "binary.off", std::string("\x01\x02\x03\xff\xfe", 5));
+  // Binary STL: 80-byte header, count, 50 bytes per triangle.
+  std::string stl(80, ' ');
+  const std::uint32_t one = 1;
+  stl.append(reinterpret_cast<const char*>(&one), 4);
+  const float normal[3] = {0, 0, 1};
+  stl.append(reinterpret_cast<const char*>(normal), sizeof normal);
+  stl.append(reinterpret_cast<const char*>(v), sizeof v);
+  stl.append(2, '\0');
+  write_text(dir / "good.stl", stl);
+  write_text(dir / "truncated.stl", stl.substr(0, stl.size() - 1));
+  std::string nan_stl = stl;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  nan_stl.replace(84 + 12 + 16, 4, reinterpret_cast<const char*>(&nan), 4);
+  write_text(dir / "nan.stl", nan_stl);
+  std::string huge_stl = stl.substr(0, 84);
+  const std::uint32_t huge_count = 0xffffffffu;
+  huge_stl.replace(80, 4, reinterpret_cast<const char*>(&huge_count), 4);
+  write_text(dir / "huge.stl", huge_stl);
+  write_text(dir / "ascii.stl", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                                "endloop\nendfacet\nendsolid a\n");
+  write_text(dir / "cut.stl", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0\n");
   std::filesystem::create_directory(dir / "folder.off");
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"truncated.ply", "'truncated.ply': truncated: the file ends in face 0 of the 1 declared"},
@@ -201,12 +224,18 @@ BOOST_AUTO_TEST_CASE(corrupt_mesh_files) {
       {"folder.off", "is a directory, not a mesh file"},
       {"missing.off", "'missing.off': no such file"},
       {"good.txt", "unknown extension '.txt'"},
-      {"good.vtp", "unknown extension '.vtp' (expected .off, .ply or .obj; .vtp files are written, not read)"},
+      {"good.vtp", "unknown extension '.vtp' (expected .off, .ply, .obj or .stl; .vtp files are written, not read)"},
+      {"truncated.stl", "binary STL: its 84-byte header declares 1 triangles, which take 84 + 50 x 1 = 134 bytes, but "
+                        "the file has 133 (truncated, or a corrupt count)"},
+      {"huge.stl", "declares 4294967295 triangles, which take 84 + 50 x 4294967295 = 214748364834 bytes, but the "
+                   "file has 84"},
+      {"nan.stl", "'nan.stl': triangle 0 has a non-finite coordinate"},
+      {"cut.stl", "'cut.stl': truncated: the file ends in facet 0's vertex 1"},
   };
   for (const auto& [file, mention] : cases)
     BOOST_TEST_CONTEXT(file) { require_invalid_input(run_delmesh({"check", file, "--json"}, dir.path), mention); }
   // A quadrilateral is triangulated, as by `mesh --input-mesh`.
-  for (const char* file : {"good.ply", "relative.obj", "quad.off", "quad.obj"})
+  for (const char* file : {"good.ply", "relative.obj", "quad.off", "quad.obj", "good.stl", "ascii.stl"})
     BOOST_TEST_CONTEXT(file) { BOOST_TEST(run_delmesh({"check", file}, dir.path).exit_code == 0); }
 }
 
@@ -216,7 +245,7 @@ BOOST_AUTO_TEST_CASE(corrupt_mesh_files) {
 BOOST_AUTO_TEST_CASE(fuzzer_crash_inputs_get_one_error_line) {
   TempDir dir;
   std::size_t files = 0;
-  for (const char* target : {"fuzz_read_off", "fuzz_read_ply", "fuzz_read_obj"}) {
+  for (const char* target : {"fuzz_read_off", "fuzz_read_ply", "fuzz_read_obj", "fuzz_read_stl"}) {
     const std::filesystem::path crashes = std::filesystem::path(DELMESH_SOURCE_DIR) / "fuzz" / "crashes" / target;
     if (!std::filesystem::is_directory(crashes)) continue;
     for (const auto& entry : std::filesystem::directory_iterator(crashes)) {

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <string>
@@ -120,14 +121,16 @@ BOOST_AUTO_TEST_CASE(format_by_extension) {
     BOOST_TEST(std::string(e.what()).find("unknown extension '.vtk' (expected .off, .ply, .obj, .stl or .vtp)") !=
                std::string::npos, e.what());
   }
-  // .stl and .vtp are written, not read.
+  // .vtp is written, not read.
   TempDir dir;
-  write_mesh(test::octahedron().to_surface_mesh(), dir.file("o.stl"));
+  write_mesh(test::octahedron().to_surface_mesh(), dir.file("o.vtp"));
   try {
-    (void)read_polygon_soup(dir.file("o.stl"));
-    BOOST_ERROR("read_polygon_soup read an STL file");
+    (void)read_polygon_soup(dir.file("o.vtp"));
+    BOOST_ERROR("read_polygon_soup read a .vtp file");
   } catch (const InvalidInput& e) {
-    BOOST_TEST(std::string(e.what()).find(".stl files are written, not read") != std::string::npos, e.what());
+    BOOST_TEST(std::string(e.what()).find("(expected .off, .ply, .obj or .stl; .vtp files are written, not read)") !=
+                   std::string::npos,
+               e.what());
   }
 }
 
@@ -217,6 +220,181 @@ BOOST_AUTO_TEST_CASE(vtp_carries_points_triangles_and_normals) {
   normals.pop_back();
   std::ostringstream ignored;
   BOOST_CHECK_THROW(write_mesh(mesh, ignored, MeshFormat::vtp, normals), PreconditionViolation);
+}
+
+// The certified distances are point data of their own ("Scalars"), one number per point, with or
+// without normals; a wrong count or a number that is no distance is a precondition violation.
+BOOST_AUTO_TEST_CASE(vtp_carries_certified_distances) {
+  TempDir dir;
+  const SurfaceMesh mesh = awkward_torus();
+  PointDistances distances;
+  for (std::size_t i = 0; i < mesh.number_of_vertices(); ++i) distances.push_back(1e-3 / (1.0 + static_cast<double>(i)) / 3.0);
+  PointNormals normals(mesh.number_of_vertices(), {0, 0, 1});
+  for (const bool with_normals : {false, true}) {
+    std::ostringstream out;
+    write_mesh(mesh, out, MeshFormat::vtp, with_normals ? normals : PointNormals{}, distances);
+    const std::string text = out.str();
+    const test::VtpFile vtp = test::read_vtp(dir.write("d.vtp", text));
+    BOOST_TEST(vtp.arrays.count("Normals") == (with_normals ? 1u : 0u));
+    const std::vector<double>& D = vtp.arrays.at("certified_distance");
+    BOOST_TEST((D == distances));  // every double as written
+    BOOST_TEST(text.find("Scalars=\"certified_distance\"") != std::string::npos);
+    BOOST_TEST((text.find("Normals=\"Normals\"") != std::string::npos) == with_normals);
+    BOOST_TEST(text.find("Name=\"certified_distance\" NumberOfComponents=\"1\"") != std::string::npos);
+  }
+  for (MeshFormat format : {MeshFormat::off, MeshFormat::ply, MeshFormat::obj, MeshFormat::stl}) {
+    std::ostringstream with, without;
+    write_mesh(mesh, with, format, normals, distances);
+    write_mesh(mesh, without, format);
+    BOOST_TEST(with.str() == without.str(), format);
+  }
+  std::ostringstream ignored;
+  PointDistances short_by_one(distances.begin(), distances.end() - 1);
+  BOOST_CHECK_THROW(write_mesh(mesh, ignored, MeshFormat::vtp, {}, short_by_one), PreconditionViolation);
+  for (double bad : {-1e-300, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    PointDistances d = distances;
+    d[3] = bad;
+    BOOST_CHECK_THROW(write_mesh(mesh, ignored, MeshFormat::vtp, {}, d), PreconditionViolation);
+  }
+}
+
+namespace {
+
+//! A binary STL file: `header` padded to 80 bytes, the count, then the triangles' records
+//! (normal 0, corners, attribute 0).
+std::string binary_stl(const std::string& header, std::uint32_t count, const std::vector<std::array<float, 9>>& triangles) {
+  std::string bytes = header;
+  bytes.resize(80, ' ');
+  bytes.append(reinterpret_cast<const char*>(&count), 4);
+  for (const auto& t : triangles) {
+    const float normal[3] = {0, 0, 0};
+    bytes.append(reinterpret_cast<const char*>(normal), sizeof normal);
+    bytes.append(reinterpret_cast<const char*>(t.data()), sizeof(float) * 9);
+    bytes.append(2, '\0');
+  }
+  return bytes;
+}
+
+//! The four outward triangles of the tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1).
+const std::vector<std::array<float, 9>> tetrahedron_stl = {{0, 0, 0, 0, 1, 0, 1, 0, 0},
+                                                           {0, 0, 0, 1, 0, 0, 0, 0, 1},
+                                                           {0, 0, 0, 0, 0, 1, 0, 1, 0},
+                                                           {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+
+}  // namespace
+
+// Write STL, read it back: the triangles' corners merged into one point per vertex (CGAL's writer
+// repeats them), numbered in the order of first appearance, and the same closed torus with the
+// same triangles in the same order, at float32 precision.
+BOOST_AUTO_TEST_CASE(stl_round_trip_merges_the_corners) {
+  TempDir dir;
+  const SurfaceMesh mesh = awkward_torus();
+  const std::string path = dir.file("t.stl");
+  write_mesh(mesh, path);
+  TriangleSoup written;
+  mesh_to_soup(mesh, written.points, written.triangles);
+  const TriangleSoup soup = read_triangle_soup(path);
+  BOOST_TEST(soup.points.size() == written.points.size());
+  BOOST_REQUIRE(soup.triangles.size() == written.triangles.size());
+  const auto as_float = [](const Point3& p) {
+    return Point3(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
+  };
+  bool same = true, first_appearance = true;
+  std::size_t next = 0;
+  for (std::size_t t = 0; t < written.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      same = same && soup.points[soup.triangles[t][k]] == as_float(written.points[written.triangles[t][k]]);
+      if (soup.triangles[t][k] == next) ++next;
+      else first_appearance = first_appearance && soup.triangles[t][k] < next;
+    }
+  BOOST_TEST(same);
+  BOOST_TEST(first_appearance);
+  BOOST_TEST(next == soup.points.size());
+  const SurfaceMesh back = read_mesh(path);
+  BOOST_TEST(check_mesh(back).has_topology({1}));
+  // Written again from what was read and read back, the same soup (the float32 coordinates are
+  // exact doubles; only the normals, recomputed from them, may differ in the file).
+  write_mesh(back, dir.file("again.stl"));
+  const TriangleSoup again = read_triangle_soup(dir.file("again.stl"));
+  BOOST_TEST((again.points == soup.points));
+  BOOST_TEST((again.triangles == soup.triangles));
+}
+
+// ASCII STL: keywords in any case, CRLF ends of lines, two solids, -0 and 0 one point, names and
+// normals ignored; a binary file whose header begins with "solid" is read as binary (its size is
+// 84 + 50 N).
+BOOST_AUTO_TEST_CASE(reads_ascii_and_binary_stl) {
+  TempDir dir;
+  const std::string ascii =
+      "solid tet\r\n"
+      "  facet normal 0 0 -1\r\n    outer loop\r\n      vertex 0 0 0\r\n      vertex 0 1 0\r\n      vertex 1 0 0\r\n"
+      "    endloop\r\n  endfacet\r\n"
+      "  FACET NORMAL 0 -1 0\r\n    OUTER LOOP\r\n      VERTEX -0 0 0\r\n      VERTEX 1 0 0\r\n      VERTEX 0 0 1\r\n"
+      "    ENDLOOP\r\n  ENDFACET\r\n"
+      "endsolid tet\r\n"
+      "solid second\n"
+      "facet normal nan nan nan\nouter loop\nvertex 0 0 0\nvertex 0 0 1e0\nvertex 0 1 0\nendloop\nendfacet\n"
+      "facet normal 1 1 1\nouter loop\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\nendloop\nendfacet\n"
+      "endsolid second\n";
+  const TriangleSoup a = read_triangle_soup(dir.write("tet.stl", ascii));
+  BOOST_REQUIRE(a.points.size() == 4u);
+  BOOST_TEST((a.points == std::vector<Point3>{Point3(0, 0, 0), Point3(0, 1, 0), Point3(1, 0, 0), Point3(0, 0, 1)}));
+  BOOST_TEST((a.triangles == std::vector<std::array<std::size_t, 3>>{{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {2, 1, 3}}));
+  const MeshReport report = check_mesh(read_mesh(dir.file("tet.stl")));
+  BOOST_TEST(report.has_topology({0}));
+
+  const std::string binary = binary_stl("solid but binary", 4, tetrahedron_stl);
+  BOOST_REQUIRE(binary.size() == 84u + 4u * 50u);
+  const TriangleSoup b = read_triangle_soup(dir.write("TET.STL", binary));
+  BOOST_TEST((b.points == a.points));
+  BOOST_TEST((b.triangles == a.triangles));
+}
+
+// Every malformed STL file is one InvalidInput that names the file and says what is wrong; a
+// count that does not match the size is refused before anything is allocated for it.
+BOOST_AUTO_TEST_CASE(malformed_stl_is_invalid_input) {
+  TempDir dir;
+  const std::string good = binary_stl("", 4, tetrahedron_stl);
+  std::string nan_corner = good;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(nan_corner.data() + 84 + 12 + 4, &nan, 4);
+  const std::string facet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+  const std::pair<const char*, std::string> bad[] = {
+      {"binary STL: its 84-byte header declares 4 triangles, which take 84 + 50 x 4 = 284 bytes, but the file has 283",
+        good.substr(0, good.size() - 1)},
+      {"declares 5 triangles, which take 84 + 50 x 5 = 334 bytes, but the file has 284", binary_stl("", 5, tetrahedron_stl)},
+      {"declares 4294967295 triangles, which take 84 + 50 x 4294967295 = 214748364834 bytes, but the file has 84",
+        binary_stl("", 0xffffffffu, {})},
+      {"truncated: binary STL has an 84-byte header, the file has 40 bytes", good.substr(0, 40)},
+      {"triangle 0 has a non-finite coordinate", nan_corner},
+      {"has no faces", binary_stl("", 0, {})},
+      {"is empty", ""},
+      {"triangle 0 has a non-finite coordinate", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1e999 0 0\n"
+                                               "vertex 0 1 0\nendloop\nendfacet\nendsolid x\n"},
+      {"truncated: the file ends before 'endsolid' (after 1 facets)", "solid x\n" + facet},
+      {"truncated: the file ends in facet 0 (expected 'endfacet')", "solid x\n" + facet.substr(0, facet.size() - 9)},
+      {"facet 0: expected 'vertex', got 'vertx'", "solid x\nfacet normal 0 0 1\nouter loop\nvertx 0 0 0\n"},
+      {"facet 0: 'one' is not a number", "solid x\nfacet normal 0 0 1\nouter loop\nvertex one 0 0\n"},
+      {"facet 1: expected 'facet' or 'endsolid', got 'face'", "solid x\n" + facet + "face\n"},
+      {"after 'endsolid': expected 'solid' or the end of the file, got 'junk'", "solid x\n" + facet + "endsolid x\njunk\n"},
+      {"face 0 repeats a vertex", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0 0 0\nvertex 0 1 0\n"
+                                   "endloop\nendfacet\nendsolid x\n"},
+      {"(nor is it binary STL: its 84-byte header declares", "solid x\n" + facet + facet + "oops\n"},
+  };
+  int number = 0;
+  for (const auto& entry : bad) {
+    const std::string name = "bad" + std::to_string(number++) + ".stl";
+    const std::string path = dir.write(name, entry.second);
+    try {
+      (void)read_triangle_soup(path);
+      BOOST_ERROR("no exception for " << entry.first);
+    } catch (const InvalidInput& e) {
+      const std::string message = e.what();
+      BOOST_TEST(message.rfind("mesh file '" + path + "': ", 0) == 0u, message);
+      BOOST_TEST(message.find(entry.first) != std::string::npos, entry.first << " | " << message);
+    }
+    BOOST_CHECK_THROW(read_mesh(path), InvalidInput);
+  }
 }
 
 // Faces of more than three vertices are triangulated each on its own, in place, keeping its

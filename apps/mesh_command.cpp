@@ -441,8 +441,10 @@ double seconds_left(const RunLimits& limits) {
 
 //! del_mesh on the plan's surface: validation and the oracle under the watchdog, then the run in
 //! the time left.  The statistics' "seconds" count from the validation, as del_mesh's own do.
+//! If `normals` is given, it gets the unit normals of the mesh by the oracle's ∇E
+//! (surface_normals.h), before the oracle is gone.
 DelMeshResult mesh_surface(const MeshPlan& plan, DelMeshOptions options, PhaseWatchdog& watchdog,
-                           const RunLimits& limits) {
+                           const RunLimits& limits, PointNormals* normals) {
   const auto start = std::chrono::steady_clock::now();
   std::optional<ValidationReport> validation;
   std::optional<ImplicitOracle> oracle;
@@ -455,6 +457,7 @@ DelMeshResult mesh_surface(const MeshPlan& plan, DelMeshOptions options, PhaseWa
   const auto run_start = std::chrono::steady_clock::now();
   DelMeshResult result = del_mesh(*oracle, options, validation->seconds);
   certify_distance(result, plan.input.surface, plan.input.box, options, run_start);
+  if (normals) *normals = surface_normals(*oracle, result.mesh);
   result.statistics["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
@@ -484,11 +487,15 @@ void print_distance(const nlohmann::json& statistics) {
     std::cerr << "delmesh: distance to the surface not certified: " << (*d)["reason"].get<std::string>() << std::endl;
 }
 
-//! Writes the run's mesh in `format`.  A .vtp of an implicit surface carries the unit normals
-//! ∇E/|∇E| at its vertices (surface_normals.h); one of an input mesh has no normals.
-void write_run_mesh(const MeshRun& run, const DelMeshResult& result, std::ostream& out, MeshFormat format) {
-  const bool normals = format == MeshFormat::vtp && run.plan;
-  write_mesh(result.mesh, out, format, normals ? surface_normals(run.plan->input.surface, result.mesh) : PointNormals{});
+//! Writes the run's mesh in `format`.  A .vtp of an implicit surface carries `normals` (the unit
+//! normals ∇E/|∇E| at its vertices, surface_normals.h) and, when the gradient-flow certificate of
+//! the run certified the mesh, the point data certified_distance (vertex_distance_bounds); one of
+//! an input mesh has neither, and no other format has point data.
+void write_run_mesh(const MeshRun& run, const DelMeshResult& result, std::ostream& out, MeshFormat format,
+                    const PointNormals& normals) {
+  const bool vtp = format == MeshFormat::vtp && run.plan;
+  write_mesh(result.mesh, out, format, vtp ? normals : PointNormals{},
+             vtp ? vertex_distance_bounds(result.mesh, result.triangle_distance_bounds) : PointDistances{});
 }
 
 //! The steps: plan the run and check its outputs (every option valid from then on, so a warning
@@ -519,7 +526,10 @@ ExitCode run_mesh(const MeshOptions& o) {
 
   DelMeshOptions& options = run.options();
   options.interrupt = &interrupt_flag();
-  DelMeshResult result = run.plan ? mesh_surface(*run.plan, options, watchdog, limits)
+  const MeshFormat format = mesh_format(out);
+  PointNormals normals;  // for a .vtp of an implicit surface
+  DelMeshResult result = run.plan ? mesh_surface(*run.plan, options, watchdog, limits,
+                                                 format == MeshFormat::vtp ? &normals : nullptr)
                                   : remesh_input(*run.mesh_plan, options, watchdog, limits);
   if (progress) progress->finish();
 
@@ -545,8 +555,7 @@ ExitCode run_mesh(const MeshOptions& o) {
   }
 
   // Both files or neither: a file that cannot be written leaves the other one as it was.
-  const MeshFormat format = mesh_format(out);
-  outputs.write({[&](std::ostream& s) { write_run_mesh(run, result, s, format); },
+  outputs.write({[&](std::ostream& s) { write_run_mesh(run, result, s, format, normals); },
                  [&](std::ostream& s) { s << statistics.dump(2) << "\n"; }});
 
   if (!o.quiet) {
@@ -586,7 +595,7 @@ Command add_mesh_command(CLI::App& parent) {
   o->surface.add_to(*sub);
   o->input_mesh_option = sub->add_option(
       "--input-mesh", o->input_mesh,
-      "A closed triangle mesh (OFF/PLY/OBJ; polygons are triangulated) to remesh with DelMesh (Sec. 7): it must be "
+      "A closed triangle mesh (OFF/PLY/OBJ/STL; polygons are triangulated) to remesh with DelMesh (Sec. 7): it must be "
       "manifold, consistently oriented and free of self-intersections (else exit code 2). The box is its "
       "bounding box enlarged by 0.1 of its diagonal; output vertices lie on the input surface. Default outputs: "
       "<stem>_remeshed.off and .json")->type_name("FILE");
@@ -623,7 +632,9 @@ Command add_mesh_command(CLI::App& parent) {
       ->check(finite_number());
   o->out_option = sub->add_option("--out", o->out,
                                   "Mesh file, format by extension .off|.ply|.obj|.stl (binary)|.vtp (VTK XML PolyData, with "
-                                  "the unit normals grad E/|grad E| at the vertices for --surface/--expr) (default: "
+                                  "the unit normals grad E/|grad E| at the vertices for --surface/--expr, and "
+                                  "certified_distance, a proved bound on each vertex's distance to the surface, when "
+                                  "the statistics' \"distance\" is certified) (default: "
                                   "<name>.off, <name> = the catalog name or 'surface' for --expr)")->type_name("FILE");
   o->stats_option =
       sub->add_option("--stats", o->stats, "Statistics JSON file, or - for stdout (default: <name>.json)")->type_name("FILE|-");

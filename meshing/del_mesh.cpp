@@ -297,6 +297,7 @@ std::optional<std::string> violated_range(MeshOption option, const DelMeshOption
 void certify_distance(DelMeshResult& result, const Surface& surface, const Box3& box, const DelMeshOptions& options,
                       std::chrono::steady_clock::time_point start) {
   auto& j = result.statistics;
+  result.triangle_distance_bounds.clear();
   const bool attempted = (result.status == MeshStatus::complete || result.status == MeshStatus::uncertified) &&
                          result.mesh.number_of_faces() > 0;
   if (!attempted) {
@@ -312,8 +313,10 @@ void certify_distance(DelMeshResult& result, const Surface& surface, const Box3&
     std::vector<Point3> points;
     std::vector<std::array<std::size_t, 3>> triangles;
     mesh_to_soup(result.mesh, points, triangles);
-    const FlowCertificate certificate = certify_gradient_flow(points, triangles, surface, box, flow);
+    FlowCertificate certificate = certify_gradient_flow(points, triangles, surface, box, flow);
     j["distance"] = to_json(certificate);
+    if (certificate.status == FlowCertificateStatus::certified)
+      result.triangle_distance_bounds = std::move(certificate.triangle_distance_bounds);
     const bool within = certificate.status == FlowCertificateStatus::certified &&
                         (!options.max_distance || certificate.hausdorff_upper_bound <= *options.max_distance);
     const bool stopped = certificate.interrupted || certificate.time_limited;

@@ -10,6 +10,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -66,6 +67,10 @@ struct [[nodiscard]] DelMeshResult {
   MeshStatus status = MeshStatus::complete;
   SurfaceMesh mesh;              //!< Tri S|Σ, consistently outward oriented
   nlohmann::json statistics;     //!< the run's statistics (the JSON of `delmesh mesh --stats`, built in del_mesh.cpp)
+  //! Per face of mesh, in index order: the bound that certify_distance()'s certificate proved on
+  //! the distance from every point of the face to Σ (gradient_flow_certificate.h,
+  //! triangle_distance_bounds), when it certified the mesh; else empty.
+  std::vector<double> triangle_distance_bounds;
 };
 
 //! The longest time limit of a run (about 31 years): the deadline, start + limit, must stay

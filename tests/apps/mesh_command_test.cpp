@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 #include <boost/test/unit_test.hpp>
@@ -246,6 +247,69 @@ BOOST_AUTO_TEST_CASE(stl_and_vtp_outputs) {
   const VtpFile o = read_vtp((dir / "o.vtp").string());
   BOOST_TEST(o.polys > 0u);
   BOOST_TEST(o.arrays.count("Normals") == 0u);
+  BOOST_TEST(o.arrays.count("certified_distance") == 0u);
+}
+
+// The .vtp of a run whose gradient-flow certificate certified the mesh carries certified_distance:
+// one finite bound per vertex, at least the vertex's exact distance to the torus (core radius 1,
+// tube radius 0.4: |sqrt((sqrt(x^2+y^2) - 1)^2 + z^2) - 0.4|) and at most the certificate's
+// Hausdorff bound.  A run stopped before the certificate, and a remeshed input mesh, have none.
+BOOST_AUTO_TEST_CASE(vtp_carries_the_certified_distance_of_each_vertex) {
+  TempDir dir;
+  const RunResult r =
+      run_delmesh({"mesh", "--surface", "torus", "--quiet", "--out", "t.vtp", "--stats", "t.json"}, dir.path);
+  BOOST_TEST(r.exit_code == 0, r.err);
+  const nlohmann::json stats = nlohmann::json::parse(read_text(dir / "t.json"));
+  BOOST_REQUIRE(stats["distance"]["status"] == "certified");
+  const double hausdorff = stats["distance"]["hausdorff_upper_bound"].get<double>();
+  const VtpFile vtp = read_vtp((dir / "t.vtp").string());
+  const std::vector<double>& P = vtp.arrays.at("Points");
+  BOOST_REQUIRE(vtp.arrays.count("certified_distance") == 1u);
+  const std::vector<double>& D = vtp.arrays.at("certified_distance");
+  BOOST_REQUIRE(D.size() == vtp.points);
+  BOOST_REQUIRE(P.size() == 3 * vtp.points);
+  std::size_t below_exact = 0, above_hausdorff = 0, not_finite = 0;
+  double least = std::numeric_limits<double>::infinity(), most = 0;
+  for (std::size_t i = 0; i < vtp.points; ++i) {
+    const double x = P[3 * i], y = P[3 * i + 1], z = P[3 * i + 2];
+    const double exact = std::abs(std::hypot(std::hypot(x, y) - 1.0, z) - 0.4);
+    if (!std::isfinite(D[i])) ++not_finite;
+    if (!(D[i] >= exact)) ++below_exact;
+    if (!(D[i] <= hausdorff)) ++above_hausdorff;
+    least = std::min(least, D[i]);
+    most = std::max(most, D[i]);
+  }
+  BOOST_TEST(not_finite == 0u);
+  BOOST_TEST(below_exact == 0u);
+  BOOST_TEST(above_hausdorff == 0u);
+  BOOST_TEST(least > 0);
+  BOOST_TEST(most <= hausdorff);
+
+  // Stopped by --max-points: no certificate, no array (and the normals are still there).
+  const RunResult stopped = run_delmesh(
+      {"mesh", "--surface", "torus", "--quiet", "--max-points", "20", "--out", "s.vtp", "--stats", "s.json"}, dir.path);
+  BOOST_TEST(stopped.exit_code == 3, stopped.err);
+  const nlohmann::json stopped_stats = nlohmann::json::parse(read_text(dir / "s.json"));
+  BOOST_TEST(stopped_stats["distance"]["status"] != "certified");
+  const VtpFile s = read_vtp((dir / "s.vtp").string());
+  BOOST_TEST(s.arrays.count("certified_distance") == 0u);
+  BOOST_TEST(s.arrays.count("Normals") == 1u);
+
+  // The torus as binary STL is read back as an indexed closed mesh by check and by --input-mesh;
+  // the remeshed .vtp has no certified_distance.
+  const RunResult stl = run_delmesh({"mesh", "--surface", "torus", "--quiet", "--out", "t.stl", "--stats", "u.json"}, dir.path);
+  BOOST_TEST(stl.exit_code == 0, stl.err);
+  const RunResult checked = run_delmesh({"check", "t.stl", "--json"}, dir.path);
+  BOOST_TEST(checked.exit_code == 0, checked.err);
+  const nlohmann::json report = nlohmann::json::parse(checked.out);
+  BOOST_TEST(report["vertices"].get<std::size_t>() == vtp.points);
+  BOOST_TEST(report["closed_manifold"].get<bool>());
+  const RunResult remeshed =
+      run_delmesh({"mesh", "--input-mesh", "t.stl", "--quiet", "--out", "r.vtp", "--stats", "r.json"}, dir.path);
+  BOOST_TEST((remeshed.exit_code == 0 || remeshed.exit_code == 5), remeshed.err);
+  const VtpFile remeshed_vtp = read_vtp((dir / "r.vtp").string());
+  BOOST_TEST(remeshed_vtp.polys > 0u);
+  BOOST_TEST(remeshed_vtp.arrays.count("certified_distance") == 0u);
 }
 
 BOOST_AUTO_TEST_CASE(a_failing_run_leaves_existing_outputs_untouched) {

@@ -3,7 +3,7 @@
 //! report.html`: one self-contained HTML page about a mesh file (apps/report_html.h): an
 //! interactive 3-D view with the triangles coloured by a quality measure, histograms of the
 //! angles and radius-edge ratios, the checker's report and, with --stats, the statistics of
-//! `delmesh mesh` as tables.  The mesh is read as `delmesh check` reads it (OFF, PLY or OBJ,
+//! `delmesh mesh` as tables.  The mesh is read as `delmesh check` reads it (OFF, PLY, OBJ or STL,
 //! polygons triangulated); the page is written all or nothing (apps/output_files.h).
 
 #include <filesystem>

@@ -66,7 +66,7 @@ struct InputMesh {
   bool reoriented() const { return components_reversed > 0; }
 };
 
-//! Reads `path` (OFF, PLY or OBJ, by extension; meshing/mesh_io.h reads the file), then
+//! Reads `path` (OFF, PLY, OBJ or STL, by extension; meshing/mesh_io.h reads the file), then
 //! validate_input_mesh.  Throws InvalidInput, with the path, for an unreadable or corrupt file
 //! (mesh_io's message) or a defect of the mesh (the list in the file comment).
 [[nodiscard]] InputMesh read_input_mesh(const std::string& path);

@@ -359,7 +359,7 @@ std::shared_ptr<ProgressLine> report_progress(const MeshOptions& o, MeshRun& run
   auto line = std::make_shared<ProgressLine>(
       std::cerr, "delmesh: meshing " + what + ", lambda " + format_number(o.lambda) + ", phase " + o.phase,
       ::isatty(STDERR_FILENO) == 1);
-  options.progress = [line](const std::string& message) { line->report(message); };
+  options.progress = [line](const ProgressReport& report) { line->report(report); };
   return line;
 }
 

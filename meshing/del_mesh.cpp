@@ -128,6 +128,7 @@ RefinementLimits refinement_limits(const DelMeshOptions& options, std::chrono::s
     limits.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                   std::chrono::duration<double>(options.time_limit_seconds));
   limits.progress = options.progress;
+  limits.start = start;
   limits.interrupt = options.interrupt;
   return limits;
 }
@@ -303,7 +304,13 @@ void certify_distance(DelMeshResult& result, const Surface& surface, const Box3&
   if (!attempted) {
     j["distance"] = {{"status", "not attempted"}, {"reason", "the run ended " + text_of(result.status)}};
   } else {
-    if (options.progress) options.progress("certifying the distance to the surface (gradient flow)");
+    if (options.progress) {
+      ProgressReport started;
+      started.phase = ProgressPhase::certifying;
+      started.points = j.value("points", std::size_t{0});
+      started.elapsed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      options.progress(started);
+    }
     FlowCertificateOptions flow;
     flow.seed = options.seed;
     flow.interrupt = options.interrupt;

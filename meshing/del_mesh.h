@@ -17,6 +17,7 @@
 #include "common/enum_names.h"
 #include "solvers/solver_backend.h"
 #include "meshing/mesh_status.h"
+#include "meshing/progress_report.h"
 #include "meshing/surface_mesh.h"
 #include "meshing/theorem_bounds.h"
 #include "symbolic/surface.h"
@@ -59,8 +60,10 @@ struct DelMeshOptions {
   //! If given, the run stops (status interrupted) at the first check after it becomes true; it
   //! is read between checks, so a signal handler may set it.
   const std::atomic<bool>* interrupt = nullptr;
-  //! Progress callback (phase, points, queue sizes), called periodically; may be empty.
-  std::function<void(const std::string&)> progress;
+  //! Progress callback, on the thread of the run (meshing/progress_report.h): the refinement's
+  //! reports at most every tolerances::progress_interval_seconds, then one when the distance
+  //! certificate starts; elapsed seconds count from the call's start.  May be empty.
+  std::function<void(const ProgressReport&)> progress;
 };
 
 struct [[nodiscard]] DelMeshResult {

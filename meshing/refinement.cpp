@@ -45,7 +45,8 @@ Refinement::Refinement(SurfaceOracle& oracle, std::uint64_t seed, RefinementLimi
     : oracle_(oracle), seed_(seed), limits_(std::move(limits)), run_limits_(limits_.deadline, limits_.interrupt),
       policy_(policy), restricted_(del_, oracle, seed),
       steps_(make_table()), parallel_(threads, parallel_every_batch), insertions_(check_kind_count()),
-      checks_(check_kind_count()), seconds_(check_kind_count()), last_progress_(std::chrono::steady_clock::now()) {
+      checks_(check_kind_count()), seconds_(check_kind_count()),
+      start_(limits_.start.value_or(std::chrono::steady_clock::now())), last_progress_(std::chrono::steady_clock::now()) {
   // insert() and remove() compute the record of every new or changed triangle at once.
   restricted_.assume_every_triangle_recorded();
   set_last_edge_step();
@@ -339,11 +340,13 @@ std::optional<MeshStatus> Refinement::limit_reached(std::chrono::steady_clock::t
   if (limits_.progress &&
       std::chrono::duration<double>(now - last_progress_).count() >= tolerances::progress_interval_seconds) {
     last_progress_ = now;
-    std::ostringstream s;
-    s << (geometry_enabled_ ? "geometry" : "topology") << ": points " << del_.size() << ", queued";
+    ProgressReport report;
+    report.phase = geometry_enabled_ ? ProgressPhase::geometry : ProgressPhase::topology;
+    report.points = del_.size();
     for (const auto& step : steps_)
-      if (step.enabled) s << ' ' << step.row->name << '=' << step.queue.size();
-    limits_.progress(s.str());
+      if (step.enabled) report.queued.push_back({step.row->name, step.queue.size()});
+    report.elapsed_seconds = std::chrono::duration<double>(now - start_).count();
+    limits_.progress(report);
   }
   if (limits_.interrupt && limits_.interrupt->load(std::memory_order_relaxed)) return MeshStatus::interrupted;
   if (del_.size() >= limits_.max_points) return MeshStatus::point_limit;

@@ -70,6 +70,7 @@
 #include "meshing/delaunay.h"
 #include "meshing/detail/key_order.h"
 #include "meshing/mesh_status.h"
+#include "meshing/progress_report.h"
 #include "meshing/restricted_delaunay.h"
 #include "meshing/surface_oracle.h"
 #include "meshing/witness.h"
@@ -94,7 +95,13 @@ struct RefinementLimits {
   //! insertion, when the row of the checks changes, and at least every
   //! tolerances::checks_per_clock_reading checks (the progress line likewise).
   std::optional<std::chrono::steady_clock::time_point> deadline;
-  std::function<void(const std::string&)> progress;
+  //! Called at the clock readings at most every tolerances::progress_interval_seconds with the
+  //! phase (topology, or geometry once enable_geometry() ran), the samples and the enabled
+  //! rows' queue sizes; may be empty.
+  std::function<void(const ProgressReport&)> progress;
+  //! The run's start, from which the reports' elapsed_seconds count; the Refinement's
+  //! construction if empty.
+  std::optional<std::chrono::steady_clock::time_point> start;
   //! Stops the run (interrupted) when it reads true; none if null.
   const std::atomic<bool>* interrupt = nullptr;
   //! A witness this close to a sample (relative to the box diagonal) is rejected as a duplicate.
@@ -331,6 +338,7 @@ class Refinement {
   double floor_for(CheckKind kind) const;
   std::size_t floor_hits_ = 0;           //!< witnesses not inserted because of min_spacing
   std::vector<Vec3> floor_locations_;    //!< the first of them
+  std::chrono::steady_clock::time_point start_;  //!< limits_.start, or the construction
   std::chrono::steady_clock::time_point last_progress_;
 };
 

@@ -9,7 +9,7 @@
 //! symbolic systems with GiNaC, which is not thread-safe, so calls from several Python threads
 //! run one at a time (a process-wide mutex, always taken after releasing the GIL).  mesh() runs
 //! del_mesh on a worker thread; the calling thread waits without the GIL and, every
-//! poll_interval, takes the GIL to hand the queued progress lines to the callback and to run
+//! poll_interval, takes the GIL to hand the queued progress reports to the callback and to run
 //! Python's signal handlers: an exception from either (KeyboardInterrupt on Ctrl-C) sets the
 //! run's interrupt flag, the run stops at its next check, the worker is joined and the exception
 //! is raised.
@@ -236,7 +236,7 @@ struct MeshResult {
 //! in its DelMeshOptions, and the call's limits (also RunLimits::current() on the worker).
 struct CallControls {
   const std::atomic<bool>* interrupt = nullptr;
-  std::function<void(const std::string&)> progress;  //!< empty without a progress callback
+  std::function<void(const ProgressReport&)> progress;  //!< empty without a progress callback
   const RunLimits* limits = nullptr;
 
   //! `options` with the flag, the sink, and the time left of the call's limit (from the call's start).
@@ -265,7 +265,7 @@ Result run_on_worker(double time_limit, const py::object& progress,
   const RunLimits limits = RunLimits::after(time_limit, &interrupt);
   std::mutex m;
   std::condition_variable changed;
-  std::deque<std::string> lines;
+  std::deque<ProgressReport> reports;
   bool done = false;
   std::optional<Result> result;
   std::exception_ptr failure;
@@ -274,9 +274,9 @@ Result run_on_worker(double time_limit, const py::object& progress,
   controls.interrupt = &interrupt;
   controls.limits = &limits;
   if (!progress.is_none()) {
-    controls.progress = [&](const std::string& line) {
+    controls.progress = [&](const ProgressReport& report) {
       std::lock_guard<std::mutex> lock(m);
-      lines.push_back(line);
+      reports.push_back(report);
       changed.notify_all();
     };
   }
@@ -307,17 +307,17 @@ Result run_on_worker(double time_limit, const py::object& progress,
 
   std::optional<py::error_already_set> python_error;
   for (bool finished = false; !finished;) {
-    std::deque<std::string> delivered;
+    std::deque<ProgressReport> delivered;
     {
       std::unique_lock<std::mutex> lock(m);
-      changed.wait_for(lock, poll_interval, [&] { return done || !lines.empty(); });
+      changed.wait_for(lock, poll_interval, [&] { return done || !reports.empty(); });
       finished = done;
-      delivered.swap(lines);
+      delivered.swap(reports);
     }
     if (python_error) continue;  // stopping: wait for the worker only
     py::gil_scoped_acquire gil;
     try {
-      for (const std::string& line : delivered) progress(line);
+      for (const ProgressReport& report : delivered) progress(py::cast(report));
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
     } catch (py::error_already_set& e) {
       python_error.emplace(std::move(e));
@@ -633,6 +633,30 @@ PYBIND11_MODULE(delmesh, m) {
     }
   });
 
+  py::class_<delmesh::ProgressReport>(m, "ProgressReport",
+                                      "One progress report of mesh(): the argument of its progress callback.")
+      .def_property_readonly(
+          "phase", [](const delmesh::ProgressReport& r) { return std::string(enum_name(r.phase)); },
+          "topology, geometry (the refinement) or certifying (the distance certificate)")
+      .def_readonly("points", &delmesh::ProgressReport::points,
+                    "the samples so far (when certifying: the samples the refinement ended with)")
+      .def_readonly("elapsed", &delmesh::ProgressReport::elapsed_seconds,
+                    "seconds since the run started (the clock of stats[\"seconds\"])")
+      .def_property_readonly(
+          "queued",
+          [](const delmesh::ProgressReport& r) {
+            py::dict queued;
+            for (const delmesh::QueueSize& q : r.queued) queued[py::str(q.name)] = q.size;
+            return queued;
+          },
+          "the refinement's queue sizes by check name ({} when certifying)")
+      .def_property_readonly("text", &delmesh::ProgressReport::text, "the report as one line")
+      .def("__str__", &delmesh::ProgressReport::text)
+      .def("__repr__", [](const delmesh::ProgressReport& r) {
+        std::ostringstream s;
+        s << "<ProgressReport phase=" << r.phase << " points=" << r.points << " elapsed=" << r.elapsed_seconds << '>';
+        return s.str();
+      });
   py::class_<MeshResult>(m, "MeshResult", "The output of mesh(): Tri S|Sigma, its statistics and status.")
       .def_readonly("vertices", &MeshResult::vertices, "N x 3 float64 array of vertex coordinates")
       .def_readonly("triangles", &MeshResult::triangles,
@@ -693,7 +717,8 @@ max_points, time_limit (seconds; 0 or None: none): a run stopped by a limit retu
   mesh with status point_limit or time_limit.  The time limit counts from the call: one that
   passes before meshing starts (while E is compiled or input_mesh validated) raises TimeoutError.
 threads: worker threads (None or 0: every hardware thread); the mesh does not depend on it.
-progress: called with each progress line (about every 0.5 s), on the calling thread.
+progress: called on the calling thread with each ProgressReport (about every 0.5 s): phase, points,
+elapsed, queued, text; str() of it is the text line.
 solver: "subdivision" or "homotopy" (polynomial E only).
 
 The GIL is released while meshing.  Ctrl-C (any exception raised by a signal handler or by

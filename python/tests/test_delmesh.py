@@ -318,8 +318,8 @@ class ThreadsTest(unittest.TestCase):
             refining.set()
             sender.join()
         self.assertTrue(sent, "the run ended before its first progress report")
-        self.assertIsInstance(lines[0], str)
-        self.assertIn("points", lines[0])
+        self.assertIsInstance(lines[0], delmesh.ProgressReport)
+        self.assertIn("points", str(lines[0]))
         self.assertLess(stopped - sent[0], 2.0)
         # The exception carries the partial mesh, as the program writes it.
         partial = caught.exception.partial
@@ -349,6 +349,75 @@ class ThreadsTest(unittest.TestCase):
         with self.assertRaisesRegex(RuntimeError, "enough"):
             # Long enough to report progress (after 0.5 s) before it ends.
             delmesh.mesh(surface="torus", size_bound=0.02, progress=progress)
+
+
+class FakeBar:
+    """What a tqdm-style progress callback uses of a bar: n, total, set_description, refresh."""
+
+    def __init__(self):
+        self.n = 0
+        self.total = None
+        self.descriptions = []
+        self.counts = []
+
+    def set_description(self, text):
+        self.descriptions.append(text)
+
+    def refresh(self):
+        self.counts.append(self.n)
+
+
+class ProgressTest(unittest.TestCase):
+    # A torus run of one to two seconds: refinement reports (every 0.5 s), then the one
+    # of the distance certificate.
+    RUN = dict(surface="torus", size_bound=0.03)
+
+    def test_the_callback_gets_reports_with_attributes(self):
+        reports = []
+        result = delmesh.mesh(progress=reports.append, **self.RUN)
+        self.assertEqual(result.status, "complete")
+        self.assertGreaterEqual(len(reports), 2)
+        phases = ["topology", "geometry", "certifying"]
+        for before, report in zip([None] + reports, reports):
+            self.assertIsInstance(report, delmesh.ProgressReport)
+            self.assertIn(report.phase, phases)
+            self.assertIsInstance(report.points, int)
+            self.assertIsInstance(report.elapsed, float)
+            self.assertIsInstance(report.queued, dict)
+            # A callback that prints its argument prints the text line.
+            self.assertEqual(str(report), report.text)
+            self.assertEqual("%s" % report, report.text)
+            self.assertGreater(report.points, 0)
+            self.assertLessEqual(report.elapsed, result.stats["seconds"])
+            if before is not None:
+                self.assertGreaterEqual(phases.index(report.phase), phases.index(before.phase))
+                self.assertGreaterEqual(report.points, before.points)
+                self.assertGreaterEqual(report.elapsed, before.elapsed)
+            if report.phase == "certifying":
+                self.assertEqual(report.queued, {})
+                self.assertEqual(report.text, "certifying the distance to the surface (gradient flow)")
+            else:
+                self.assertTrue(report.queued)
+                self.assertTrue(all(isinstance(v, int) for v in report.queued.values()))
+                self.assertTrue(report.text.startswith("%s: points %d, queued" % (report.phase, report.points)))
+        self.assertIn("geometry", [r.phase for r in reports])
+        self.assertEqual(reports[-1].phase, "certifying")
+        self.assertEqual(reports[-1].points, result.stats["points"])
+
+    def test_a_tqdm_style_bar_follows_the_points(self):
+        # The pattern of docs/python.md, with a stand-in for tqdm.tqdm.
+        bar = FakeBar()
+
+        def progress(report):
+            bar.n = report.points
+            bar.set_description(report.phase)
+            bar.refresh()
+
+        result = delmesh.mesh(progress=progress, **self.RUN)
+        self.assertEqual(bar.counts, sorted(bar.counts))
+        self.assertEqual(bar.n, result.stats["points"])
+        self.assertEqual(bar.descriptions[-1], "certifying")
+        self.assertIn("geometry", bar.descriptions)
 
 
 class CheckTest(unittest.TestCase):

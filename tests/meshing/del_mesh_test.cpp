@@ -215,8 +215,8 @@ BOOST_AUTO_TEST_CASE(max_distance_certificate_stopped_by_the_interrupt_flag) {
   DelMeshOptions options;
   options.max_distance = 0.01;
   options.interrupt = &flag;
-  options.progress = [&](const std::string& line) {
-    if (line.find("certifying the distance") != std::string::npos) flag = true;
+  options.progress = [&](const ProgressReport& report) {
+    if (report.phase == ProgressPhase::certifying) flag = true;
   };
   const auto result = del_mesh(entry.surface(), entry.box, options);
   BOOST_TEST(result.status == MeshStatus::interrupted);

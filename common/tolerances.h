@@ -557,6 +557,14 @@ inline constexpr double flow_gradient_quality = 0.9;
 inline constexpr double flow_min_box_relative_width = 1e-7;
 //! Boxes and rectangles the proofs of (a) and (b) may examine, in all.
 inline constexpr std::size_t flow_box_budget = 8000000;
+//! The normalised function of the gradient-flow certificate, F = E / sqrt(|∇E|² + η²)
+//! (meshing/gradient_flow_certificate.h): η is this times the median of |∇E| over the mesh's
+//! vertices, small enough that F is close to the signed distance where |∇E| is typical and large
+//! enough that F's interval enclosures stay tight; its tube proofs get at most
+//! flow_normalized_box_budget more boxes (its enclosures are looser than E's, and a mesh that E's
+//! flow could not certify should not cost a run much more).
+inline constexpr double flow_normalized_eta_relative = 0.1;
+inline constexpr std::size_t flow_normalized_box_budget = 1000000;
 //! First directions tried for a critical point's counting path (along ∇E, then perturbed) when
 //! the path passes through an edge or vertex of the mesh or cannot be proved monotone; and the
 //! steps (proved or halved) each half of a path may take.

@@ -4,6 +4,8 @@
 //  3. (a) |E| > ε′ on the faces of B and (b) |∇E| ≥ G on T, by subdivision;
 //  4. (e) the critical points of a height function on Σ and one counting path along the flow through each;
 //  5. the Hausdorff bound ε/G and the per-triangle bounds.
+// Steps 2–5 run with the flow of E, and again with that of the normalised function F when a
+// condition that depends on the function was not proved with E.
 #include "meshing/gradient_flow_certificate.h"
 
 #include <algorithm>
@@ -12,6 +14,8 @@
 #include <map>
 #include <sstream>
 #include <utility>
+
+#include <ginac/ginac.h>
 
 #include "common/errors.h"
 #include "common/seeded_uniform.h"
@@ -48,6 +52,9 @@ struct Verdict {
   FlowCertificateStatus status;
   std::string reason;
   std::optional<P3> location;
+  //! False for what does not depend on the function whose flow is used: the seed solve on Σ and
+  //! the crossing count (a topological invariant of M and Σ).
+  bool depends_on_function = true;
 };
 
 IBox interval_point(const Point3& p) { return {Interval(p.x()), Interval(p.y()), Interval(p.z())}; }
@@ -55,8 +62,10 @@ IBox interval_point(const Point3& p) { return {Interval(p.x()), Interval(p.y()),
 //! The certificate's state: the system, the limits, the counters.
 class FlowProof {
  public:
-  FlowProof(const Surface& surface, const Box3& box, const FlowCertificateOptions& options, FlowCertificate& out)
-      : distance_(surface), box_(box), options_(options), out_(out) {
+  //! `function`'s flow, in B = `box`; at most `box_limit` boxes in all (counted in out.boxes).
+  FlowProof(const Surface& function, const Box3& box, const FlowCertificateOptions& options, FlowCertificate& out,
+            std::size_t box_limit)
+      : distance_(function), box_(box), options_(options), out_(out), box_limit_(box_limit) {
     for (int k = 0; k < 3; ++k) domain_width_ = std::max(domain_width_, box.hi[k] - box.lo[k]);
   }
 
@@ -83,11 +92,9 @@ class FlowProof {
   double largest_value_met() const { return largest_value_met_; }
 
   void count_box() {
-    if (++out_.boxes > tolerances::flow_box_budget)
+    if (++out_.boxes > box_limit_)
       throw Verdict{FlowCertificateStatus::undecided,
-                    "the budget of " + std::to_string(tolerances::flow_box_budget) +
-                        " boxes of the tube proofs ran out",
-                    std::nullopt};
+                    "the budget of " + std::to_string(box_limit_) + " boxes of the tube proofs ran out", std::nullopt};
   }
 
   //! (a): |E| > tube on every face of B, by subdividing each face (flat boxes).
@@ -191,6 +198,7 @@ class FlowProof {
   FlowCertificate& out_;
   double domain_width_ = 0;
   double largest_value_met_ = 0;
+  std::size_t box_limit_;
   mutable std::uint32_t polls_ = 0;
 };
 
@@ -482,6 +490,159 @@ double local_distance_bound(const FlowDistance& distance, const std::vector<Poin
 
 }  // namespace
 
+namespace {
+
+//! What every attempt shares: the soup, its orientation, Σ and the options.
+struct FlowInput {
+  const std::vector<Point3>& points;
+  const std::vector<std::array<std::size_t, 3>>& triangles;
+  const Orientation& orientation;
+  const Surface& surface;
+  const Box3& box;
+  const FlowCertificateOptions& options;
+};
+
+//! The critical points of a generic height function on Σ (the seed solve of sample_topology.h on
+//! E), computed once: they do not depend on the function whose flow the attempt uses.
+const SolveResult& critical_points(const FlowInput& in, std::optional<SolveResult>& solved, FlowCertificate& c) {
+  if (solved) return *solved;
+  ImplicitOracle oracle(in.surface, in.box, SolverBackend::subdivision);
+  oracle.set_run_controls(in.options.seed, in.options.deadline);
+  const Box3& box = in.box;
+  const Domain domain = Domain::from_box({{box.lo[0], box.hi[0]}, {box.lo[1], box.hi[1]}, {box.lo[2], box.hi[2]}});
+  for (int k = 0; k < tolerances::mesher_height_direction_retries && !solved; ++k) {
+    SolveResult r = seed_solve(oracle, generic_direction(in.options.seed, k), domain);
+    if (r.status == SolveStatus::time_limit) {
+      c.time_limited = true;
+      throw Stopped{};
+    }
+    if (r.status != SolveStatus::non_isolated) solved = std::move(r);
+  }
+  if (!solved)
+    throw Verdict{FlowCertificateStatus::undecided, "no generic height direction was found for the surface",
+                  std::nullopt, false};
+  if (solved->status != SolveStatus::complete || !solved->undecided.empty())
+    throw Verdict{FlowCertificateStatus::undecided,
+                  "the critical points of the height function on the surface were not all certified (" +
+                      std::to_string(solved->undecided.size()) + " regions undecided)",
+                  solved->undecided.empty() ? std::nullopt : std::optional<P3>(solved->undecided.front().world), false};
+  return *solved;
+}
+
+//! Steps 2–5 of the file comment with the flow of proof's function: fills c (status certified)
+//! or throws Verdict or Stopped.
+void prove_with(FlowProof& proof, const FlowInput& in, std::optional<SolveResult>& solved, FlowCertificate& c) {
+  const auto& points = in.points;
+  const auto& triangles = in.triangles;
+  const Orientation& orientation = in.orientation;
+  // 2. ε and the transversality of every triangle.
+  c.epsilon = 0;
+  std::vector<double> e_bound(triangles.size());
+  std::vector<int> sign(triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto& tri = triangles[t];
+    const TriangleProof tp = prove_triangle(proof, points[tri[0]], points[tri[1]], points[tri[2]], c.triangle_pieces);
+    if (tp.sign == 0)
+      throw Verdict{FlowCertificateStatus::undecided,
+                    "triangle " + std::to_string(t) + " is not proved transverse to the gradient of E", tp.undecided_at};
+    e_bound[t] = tp.e_bound;
+    sign[t] = tp.sign * orientation.flip[t];
+    c.epsilon = std::max(c.epsilon, tp.e_bound);
+  }
+  // One direction of the flux per component.
+  std::vector<int> component_sign(orientation.components, 0);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    int& s = component_sign[orientation.component[t]];
+    if (s == 0) s = sign[t];
+    if (s != sign[t]) {
+      const Point3& a = points[triangles[t][0]];
+      throw Verdict{FlowCertificateStatus::undecided,
+                    "the gradient of E crosses the triangles of one component of the mesh in both directions "
+                    "(at triangle " + std::to_string(t) + ")",
+                    P3{a.x(), a.y(), a.z()}};
+    }
+  }
+  std::vector<std::array<std::size_t, 3>> oriented = triangles;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    if (orientation.flip[t] * component_sign[orientation.component[t]] < 0) std::swap(oriented[t][1], oriented[t][2]);
+  if (!std::isfinite(c.epsilon))
+    throw Verdict{FlowCertificateStatus::undecided, "|E| on the mesh could not be bounded", std::nullopt};
+  c.tube = std::max(tolerances::flow_tube_factor * c.epsilon, std::numeric_limits<double>::min());
+
+  // 3. (a) and (b).
+  proof.prove_faces(c.tube);
+  c.min_gradient = proof.prove_gradient(c.tube);
+  if (!(c.min_gradient > 0))
+    throw Verdict{FlowCertificateStatus::undecided, "no lower bound of the gradient of E was proved", std::nullopt};
+
+  // 4. (e): the critical points of a generic height function and one path through each.
+  std::size_t index = 0;
+  c.critical_points = 0;
+  for (const CertifiedRoot& root : critical_points(in, solved, c).roots) {
+    if (!root.inside_domain) continue;
+    const int count = count_through(proof, root.world, root.box.bounds, c.tube, points, oriented, in.options.seed, index++);
+    if (count != 1)
+      throw Verdict{FlowCertificateStatus::undecided,
+                    "a path across the tube through a critical point of the surface meets the mesh " +
+                        std::to_string(count) + " times (with sign): the mesh covers that component of the surface " +
+                        std::to_string(count) + " times, not once",
+                    root.world, false};
+    ++c.critical_points;
+  }
+  if (c.critical_points == 0)
+    throw Verdict{FlowCertificateStatus::refuted,
+                  "the surface is empty in the box (a generic height function has no critical point on it, "
+                  "certified) but the mesh is not",
+                  std::nullopt, false};
+
+  // 5. Certified: the Hausdorff bounds, rounded up.
+  c.status = FlowCertificateStatus::certified;
+  RoundingGuard guard;
+  c.triangle_distance_bounds.resize(triangles.size());
+  c.hausdorff_upper_bound = 0;
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    proof.poll();
+    c.triangle_distance_bounds[t] = local_distance_bound(proof.distance(), points, triangles[t], e_bound[t],
+                                                         c.min_gradient, in.options.distance_radius);
+    c.hausdorff_upper_bound = std::max(c.hausdorff_upper_bound, c.triangle_distance_bounds[t]);
+  }
+}
+
+//! η of the normalised function: tolerances::flow_normalized_eta_relative times the median of
+//! |∇E| (in double) over the vertices of M; 0 when that median is not positive and finite.
+double normalization_eta(const CompiledSystem& system, const std::vector<Point3>& points) {
+  std::vector<double> lengths;
+  lengths.reserve(points.size());
+  for (const Point3& p : points) {
+    const double at[3] = {p.x(), p.y(), p.z()};
+    double values[4];
+    system.values<double>(at, nullptr, values);
+    const double length = std::sqrt(values[1] * values[1] + values[2] * values[2] + values[3] * values[3]);
+    if (std::isfinite(length)) lengths.push_back(length);
+  }
+  if (lengths.empty()) return 0;
+  std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
+  const double eta = tolerances::flow_normalized_eta_relative * lengths[lengths.size() / 2];
+  return eta > 0 && std::isfinite(eta) ? eta : 0;
+}
+
+//! F = E / sqrt(|∇E|² + η²), exactly (η as the rational nearest its double).
+Surface normalized_function(const Surface& surface, double eta) {
+  GiNaC::ex squared_gradient = GiNaC::numeric(0);
+  for (const GiNaC::ex& g : surface.gradient()) squared_gradient += GiNaC::pow(g, 2);
+  const GiNaC::ex F = surface.E() * GiNaC::pow(squared_gradient + GiNaC::numeric(eta) * GiNaC::numeric(eta),
+                                               GiNaC::numeric(-1, 2));
+  return Surface(F, "E/sqrt(|grad E|^2+eta^2)");
+}
+
+void record(const Verdict& v, FlowCertificate& c) {
+  c.status = v.status;
+  c.reason = v.reason;
+  c.location = v.location;
+}
+
+}  // namespace
+
 FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
                                       const std::vector<std::array<std::size_t, 3>>& triangles,
                                       const Surface& surface, const Box3& box, const FlowCertificateOptions& options) {
@@ -493,7 +654,6 @@ FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
   check_soup(points, triangles);
   try {
     if (!options.surface_validated) (void)validate_input(surface, box);
-    FlowProof proof(surface, box, options, c);
     // 1. A closed orientable 2-manifold, or a proof that M is not Σ's kind of surface: the
     //    validation above proved Σ a closed (orientable) level set of a regular value inside B.
     const MeshReport report = check_mesh(points, triangles);
@@ -507,99 +667,31 @@ FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
                     std::nullopt};
     const Orientation orientation = orient(triangles);
     c.mesh_components = orientation.components;
-
-    // 2. ε and the transversality of every triangle.
-    std::vector<double> e_bound(triangles.size());
-    std::vector<int> sign(triangles.size());
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-      const auto& tri = triangles[t];
-      const TriangleProof tp = prove_triangle(proof, points[tri[0]], points[tri[1]], points[tri[2]], c.triangle_pieces);
-      if (tp.sign == 0)
-        throw Verdict{FlowCertificateStatus::undecided,
-                      "triangle " + std::to_string(t) + " is not proved transverse to the gradient of E", tp.undecided_at};
-      e_bound[t] = tp.e_bound;
-      sign[t] = tp.sign * orientation.flip[t];
-      c.epsilon = std::max(c.epsilon, tp.e_bound);
-    }
-    // One direction of the flux per component.
-    std::vector<int> component_sign(orientation.components, 0);
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-      int& s = component_sign[orientation.component[t]];
-      if (s == 0) s = sign[t];
-      if (s != sign[t]) {
-        const Point3& a = points[triangles[t][0]];
-        throw Verdict{FlowCertificateStatus::undecided,
-                      "the gradient of E crosses the triangles of one component of the mesh in both directions "
-                      "(at triangle " + std::to_string(t) + ")",
-                      P3{a.x(), a.y(), a.z()}};
-      }
-    }
-    std::vector<std::array<std::size_t, 3>> oriented = triangles;
-    for (std::size_t t = 0; t < triangles.size(); ++t)
-      if (orientation.flip[t] * component_sign[orientation.component[t]] < 0) std::swap(oriented[t][1], oriented[t][2]);
-    if (!std::isfinite(c.epsilon))
-      throw Verdict{FlowCertificateStatus::undecided, "|E| on the mesh could not be bounded", std::nullopt};
-    c.tube = std::max(tolerances::flow_tube_factor * c.epsilon, std::numeric_limits<double>::min());
-
-    // 3. (a) and (b).
-    proof.prove_faces(c.tube);
-    c.min_gradient = proof.prove_gradient(c.tube);
-    if (!(c.min_gradient > 0))
-      throw Verdict{FlowCertificateStatus::undecided, "no lower bound of the gradient of E was proved", std::nullopt};
-
-    // 4. (e): the critical points of a generic height function and one path through each.
-    ImplicitOracle oracle(surface, box, SolverBackend::subdivision);
-    oracle.set_run_controls(options.seed, options.deadline);
-    const Domain domain = Domain::from_box({{box.lo[0], box.hi[0]}, {box.lo[1], box.hi[1]}, {box.lo[2], box.hi[2]}});
+    const FlowInput in{points, triangles, orientation, surface, box, options};
     std::optional<SolveResult> solved;
-    for (int k = 0; k < tolerances::mesher_height_direction_retries && !solved; ++k) {
-      SolveResult r = seed_solve(oracle, generic_direction(options.seed, k), domain);
-      if (r.status == SolveStatus::time_limit) {
-        c.time_limited = true;
-        throw Stopped{};
-      }
-      if (r.status != SolveStatus::non_isolated) solved = std::move(r);
-    }
-    if (!solved)
-      throw Verdict{FlowCertificateStatus::undecided, "no generic height direction was found for the surface", std::nullopt};
-    if (solved->status != SolveStatus::complete || !solved->undecided.empty())
-      throw Verdict{FlowCertificateStatus::undecided,
-                    "the critical points of the height function on the surface were not all certified (" +
-                        std::to_string(solved->undecided.size()) + " regions undecided)",
-                    solved->undecided.empty() ? std::nullopt : std::optional<P3>(solved->undecided.front().world)};
-    std::size_t index = 0;
-    for (const CertifiedRoot& root : solved->roots) {
-      if (!root.inside_domain) continue;
-      const int count = count_through(proof, root.world, root.box.bounds, c.tube, points, oriented, options.seed, index++);
-      if (count != 1)
-        throw Verdict{FlowCertificateStatus::undecided,
-                      "a path across the tube through a critical point of the surface meets the mesh " +
-                          std::to_string(count) + " times (with sign): the mesh covers that component of the surface " +
-                          std::to_string(count) + " times, not once",
-                      root.world};
-      ++c.critical_points;
-    }
-    if (c.critical_points == 0)
-      throw Verdict{FlowCertificateStatus::refuted,
-                    "the surface is empty in the box (a generic height function has no critical point on it, "
-                    "certified) but the mesh is not",
-                    std::nullopt};
 
-    // 5. Certified: the Hausdorff bounds, rounded up.
-    c.status = FlowCertificateStatus::certified;
-    RoundingGuard guard;
-    c.triangle_distance_bounds.resize(triangles.size());
-    c.hausdorff_upper_bound = 0;
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-      proof.poll();
-      c.triangle_distance_bounds[t] = local_distance_bound(proof.distance(), points, triangles[t], e_bound[t],
-                                                           c.min_gradient, options.distance_radius);
-      c.hausdorff_upper_bound = std::max(c.hausdorff_upper_bound, c.triangle_distance_bounds[t]);
+    // 2–5 with the flow of E; then, if that fails on a condition that depends on the function,
+    // with the flow of the normalised function F (file comment).
+    FlowProof proof(surface, box, options, c, tolerances::flow_box_budget);
+    try {
+      prove_with(proof, in, solved, c);
+    } catch (const Verdict& with_e) {
+      const double eta = normalization_eta(proof.system(), points);
+      if (with_e.status != FlowCertificateStatus::undecided || !with_e.depends_on_function || eta == 0) throw;
+      c.reason_with_E = with_e.reason;
+      const Surface F = normalized_function(surface, eta);
+      FlowProof normalized(F, box, options, c, c.boxes + tolerances::flow_normalized_box_budget);
+      c.function = FlowFunction::normalized;
+      c.eta = eta;
+      try {
+        prove_with(normalized, in, solved, c);
+      } catch (const Verdict& with_f) {
+        throw Verdict{with_f.status, "with E: " + with_e.reason + "; with E/sqrt(|grad E|^2+eta^2): " + with_f.reason,
+                      with_f.location ? with_f.location : with_e.location};
+      }
     }
   } catch (const Verdict& v) {
-    c.status = v.status;
-    c.reason = v.reason;
-    c.location = v.location;
+    record(v, c);
   } catch (const Stopped&) {
     c.status = FlowCertificateStatus::undecided;
     c.reason = c.interrupted ? "interrupted by a signal" : "stopped by the time limit";
@@ -623,6 +715,9 @@ nlohmann::json to_json(const FlowCertificate& c, bool per_triangle) {
   j["epsilon"] = c.epsilon;
   j["tube"] = c.tube;
   j["min_gradient"] = c.min_gradient;
+  j["function"] = c.function == FlowFunction::E ? "E" : "E/sqrt(|grad E|^2+eta^2)";
+  j["eta"] = c.eta;
+  j["reason_with_E"] = c.reason_with_E;
   const bool bounded = c.status == FlowCertificateStatus::certified;
   j["hausdorff_upper_bound"] = bounded ? nlohmann::json(c.hausdorff_upper_bound) : nlohmann::json(nullptr);
   j["hausdorff_relative"] =

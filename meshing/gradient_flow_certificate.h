@@ -47,6 +47,19 @@
 //! distance to Σ is at most ε/G, and every point of Σ is that close to the one point of M on its
 //! arc.  ∎
 //!
+//! ## The normalised function
+//! Nothing above asks E to be the function that defines Σ in the catalog: any C² function F on
+//! B with F = 0 exactly on Σ ∩ B, and with F and E of one sign on each side of Σ, serves, with
+//! (a)–(e) stated for F (ε bounding |F| on M, T = {|F| ≤ ε′}, ∇F in (b), (d) and along the
+//! paths), while the critical points of (e) stay those of the height function on Σ, which
+//! depends on Σ alone.  When a condition that depends on the function is not proved with E, the
+//! certificate tries F = E / sqrt(|∇E|² + η²), η > 0 (tolerances::flow_normalized_eta_relative
+//! times the median of |∇E| over M's vertices): F is C² (the root's argument is at least η²),
+//! vanishes exactly where E does, and has E's sign.  Near Σ, F is close to the signed distance
+//! (|∇F| ≈ 1 where |∇E| ≫ η), so its tube has about the same width everywhere, where E's tube
+//! is wide where |∇E| is small; and at a critical point c of E, |F(c)| = |E(c)|/η, so c lies in
+//! F's tube only if |E(c)| ≤ ε′η.  The bounds are then distances along F's flow, ε_F/G_F.
+//!
 //! The bound for one triangle τ is e_τ/G with e_τ = max over τ of |E|, or the smaller bound of
 //! flow_distance.h on τ where that one is proved: the arc from a point of τ to Σ is at most
 //! e_τ/G long, so the lemma there applies within that radius, and within any radius it proves.
@@ -139,6 +152,12 @@ struct FlowCertificateOptions {
   bool surface_validated = false;
 };
 
+//! The function whose flow proved (or last failed to prove) the certificate.
+enum class FlowFunction {
+  E,          //!< E itself
+  normalized  //!< F = E / sqrt(|∇E|² + η²) (file comment, "The normalised function")
+};
+
 struct [[nodiscard]] FlowCertificate {
   FlowCertificateStatus status = FlowCertificateStatus::undecided;
   std::string reason;                            //!< the first condition not proved (or the refutation)
@@ -146,6 +165,9 @@ struct [[nodiscard]] FlowCertificate {
   bool interrupted = false;
   bool time_limited = false;
 
+  FlowFunction function = FlowFunction::E;
+  double eta = 0;              //!< η of the normalised function (0: it was not tried)
+  std::string reason_with_E;   //!< why E's flow did not prove it, when the normalised one was tried
   double epsilon = 0;        //!< ε: the largest certified bound of |E| over the triangles
   double tube = 0;           //!< ε′ = tolerances::flow_tube_factor · ε (T's half-width in E)
   double min_gradient = 0;   //!< G: certified lower bound of |∇E| on T (0: not proved)
@@ -173,7 +195,8 @@ FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
                                       const std::vector<std::array<std::size_t, 3>>& triangles,
                                       const Surface& surface, const Box3& box, const FlowCertificateOptions& options = {});
 
-//! {status, reason, location, epsilon, tube, min_gradient, hausdorff_upper_bound,
+//! {status, reason, location, epsilon, tube, min_gradient, function ("E" or
+//!  "E/sqrt(|grad E|^2+eta^2)"), eta, reason_with_E, hausdorff_upper_bound,
 //!  hausdorff_relative (to the box diagonal), mesh_components, critical_points, triangle_pieces,
 //!  boxes, interrupted, time_limited, seed, seconds}; with `per_triangle`, also
 //!  triangle_distance_bounds.

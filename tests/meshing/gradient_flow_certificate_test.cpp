@@ -166,6 +166,42 @@ BOOST_AUTO_TEST_CASE(delmesh_output_is_certified) {
   BOOST_TEST(c.hausdorff_upper_bound / entry.box.diagonal() < 0.01);
 }
 
+// delmesh's default mesh of the catalog ellipsoid: E's tube |E| ≤ ε′ reaches the tight box (|∇E|
+// varies by a factor 4 over Σ, so a tube wide enough where ∇E is small is too wide elsewhere);
+// the normalised function's tube has about the same width everywhere and certifies it.  The
+// bound d_p of every vertex p is checked against a proved lower bound of its distance: with q
+// its nearest point on Σ, |E(p)| = |E(p) − E(q)| ≤ max |∇E| · |p − q| on the segment, and
+// |∇E(x)| = 2 sqrt(x²/a⁴ + y²/b⁴ + z²/c⁴) ≤ 2|x|/c² ≤ 2(|p| + d_p)/c² there (c the least
+// semi-axis), so |p − q| ≥ |E(p)| c² / (2(|p| + d_p)).
+BOOST_AUTO_TEST_CASE(the_normalised_function_certifies_where_the_tube_of_E_reaches_the_box) {
+  const CatalogEntry& entry = catalog_entry("ellipsoid");
+  const Surface surface = entry.surface();
+  const DelMeshResult r = del_mesh(surface, entry.box, DelMeshOptions{});
+  BOOST_TEST_REQUIRE(r.status == MeshStatus::complete);
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  mesh_to_soup(r.mesh, points, triangles);
+  const FlowCertificate c = certify_gradient_flow(points, triangles, surface, entry.box);
+  BOOST_TEST_REQUIRE(c.status == FlowCertificateStatus::certified, c.reason);
+  BOOST_TEST((c.function == FlowFunction::normalized));
+  BOOST_TEST(c.eta > 0);
+  BOOST_TEST(c.reason_with_E.find("boundary of the box") != std::string::npos, c.reason_with_E);
+  const double a2 = 2.25, b2 = 1, c2 = 0.5625;
+  for (const Point3& p : points) {
+    const double e = p.x() * p.x() / a2 + p.y() * p.y() / b2 + p.z() * p.z() / c2 - 1;
+    const double lower = std::abs(e) * c2 / (2 * (norm(p) + c.hausdorff_upper_bound));
+    BOOST_TEST(c.hausdorff_upper_bound >= lower);
+  }
+  // Per triangle too: each vertex's own triangles bound its distance.
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (std::size_t i : triangles[t]) {
+      const Point3& p = points[i];
+      const double e = p.x() * p.x() / a2 + p.y() * p.y() / b2 + p.z() * p.z() / c2 - 1;
+      const double d = c.triangle_distance_bounds[t];
+      BOOST_TEST(d >= std::abs(e) * c2 / (2 * (norm(p) + d)));
+    }
+}
+
 // The local bounds of flow_distance.h only tighten the theorem's ε/G, and a distance radius the
 // triangles meet tightens them further; the bound stays above the sampled distance.
 BOOST_AUTO_TEST_CASE(local_distance_bounds_tighten_the_hausdorff_bound) {

@@ -15,7 +15,7 @@
 
 namespace delmesh {
 
-static_assert(sizeof(VoronoiEdgeRecord) <= 96, "a record per Delaunay triangle: keep it small");
+static_assert(sizeof(VoronoiEdgeRecord) <= 32, "a record per Delaunay triangle: keep it small");
 
 namespace {
 
@@ -49,13 +49,38 @@ std::unique_ptr<Vec3[]> VoronoiEdgeRecord::copy(const VoronoiEdgeRecord& other) 
 
 VoronoiEdgeRecord& VoronoiEdgeRecord::operator=(const VoronoiEdgeRecord& other) {
   if (this != &other) {
+    t0_ = other.t0_;
+    t1_ = other.t1_;
+    lists_ = copy(other);
+    at_vertex0_ = other.at_vertex0_;
+    at_vertex1_ = other.at_vertex1_;
+    valid_ = other.valid_;
+    degenerate_ = other.degenerate_;
     restricted = other.restricted;
     shrunk = other.shrunk;
     segment_signed = other.segment_signed;
-    edge = other.edge;
-    lists_ = copy(other);
   }
   return *this;
+}
+
+VoronoiEdge VoronoiEdgeRecord::edge(const Delaunay& del, const TriangleKey& t) const {
+  VoronoiEdge e = voronoi_edge_line(del, t);
+  e.t0 = t0_;
+  e.t1 = t1_;
+  e.at_vertex0 = at_vertex0_;
+  e.at_vertex1 = at_vertex1_;
+  e.valid = valid_;
+  e.degenerate = degenerate_;
+  return e;
+}
+
+void VoronoiEdgeRecord::set_edge(const VoronoiEdge& e) {
+  t0_ = e.t0;
+  t1_ = e.t1;
+  at_vertex0_ = e.at_vertex0;
+  at_vertex1_ = e.at_vertex1;
+  valid_ = e.valid;
+  degenerate_ = e.degenerate;
 }
 
 void VoronoiEdgeLists::clear() {
@@ -113,7 +138,7 @@ bool excludes_zero_on(const SurfaceOracle& oracle, const Vec3& lo, const Vec3& h
 
 //! The record's (valid) edge meets Σ nowhere, and nothing on it is unsettled.
 bool misses_surface(const VoronoiEdgeRecord& r) {
-  return r.edge.valid && r.crossings().empty() && r.candidates().empty() && r.unresolved().empty();
+  return r.edge_valid() && r.crossings().empty() && r.candidates().empty() && r.unresolved().empty();
 }
 
 //! The proved sign of E on the connector [v, a] of an edge's end a = at(t) at the shared Voronoi
@@ -189,7 +214,7 @@ std::optional<VoronoiEdgeRecord> RestrictedDelaunay::update_without_solving(cons
     current = cached;
     return std::nullopt;
   }
-  return restrict_record(*cached, voronoi_edge(del_, t, oracle_.clip_box(), apexes));
+  return restrict_record(t, *cached, voronoi_edge(del_, t, oracle_.clip_box(), apexes));
 }
 
 const VoronoiEdgeRecord& RestrictedDelaunay::voronoi_edge_record(const TriangleKey& t,
@@ -261,7 +286,7 @@ std::vector<RestrictedDelaunay::StarRecord> RestrictedDelaunay::prepare_star(
       out[i].record = cached;
       continue;
     }
-    auto restricted = restrict_record(*cached, voronoi_edge(del_, s.key, oracle_.clip_box(), &s.apexes));
+    auto restricted = restrict_record(s.key, *cached, voronoi_edge(del_, s.key, oracle_.clip_box(), &s.apexes));
     if (!restricted) {
       to_solve.push_back(i);
       continue;
@@ -286,15 +311,21 @@ void RestrictedDelaunay::add_facets(const std::vector<EdgeKey>& edges) {
 
 bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>& ring,
                                               const std::vector<const VoronoiEdgeRecord*>& boundary) {
+  if (boundary.size() != ring.size())
+    throw PreconditionViolation("RestrictedDelaunay::facet_misses_surface: the ring and its records differ in length");
   if (boundary.empty()) return false;
   // Step 1: the vertices of F ∩ B of the first two kinds: the ends of the valid Voronoi edges of
   // F.  An edge that meets Σ puts a point of Σ in F; a degenerate one proves nothing.
   BoundingBox ends;
   bool inside_box = true;  // every Voronoi edge of F valid, with both ends at Voronoi vertices
-  for (const VoronoiEdgeRecord* r : boundary) {
-    if (!r->crossings().empty() || !r->candidates().empty() || !r->unresolved().empty() || r->edge.degenerate)
+  // The edges of F (edges[i] of boundary[i]).
+  thread_local std::vector<VoronoiEdge> edges;
+  edges.clear();
+  for (std::size_t i = 0; i < boundary.size(); ++i) {
+    const VoronoiEdgeRecord* r = boundary[i];
+    if (!r->crossings().empty() || !r->candidates().empty() || !r->unresolved().empty() || r->edge_degenerate())
       return false;
-    const VoronoiEdge& edge = r->edge;
+    const VoronoiEdge& edge = edges.emplace_back(r->edge(del_, make_triangle_key(e[0], e[1], ring[i].third)));
     if (!edge.valid) {
       // An edge that is neither valid nor degenerate lies outside B, unless it has no line at all
       // (a triangle with no normal), which proves nothing.
@@ -340,15 +371,11 @@ bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vecto
   // The cells t·apex of the Voronoi vertices of F's valid edges (apexes from the ring).
   thread_local std::vector<std::array<VertexId, 4>> cells;
   cells.clear();
-  for (const VoronoiEdgeRecord* r : boundary) {
-    const VoronoiEdge& edge = r->edge;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const VoronoiEdge& edge = edges[i];
     if (!edge.valid || (!edge.at_vertex0 && !edge.at_vertex1)) continue;
     const TriangleKey& t = edge.triangle;
-    const auto in_ring = std::find_if(ring.begin(), ring.end(), [&](const Delaunay::RingTriangle& x) {
-      return x.third != e[0] && x.third != e[1] && (x.third == t[0] || x.third == t[1] || x.third == t[2]);
-    });
-    if (in_ring == ring.end()) return false;
-    for (VertexId apex : in_ring->apexes)
+    for (VertexId apex : ring[i].apexes)
       if (apex >= 0) cells.push_back({t[0], t[1], t[2], apex});
   }
   // (The static radii are asked first, up to a quarter of the margin; the interval ones if δ
@@ -377,10 +404,10 @@ const VoronoiEdgeRecord* RestrictedDelaunay::cached_record(const TriangleKey& t)
   return edges_.find(t);
 }
 
-std::optional<VoronoiEdgeRecord> RestrictedDelaunay::restrict_record(const VoronoiEdgeRecord& old,
+std::optional<VoronoiEdgeRecord> RestrictedDelaunay::restrict_record(const TriangleKey& t, const VoronoiEdgeRecord& old,
                                                                      const VoronoiEdge& edge) const {
-  const VoronoiEdge& e = old.edge;
-  if (!old.unresolved().empty() || !e.valid || !edge.valid) return std::nullopt;
+  if (!old.unresolved().empty() || !old.edge_valid() || !edge.valid) return std::nullopt;
+  const VoronoiEdge e = old.edge(del_, t);
   if (edge.point != e.point || edge.direction != e.direction) return std::nullopt;
   // e′ ⊆ e as computed; the new ends are those of e′ clamped into e (exact as sets).
   const double t0 = std::max(edge.t0, e.t0), t1 = std::min(edge.t1, e.t1);
@@ -393,9 +420,10 @@ std::optional<VoronoiEdgeRecord> RestrictedDelaunay::restrict_record(const Voron
     return -1;
   };
   VoronoiEdgeRecord r;
-  r.edge = edge;
-  r.edge.t0 = t0;
-  r.edge.t1 = t1;
+  VoronoiEdge kept = edge;
+  kept.t0 = t0;
+  kept.t1 = t1;
+  r.set_edge(kept);
   // Keeps the points whose enclosures lie inside e′; false if one cannot be placed.
   thread_local VoronoiEdgeLists lists;
   lists.clear();
@@ -728,7 +756,7 @@ std::optional<double> monotone_zero(const SurfaceOracle& oracle, const VoronoiEd
 
 bool RestrictedDelaunay::kept_connectors_clean(const VoronoiEdgeRecord& r, const TriangleKey& t,
                                                const std::array<VertexId, 2>& apexes, VertexId x) const {
-  const VoronoiEdge& e = r.edge;
+  const VoronoiEdge e = r.edge(del_, t);
   const bool x_is_apex = apexes[0] == x || apexes[1] == x;
   // The bounding box of e's computed ends lies in segment_box(e) (rounding to nearest is above
   // rounding down and below rounding up, and the operations are monotone).
@@ -760,16 +788,16 @@ VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::a
     return std::move(r);
   };
   std::array<Vec3, 2> shared{};
-  r.edge = voronoi_edge(del_, t, oracle_.clip_box(), apexes, &shared);
-  if (r.edge.degenerate) {
+  const VoronoiEdge e = voronoi_edge(del_, t, oracle_.clip_box(), apexes, &shared);
+  r.set_edge(e);
+  if (e.degenerate) {
     // The edge is numerically the point v: Σ passes through it unless SurfaceLine excludes a
     // segment of length 2δ about v along the edge's line.
     const double delta = tolerances::duplicate_sample_relative_distance * oracle_.diagonal();
-    const auto near = oracle_.surface_line(r.edge.point, r.edge.direction, r.edge.t0 - delta, r.edge.t0 + delta);
-    if (!near.roots.empty() || !near.undecided.empty()) lists.unresolved.push_back(r.edge.at(r.edge.t0));
+    const auto near = oracle_.surface_line(e.point, e.direction, e.t0 - delta, e.t0 + delta);
+    if (!near.roots.empty() || !near.undecided.empty()) lists.unresolved.push_back(e.at(e.t0));
   }
-  if (!r.edge.valid) return finish();
-  const auto& e = r.edge;
+  if (!e.valid) return finish();
   // The edge as the other faces see it: the polyline v0, at(t0), at(t1), v1, whose ends v_i at
   // Voronoi vertices are the shared points of voronoi_edge_ends() (at(t0) and at(t1) otherwise).
   // The connector from v_i to at(t_i) is as long as v_i's distance from e's line, which the

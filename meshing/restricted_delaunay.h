@@ -96,28 +96,53 @@ struct VoronoiEdgeLists {
   void clear();
 };
 
-//! The Voronoi edge of one Delaunay triangle and its intersections with Σ.  The lists live in one
-//! block of their own, allocated only when one of them is not empty (most edges miss Σ), so that
-//! the records of a large triangulation stay small: 96 bytes each, one per Delaunay triangle.
+//! The Voronoi edge of one Delaunay triangle and its intersections with Σ.  The record keeps the
+//! edge's extent on its line (t0, t1 and the kinds of its ends), not the line: that is
+//! voronoi_edge_line() of the triangle, a function of the triangle's points, which never change,
+//! rebuilt by edge().  The lists live in one block of their own, allocated only when one of them
+//! is not empty (most edges miss Σ), so that the records of a large triangulation stay small:
+//! 32 bytes each, one per Delaunay triangle.
 class VoronoiEdgeRecord {
+ private:
+  // The extent of the edge (VoronoiEdge's members of the same names).
+  double t0_ = 0, t1_ = 0;
+  //! Block layout: one entry holding the three counts (of unresolved, crossings, candidates),
+  //! then the points of the five lists in the order of list().
+  std::unique_ptr<Vec3[]> lists_;
+  bool at_vertex0_ = false, at_vertex1_ = false, valid_ = false, degenerate_ = false;
+
  public:
   bool restricted = false;  //!< the triangle is in Tri S|Σ (with the §5.1 rule)
   bool shrunk = false;      //!< the dual edge shrank since: restrict or solve again on use
-  //! E has a proved sign on a box holding `edge`'s segment and its connectors (compute()'s first
-  //! step), so on every subset of that box.
+  //! E has a proved sign on a box holding the edge's segment and its connectors (compute()'s
+  //! first step), so on every subset of that box.
   bool segment_signed = false;
-  VoronoiEdge edge;
 
   VoronoiEdgeRecord() = default;
   VoronoiEdgeRecord(const VoronoiEdgeRecord& other)
-      : restricted(other.restricted),
+      : t0_(other.t0_),
+        t1_(other.t1_),
+        lists_(copy(other)),
+        at_vertex0_(other.at_vertex0_),
+        at_vertex1_(other.at_vertex1_),
+        valid_(other.valid_),
+        degenerate_(other.degenerate_),
+        restricted(other.restricted),
         shrunk(other.shrunk),
-        segment_signed(other.segment_signed),
-        edge(other.edge),
-        lists_(copy(other)) {}
+        segment_signed(other.segment_signed) {}
   VoronoiEdgeRecord& operator=(const VoronoiEdgeRecord& other);
   VoronoiEdgeRecord(VoronoiEdgeRecord&&) noexcept = default;
   VoronoiEdgeRecord& operator=(VoronoiEdgeRecord&&) noexcept = default;
+
+  //! The recorded Voronoi edge, given the triangle t it belongs to and the triangulation `del`
+  //! that holds t's points: voronoi_edge_line(del, t) with the recorded extent.
+  VoronoiEdge edge(const Delaunay& del, const TriangleKey& t) const;
+  //! Records the extent of e (an edge of voronoi_edge() or its restriction, on its triangle's
+  //! line); the line itself is not kept.
+  void set_edge(const VoronoiEdge& e);
+  //! VoronoiEdge::valid and VoronoiEdge::degenerate of the recorded edge.
+  bool edge_valid() const { return valid_; }
+  bool edge_degenerate() const { return degenerate_; }
 
   //! Centres of the undecided regions on e that are neither a zero at a Voronoi vertex nor a
   //! candidate (projection failed or left the edge), and the point of a degenerate edge that Σ
@@ -139,9 +164,6 @@ class VoronoiEdgeRecord {
   void set_lists(const VoronoiEdgeLists& lists);
 
  private:
-  //! Block layout: one entry holding the three counts (of unresolved, crossings, candidates),
-  //! then the points of the five lists in the order of list().
-  std::unique_ptr<Vec3[]> lists_;
   RecordPoints list(int which) const;
   static std::unique_ptr<Vec3[]> copy(const VoronoiEdgeRecord& other);
 };
@@ -191,9 +213,10 @@ class RestrictedDelaunay {
   //! certificates made in between may already certify it.  (A facet's certificate holds on
   //! every subset of the facet, so computing it later certifies the same facets or more.)
   void add_facets(const std::vector<EdgeKey>& edges);
-  //! Whether Σ misses the facet F of the Delaunay edge e = pq, proved from `boundary`, the current
-  //! records of all the triangles pqr, and `ring`, those triangles (as Delaunay::edge_ring(e), in
-  //! any order, with their apexes).  F ∩ B is a convex polygon
+  //! Whether Σ misses the facet F of the Delaunay edge e = pq, proved from `ring`, the triangles
+  //! pqr (as Delaunay::edge_ring(e), in any order, with their apexes), and `boundary`, their
+  //! current records: boundary[i] the record of pq·ring[i].third (throws PreconditionViolation
+  //! if the two differ in length).  F ∩ B is a convex polygon
   //! (F = Π ∩ ⋂_r {|x − p| ≤ |x − r|}, Π the bisector plane of pq: each edge of F is the Voronoi
   //! edge of one pqr), so it lies in the bounding box of its vertices, which are of three
   //! kinds: (1) Voronoi vertices of F in B and (2) points where an edge of F leaves B — together
@@ -213,8 +236,8 @@ class RestrictedDelaunay {
   //! covers; when F reaches ∂B and 2δ > M no proof is attempted (false).  E keeping one sign on
   //! the enlarged box, proved by interval arithmetic on at most tolerances::facet_miss_box_budget
   //! sub-boxes, proves F ∩ Σ = ∅.  False proves nothing; it is returned at once when a Voronoi
-  //! edge of F meets Σ (crossings, candidates or unresolved regions: then F ∩ Σ ≠ ∅ or undecided),
-  //! is degenerate, or its triangle is not in `ring`.  Counted (facets_missing_surface()).
+  //! edge of F meets Σ (crossings, candidates or unresolved regions: then F ∩ Σ ≠ ∅ or undecided)
+  //! or is degenerate.  Counted (facets_missing_surface()).
   bool facet_misses_surface(const EdgeKey& e, const std::vector<Delaunay::RingTriangle>& ring,
                             const std::vector<const VoronoiEdgeRecord*>& boundary);
   //! Whether the facet of e is cached, its geometry or only its section certificate (then e is
@@ -405,8 +428,10 @@ class RestrictedDelaunay {
   //! depends on the edge's sites only, so the proof over F holds over F′ (the monotonicity lemma
   //! of refinement.h, with its conditions).
   void shrink_facets(const std::vector<EdgeKey>& edges);
-  //! The record of the shrunk edge `edge` restricted from `old`, or nothing if it must be solved.
-  std::optional<VoronoiEdgeRecord> restrict_record(const VoronoiEdgeRecord& old, const VoronoiEdge& edge) const;
+  //! The record of t's shrunk edge `edge` restricted from t's record `old`, or nothing if it must
+  //! be solved.
+  std::optional<VoronoiEdgeRecord> restrict_record(const TriangleKey& t, const VoronoiEdgeRecord& old,
+                                                   const VoronoiEdge& edge) const;
 
   const Delaunay& del_;
   SurfaceOracle& oracle_;

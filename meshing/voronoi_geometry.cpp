@@ -354,17 +354,34 @@ bool VoronoiCell::contains(const Vec3& x, double tolerance) const {
   return half_spaces_contain(domain, {x[0], x[1], x[2]}, tolerance);
 }
 
-VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& t, const Box3& box,
-                         const std::array<VertexId, 2>* known_apexes, std::array<Vec3, 2>* shared) {
-  VoronoiEdge e;
+namespace {
+
+// Sets e to voronoi_edge_line(del, t); returns whether t has a normal in doubles.
+bool set_edge_line(const Delaunay& del, const TriangleKey& t, VoronoiEdge& e) {
   e.triangle = t;
   const Vec3& p = del.point(t[0]);
   const Vec3& q = del.point(t[1]);
   const Vec3& r = del.point(t[2]);
   const Vec3 n = cross(q - p, r - p);
-  if (!(norm(n) > 0)) return e;
+  if (!(norm(n) > 0)) return false;
   e.point = circumcentre(p, q, r);
   e.direction = normalized(n);
+  return true;
+}
+
+}  // namespace
+
+VoronoiEdge voronoi_edge_line(const Delaunay& del, const TriangleKey& t) {
+  VoronoiEdge e;
+  set_edge_line(del, t, e);
+  return e;
+}
+
+VoronoiEdge voronoi_edge(const Delaunay& del, const TriangleKey& t, const Box3& box,
+                         const std::array<VertexId, 2>* known_apexes, std::array<Vec3, 2>* shared) {
+  VoronoiEdge e;
+  if (!set_edge_line(del, t, e)) return e;
+  const Vec3& p = del.point(t[0]);
   if (const auto apexes = known_apexes ? std::optional(*known_apexes) : del.triangle_apexes(t)) {
     edge_from_cells(del, *apexes, box, e, shared);
     if (shared) {

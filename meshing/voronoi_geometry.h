@@ -154,6 +154,11 @@ struct VoronoiCell {
   bool contains(const Vec3& x, double tolerance) const;
 };
 
+//! The line of the dual edge of `triangle`: an edge with `triangle` set and, when the triangle
+//! has a normal in doubles, `point` (its circumcentre) and `direction` (its unit normal), as
+//! voronoi_edge() sets them; t0 = t1 = 0, not valid.  A function of the triangle's points only.
+VoronoiEdge voronoi_edge_line(const Delaunay& del, const TriangleKey& triangle);
+//! The clipped dual edge of `triangle`: voronoi_edge_line() with its extent in Del S and `box`.
 //! `apexes`, if given, are Delaunay::triangle_apexes(triangle) (known to the caller, e.g. from
 //! Delaunay::closed_star); otherwise they are looked up.
 //! `shared`, if given, receives voronoi_edge_ends() of the edge when it is valid.

@@ -51,7 +51,7 @@ class FlatTable {
   //! The value of key and true if it was added (then its contents are unspecified), or the
   //! existing value and false.
   std::pair<Value*, bool> try_emplace(const Key& key) {
-    if (2 * (size_ + 1) > entries_.size()) grow();
+    if (4 * (size_ + 1) > 3 * entries_.size()) grow();
     std::size_t i = home(key);
     for (;; i = (i + 1) & mask_) {
       Entry& e = entries_[i];
@@ -152,7 +152,7 @@ class FlatTable {
     return e;
   }
 
-  std::vector<Entry> entries_;  // size a power of two, at most half full
+  std::vector<Entry> entries_;  // size a power of two, at most three quarters full
   std::size_t mask_ = 0;
   std::size_t size_ = 0;
   //! The values, in blocks of block_size allocated one at a time and never moved; value i is

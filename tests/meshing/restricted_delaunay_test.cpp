@@ -312,8 +312,9 @@ Vec3 voronoi_vertex(const VoronoiEdge& e) { return e.at(e.at_vertex0 ? e.t0 : e.
 BOOST_AUTO_TEST_CASE(exact_vertex_zero_is_excluded_by_a_proved_sign) {
   CheckFixture f(test::unit_sphere, 1.6, tetrahedron_about(0));
   const auto& rec = f.restricted.voronoi_edge_record({0, 1, 2});
-  BOOST_TEST_REQUIRE(rec.edge.at_vertex0 != rec.edge.at_vertex1);
-  BOOST_TEST_REQUIRE(detail::distance(voronoi_vertex(rec.edge), {1, 0, 0}) == 0.0);
+  const VoronoiEdge edge = rec.edge(f.del, {0, 1, 2});
+  BOOST_TEST_REQUIRE(edge.at_vertex0 != edge.at_vertex1);
+  BOOST_TEST_REQUIRE(detail::distance(voronoi_vertex(edge), {1, 0, 0}) == 0.0);
   BOOST_TEST(!rec.restricted);
   BOOST_TEST(rec.unresolved().empty());
   BOOST_TEST_REQUIRE(rec.crossings().size() == 1u);
@@ -327,7 +328,7 @@ BOOST_AUTO_TEST_CASE(crossing_next_to_a_vertex_is_not_collapsed_onto_it) {
   const double delta = std::ldexp(1.0, -33);
   CheckFixture f(test::unit_sphere, 1.6, tetrahedron_about(delta));
   const auto& rec = f.restricted.voronoi_edge_record({0, 1, 2});
-  BOOST_TEST_REQUIRE(detail::distance(voronoi_vertex(rec.edge), {1 - delta, 0, 0}) == 0.0);
+  BOOST_TEST_REQUIRE(detail::distance(voronoi_vertex(rec.edge(f.del, {0, 1, 2})), {1 - delta, 0, 0}) == 0.0);
   BOOST_TEST(rec.restricted);
   BOOST_TEST(rec.unresolved().empty());
   BOOST_TEST_REQUIRE(rec.crossings().size() == 1u);
@@ -352,9 +353,10 @@ BOOST_AUTO_TEST_CASE(facet_missing_surface_is_claimed_only_off_the_surface) {
   for (VertexId p = 0; p < n; ++p)
     for (VertexId q : f.del.neighbours(p)) {
       if (q < p) continue;
+      const auto ring = f.del.edge_ring({p, q});
       std::vector<const VoronoiEdgeRecord*> boundary;
-      for (const auto& t : f.del.edge_triangles({p, q})) boundary.push_back(&f.restricted.voronoi_edge_record(t));
-      const bool misses = f.restricted.facet_misses_surface({p, q}, f.del.edge_ring({p, q}), boundary);
+      for (const auto& t : ring) boundary.push_back(&f.restricted.voronoi_edge_record(make_triangle_key(p, q, t.third)));
+      const bool misses = f.restricted.facet_misses_surface({p, q}, ring, boundary);
       const VoronoiFacet facet = voronoi_facet(f.del, {p, q}, f.box, 0.0);
       if (misses) ++cleared;
       if (!facet.valid) continue;  // F ∩ B is empty (a facet of two hull points, outside B)
@@ -425,8 +427,15 @@ BOOST_AUTO_TEST_CASE(a_plane_between_a_sliver_vertex_and_its_edge_keeps_the_cros
   CheckFixture f(equation, test::sliver_half_width, points);
   BOOST_TEST_REQUIRE(f.oracle.value_sign(foot) == -f.oracle.value_sign(formula));
   const auto& record = f.restricted.voronoi_edge_record(best);
-  BOOST_TEST_REQUIRE(record.edge.valid);
-  const auto ends = voronoi_edge_ends(f.del, record.edge);
+  const VoronoiEdge edge = record.edge(f.del, best);
+  BOOST_TEST_REQUIRE(edge.valid);
+  // The record keeps the edge's extent; its line is the triangle's, as voronoi_edge() builds it.
+  const VoronoiEdge built = voronoi_edge(f.del, best, f.oracle.clip_box());
+  BOOST_TEST(edge.point == built.point);
+  BOOST_TEST(edge.direction == built.direction);
+  BOOST_TEST(edge.t0 == built.t0);
+  BOOST_TEST(edge.t1 == built.t1);
+  const auto ends = voronoi_edge_ends(f.del, edge);
   const int s0 = f.oracle.value_sign(ends[0]), s1 = f.oracle.value_sign(ends[1]);
   BOOST_TEST_REQUIRE(s0 * s1 != 0);
   BOOST_TEST(record.crossings().size() % 2 == (s0 != s1 ? 1u : 0u));

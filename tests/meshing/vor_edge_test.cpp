@@ -36,7 +36,7 @@ BOOST_AUTO_TEST_CASE(ray_crossing_once_does_not_fire) {
 // chosen so that the circumcentre (1, 0, 0) is computed exactly: the edge as constructed touches Σ.
 BOOST_AUTO_TEST_CASE(tangent_edge_fires_at_the_tangency) {
   CheckFixture f(test::unit_sphere, 1.5, {{1.5, 0, 0}, {1, 0.5, 0}, {0.5, 0, 0}});
-  BOOST_TEST(f.restricted.voronoi_edge_record({0, 1, 2}).edge.point == (Vec3{1, 0, 0}));
+  BOOST_TEST(f.restricted.voronoi_edge_record({0, 1, 2}).edge(f.del, {0, 1, 2}).point == (Vec3{1, 0, 0}));
   const auto w = vor_edge_witness(f.restricted, {0, 1, 2});
   BOOST_TEST_REQUIRE(!w.witnesses.empty());
   BOOST_TEST(detail::distance(w.witnesses.front().point, {1, 0, 0}) < 1e-5);

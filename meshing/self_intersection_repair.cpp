@@ -120,6 +120,9 @@ Attempt run_isolated(const SurfaceMesh& input, const char* name, bool (*repair)(
   if (pid == 0) {
     ::close(fds[0]);
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    // A crash ends the child as a crash, whatever handlers the parent installed (a test
+    // framework's would report it as the parent's failure).
+    for (int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(signal, SIG_DFL);
     int code = 0;
     try {
       SurfaceMesh mesh = input;

@@ -5,10 +5,16 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <map>
+#include <string>
 #include <tuple>
 
+#include <boost/test/unit_test.hpp>
+
 #include "tests/meshing/known_meshes.h"
+#include "tests/temp_dir.h"
 
 namespace delmesh::test {
 
@@ -77,6 +83,17 @@ inline Soup crease(double angle_deg, int n) {
       s.triangles.push_back({p, r, t});
     }
   return s;
+}
+
+//! Extracts data/meshes/<name>.off from CGAL's data archive (libcgal-demo) into `dir` and returns
+//! its path; fails the test if the archive is missing.
+inline std::string cgal_data_mesh(const std::string& name, const TempDir& dir) {
+  const std::string archive = "/usr/share/doc/libcgal-dev/data.tar.gz";
+  BOOST_REQUIRE_MESSAGE(std::filesystem::exists(archive), archive + " is missing (install libcgal-demo)");
+  const std::string member = "data/meshes/" + name + ".off";
+  const std::string command = "tar -xzf " + archive + " -C '" + dir.path.string() + "' " + member;
+  BOOST_REQUIRE(std::system(command.c_str()) == 0);
+  return (dir.path / member).string();
 }
 
 }  // namespace delmesh::test

@@ -6,6 +6,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
+#include "meshing/input_mesh.h"
 #include "tests/meshing/feature_meshes.h"
 #include "tests/meshing/known_meshes.h"
 
@@ -145,6 +146,30 @@ BOOST_AUTO_TEST_CASE(a_mesh_without_features_has_no_balls) {
   const Protection protection = protect_features(sphere, detect_features(sphere));
   BOOST_TEST(protection.balls.empty());
   BOOST_TEST(protection.check.holds);
+}
+
+BOOST_AUTO_TEST_CASE(cgal_meshes_with_features_are_protected) {
+  // The CAD parts of CGAL's data, and femur (a folded vertex among its corners): the feature
+  // counts at 60° and a protection whose every condition holds.
+  struct Expected {
+    const char* name;
+    std::size_t sharp_edges, curves, corners, folded_corners;
+  };
+  for (const Expected& e : {Expected{"fandisk", 699, 34, 24, 0}, Expected{"joint", 225, 22, 12, 0},
+                            Expected{"anchor", 506, 32, 16, 0}, Expected{"femur", 1634, 783, 903, 1}}) {
+    test::TempDir dir;
+    const InputMesh input = read_input_mesh(test::cgal_data_mesh(e.name, dir));
+    const FeatureSet features = detect_features(input.mesh, default_feature_angle_deg, input.folded_vertices);
+    BOOST_TEST_INFO(e.name);
+    BOOST_TEST(features.sharp_edges == e.sharp_edges);
+    BOOST_TEST(features.curves.size() == e.curves);
+    BOOST_TEST(features.corners.size() == e.corners);
+    BOOST_TEST(features.folded_corners == e.folded_corners);
+    const Protection protection = protect_features(input.mesh, features);
+    BOOST_TEST(protection.check.holds);
+    for (const auto& v : protection.check.first) BOOST_TEST_MESSAGE(v.message);
+    BOOST_TEST(verify_protection(input.mesh, features, protection).holds);
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -97,4 +97,28 @@ BOOST_AUTO_TEST_CASE(other_defects_keep_their_own_message) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(cgal_meshes_that_intersect_themselves) {
+  // bull: autorefinement fixes its 3 pairs; diplodocus: autorefinement crashes (in its child
+  // process) and local removal fixes it; cow: autorefinement splits it, local removal fails, so
+  // it is refused with both reasons.
+  test::TempDir dir;
+  const RepairedInput bull = read_and_repair_input_mesh(test::cgal_data_mesh("bull", dir));
+  BOOST_TEST(bull.report.method == "autorefine");
+  BOOST_TEST(bull.report.intersecting_pairs == 3u);
+  BOOST_TEST(!CGAL::Polygon_mesh_processing::does_self_intersect(bull.input.mesh));
+  const RepairedInput diplodocus = read_and_repair_input_mesh(test::cgal_data_mesh("diplodocus", dir));
+  BOOST_TEST(diplodocus.report.method == "local");
+  BOOST_TEST(diplodocus.report.intersecting_pairs == 116u);
+  BOOST_TEST(!CGAL::Polygon_mesh_processing::does_self_intersect(diplodocus.input.mesh));
+  try {
+    (void)read_and_repair_input_mesh(test::cgal_data_mesh("cow", dir));
+    BOOST_FAIL("cow was repaired");
+  } catch (const InvalidInput& e) {
+    const std::string why = e.what();
+    BOOST_TEST(why.find("--repair could not remove the self-intersections: 101 pairs of triangles intersect; "
+                        "autorefinement split the mesh into 2 components") != std::string::npos, why);
+    BOOST_TEST(why.find('\n') == std::string::npos);
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

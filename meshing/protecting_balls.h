@@ -42,10 +42,11 @@
 //!      by (B) and (C), any anchor).
 //!  (G) Size: r ≤ size (the user's bound, when given) and r ≤ α · lfs(c) (α =
 //!      ProtectionOptions::lfs_fraction, default 1/3), where the local feature size estimate
-//!      lfs(c) is the distance from c to the nearest input triangle or anchor that has no vertex
-//!      in N(c), and to the nearest feature edge that has no vertex in N(c) or (for a curve ball)
-//!      lies on another piece — N(c) = {v} for c at a mesh vertex v, {p, q} for c inside an
-//!      edge pq.  (The true local feature size of a polyhedron is zero on its creases; this is
+//!      lfs(c) is the distance from c to the nearest of: an input triangle with no vertex in
+//!      N(c); a feature edge with no vertex in N(c), or (for a curve ball) on another piece; a
+//!      corner without feature edges (an isolated folded vertex) other than c — where N(c) = {v}
+//!      for c at a mesh vertex v and {p, q} for c inside an edge pq.  (The other anchors are ends
+//!      of feature edges and count through them.)  (The true local feature size of a polyhedron is zero on its creases; this is
 //!      the usual replacement: how close the input comes back to c from faces not incident to
 //!      it.)  For a fine tessellation near a crease it is about one edge length.
 //! (A), (B), (C) make the balls a chain along each curve in the sense of the papers above; (E)

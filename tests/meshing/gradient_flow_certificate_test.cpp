@@ -43,6 +43,25 @@ double sampled_distance_to_unit_sphere(const test::Soup& m) {
   return worst;
 }
 
+//! delmesh's mesh of a catalog surface, and its gradient-flow certificate.
+struct CertifiedCatalogMesh {
+  Box3 box;
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  FlowCertificate certificate;
+};
+
+CertifiedCatalogMesh mesh_and_certify(const std::string& name, const DelMeshOptions& options) {
+  const CatalogEntry& entry = catalog_entry(name);
+  const Surface surface = entry.surface();
+  const DelMeshResult r = del_mesh(surface, entry.box, options);
+  BOOST_TEST_REQUIRE(r.status == MeshStatus::complete);
+  CertifiedCatalogMesh m{entry.box, {}, {}, {}};
+  mesh_to_soup(r.mesh, m.points, m.triangles);
+  m.certificate = certify_gradient_flow(m.points, m.triangles, surface, entry.box);
+  return m;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(gradient_flow_certificate)
@@ -152,53 +171,37 @@ BOOST_AUTO_TEST_CASE(bad_soups_are_invalid_input) {
 // delmesh's own mesh of the torus of the catalog at size bound 0.1 is certified by the flow as
 // well.
 BOOST_AUTO_TEST_CASE(delmesh_output_is_certified) {
-  const CatalogEntry& entry = catalog_entry("torus");
-  const Surface surface = entry.surface();
   DelMeshOptions options;
   options.size_bound = 0.1;
-  const DelMeshResult r = del_mesh(surface, entry.box, options);
-  BOOST_TEST_REQUIRE(r.status == MeshStatus::complete);
-  std::vector<Point3> points;
-  std::vector<std::array<std::size_t, 3>> triangles;
-  mesh_to_soup(r.mesh, points, triangles);
-  const FlowCertificate c = certify_gradient_flow(points, triangles, surface, entry.box);
-  BOOST_TEST(c.status == FlowCertificateStatus::certified, c.reason);
-  BOOST_TEST(c.hausdorff_upper_bound / entry.box.diagonal() < 0.01);
+  const CertifiedCatalogMesh m = mesh_and_certify("torus", options);
+  BOOST_TEST(m.certificate.status == FlowCertificateStatus::certified, m.certificate.reason);
+  BOOST_TEST(m.certificate.hausdorff_upper_bound / m.box.diagonal() < 0.01);
 }
 
 // delmesh's default mesh of the catalog ellipsoid: E's tube |E| ≤ ε′ reaches the tight box (|∇E|
 // varies by a factor 4 over Σ, so a tube wide enough where ∇E is small is too wide elsewhere);
 // the normalised function's tube has about the same width everywhere and certifies it.  The
-// bound d_p of every vertex p is checked against a proved lower bound of its distance: with q
-// its nearest point on Σ, |E(p)| = |E(p) − E(q)| ≤ max |∇E| · |p − q| on the segment, and
-// |∇E(x)| = 2 sqrt(x²/a⁴ + y²/b⁴ + z²/c⁴) ≤ 2|x|/c² ≤ 2(|p| + d_p)/c² there (c the least
-// semi-axis), so |p − q| ≥ |E(p)| c² / (2(|p| + d_p)).
+// bound d of every vertex p (the global one, and each of its triangles') is checked against a
+// proved lower bound of its distance: with q its nearest point on Σ, |E(p)| = |E(p) − E(q)| ≤
+// max |∇E| · |p − q| on the segment, and |∇E(x)| = 2 sqrt(x²/a⁴ + y²/b⁴ + z²/c⁴) ≤ 2|x|/c² ≤
+// 2(|p| + d)/c² there (c the least semi-axis), so |p − q| ≥ |E(p)| c² / (2(|p| + d)).
 BOOST_AUTO_TEST_CASE(the_normalised_function_certifies_where_the_tube_of_E_reaches_the_box) {
-  const CatalogEntry& entry = catalog_entry("ellipsoid");
-  const Surface surface = entry.surface();
-  const DelMeshResult r = del_mesh(surface, entry.box, DelMeshOptions{});
-  BOOST_TEST_REQUIRE(r.status == MeshStatus::complete);
-  std::vector<Point3> points;
-  std::vector<std::array<std::size_t, 3>> triangles;
-  mesh_to_soup(r.mesh, points, triangles);
-  const FlowCertificate c = certify_gradient_flow(points, triangles, surface, entry.box);
+  const CertifiedCatalogMesh m = mesh_and_certify("ellipsoid", DelMeshOptions{});
+  const FlowCertificate& c = m.certificate;
   BOOST_TEST_REQUIRE(c.status == FlowCertificateStatus::certified, c.reason);
   BOOST_TEST((c.function == FlowFunction::normalized));
   BOOST_TEST(c.eta > 0);
   BOOST_TEST(c.reason_with_E.find("boundary of the box") != std::string::npos, c.reason_with_E);
   const double a2 = 2.25, b2 = 1, c2 = 0.5625;
-  for (const Point3& p : points) {
+  const auto distance_lower_bound = [&](const Point3& p, double d) {
     const double e = p.x() * p.x() / a2 + p.y() * p.y() / b2 + p.z() * p.z() / c2 - 1;
-    const double lower = std::abs(e) * c2 / (2 * (norm(p) + c.hausdorff_upper_bound));
-    BOOST_TEST(c.hausdorff_upper_bound >= lower);
-  }
-  // Per triangle too: each vertex's own triangles bound its distance.
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (std::size_t i : triangles[t]) {
-      const Point3& p = points[i];
-      const double e = p.x() * p.x() / a2 + p.y() * p.y() / b2 + p.z() * p.z() / c2 - 1;
+    return std::abs(e) * c2 / (2 * (norm(p) + d));
+  };
+  for (const Point3& p : m.points) BOOST_TEST(c.hausdorff_upper_bound >= distance_lower_bound(p, c.hausdorff_upper_bound));
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    for (std::size_t i : m.triangles[t]) {
       const double d = c.triangle_distance_bounds[t];
-      BOOST_TEST(d >= std::abs(e) * c2 / (2 * (norm(p) + d)));
+      BOOST_TEST(d >= distance_lower_bound(m.points[i], d));
     }
 }
 

@@ -1,5 +1,5 @@
 //! \file mesh_reader_fuzzer.cpp
-//! libFuzzer targets fuzz_read_off, fuzz_read_ply, fuzz_read_obj (DELMESH_FUZZ_EXTENSION): the
+//! libFuzzer targets fuzz_read_off, fuzz_read_ply, fuzz_read_obj, fuzz_read_stl (DELMESH_FUZZ_EXTENSION): the
 //! input is written to a scratch file with that extension, then read as `delmesh check` does:
 //! read_triangle_soup (which parses the file as a polygon soup, as `delmesh mesh --input-mesh`
 //! does, then requires triangles), check_mesh on the soup, read_mesh and check_mesh on the mesh.  Each either succeeds or throws InvalidInput; anything else is a finding.
@@ -19,7 +19,7 @@
 #include "meshing/mesh_io.h"
 
 #ifndef DELMESH_FUZZ_EXTENSION
-#error "DELMESH_FUZZ_EXTENSION (.off, .ply or .obj) must be defined"
+#error "DELMESH_FUZZ_EXTENSION (.off, .ply, .obj or .stl) must be defined"
 #endif
 
 namespace {

@@ -2,7 +2,7 @@
 # Builds the libFuzzer targets of fuzz/ (clang++, AddressSanitizer, UndefinedBehaviorSanitizer) and
 # runs each for SECONDS (default 60).  Usage:
 #   scripts/fuzz.sh [SECONDS] [TARGET...]     targets: fuzz_expression fuzz_read_off fuzz_read_ply
-#                                             fuzz_read_obj fuzz_command_line fuzz_input_mesh
+#                                             fuzz_read_obj fuzz_read_stl fuzz_command_line fuzz_input_mesh
 #                                             fuzz_output_paths (default: all)
 # The build directory is the sanitized test build's (build-sanitize/, configured as
 # scripts/test.sh --sanitize does, so each reuses what the other built).
@@ -25,7 +25,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
-all_targets=(fuzz_expression fuzz_read_off fuzz_read_ply fuzz_read_obj fuzz_command_line fuzz_input_mesh
+all_targets=(fuzz_expression fuzz_read_off fuzz_read_ply fuzz_read_obj fuzz_read_stl fuzz_command_line fuzz_input_mesh
              fuzz_output_paths)
 if [ $# -gt 0 ]; then targets=("$@"); else targets=("${all_targets[@]}"); fi
 build=${DELMESH_FUZZ_BUILD_DIR:-${DELMESH_SANITIZE_BUILD_DIR:-build-sanitize}}

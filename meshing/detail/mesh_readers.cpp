@@ -776,7 +776,8 @@ PolygonSoup read_stl(const std::string& path, const std::string& contents) {
     if (size == contents.size()) return read_binary_stl(path, contents, count);
     const std::string mismatch = "its 84-byte header declares " + std::to_string(count) +
                                  " triangles, which take 84 + 50 x " + std::to_string(count) + " = " +
-                                 std::to_string(size) + " bytes, but the file has " + std::to_string(contents.size());
+                                 std::to_string(size) + " bytes, but the file has " + std::to_string(contents.size()) +
+                                 " bytes";
     if (solid) return read_ascii_stl(path, contents, " (nor is it binary STL: " + mismatch + ")");
     mesh_file_error(path, "binary STL: " + mismatch + " (truncated, or a corrupt count)");
   }

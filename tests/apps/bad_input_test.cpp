@@ -226,7 +226,7 @@ BOOST_AUTO_TEST_CASE(corrupt_mesh_files) {
       {"good.txt", "unknown extension '.txt'"},
       {"good.vtp", "unknown extension '.vtp' (expected .off, .ply, .obj or .stl; .vtp files are written, not read)"},
       {"truncated.stl", "binary STL: its 84-byte header declares 1 triangles, which take 84 + 50 x 1 = 134 bytes, but "
-                        "the file has 133 (truncated, or a corrupt count)"},
+                        "the file has 133 bytes (truncated, or a corrupt count)"},
       {"huge.stl", "declares 4294967295 triangles, which take 84 + 50 x 4294967295 = 214748364834 bytes, but the "
                    "file has 84"},
       {"nan.stl", "'nan.stl': triangle 0 has a non-finite coordinate"},

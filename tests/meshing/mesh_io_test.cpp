@@ -360,10 +360,10 @@ BOOST_AUTO_TEST_CASE(malformed_stl_is_invalid_input) {
   std::memcpy(nan_corner.data() + 84 + 12 + 4, &nan, 4);
   const std::string facet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
   const std::pair<const char*, std::string> bad[] = {
-      {"binary STL: its 84-byte header declares 4 triangles, which take 84 + 50 x 4 = 284 bytes, but the file has 283",
+      {"binary STL: its 84-byte header declares 4 triangles, which take 84 + 50 x 4 = 284 bytes, but the file has 283 bytes",
         good.substr(0, good.size() - 1)},
-      {"declares 5 triangles, which take 84 + 50 x 5 = 334 bytes, but the file has 284", binary_stl("", 5, tetrahedron_stl)},
-      {"declares 4294967295 triangles, which take 84 + 50 x 4294967295 = 214748364834 bytes, but the file has 84",
+      {"declares 5 triangles, which take 84 + 50 x 5 = 334 bytes, but the file has 284 bytes", binary_stl("", 5, tetrahedron_stl)},
+      {"declares 4294967295 triangles, which take 84 + 50 x 4294967295 = 214748364834 bytes, but the file has 84 bytes",
         binary_stl("", 0xffffffffu, {})},
       {"truncated: binary STL has an 84-byte header, the file has 40 bytes", good.substr(0, 40)},
       {"triangle 0 has a non-finite coordinate", nan_corner},

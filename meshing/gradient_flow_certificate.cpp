@@ -626,7 +626,8 @@ double normalization_eta(const CompiledSystem& system, const std::vector<Point3>
   return eta > 0 && std::isfinite(eta) ? eta : 0;
 }
 
-//! F = E / sqrt(|∇E|² + η²), exactly (η as the rational nearest its double).
+//! F = E / sqrt(|∇E|² + η²), exactly (η as the rational nearest its double).  Throws
+//! InvalidInput when F exceeds Surface's size limits (a large E, whose gradient squared is larger).
 Surface normalized_function(const Surface& surface, double eta) {
   GiNaC::ex squared_gradient = GiNaC::numeric(0);
   for (const GiNaC::ex& g : surface.gradient()) squared_gradient += GiNaC::pow(g, 2);
@@ -678,9 +679,15 @@ FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
     } catch (const Verdict& with_e) {
       const double eta = normalization_eta(proof.system(), points);
       if (with_e.status != FlowCertificateStatus::undecided || !with_e.depends_on_function || eta == 0) throw;
+      std::optional<Surface> F;
+      try {
+        F.emplace(normalized_function(surface, eta));
+      } catch (const InvalidInput& too_large) {
+        throw Verdict{with_e.status, with_e.reason + " (the normalised function was not tried: " + too_large.what() + ")",
+                      with_e.location};
+      }
       c.reason_with_E = with_e.reason;
-      const Surface F = normalized_function(surface, eta);
-      FlowProof normalized(F, box, options, c, c.boxes + tolerances::flow_normalized_box_budget);
+      FlowProof normalized(*F, box, options, c, c.boxes + tolerances::flow_normalized_box_budget);
       c.function = FlowFunction::normalized;
       c.eta = eta;
       try {

@@ -696,7 +696,7 @@ PYBIND11_MODULE(delmesh, m) {
 
 Give exactly one of expr (E(x,y,z) as a string, or a sympy expression, the surface is E = 0; a
 Python function raises TypeError) with box, surface (a catalog name, see surfaces(); a box
-replaces the catalog's) or input_mesh (the path of a closed mesh, OFF/PLY/OBJ, polygons
+replaces the catalog's) or input_mesh (the path of a closed mesh, OFF/PLY/OBJ/STL, polygons
 triangulated, or a pair (vertices, triangles) of N x 3 and M x 3 arrays: it is validated and
 remeshed as by `delmesh mesh --input-mesh FILE`, with the same default termination floor, and the
 statistics carry "input_mesh", whose "file" is "input_mesh" for arrays).

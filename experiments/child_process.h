@@ -23,7 +23,11 @@ namespace delmesh::experiments {
 struct ChildResult {
   int exit_code = -1;             //!< the child's exit status; -1 if a signal ended it
   std::string out;                //!< everything it wrote on stdout (stderr is inherited)
-  std::uint64_t peak_bytes = 0;   //!< its peak resident set size (wait4's ru_maxrss, KiB × 1024)
+  //! Its peak resident set size (wait4's ru_maxrss, KiB × 1024).  Linux counts there the address
+  //! space the child had before its exec as well, and posix_spawn's child runs in the parent's
+  //! until then: this is at least the parent's resident size at the spawn.  A child that must
+  //! be measured alone reports its own peak (common/peak_memory.h) on stdout.
+  std::uint64_t peak_bytes = 0;
 };
 
 //! Runs `program` with `arguments` (argv[1..]) and waits for it.  Throws std::runtime_error when

@@ -27,8 +27,9 @@
 //!     not bounds).  One row per surface and δ in <out-dir>/distance.csv and distance.md.
 //!  5. memory (only when --experiments names it): for each benchmark case, Mesh_3 and delmesh each
 //!     in a fresh child process of this program (--memory-child), and a child that only compiles
-//!     E (the baseline: the program, its libraries and the surface); each child's peak resident
-//!     memory from wait4, and bytes per output vertex net of the baseline.  One row per child in
+//!     E (the baseline: the program, its libraries and the surface); each child's own peak
+//!     resident memory (common/peak_memory.h, reported by the child), and bytes per output vertex
+//!     net of the baseline.  One row per child in
 //!     <out-dir>/memory.csv; one summary line per case with delmesh's bytes per vertex over
 //!     Mesh_3's.
 //! CGAL's implicit oracles locate surface points by bisection, stopped when the segment is shorter
@@ -72,6 +73,7 @@
 #include <unordered_map>
 
 #include "common/errors.h"
+#include "common/peak_memory.h"
 #include "common/huge_page_heap.h"
 #include "experiments/child_process.h"
 #include "experiments/experiment_support.h"
@@ -691,7 +693,8 @@ struct MemorySettings {
 };
 
 //! The child's side: runs `method` (mesh_3, delmesh, or none: only compile E) on one case and
-//! prints "vertices N", "seconds S" and "status X" on stdout.
+//! prints "vertices N", "seconds S", "status X" and "peak_bytes B" (its own peak resident memory,
+//! common/peak_memory.h) on stdout.
 void run_memory_child(const std::string& method, const std::string& item, const MemorySettings& m) {
   const auto [name, h] = parse_case(item);
   const Prepared s = prepare(name);
@@ -704,7 +707,8 @@ void run_memory_child(const std::string& method, const std::string& item, const 
     throw InvalidInput("--memory-child: expected mesh_3, delmesh or none, got '" + method + "'");
   }
   std::cout << "vertices " << run.soup.points.size() << "\nseconds " << field(run.seconds) << "\nstatus "
-            << (method == "none" ? std::string("none") : run.status) << std::endl;
+            << (method == "none" ? std::string("none") : run.status) << "\npeak_bytes "
+            << field(static_cast<long long>(peak_resident_bytes())) << std::endl;
 }
 
 //! One memory child's report.
@@ -728,13 +732,13 @@ MemoryRun memory_child(const std::string& method, const std::string& item, const
     throw std::runtime_error("memory child " + method + " " + item + " exited with " + std::to_string(child.exit_code));
   MemoryRun run;
   run.method = method;
-  run.peak_bytes = child.peak_bytes;
   std::istringstream lines(child.out);
   std::string key;
   while (lines >> key) {
     if (key == "vertices") lines >> run.vertices;
     else if (key == "seconds") lines >> run.seconds;
     else if (key == "status") lines >> run.status;
+    else if (key == "peak_bytes") lines >> run.peak_bytes;
   }
   return run;
 }

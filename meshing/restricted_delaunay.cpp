@@ -48,18 +48,7 @@ std::unique_ptr<Vec3[]> VoronoiEdgeRecord::copy(const VoronoiEdgeRecord& other) 
 }
 
 VoronoiEdgeRecord& VoronoiEdgeRecord::operator=(const VoronoiEdgeRecord& other) {
-  if (this != &other) {
-    t0_ = other.t0_;
-    t1_ = other.t1_;
-    lists_ = copy(other);
-    at_vertex0_ = other.at_vertex0_;
-    at_vertex1_ = other.at_vertex1_;
-    valid_ = other.valid_;
-    degenerate_ = other.degenerate_;
-    restricted = other.restricted;
-    shrunk = other.shrunk;
-    segment_signed = other.segment_signed;
-  }
+  if (this != &other) *this = VoronoiEdgeRecord(other);  // the copy constructor, then the move
   return *this;
 }
 

@@ -1,9 +1,9 @@
 //! \file check_command.cpp
 //! `delmesh check MESH [--lambda L] [(--surface NAME | --expr E --box B) --certify [--method M]
-//! [--seed N]] [--time-limit S] [--json]`: the independent checker (meshing/mesh_checker.h) on a
+//! [--seed N]] [--time-limit S] [--json]`: the independent checker (meshing/core/mesh_checker.h) on a
 //! mesh file, optionally compared with the bounds of Theorem 6.1 for λ, and with --certify the
 //! topology certificates of the mesh for that surface: the restricted-Delaunay certificate
-//! (meshing/certificate.h), the gradient-flow certificate (meshing/gradient_flow_certificate.h),
+//! (meshing/verify/certificate.h), the gradient-flow certificate (meshing/verify/gradient_flow_certificate.h),
 //! or both, and the verdict they give together.  The time limit counts from
 //! the command's start: the certificate stops at it (status undecided); reading the mesh, checking
 //! it and compiling the surface are held to it by the phase watchdog (apps/phase_watchdog.h).
@@ -22,11 +22,11 @@
 #include "apps/interrupt.h"
 #include "apps/phase_watchdog.h"
 #include "common/errors.h"
-#include "meshing/certificate.h"
-#include "meshing/gradient_flow_certificate.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/mesh_io.h"
-#include "meshing/theorem_bounds.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/core/theorem_bounds.h"
+#include "meshing/inputs/mesh_io.h"
+#include "meshing/verify/certificate.h"
+#include "meshing/verify/gradient_flow_certificate.h"
 
 namespace delmesh::app {
 

@@ -67,7 +67,7 @@ Command add_report_command(CLI::App& parent);
 
 //! Ranges of the numeric options (input limits, not tolerances).  A count (--max-points,
 //! --max-boxes) is at most max_count; a time limit at most max_time_limit_seconds
-//! (meshing/del_mesh.h); --threads at most max_threads (more than the hardware threads run as
+//! (meshing/driver/del_mesh.h); --threads at most max_threads (more than the hardware threads run as
 //! many as there are).
 inline constexpr unsigned long long max_count = 1000000000ULL;
 inline constexpr unsigned long long max_threads = 1024;

@@ -19,12 +19,12 @@
 
 #include "apps/command_line.h"
 #include "common/tolerances.h"
-#include "meshing/certificate.h"
-#include "meshing/del_mesh.h"
-#include "meshing/gradient_flow_certificate.h"
-#include "meshing/input_mesh.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/theorem_bounds.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/core/theorem_bounds.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/inputs/input_mesh.h"
+#include "meshing/verify/certificate.h"
+#include "meshing/verify/gradient_flow_certificate.h"
 #include "solvers/solve_result.h"
 
 namespace delmesh::app {
@@ -68,7 +68,7 @@ struct MeshPlan {
 //! MeshInputPlan.
 MeshPlan plan_mesh(const MeshRequest& request);
 
-//! A validated --input-mesh request: the mesh to remesh (meshing/input_mesh.h) and the options.
+//! A validated --input-mesh request: the mesh to remesh (meshing/inputs/input_mesh.h) and the options.
 struct MeshInputPlan {
   std::string name;  //!< <stem>_remeshed for the file <stem>.<ext>: the default outputs <name>.off, <name>.json
   std::string path;
@@ -86,11 +86,11 @@ MeshInputPlan plan_mesh_input(const MeshRequest& request);
 //! read.
 MeshInputPlan plan_mesh_input(const MeshRequest& request, InputMesh mesh, const std::string& name);
 
-//! DelMesh on the plan's mesh through a MeshOracle (meshing/mesh_oracle.h), with `options`
+//! DelMesh on the plan's mesh through a MeshOracle (meshing/inputs/mesh_oracle.h), with `options`
 //! (the plan's, plus progress and interrupt).  The statistics are del_mesh's, with "input_mesh":
 //! {file, vertices, triangles, components, genus_per_component, box, bounding_box_diagonal,
 //! median_edge_length, components_reversed, folded_vertices {count, locations}}.  A plan whose
-//! mesh has folded vertices (meshing/folded_vertices.h) carries a warning that the run cannot
+//! mesh has folded vertices (meshing/inputs/folded_vertices.h) carries a warning that the run cannot
 //! end complete.
 DelMeshResult remesh(const MeshInputPlan& plan, const DelMeshOptions& options);
 
@@ -141,8 +141,8 @@ constexpr auto enum_names(CertifyMethod) {
 
 //! The certificates that ran and what they prove together.
 struct TopologyCertificates {
-  std::optional<Certificate> delaunay;    //!< meshing/certificate.h
-  std::optional<FlowCertificate> flow;    //!< meshing/gradient_flow_certificate.h
+  std::optional<Certificate> delaunay;    //!< meshing/verify/certificate.h
+  std::optional<FlowCertificate> flow;    //!< meshing/verify/gradient_flow_certificate.h
   std::string verdict = "undecided";      //!< certified, refuted (only by the flow's proof) or undecided
   std::string method;                     //!< the method that decided the verdict ("" when none did)
   std::string reason;                     //!< why, in one phrase

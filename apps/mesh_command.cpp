@@ -1,5 +1,5 @@
 //! \file mesh_command.cpp
-//! `delmesh mesh`: DelMesh (meshing/del_mesh.h) on a catalog surface or an expression; writes the
+//! `delmesh mesh`: DelMesh (meshing/driver/del_mesh.h) on a catalog surface or an expression; writes the
 //! mesh (OFF/PLY/OBJ/STL/VTP by extension) and the statistics JSON.  Exit code 3 when a limit stopped the
 //! run, 5 when it ended uncertified: the mesh and statistics are still written.  The two outputs are
 //! written as a group (apps/output_files.h): both replace the old files once both are complete, or
@@ -30,16 +30,16 @@
 #include "common/errors.h"
 #include "common/peak_memory.h"
 #include "common/run_limits.h"
-#include "meshing/certificate.h"
-#include "meshing/del_mesh.h"
-#include "meshing/implicit_oracle.h"
-#include "meshing/input_validation.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/mesh_io.h"
-#include "meshing/mesh_oracle.h"
-#include "meshing/self_intersection_repair.h"
-#include "meshing/sharp_features.h"
-#include "meshing/unit_scale.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/driver/scaled_run.h"
+#include "meshing/inputs/implicit_oracle.h"
+#include "meshing/inputs/input_validation.h"
+#include "meshing/inputs/mesh_io.h"
+#include "meshing/inputs/mesh_oracle.h"
+#include "meshing/inputs/self_intersection_repair.h"
+#include "meshing/inputs/sharp_features.h"
+#include "meshing/verify/certificate.h"
 
 namespace delmesh::app {
 
@@ -208,7 +208,7 @@ MeshInputPlan plan_mesh_input(const MeshRequest& r, InputMesh mesh, const std::s
     warning << folded.size() << " vertex(es) of the input are folded (the first: " << std::size_t(folded.front())
             << " at (" << x.x() << ", " << x.y() << ", " << x.z()
             << ")): faces around them face every direction both ways, so Silhouette can never be clean there "
-               "and the run cannot end complete (meshing/folded_vertices.h)";
+               "and the run cannot end complete (meshing/inputs/folded_vertices.h)";
     plan.warnings.push_back(warning.str());
   }
   return plan;
@@ -226,7 +226,7 @@ nlohmann::json folded_vertices_json(const InputMesh& m) {
   return {{"count", m.folded_vertices.size()}, {"locations", locations}};
 }
 
-// The input's sharp features at the default feature angle (meshing/sharp_features.h): counts only.
+// The input's sharp features at the default feature angle (meshing/inputs/sharp_features.h): counts only.
 nlohmann::json features_json(const InputMesh& m) {
   const FeatureSet f = detect_features(m.mesh, default_feature_angle_deg, m.folded_vertices);
   return {{"angle_deg", f.angle_deg},
@@ -244,7 +244,7 @@ namespace {
 //! remesh() on the plan's oracle, built in `seconds_oracle` seconds.
 DelMeshResult remesh_on(const MeshInputPlan& plan, MeshOracle& oracle, double seconds_oracle,
                         const DelMeshOptions& options) {
-  // The oracle works at unit scale (meshing/unit_scale.h); the run's lengths and results are converted.
+  // The oracle works at unit scale (meshing/inputs/unit_scale.h); the run's lengths and results are converted.
   DelMeshResult result = del_mesh(oracle, unit_scale_options(options, oracle.scale_exponent()));
   restore_scale(result, oracle.scale_exponent());
   const InputMesh& m = plan.mesh;
@@ -363,7 +363,7 @@ std::shared_ptr<ProgressLine> report_progress(const MeshOptions& o, MeshRun& run
   return line;
 }
 
-//! The certificate of the finished mesh (meshing/certificate.h), from the mesh alone, into the
+//! The certificate of the finished mesh (meshing/verify/certificate.h), from the mesh alone, into the
 //! statistics; a run stopped by a limit or a signal, or without triangles, has none (null).
 //! \return how the certificate was stopped: interrupted by a signal, time_limit by the
 //! command's deadline; nothing if it ran to its end.

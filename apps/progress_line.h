@@ -1,7 +1,7 @@
 #pragma once
 //! \file progress_line.h
 //! The progress of `delmesh mesh` on standard error, from the mesher's reports
-//! (meshing/progress_report.h): the refinement's every tolerances::progress_interval_seconds and
+//! (meshing/core/progress_report.h): the refinement's every tolerances::progress_interval_seconds and
 //! one when the distance certificate starts.  On a terminal each report rewrites one line in
 //! place: the phase, the points, the points per second since the previous refinement report and
 //! the seconds since the run started.  Elsewhere (a file, a pipe) the same text is written as
@@ -12,7 +12,7 @@
 #include <iosfwd>
 #include <string>
 
-#include "meshing/progress_report.h"
+#include "meshing/core/progress_report.h"
 
 namespace delmesh::app {
 

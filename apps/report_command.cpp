@@ -22,8 +22,8 @@
 #include "apps/report_html.h"
 #include "apps/report_three_js.h"
 #include "common/errors.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/mesh_io.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/inputs/mesh_io.h"
 
 namespace delmesh::app {
 

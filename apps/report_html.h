@@ -15,8 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "common/enum_names.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/mesh_soup.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/core/mesh_soup.h"
 
 namespace delmesh::app {
 

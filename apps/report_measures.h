@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "common/vec3.h"
-#include "meshing/quality.h"
+#include "meshing/checks/quality.h"
 
 namespace delmesh::app {
 
@@ -20,7 +20,7 @@ namespace delmesh::app {
 struct TriangleMeasures {
   std::array<double, 3> angles_deg{};  //!< at its corners a, b, c; 0 where an edge at the corner has length 0
   double min_angle_deg = 0;            //!< the smallest of angles_deg
-  double radius_edge_ratio = 0;        //!< circumradius / shortest edge (meshing/quality.h); +∞ if degenerate
+  double radius_edge_ratio = 0;        //!< circumradius / shortest edge (meshing/checks/quality.h); +∞ if degenerate
   double area = 0;                     //!< in the squared units of the coordinates (may overflow to +∞)
 };
 

@@ -1,14 +1,14 @@
 #pragma once
 //! \file surface_normals.h
-//! The point data of a .vtp file of a mesh of an implicit surface (meshing/mesh_io.h): the unit
+//! The point data of a .vtp file of a mesh of an implicit surface (meshing/inputs/mesh_io.h): the unit
 //! normals ∇E/|∇E| at its vertices, and the distance bounds of its gradient-flow certificate
 //! carried from its triangles to its vertices.
 
 #include <vector>
 
-#include "meshing/implicit_oracle.h"
-#include "meshing/mesh_io.h"
-#include "meshing/surface_mesh.h"
+#include "meshing/core/surface_mesh.h"
+#include "meshing/inputs/implicit_oracle.h"
+#include "meshing/inputs/mesh_io.h"
 
 namespace delmesh::app {
 

@@ -2,7 +2,7 @@
 #   bin/delmesh                                   the program;
 #   lib/libdelmesh_{common,symbolic,solvers,meshing}.a   the libraries;
 #   include/delmesh/{common,symbolic,solvers,meshing}/   their headers, included as in the sources
-#                                                 ("meshing/del_mesh.h");
+#                                                 ("meshing/driver/del_mesh.h");
 #   lib/cmake/delmesh/                            delmeshConfig.cmake and the exported targets;
 #   lib/python3/dist-packages/delmesh.*.so        the Python module, when it is built,
 # so that a CMake project uses the libraries with

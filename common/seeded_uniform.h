@@ -23,7 +23,7 @@ inline double seeded_uniform(std::uint64_t seed, std::int64_t a, std::int64_t b 
 
 //! The seed of the attempt-th alternative to the generic choices drawn from `seed` (attempt 0:
 //! `seed` itself).  A check all of whose witnesses were rejected is run again with the choices of
-//! attempt 1, 2, … (meshing/refinement.h); each attempt's choices are as generic as the first's.
+//! attempt 1, 2, … (meshing/driver/refinement.h); each attempt's choices are as generic as the first's.
 inline std::uint64_t attempt_seed(std::uint64_t seed, int attempt) {
   return attempt == 0 ? seed : seed ^ (0xD1B54A32D192ED03ULL * static_cast<std::uint64_t>(attempt));
 }

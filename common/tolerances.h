@@ -278,14 +278,14 @@ inline constexpr double projection_relative_tolerance = 1e-13;
 //! below the gaps one meshes (sheets 10⁻⁶ of the box apart).  It does not cover the error of a
 //! circumcentre, which for a sliver can exceed it many times: the shortcuts that compare faces
 //! built in different ways widen it to twice the certified error radii of the Voronoi vertices
-//! involved where those are larger (meshing/voronoi_geometry.h: certified_voronoi_vertex()).
+//! involved where those are larger (meshing/voronoi/voronoi_geometry.h: certified_voronoi_vertex()).
 inline constexpr double face_membership_relative_tolerance = 1e-10;
 //! A Voronoi vertex whose certified error radius exceeds this fraction of its distance to its
 //! sites (a nearly flat cell: a sliver, or a cell across a narrow gap) is constructed exactly
-//! and rounded to doubles instead (meshing/voronoi_geometry.h: voronoi_vertex()).  For cells
+//! and rounded to doubles instead (meshing/voronoi/voronoi_geometry.h: voronoi_vertex()).  For cells
 //! smaller than a tenth of the box this keeps every vertex within the membership margin above.
 inline constexpr double voronoi_vertex_exact_relative_error = 1e-9;
-//! Clipping a Voronoi cell's polytope by a half-space (meshing/detail/convex_polytope.h): a vertex
+//! Clipping a Voronoi cell's polytope by a half-space (meshing/voronoi/detail/convex_polytope.h): a vertex
 //! within this fraction of the largest vertex distance to the plane counts as on the plane, and
 //! cut points that close together are one vertex.  The distance is floored at
 //! polytope_clip_min_extent so that the tolerance is positive.
@@ -353,7 +353,7 @@ inline constexpr double cell_slope_cap = 0.2;
 inline constexpr double cell_slope_margin = 1.05;
 inline constexpr std::size_t cell_slope_box_budget = 128;
 inline constexpr std::size_t cell_slope_cover_budget = 192;
-//! The relative margin by which a facet's slope test in doubles (meshing/restricted_delaunay.cpp)
+//! The relative margin by which a facet's slope test in doubles (meshing/voronoi/restricted_delaunay.cpp)
 //! may fail before its interval test is skipped: more than the one rounding of that comparison
 //! that falls outside the interval enclosure, so the skipped test could not have passed.
 inline constexpr double slope_pretest_relative_margin = 1e-12;
@@ -371,7 +371,7 @@ inline constexpr std::size_t checks_per_clock_reading = 32;
 inline constexpr std::size_t parallel_least_records = 256;
 //! Interval subdivision of a box face to certify E ≠ 0 on it: maximal depth of the quadtree.
 inline constexpr int box_face_max_depth = 14;
-//! Input validation (meshing/input_validation.h): a box of the regularity check narrower than this
+//! Input validation (meshing/inputs/input_validation.h): a box of the regularity check narrower than this
 //! (relative to the widest side of the domain) that is neither excluded nor proved free of
 //! critical points is not bisected further; it is undecided, and looked at for evidence of a
 //! singular point.  A singular point's undecided zone shrinks with the box (the gradient grows
@@ -415,7 +415,7 @@ inline constexpr std::size_t singular_proof_boxes_without_evidence = 16;
 //! most validation_mpfi_box_budget boxes over all undecided boxes.
 inline constexpr std::array<int, 2> validation_mpfi_precisions_bits = {128, 256};
 inline constexpr std::size_t validation_mpfi_box_budget = 4000;
-//! Remeshing a triangle mesh (meshing/input_mesh.h): the default domain box is the bounding box of
+//! Remeshing a triangle mesh (meshing/inputs/input_mesh.h): the default domain box is the bounding box of
 //! the input's vertices with every side pushed out by this fraction of its diagonal, so that the
 //! surface lies well inside it and the clipped Voronoi cells of the samples reach beyond it.
 inline constexpr double input_mesh_box_margin = 0.1;
@@ -448,7 +448,7 @@ inline constexpr std::size_t floor_locations_listed = 10;
 //! fraction of it, so that their witnesses, which the floor would otherwise leave unsettled and
 //! Tri S|Σ wrong, are still inserted.
 inline constexpr double topology_floor_fraction = 0.01;
-//! Opposite-sheet partners (meshing/refinement.h).  After a witness w goes in at
+//! Opposite-sheet partners (meshing/driver/refinement.h).  After a witness w goes in at
 //! distance d from its nearest sample, Σ is searched on the normal line through w within
 //! opposite_sheet_reach·d of w; the nearest other point y found is inserted too if the normals at
 //! w and y make |cos| ≥ opposite_sheet_min_cosine and y is at least opposite_sheet_spacing·|w − y|
@@ -456,7 +456,7 @@ inline constexpr double topology_floor_fraction = 0.01;
 inline constexpr double opposite_sheet_reach = 1.0;
 inline constexpr double opposite_sheet_min_cosine = 0.5;
 inline constexpr double opposite_sheet_spacing = 0.5;
-//! The mesh oracle (meshing/mesh_oracle.h): a point of a triangle mesh within this distance
+//! The mesh oracle (meshing/inputs/mesh_oracle.h): a point of a triangle mesh within this distance
 //! (relative to the box diagonal) of a vertex or an edge of its face gets that vertex's or edge's
 //! normal rather than the face's.
 inline constexpr double mesh_feature_relative_distance = 1e-12;
@@ -537,7 +537,7 @@ inline constexpr std::size_t polynomial_form_max_terms = 4000;
 //! compiled path.)
 inline constexpr double taylor_form_instruction_ratio = 2;
 
-// ---- the gradient-flow certificate (meshing/gradient_flow_certificate.h) ----
+// ---- the gradient-flow certificate (meshing/verify/gradient_flow_certificate.h) ----
 
 //! The tube T = {|E| ≤ ε′} of the flow certificate has ε′ = this factor times ε, the largest bound
 //! of |E| on the mesh, so that the mesh lies in T's interior.
@@ -558,7 +558,7 @@ inline constexpr double flow_min_box_relative_width = 1e-7;
 //! Boxes and rectangles the proofs of (a) and (b) may examine, in all.
 inline constexpr std::size_t flow_box_budget = 8000000;
 //! The normalised function of the gradient-flow certificate, F = E / sqrt(|∇E|² + η²)
-//! (meshing/gradient_flow_certificate.h): η is this times the median of |∇E| over the mesh's
+//! (meshing/verify/gradient_flow_certificate.h): η is this times the median of |∇E| over the mesh's
 //! vertices, small enough that F is close to the signed distance where |∇E| is typical and large
 //! enough that F's interval enclosures stay tight; its tube proofs get at most
 //! flow_normalized_box_budget more boxes (its enclosures are looser than E's, and a mesh that E's
@@ -570,7 +570,7 @@ inline constexpr std::size_t flow_normalized_box_budget = 1000000;
 //! steps (proved or halved) each half of a path may take.
 inline constexpr int flow_segment_attempts = 8;
 inline constexpr int flow_path_steps = 256;
-//! The flow distance bound of one triangle (meshing/flow_distance.h) bisects the grown box of the
+//! The flow distance bound of one triangle (meshing/inputs/flow_distance.h) bisects the grown box of the
 //! triangle down to this many levels (8^depth boxes at most) while a box's lower bound of |∇E| is
 //! not positive.
 inline constexpr int flow_distance_gradient_depth = 2;

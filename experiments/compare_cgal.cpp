@@ -40,7 +40,7 @@
 //! benchmark and distance (whose default δ, 1e-3 of the box diagonal, is no larger) run CGAL with
 //! --cgal-error-bound (default 1e-6; delmesh's points are certified roots to full double
 //! precision); coarsest and demo keep CGAL's default, the setting users meet.
-//! Every mesh is judged by the independent checker (meshing/mesh_checker.h) against the catalog's
+//! Every mesh is judged by the independent checker (meshing/core/mesh_checker.h) against the catalog's
 //! topology.  Output: <out-dir>/compare_cgal.csv, one row per run of every experiment (and the
 //! meshes under <out-dir>/meshes/); distance also writes distance.csv and distance.md.
 
@@ -73,12 +73,12 @@
 #include <unordered_map>
 
 #include "common/errors.h"
-#include "common/peak_memory.h"
 #include "common/huge_page_heap.h"
+#include "common/peak_memory.h"
 #include "experiments/child_process.h"
 #include "experiments/experiment_support.h"
-#include "meshing/del_mesh.h"
-#include "meshing/mesh_io.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/inputs/mesh_io.h"
 #include "symbolic/catalog.h"
 
 namespace {

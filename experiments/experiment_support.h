@@ -24,7 +24,7 @@
 
 #include "common/errors.h"
 #include "experiments/csv_writer.h"
-#include "meshing/mesh_checker.h"
+#include "meshing/core/mesh_checker.h"
 #include "symbolic/compiled_system.h"
 #include "symbolic/surface.h"
 

@@ -1,7 +1,7 @@
 //! \file lambda_sweep.cpp
 //! Theorem 6.1 by experiment: for catalog surfaces (or a surface given by --expr, --box, --name)
 //! and a decreasing sequence of λ, run DelMesh
-//! (no size bound), judge the output with the independent checker (meshing/mesh_checker.h) and
+//! (no size bound), judge the output with the independent checker (meshing/core/mesh_checker.h) and
 //! compare with the theorem's bounds for λ:
 //!   (i)   topology: closed orientable 2-manifold with the catalog's genus per component;
 //!   (ii)  radius-edge ratio ≤ 1+λ (so min angle ≥ arcsin(1/(2+2λ))), roughness ≤ 2β(λ);
@@ -49,9 +49,9 @@
 #include "experiments/sampling/dense_sample.h"
 #include "experiments/sampling/eps_sample.h"
 #include "experiments/sampling/lfs_estimate.h"
-#include "meshing/del_mesh.h"
-#include "meshing/mesh_io.h"
-#include "meshing/theorem_bounds.h"
+#include "meshing/core/theorem_bounds.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/inputs/mesh_io.h"
 #include "symbolic/catalog.h"
 
 namespace {

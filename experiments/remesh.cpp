@@ -1,6 +1,6 @@
 //! \file remesh.cpp
 //! Fig. 13 by experiment (§7 of the paper): DelMesh remeshes closed triangle meshes.  Each input
-//! goes the way of `delmesh mesh --input-mesh FILE`: read_input_mesh (meshing/input_mesh.h:
+//! goes the way of `delmesh mesh --input-mesh FILE`: read_input_mesh (meshing/inputs/input_mesh.h:
 //! triangulated, validated, oriented outward; the box is its bounding box plus the margin), then
 //! del_mesh on a MeshOracle of it with the termination floor --min-spacing-fraction times the
 //! input's median edge length.  It runs twice per input with the same seed: with phase topology
@@ -11,7 +11,7 @@
 //!   NAME_input.off                  the validated input (outward oriented), the left column;
 //!   NAME_topology.off, NAME_final.off  the two outputs;
 //!   NAME_{input,topology,final}_check.json  the independent checker's report on each file as
-//!                                   written (meshing/mesh_checker.h; the keys of delmesh check --json);
+//!                                   written (meshing/core/mesh_checker.h; the keys of delmesh check --json);
 //!   NAME_{topology,final}_stats.json  the statistics record of each run;
 //! and <out-dir>/remesh.csv, one row per input and phase: status, vertices, seconds, insertions
 //! per check, the floor, the checker's quality and topology of input and output, Theorem 6.1's
@@ -40,13 +40,13 @@
 #include "common/huge_page_heap.h"
 #include "common/tolerances.h"
 #include "experiments/experiment_support.h"
-#include "meshing/del_mesh.h"
-#include "meshing/input_mesh.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/mesh_io.h"
-#include "meshing/mesh_oracle.h"
-#include "meshing/theorem_bounds.h"
-#include "meshing/unit_scale.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/core/theorem_bounds.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/driver/scaled_run.h"
+#include "meshing/inputs/input_mesh.h"
+#include "meshing/inputs/mesh_io.h"
+#include "meshing/inputs/mesh_oracle.h"
 
 using namespace delmesh;
 using namespace delmesh::experiments;
@@ -181,7 +181,7 @@ int main(int argc, char** argv) {
         DelMeshOptions options = base;
         options.phase = phase;
         options.min_spacing = min_spacing_fraction * input.median_edge_length;
-        MeshOracle oracle(input.mesh, input.box);  // at unit scale (meshing/unit_scale.h)
+        MeshOracle oracle(input.mesh, input.box);  // at unit scale (meshing/inputs/unit_scale.h)
         DelMeshResult result = del_mesh(oracle, unit_scale_options(options, oracle.scale_exponent()), seconds_validation);
         restore_scale(result, oracle.scale_exponent());
         const fs::path mesh_file = dir / (name + "_" + label + ".off");

@@ -1,7 +1,7 @@
 //! \file input_mesh_fuzzer.cpp
 //! libFuzzer target fuzz_input_mesh: what `delmesh mesh --input-mesh` does with a mesh before
-//! meshing it — validate_input_mesh (meshing/input_mesh.h), then MeshOracle's construction
-//! (meshing/mesh_oracle.h) — on small closed meshes at every scale a double holds, and a few
+//! meshing it — validate_input_mesh (meshing/inputs/input_mesh.h), then MeshOracle's construction
+//! (meshing/inputs/mesh_oracle.h) — on small closed meshes at every scale a double holds, and a few
 //! oracle questions whose answers are known for any closed mesh.
 //!
 //! The input is a compact encoding of a perturbed base shape, so that most inputs are valid meshes
@@ -24,7 +24,7 @@
 //! (InvalidInput: coordinates that overflow, collapse or cross); a valid mesh must then satisfy:
 //!  - MeshOracle's construction throws nothing (validate_input_mesh ensures its preconditions);
 //!  - the oracle's box is the input's times 2^-k, k its scale exponent, and if k is not 0, the
-//!    box's largest side lies in [1, 2) (meshing/unit_scale.h); the questions below are asked at
+//!    box's largest side lies in [1, 2) (meshing/inputs/unit_scale.h); the questions below are asked at
 //!    that scale;
 //!  - the oracle counts the mesh's faces; every vertex lies on Σ (value_sign 0) and the corners of
 //!    the domain box outside it (value_sign +1);
@@ -50,8 +50,8 @@
 #include <vector>
 
 #include "fuzz/fuzz_support.h"
-#include "meshing/input_mesh.h"
-#include "meshing/mesh_oracle.h"
+#include "meshing/inputs/input_mesh.h"
+#include "meshing/inputs/mesh_oracle.h"
 #include "solvers/domain.h"
 
 namespace {

@@ -15,8 +15,8 @@
 #include <string>
 
 #include "fuzz/fuzz_support.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/mesh_io.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/inputs/mesh_io.h"
 
 #ifndef DELMESH_FUZZ_EXTENSION
 #error "DELMESH_FUZZ_EXTENSION (.off, .ply, .obj or .stl) must be defined"

@@ -42,10 +42,10 @@
 #include "apps/output_files.h"
 #include "common/errors.h"
 #include "common/run_limits.h"
-#include "meshing/del_mesh.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/mesh_io.h"
-#include "meshing/input_mesh.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/inputs/input_mesh.h"
+#include "meshing/inputs/mesh_io.h"
 #include "solvers/primitive_registry.h"
 
 namespace py = pybind11;

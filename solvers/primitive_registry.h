@@ -4,7 +4,7 @@
 //! about it — its name, a one-line summary, the builder of its system, the query options it
 //! reads and which it requires, the domain it searches, make_query (options and box → parameters
 //! and domain) and a query with a known answer.  `delmesh solve` (its option checks, dispatch and
-//! help), the mesher's oracle (meshing/surface_oracle.h), bench_solvers and docs/cli.md's table of
+//! help), the mesher's oracle (meshing/core/surface_oracle.h), bench_solvers and docs/cli.md's table of
 //! primitives all read this registry; there is no other list of primitives.
 //!
 //! The registry holds, in order, the rows of builtin_primitives() (solvers/primitives.cpp: the

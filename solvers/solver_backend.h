@@ -2,7 +2,7 @@
 //! \file solver_backend.h
 //! Which certified solver answers a primitive's system: a query of `delmesh solve`
 //! (solvers/primitive_query.h: QuerySolveOptions::solver) and the square systems of an implicit
-//! surface's oracle (meshing/implicit_oracle.h; DelMeshOptions::solver), in a header of its own so
+//! surface's oracle (meshing/inputs/implicit_oracle.h; DelMeshOptions::solver), in a header of its own so
 //! that the mesher's option header need not include the oracle's.
 
 #include <ostream>

@@ -10,8 +10,8 @@
 // from it, h(x) = 0.02·diag + 0.5·|x_z − z_mid|.
 #include <cmath>
 
-#include "meshing/check_registry.h"
-#include "meshing/detail/vec3.h"
+#include "meshing/checks/check_registry.h"
+#include "meshing/core/detail/vec3.h"
 
 namespace delmesh {
 

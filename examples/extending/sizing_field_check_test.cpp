@@ -10,11 +10,11 @@
 
 #include <boost/test/unit_test.hpp>
 
-#include "meshing/certificate.h"
-#include "meshing/check_registry.h"
-#include "meshing/del_mesh.h"
-#include "meshing/detail/vec3.h"
-#include "meshing/quality.h"
+#include "meshing/checks/check_registry.h"
+#include "meshing/checks/quality.h"
+#include "meshing/core/detail/vec3.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/verify/certificate.h"
 #include "symbolic/catalog.h"
 #include "tests/meshing/check_fixture.h"
 

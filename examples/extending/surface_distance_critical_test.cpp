@@ -11,7 +11,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
-#include "meshing/implicit_oracle.h"
+#include "meshing/inputs/implicit_oracle.h"
 #include "solvers/primitive_registry.h"
 #include "symbolic/catalog.h"
 

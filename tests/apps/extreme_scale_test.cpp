@@ -13,8 +13,8 @@
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>
 
-#include "meshing/mesh_checker.h"
-#include "meshing/mesh_io.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/inputs/mesh_io.h"
 #include "tests/apps/run_delmesh.h"
 #include "tests/meshing/known_meshes.h"
 

@@ -6,8 +6,8 @@
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>
 
-#include "meshing/input_mesh.h"
-#include "meshing/mesh_io.h"
+#include "meshing/inputs/input_mesh.h"
+#include "meshing/inputs/mesh_io.h"
 #include "tests/apps/run_delmesh.h"
 
 using namespace delmesh::test;

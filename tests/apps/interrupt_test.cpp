@@ -20,7 +20,7 @@
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>
 
-#include "meshing/mesh_io.h"
+#include "meshing/inputs/mesh_io.h"
 #include "run_delmesh.h"
 
 using namespace delmesh;

@@ -7,12 +7,12 @@
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>
 
-#include "meshing/mesh_checker.h"
-#include "meshing/mesh_io.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/inputs/mesh_io.h"
+#include "symbolic/surface.h"
 #include "tests/apps/run_delmesh.h"
 #include "tests/meshing/check_fixture.h"
 #include "tests/meshing/mesh_io_vtp_reader.h"
-#include "symbolic/surface.h"
 
 using namespace delmesh::test;
 

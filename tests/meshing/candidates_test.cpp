@@ -1,12 +1,12 @@
-// Tests of meshing/detail/candidates.h: undecided regions become candidate witnesses or unsettled
+// Tests of meshing/checks/detail/candidates.h: undecided regions become candidate witnesses or unsettled
 // findings, never nothing, and witnesses come furthest from the sample first.
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
 
 #include "check_fixture.h"
-#include "meshing/detail/candidates.h"
-#include "meshing/detail/vec3.h"
+#include "meshing/checks/detail/candidates.h"
+#include "meshing/core/detail/vec3.h"
 
 using namespace delmesh;
 using delmesh::detail::WitnessCollector;

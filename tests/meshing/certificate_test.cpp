@@ -4,12 +4,12 @@
 #include <sstream>
 
 #include "common/errors.h"
-#include "meshing/certificate.h"
-#include "meshing/del_mesh.h"
-#include "meshing/delaunay.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/restricted_delaunay.h"
-#include "meshing/implicit_oracle.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/inputs/implicit_oracle.h"
+#include "meshing/verify/certificate.h"
+#include "meshing/voronoi/delaunay.h"
+#include "meshing/voronoi/restricted_delaunay.h"
 #include "symbolic/catalog.h"
 
 using namespace delmesh;

@@ -11,12 +11,12 @@
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>
 
-#include "meshing/del_mesh.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/restricted_delaunay.h"
-#include "meshing/surface_mesh.h"
-#include "meshing/implicit_oracle.h"
-#include "meshing/theorem_bounds.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/core/surface_mesh.h"
+#include "meshing/core/theorem_bounds.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/inputs/implicit_oracle.h"
+#include "meshing/voronoi/restricted_delaunay.h"
 #include "symbolic/catalog.h"
 
 namespace delmesh::test {

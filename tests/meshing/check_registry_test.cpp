@@ -1,4 +1,4 @@
-// Tests of the check registry (meshing/check_registry.h): the paper's rows in the driver's order
+// Tests of the check registry (meshing/checks/check_registry.h): the paper's rows in the driver's order
 // with their kinds, faces, rules and phases; VorEdge's may_fire; registration after the registry
 // was read and unknown names are refused; the certificate times exactly the topology rows.
 
@@ -10,8 +10,8 @@
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
-#include "meshing/certificate.h"
-#include "meshing/check_registry.h"
+#include "meshing/checks/check_registry.h"
+#include "meshing/verify/certificate.h"
 #include "symbolic/catalog.h"
 
 using namespace delmesh;

@@ -6,13 +6,13 @@
 
 #include "check_fixture.h"
 #include "common/errors.h"
-#include "meshing/del_mesh.h"
-#include "meshing/detail/vec3.h"
-#include "meshing/implicit_oracle.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/refinement.h"
-#include "meshing/sample_topology.h"
-#include "meshing/theorem_bounds.h"
+#include "meshing/core/detail/vec3.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/core/theorem_bounds.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/driver/refinement.h"
+#include "meshing/driver/sample_topology.h"
+#include "meshing/inputs/implicit_oracle.h"
 #include "symbolic/catalog.h"
 
 using namespace delmesh;

@@ -1,6 +1,6 @@
 #include <boost/test/unit_test.hpp>
 
-#include "meshing/delaunay.h"
+#include "meshing/voronoi/delaunay.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "check_fixture.h"
-#include "meshing/detail/vec3.h"
-#include "meshing/facet_contact.h"
+#include "meshing/checks/facet_contact.h"
+#include "meshing/core/detail/vec3.h"
 
 using namespace delmesh;
 using delmesh::test::CheckFixture;

@@ -3,10 +3,10 @@
 #include <cmath>
 
 #include "check_fixture.h"
-#include "forwarding_oracle.h"
 #include "common/tolerances.h"
-#include "meshing/detail/vec3.h"
-#include "meshing/facet_cycle.h"
+#include "forwarding_oracle.h"
+#include "meshing/checks/facet_cycle.h"
+#include "meshing/core/detail/vec3.h"
 
 using namespace delmesh;
 using delmesh::test::CheckFixture;

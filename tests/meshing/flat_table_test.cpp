@@ -1,4 +1,4 @@
-#include "meshing/detail/flat_table.h"
+#include "meshing/core/detail/flat_table.h"
 
 #include <map>
 #include <random>

@@ -1,4 +1,4 @@
-#include "meshing/flow_distance.h"
+#include "meshing/inputs/flow_distance.h"
 
 #include <cmath>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "meshing/folded_vertices.h"
+#include "meshing/inputs/folded_vertices.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include <boost/test/unit_test.hpp>
 
-#include "meshing/input_mesh.h"
+#include "meshing/inputs/input_mesh.h"
 #include "tests/meshing/known_meshes.h"
 #include "tests/temp_dir.h"
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "meshing/surface_oracle.h"
+#include "meshing/core/surface_oracle.h"
 
 namespace delmesh::test {
 

@@ -1,4 +1,4 @@
-#include "meshing/gradient_flow_certificate.h"
+#include "meshing/verify/gradient_flow_certificate.h"
 
 #include <cmath>
 #include <string>
@@ -6,8 +6,8 @@
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
-#include "meshing/del_mesh.h"
-#include "meshing/mesh_checker.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/driver/del_mesh.h"
 #include "symbolic/catalog.h"
 #include "tests/meshing/known_meshes.h"
 

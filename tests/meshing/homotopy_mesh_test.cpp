@@ -8,10 +8,10 @@
 
 #include "check_fixture.h"
 #include "common/tolerances.h"
-#include "meshing/del_mesh.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/implicit_oracle.h"
-#include "meshing/theorem_bounds.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/core/theorem_bounds.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/inputs/implicit_oracle.h"
 #include "solvers/query_geometry.h"
 #include "symbolic/catalog.h"
 

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "meshing/detail/vec3.h"
 #include "common/errors.h"
-#include "meshing/implicit_oracle.h"
+#include "meshing/core/detail/vec3.h"
+#include "meshing/inputs/implicit_oracle.h"
 #include "solvers/domain.h"
 #include "solvers/query_geometry.h"
 

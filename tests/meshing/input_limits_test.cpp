@@ -1,14 +1,14 @@
 // Tests that the phases before meshing read the command's limits (common/run_limits.h):
-// validate_input (meshing/input_validation.h) and the mesh readers (meshing/detail/
-// mesh_readers.h) throw RunStopped once they have passed, and run as before outside a scope.
+// validate_input (meshing/inputs/input_validation.h) and the mesh readers (meshing/inputs/
+// detail/mesh_readers.h) throw RunStopped once they have passed, and run as before outside a scope.
 #include <atomic>
 #include <string>
 
 #include <boost/test/unit_test.hpp>
 
 #include "common/run_limits.h"
-#include "meshing/detail/mesh_readers.h"
-#include "meshing/input_validation.h"
+#include "meshing/inputs/detail/mesh_readers.h"
+#include "meshing/inputs/input_validation.h"
 #include "symbolic/catalog.h"
 
 using namespace delmesh;

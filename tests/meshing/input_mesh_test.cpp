@@ -1,4 +1,4 @@
-#include "meshing/input_mesh.h"
+#include "meshing/inputs/input_mesh.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -11,7 +11,7 @@
 
 #include "common/errors.h"
 #include "common/tolerances.h"
-#include "meshing/mesh_io.h"
+#include "meshing/inputs/mesh_io.h"
 #include "tests/meshing/known_meshes.h"
 #include "tests/temp_dir.h"
 

@@ -5,10 +5,10 @@
 
 #include "common/errors.h"
 #include "common/tolerances.h"
-#include "meshing/certificate.h"
-#include "meshing/del_mesh.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/input_validation.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/inputs/input_validation.h"
+#include "meshing/verify/certificate.h"
 #include "symbolic/catalog.h"
 
 using namespace delmesh;

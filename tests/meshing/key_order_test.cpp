@@ -1,6 +1,6 @@
-#include "meshing/detail/key_order.h"
+#include "meshing/core/detail/key_order.h"
 
-#include "meshing/delaunay.h"
+#include "meshing/voronoi/delaunay.h"
 
 #include <algorithm>
 #include <limits>

@@ -10,7 +10,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "meshing/surface_mesh.h"
+#include "meshing/core/surface_mesh.h"
 
 namespace delmesh::test {
 

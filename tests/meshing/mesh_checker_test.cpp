@@ -1,4 +1,4 @@
-#include "meshing/mesh_checker.h"
+#include "meshing/core/mesh_checker.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -11,7 +11,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
-#include "meshing/mesh_io.h"
+#include "meshing/inputs/mesh_io.h"
 #include "tests/meshing/known_meshes.h"
 
 using namespace delmesh;

@@ -1,4 +1,4 @@
-#include "meshing/mesh_io.h"
+#include "meshing/inputs/mesh_io.h"
 
 #include <cmath>
 #include <cstdint>
@@ -16,7 +16,7 @@
 #include <CGAL/IO/STL.h>
 
 #include "common/errors.h"
-#include "meshing/mesh_checker.h"
+#include "meshing/core/mesh_checker.h"
 #include "tests/meshing/known_meshes.h"
 #include "tests/meshing/mesh_io_vtp_reader.h"
 #include "tests/temp_dir.h"

@@ -1,6 +1,6 @@
 #pragma once
 //! \file mesh_io_vtp_reader.h
-//! A reader of the ASCII .vtp files write_mesh writes (meshing/mesh_io.h), for the tests: it
+//! A reader of the ASCII .vtp files write_mesh writes (meshing/inputs/mesh_io.h), for the tests: it
 //! checks the XML skeleton of VTK's PolyData format (root element, piece counts, matching
 //! DataArray tags) and returns the arrays as numbers.  Not a general VTK reader.
 

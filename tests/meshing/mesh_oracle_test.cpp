@@ -1,4 +1,4 @@
-// The surface oracle of a triangle mesh (meshing/mesh_oracle.h): each primitive on a constructed
+// The surface oracle of a triangle mesh (meshing/inputs/mesh_oracle.h): each primitive on a constructed
 // mesh whose answer is known, and an end-to-end remesh of a small closed mesh.
 #include <boost/test/unit_test.hpp>
 
@@ -12,11 +12,11 @@
 
 #include "common/errors.h"
 #include "known_meshes.h"
-#include "meshing/del_mesh.h"
-#include "meshing/input_mesh.h"
-#include "meshing/detail/vec3.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/mesh_oracle.h"
+#include "meshing/core/detail/vec3.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/inputs/input_mesh.h"
+#include "meshing/inputs/mesh_oracle.h"
 #include "solvers/query_geometry.h"
 
 using namespace delmesh;

@@ -1,4 +1,4 @@
-#include "meshing/detail/parallel_for.h"
+#include "meshing/core/detail/parallel_for.h"
 
 #include <atomic>
 #include <stdexcept>

@@ -1,12 +1,12 @@
-// Tests of the progress reports (meshing/progress_report.h): their text, and the reports of a
+// Tests of the progress reports (meshing/core/progress_report.h): their text, and the reports of a
 // torus run through del_mesh — in order of time, with non-decreasing points, the phases in order.
 #include <boost/test/unit_test.hpp>
 
 #include <sstream>
 #include <vector>
 
-#include "meshing/del_mesh.h"
-#include "meshing/progress_report.h"
+#include "meshing/core/progress_report.h"
+#include "meshing/driver/del_mesh.h"
 #include "symbolic/catalog.h"
 
 using namespace delmesh;

@@ -1,4 +1,4 @@
-#include "meshing/protecting_balls.h"
+#include "meshing/inputs/protecting_balls.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
-#include "meshing/input_mesh.h"
+#include "meshing/inputs/input_mesh.h"
 #include "tests/meshing/feature_meshes.h"
 #include "tests/meshing/known_meshes.h"
 

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "check_fixture.h"
-#include "meshing/detail/vec3.h"
-#include "meshing/quality.h"
+#include "meshing/checks/quality.h"
+#include "meshing/core/detail/vec3.h"
 
 using namespace delmesh;
 using namespace delmesh::detail;  // the Vec3 operators

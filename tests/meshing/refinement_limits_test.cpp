@@ -1,4 +1,4 @@
-// Tests of the limits of meshing/refinement.h outside Refinement::run(): the records computed
+// Tests of the limits of meshing/driver/refinement.h outside Refinement::run(): the records computed
 // when Del S changes everywhere (queue_everything_within) and the seed insertion stop once the
 // deadline has passed or the interrupt flag is set.
 #include <boost/test/unit_test.hpp>
@@ -6,9 +6,9 @@
 #include <atomic>
 #include <chrono>
 
-#include "meshing/implicit_oracle.h"
-#include "meshing/refinement.h"
-#include "meshing/sample_topology.h"
+#include "meshing/driver/refinement.h"
+#include "meshing/driver/sample_topology.h"
+#include "meshing/inputs/implicit_oracle.h"
 #include "symbolic/catalog.h"
 
 using namespace delmesh;

@@ -8,8 +8,8 @@
 
 #include "check_fixture.h"
 #include "common/errors.h"
-#include "meshing/detail/vec3.h"
-#include "meshing/restricted_delaunay.h"
+#include "meshing/core/detail/vec3.h"
+#include "meshing/voronoi/restricted_delaunay.h"
 #include "sliver_fixture.h"
 
 using namespace delmesh;

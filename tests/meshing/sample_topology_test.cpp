@@ -4,11 +4,11 @@
 
 #include "common/errors.h"
 #include "common/tolerances.h"
-#include "meshing/detail/vec3.h"
-#include "meshing/del_mesh.h"
-#include "meshing/implicit_oracle.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/sample_topology.h"
+#include "meshing/core/detail/vec3.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/driver/sample_topology.h"
+#include "meshing/inputs/implicit_oracle.h"
 #include "symbolic/catalog.h"
 
 using namespace delmesh;

@@ -1,4 +1,4 @@
-#include "meshing/self_intersection_repair.h"
+#include "meshing/inputs/self_intersection_repair.h"
 
 #include <cmath>
 #include <string>

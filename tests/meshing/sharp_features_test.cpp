@@ -1,4 +1,4 @@
-#include "meshing/sharp_features.h"
+#include "meshing/inputs/sharp_features.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
-#include "meshing/folded_vertices.h"
+#include "meshing/inputs/folded_vertices.h"
 #include "tests/meshing/feature_meshes.h"
 #include "tests/meshing/known_meshes.h"
 

@@ -4,8 +4,8 @@
 
 #include "check_fixture.h"
 #include "common/tolerances.h"
-#include "meshing/detail/vec3.h"
-#include "meshing/silhouette.h"
+#include "meshing/checks/silhouette.h"
+#include "meshing/core/detail/vec3.h"
 
 using namespace delmesh;
 using delmesh::test::CheckFixture;

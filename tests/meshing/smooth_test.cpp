@@ -5,9 +5,9 @@
 #include <map>
 
 #include "check_fixture.h"
-#include "meshing/detail/vec3.h"
-#include "meshing/smooth.h"
-#include "meshing/theorem_bounds.h"
+#include "meshing/checks/smooth.h"
+#include "meshing/core/detail/vec3.h"
+#include "meshing/core/theorem_bounds.h"
 
 using namespace delmesh;
 using namespace delmesh::detail;  // the Vec3 operators

@@ -1,4 +1,4 @@
-#include "meshing/theorem_bounds.h"
+#include "meshing/core/theorem_bounds.h"
 
 #include <cmath>
 #include <functional>

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "check_fixture.h"
-#include "meshing/topo_disk.h"
+#include "meshing/checks/topo_disk.h"
 
 using namespace delmesh;
 using delmesh::test::CheckFixture;

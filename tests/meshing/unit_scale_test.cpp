@@ -1,15 +1,15 @@
-// Remeshing at unit scale (meshing/unit_scale.h): the exponent, the exact conversions in and out,
+// Remeshing at unit scale (meshing/inputs/unit_scale.h): the exponent, the exact conversions in and out,
 // and MeshOracle on meshes of size 1e-100 and 1e80 answering as on the unit-size mesh.
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
 #include <memory>
 
-#include "meshing/del_mesh.h"
-#include "meshing/input_mesh.h"
-#include "meshing/mesh_checker.h"
-#include "meshing/mesh_oracle.h"
-#include "meshing/unit_scale.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/driver/del_mesh.h"
+#include "meshing/driver/scaled_run.h"
+#include "meshing/inputs/input_mesh.h"
+#include "meshing/inputs/mesh_oracle.h"
 
 using namespace delmesh;
 

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "check_fixture.h"
-#include "meshing/detail/vec3.h"
-#include "meshing/vor_edge.h"
+#include "meshing/checks/vor_edge.h"
+#include "meshing/core/detail/vec3.h"
 
 using namespace delmesh;
 using delmesh::test::CheckFixture;

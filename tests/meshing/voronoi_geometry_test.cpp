@@ -4,10 +4,10 @@
 #include <cmath>
 
 #include "common/tolerances.h"
-#include "meshing/detail/convex_polytope.h"
-#include "meshing/detail/vec3.h"
-#include "meshing/restricted_delaunay.h"
-#include "meshing/voronoi_geometry.h"
+#include "meshing/core/detail/vec3.h"
+#include "meshing/voronoi/detail/convex_polytope.h"
+#include "meshing/voronoi/restricted_delaunay.h"
+#include "meshing/voronoi/voronoi_geometry.h"
 #include "sliver_fixture.h"
 
 using namespace delmesh;

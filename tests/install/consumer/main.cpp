@@ -3,8 +3,8 @@
 #include <iostream>
 #include <vector>
 
-#include "meshing/del_mesh.h"
-#include "meshing/mesh_checker.h"
+#include "meshing/core/mesh_checker.h"
+#include "meshing/driver/del_mesh.h"
 #include "symbolic/catalog.h"
 
 int main() {

@@ -560,11 +560,13 @@ inline constexpr std::size_t flow_box_budget = 8000000;
 //! The normalised function of the gradient-flow certificate, F = E / sqrt(|∇E|² + η²)
 //! (meshing/verify/gradient_flow_certificate.h): η is this times the median of |∇E| over the mesh's
 //! vertices, small enough that F is close to the signed distance where |∇E| is typical and large
-//! enough that F's interval enclosures stay tight; its tube proofs get at most
-//! flow_normalized_box_budget more boxes (its enclosures are looser than E's, and a mesh that E's
-//! flow could not certify should not cost a run much more).
+//! enough that F's interval enclosures stay tight; its tube proofs get flow_normalized_box_budget
+//! more boxes per round, and a round that leaves less unexplored volume than it began with earns
+//! the next, up to flow_normalized_box_rounds rounds (F's enclosures are looser than E's: delmesh's
+//! chair needs 4 rounds, about 5 s; a proof that stops deciding volume stops after one round).
 inline constexpr double flow_normalized_eta_relative = 0.1;
 inline constexpr std::size_t flow_normalized_box_budget = 1000000;
+inline constexpr std::size_t flow_normalized_box_rounds = 8;
 //! First directions tried for a critical point's counting path (along ∇E, then perturbed) when
 //! the path passes through an edge or vertex of the mesh or cannot be proved monotone; and the
 //! steps (proved or halved) each half of a path may take.

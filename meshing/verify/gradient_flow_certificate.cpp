@@ -5,7 +5,8 @@
 //  4. (e) the critical points of a height function on Σ and one counting path along the flow through each;
 //  5. the Hausdorff bound ε/G and the per-triangle bounds.
 // Steps 2–5 run with the flow of E, and again with that of the normalised function F when a
-// condition that depends on the function was not proved with E.
+// condition that depends on the function was not proved with E; then once more with F and the
+// one-sided tube if F's flow did not prove such a condition either.
 #include "meshing/verify/gradient_flow_certificate.h"
 
 #include <algorithm>
@@ -60,18 +61,46 @@ struct Verdict {
 
 IBox interval_point(const Point3& p) { return {Interval(p.x()), Interval(p.y()), Interval(p.z())}; }
 
+//! T = {lower ≤ E ≤ upper}, lower < 0 < upper.
+struct Tube {
+  double lower, upper;
+  //! The interval lies above or below T (proved).
+  bool outside(const Interval& v) const { return finite(v) && (v.inf() > upper || v.sup() < lower); }
+  //! The interval lies in T (proved).
+  bool holds(const Interval& v) const { return finite(v) && v.inf() >= lower && v.sup() <= upper; }
+  std::string text() const;
+};
+
 //! The certificate's state: the system, the limits, the counters.
 class FlowProof {
  public:
-  //! `function`'s flow, in B = `box`; at most `box_limit` boxes in all (counted in out.boxes).
+  //! `function`'s flow, in B = `box`: at most `round_budget` more boxes than out.boxes holds now
+  //! (counted in out.boxes), in up to `rounds` rounds of that many (see next_box).
   FlowProof(const Surface& function, const Box3& box, const FlowCertificateOptions& options, FlowCertificate& out,
-            std::size_t box_limit)
-      : distance_(function), box_(box), options_(options), out_(out), box_limit_(box_limit) {
+            std::size_t round_budget, std::size_t rounds)
+      : distance_(function),
+        box_(box),
+        options_(options),
+        out_(out),
+        round_budget_(round_budget),
+        box_limit_(out.boxes + round_budget),
+        max_rounds_(rounds) {
     for (int k = 0; k < 3; ++k) domain_width_ = std::max(domain_width_, box.hi[k] - box.lo[k]);
   }
 
   const CompiledSystem& system() const { return distance_.system(); }
   const FlowDistance& distance() const { return distance_; }
+  //! The rounds of the box budget begun so far.
+  std::size_t rounds() const { return rounds_; }
+
+  //! The function is 2^−k E / sqrt(|∇E|² + η²) for the E of `system_of_E` (which must outlive
+  //! this), k its Surface's normalization_exponent(): the tube proofs also use
+  //! detail::NormalizedEnclosure from E's enclosures, scaled by 2^−k (exactly).
+  void compose_from(const CompiledSystem& system_of_E, double eta, int normalization_exponent) {
+    system_of_E_ = &system_of_E;
+    eta_ = eta;
+    scale_ = std::ldexp(1.0, -normalization_exponent);
+  }
 
   //! Throws Stopped once the interrupt flag or the deadline is seen.
   void poll() const {
@@ -86,69 +115,62 @@ class FlowProof {
   }
 
   //! Records a value E takes on the mesh (up to rounding): largest_value_met() estimates max |E|
-  //! over M from below, and the pieces' bounds are refined towards it.
+  //! over M from below, least_value_met() and greatest_value_met() min E and max E (each 0 at
+  //! least), and the pieces' bounds are refined towards them.
   void met_value(double e) {
-    if (std::isfinite(e)) largest_value_met_ = std::max(largest_value_met_, std::abs(e));
+    if (!std::isfinite(e)) return;
+    largest_value_met_ = std::max(largest_value_met_, std::abs(e));
+    least_value_met_ = std::min(least_value_met_, e);
+    greatest_value_met_ = std::max(greatest_value_met_, e);
   }
   double largest_value_met() const { return largest_value_met_; }
+  double least_value_met() const { return least_value_met_; }
+  double greatest_value_met() const { return greatest_value_met_; }
 
-  void count_box() {
-    if (++out_.boxes > box_limit_)
-      throw Verdict{FlowCertificateStatus::undecided,
-                    "the budget of " + std::to_string(box_limit_) + " boxes of the tube proofs ran out", std::nullopt};
-  }
+  //! The tube is {a ≤ E ≤ b} with a and b from min E and max E on M separately (file comment, "The
+  //! one-sided tube"), instead of ±ε′.
+  void make_one_sided() { one_sided_ = true; }
+  bool one_sided() const { return one_sided_; }
 
-  //! (a): |E| > tube on every face of B, by subdividing each face (flat boxes).
-  void prove_faces(double tube) {
+  //! (a): E ∉ [lower, upper] on every face of B, by subdividing each face (flat boxes).
+  void prove_faces(const Tube& tube) {
     const double min_width = tolerances::flow_min_box_relative_width * domain_width_;
+    const std::string failure = "the tube " + tube.text() + " may reach the boundary of the box";
     for (int axis = 0; axis < 3; ++axis)
       for (double fixed : {box_.lo[axis], box_.hi[axis]}) {
-        std::vector<std::array<double, 6>> stack;
         std::array<double, 6> face{box_.lo[0], box_.hi[0], box_.lo[1], box_.hi[1], box_.lo[2], box_.hi[2]};
         face[2 * axis] = face[2 * axis + 1] = fixed;
-        stack.push_back(face);
+        std::vector<std::array<double, 6>> stack{face};
+        begin_stack(stack);
         while (!stack.empty()) {
           const auto b = next_box(stack);
-          const IBox x = interval_box(b);
-          Interval e;
-          {
-            RoundingGuard guard;
-            e = Enclosure(system(), x).value();
-          }
-          if (e.inf() > tube || e.sup() < -tube) continue;
-          split_or_fail(b, stack, min_width, "the tube |E| <= " + text(tube) + " may reach the boundary of the box");
+          if (examine(interval_box(b), tube, nullptr).outside_tube) continue;
+          split_or_fail(b, stack, min_width, failure);
         }
       }
   }
 
-  //! (b): |∇E| ≥ G on T = {|E| ≤ tube}; returns G.
-  double prove_gradient(double tube) {
+  //! (b): |∇E| ≥ G on T; returns G.  A box meeting T is kept once its lower bound
+  //! ℓ > 0 reaches tolerances::flow_gradient_quality times the smaller of |∇E| at its centre and
+  //! `reference`, the least |∇E| met so far at points of T (M's vertices, then the centres of
+  //! boxes with E(c) ∈ T proved): where |∇E| is well above its least value on T, a
+  //! looser ℓ does not lower G.
+  double prove_gradient(const Tube& tube, double reference) {
     const double min_width = tolerances::flow_min_box_relative_width * domain_width_;
+    const std::string failure = "the gradient of E may vanish in the tube " + tube.text();
     double least = std::numeric_limits<double>::infinity();
     std::vector<std::array<double, 6>> stack{{box_.lo[0], box_.hi[0], box_.lo[1], box_.hi[1], box_.lo[2], box_.hi[2]}};
+    begin_stack(stack);
     while (!stack.empty()) {
       const auto b = next_box(stack);
       const IBox x = interval_box(b);
-      const double width = width_of(x);
-      double bound = 0, at_centre = 0;
-      bool outside_tube = false;
-      {
-        RoundingGuard guard;
-        const Enclosure en(system(), x);
-        const Interval e = en.value();
-        outside_tube = e.inf() > tube || e.sup() < -tube;
-        if (!outside_tube) {
-          at_centre = std::sqrt(magnitude(en.vc[1]) * magnitude(en.vc[1]) + magnitude(en.vc[2]) * magnitude(en.vc[2]) +
-                                magnitude(en.vc[3]) * magnitude(en.vc[3]));
-          bound = detail::gradient_lower_bound(en);
-        }
-      }
-      if (outside_tube) continue;
-      if (bound > 0 && (bound >= tolerances::flow_gradient_quality * at_centre || width < min_width)) {
-        least = std::min(least, bound);
+      const BoxFacts f = examine(x, tube, &reference);
+      if (f.outside_tube) continue;
+      if (f.bound > 0 && (f.bound >= f.wanted || width_of(x) < min_width)) {
+        least = std::min(least, f.bound);
         continue;
       }
-      split_or_fail(b, stack, min_width, "the gradient of E may vanish in the tube |E| <= " + text(tube));
+      split_or_fail(b, stack, min_width, failure);
     }
     return least;
   }
@@ -161,10 +183,95 @@ class FlowProof {
   }
 
  private:
-  //! Takes the next box (lo, hi per axis) off the stack, after the limits and the budget.
+  //! What one box of B gave.
+  struct BoxFacts {
+    bool outside_tube = false;  //!< the box lies outside T, proved
+    double bound = 0;           //!< a lower bound of |∇function| on the box (0: none)
+    double wanted = 0;          //!< the bound that keeps the box (prove_gradient)
+  };
+
+  //! The enclosures of one box: whether it lies outside the tube and, unless it does or
+  //! `reference` is null, a lower bound of the gradient's length, with `reference` lowered to
+  //! |∇function| at the centre when the function is proved within the tube there.  With
+  //! compose_from, the composed enclosures come first and the function's own (natural and
+  //! mean-value forms of its symbolic derivatives) only when those do not decide the box; where
+  //! both are computed the bounds are met.
+  BoxFacts examine(const IBox& x, const Tube& tube, double* reference) const {
+    BoxFacts f;
+    RoundingGuard guard;
+    const auto outside = [&tube](const Interval& v) { return tube.outside(v); };
+    const auto within = [&tube](const Interval& v) { return tube.holds(v); };
+    const auto wanted = [&](double at_centre, const Interval& at_centre_value) {
+      if (within(at_centre_value) && at_centre > 0 && at_centre < *reference) *reference = at_centre;
+      return tolerances::flow_gradient_quality * std::min(at_centre, *reference);
+    };
+    Interval value = Interval::largest();
+    bool have_wanted = false;
+    if (system_of_E_) {
+      const detail::NormalizedEnclosure composed(*system_of_E_, x, eta_);
+      const Interval scale(scale_);
+      value = composed.value() * scale;
+      if (outside(value)) {
+        f.outside_tube = true;
+        return f;
+      }
+      if (reference && composed.usable) {
+        const P3 g = composed.centre_gradient(*system_of_E_);
+        f.wanted = wanted(scale_ * std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]), composed.value_at_centre() * scale);
+        have_wanted = true;
+        f.bound = scale_ * detail::gradient_lower_bound(composed, g, f.wanted / scale_);
+        if (f.bound > 0 && f.bound >= f.wanted) return f;
+      }
+    }
+    const Enclosure own(system(), x);
+    f.outside_tube = outside(detail::meet(value, own.value()));
+    if (f.outside_tube || !reference) return f;
+    if (!have_wanted) {
+      const double at_centre = std::sqrt(magnitude(own.vc[1]) * magnitude(own.vc[1]) +
+                                         magnitude(own.vc[2]) * magnitude(own.vc[2]) +
+                                         magnitude(own.vc[3]) * magnitude(own.vc[3]));
+      f.wanted = wanted(at_centre, own.vc[0]);
+    }
+    f.bound = std::max(f.bound, detail::gradient_lower_bound(own, f.wanted));
+    return f;
+  }
+
+  //! The measure of a box of a stack: the product of its sides of positive length (the faces'
+  //! boxes are flat).
+  static double measure(const std::array<double, 6>& b) {
+    double m = 1;
+    for (int k = 0; k < 3; ++k)
+      if (b[2 * k + 1] > b[2 * k]) m *= b[2 * k + 1] - b[2 * k];
+    return m;
+  }
+
+  //! A new subdivision starts: its unexplored measure is the root's.
+  void begin_stack(const std::vector<std::array<double, 6>>& stack) {
+    unexplored_before_ = 0;
+    for (const auto& b : stack) unexplored_before_ += measure(b);
+  }
+
+  //! Takes the next box (lo, hi per axis) off the stack, after the limits and the budget.  When a
+  //! round of the budget is used up, another begins if fewer than the allowed rounds have begun
+  //! and the stack's unexplored measure is below what it was when the round began (or when this
+  //! subdivision began, if that was later); otherwise the budget has run out (undecided).
   std::array<double, 6> next_box(std::vector<std::array<double, 6>>& stack) {
     poll();
-    count_box();
+    if (++out_.boxes > box_limit_) {
+      double unexplored = 0;
+      for (const auto& b : stack) unexplored += measure(b);
+      if (rounds_ < max_rounds_ && unexplored < unexplored_before_) {
+        ++rounds_;
+        box_limit_ += round_budget_;
+        unexplored_before_ = unexplored;
+      } else {
+        throw Verdict{FlowCertificateStatus::undecided,
+                      "the budget of " + std::to_string(rounds_) + " x " + std::to_string(round_budget_) +
+                          " boxes of the tube proofs ran out" +
+                          (rounds_ < max_rounds_ ? " (the last round left no less unexplored volume)" : ""),
+                      std::nullopt};
+      }
+    }
     const auto b = stack.back();
     stack.pop_back();
     return b;
@@ -198,10 +305,22 @@ class FlowProof {
   const FlowCertificateOptions& options_;
   FlowCertificate& out_;
   double domain_width_ = 0;
-  double largest_value_met_ = 0;
+  double largest_value_met_ = 0, least_value_met_ = 0, greatest_value_met_ = 0;
+  bool one_sided_ = false;
+  const CompiledSystem* system_of_E_ = nullptr;
+  double eta_ = 0, scale_ = 1;
+  std::size_t round_budget_;
   std::size_t box_limit_;
+  std::size_t max_rounds_;
+  std::size_t rounds_ = 1;
+  double unexplored_before_ = 0;
   mutable std::uint32_t polls_ = 0;
 };
+
+std::string Tube::text() const {
+  if (lower == -upper) return "|E| <= " + FlowProof::text(upper);
+  return FlowProof::text(lower) + " <= E <= " + FlowProof::text(upper);
+}
 
 // ---- 1. the soup ----
 
@@ -272,9 +391,11 @@ Orientation orient(const std::vector<std::array<std::size_t, 3>>& triangles) {
 
 // ---- 2. the triangles ----
 
-//! What one triangle gave: the bound of |E| on it and the sign of its flux (0: undecided).
+//! What one triangle gave: the bound of |E| on it, bounds of min E and max E, and the sign of its
+//! flux (0: undecided).
 struct TriangleProof {
   double e_bound = 0;
+  double lower = 0, upper = 0;
   int sign = 0;
   P3 undecided_at{};
 };
@@ -298,12 +419,17 @@ TriangleProof prove_triangle(FlowProof& proof, const Point3& a, const Point3& b,
     const Interval flux = en.directional(triangle.normal());
     const int sign = certainly_nonzero(flux) && finite(flux) ? (flux.inf() > 0 ? 1 : -1) : 0;
     proof.met_value(detail::centroid_value(proof.system(), corner));
-    const bool tight = magnitude(e) <= tolerances::flow_epsilon_slack * proof.largest_value_met() ||
-                       piece.depth >= tolerances::flow_triangle_max_depth;
+    const double slack = tolerances::flow_epsilon_slack;
+    const bool tight =
+        piece.depth >= tolerances::flow_triangle_max_depth ||
+        (proof.one_sided() ? e.sup() <= slack * proof.greatest_value_met() && e.inf() >= slack * proof.least_value_met()
+                           : magnitude(e) <= slack * proof.largest_value_met());
     const bool consistent = sign != 0 && (out.sign == 0 || out.sign == sign);
     if (consistent && tight) {
       out.sign = sign;
       out.e_bound = std::max(out.e_bound, magnitude(e));
+      out.lower = std::min(out.lower, finite(e) ? e.inf() : -std::numeric_limits<double>::infinity());
+      out.upper = std::max(out.upper, finite(e) ? e.sup() : std::numeric_limits<double>::infinity());
       continue;
     }
     if ((sign == 0 || consistent) && piece.depth < tolerances::flow_triangle_max_depth) {
@@ -383,12 +509,12 @@ Interval value_at(const CompiledSystem& system, const Point3& p) {
 
 //! A polyline from `start` along the flow of ±∇E (sign): the first step in direction `first`,
 //! the next along ∇E at each new point (times sign), every segment proved to increase E (sign +1)
-//! or decrease it (−1), ending where E > tube (resp. < −tube) is proved.  The step starts at
+//! or decrease it (−1), ending where E > tube.upper (resp. < tube.lower) is proved.  The step starts at
 //! `step` and doubles after a proved segment, halves after a failed one.  Nothing if no such
 //! polyline is found within tolerances::flow_path_steps steps or the step falls below 2^−30 of
 //! the first.
 std::optional<std::vector<Point3>> flow_path(FlowProof& proof, const Point3& start, P3 direction, int sign, double step,
-                                             double tube) {
+                                             const Tube& tube) {
   const CompiledSystem& system = proof.system();
   std::vector<Point3> path{start};
   const double least = std::ldexp(step, -30);
@@ -404,7 +530,7 @@ std::optional<std::vector<Point3>> flow_path(FlowProof& proof, const Point3& sta
     path.push_back(y);
     const Interval e = value_at(system, path.back());
     if (!finite(e)) return std::nullopt;
-    if (sign > 0 ? e.inf() > tube : e.sup() < -tube) return path;
+    if (sign > 0 ? e.inf() > tube.upper : e.sup() < tube.lower) return path;
     const P3 at{y.x(), y.y(), y.z()};
     double values[4];
     system.values<double>(at.data(), nullptr, values);
@@ -417,8 +543,8 @@ std::optional<std::vector<Point3>> flow_path(FlowProof& proof, const Point3& sta
 }
 
 //! (e) for one critical point z with root box `root`: a path through z, monotone in E, from
-//! E < −tube to E > tube, and its algebraic crossing count with M.
-int count_through(FlowProof& proof, const P3& z, const std::vector<std::array<double, 2>>& root, double tube,
+//! E < tube.lower to E > tube.upper, and its algebraic crossing count with M.
+int count_through(FlowProof& proof, const P3& z, const std::vector<std::array<double, 2>>& root, const Tube& tube,
                   const std::vector<Point3>& points, const std::vector<std::array<std::size_t, 3>>& oriented,
                   std::uint64_t seed, std::size_t index) {
   const CompiledSystem& system = proof.system();
@@ -427,7 +553,7 @@ int count_through(FlowProof& proof, const P3& z, const std::vector<std::array<do
     IBox x;
     for (int k = 0; k < 3; ++k) x[k] = Interval(root[k][0], root[k][1]);
     const Interval e = Enclosure(system, x).value();
-    if (!(finite(e) && e.inf() >= -tube && e.sup() <= tube))
+    if (!tube.holds(e))
       throw Verdict{FlowCertificateStatus::undecided, "the box of a critical point of the height function is not proved inside the tube", z};
   }
   double values[4];
@@ -443,12 +569,12 @@ int count_through(FlowProof& proof, const P3& z, const std::vector<std::array<do
       g[k] = gradient[k] / length + jitter;
     }
     const Point3 start(z[0], z[1], z[2]);
-    const std::optional<std::vector<Point3>> up = flow_path(proof, start, g, +1, tube / length, tube);
+    const std::optional<std::vector<Point3>> up = flow_path(proof, start, g, +1, tube.upper / length, tube);
     if (!up) continue;
     const std::optional<std::vector<Point3>> down =
-        flow_path(proof, start, P3{-g[0], -g[1], -g[2]}, -1, tube / length, tube);
+        flow_path(proof, start, P3{-g[0], -g[1], -g[2]}, -1, -tube.lower / length, tube);
     if (!down) continue;
-    // The path from E < −ε′ to E > ε′: down reversed, then up.
+    // The path from E < tube.lower to E > tube.upper: down reversed, then up.
     std::vector<Point3> path(down->rbegin(), down->rend());
     path.insert(path.end(), up->begin() + 1, up->end());
     int count = 0;
@@ -538,6 +664,7 @@ void prove_with(FlowProof& proof, const FlowInput& in, std::optional<SolveResult
   const Orientation& orientation = in.orientation;
   // 2. ε and the transversality of every triangle.
   c.epsilon = 0;
+  double lower = 0, upper = 0;  // bounds of min E and max E on M
   std::vector<double> e_bound(triangles.size());
   std::vector<int> sign(triangles.size());
   for (std::size_t t = 0; t < triangles.size(); ++t) {
@@ -549,6 +676,8 @@ void prove_with(FlowProof& proof, const FlowInput& in, std::optional<SolveResult
     e_bound[t] = tp.e_bound;
     sign[t] = tp.sign * orientation.flip[t];
     c.epsilon = std::max(c.epsilon, tp.e_bound);
+    lower = std::min(lower, tp.lower);
+    upper = std::max(upper, tp.upper);
   }
   // One direction of the flux per component.
   std::vector<int> component_sign(orientation.components, 0);
@@ -569,10 +698,28 @@ void prove_with(FlowProof& proof, const FlowInput& in, std::optional<SolveResult
   if (!std::isfinite(c.epsilon))
     throw Verdict{FlowCertificateStatus::undecided, "|E| on the mesh could not be bounded", std::nullopt};
   c.tube = std::max(tolerances::flow_tube_factor * c.epsilon, std::numeric_limits<double>::min());
+  Tube tube{-c.tube, c.tube};
+  if (proof.one_sided()) {
+    if (!(std::isfinite(lower) && std::isfinite(upper)))
+      throw Verdict{FlowCertificateStatus::undecided, "E on the mesh could not be bounded", std::nullopt};
+    tube.lower = std::min(tolerances::flow_tube_factor * lower, -std::numeric_limits<double>::min());
+    tube.upper = std::max(tolerances::flow_tube_factor * upper, std::numeric_limits<double>::min());
+  }
+  c.tube_lower = tube.lower;
+  c.tube_upper = tube.upper;
+  c.one_sided_tube = proof.one_sided();
 
   // 3. (a) and (b).
-  proof.prove_faces(c.tube);
-  c.min_gradient = proof.prove_gradient(c.tube);
+  proof.prove_faces(tube);
+  double reference = std::numeric_limits<double>::infinity();
+  for (const Point3& p : points) {
+    const double at[3] = {p.x(), p.y(), p.z()};
+    double values[4];
+    proof.system().values<double>(at, nullptr, values);
+    const double length = std::sqrt(values[1] * values[1] + values[2] * values[2] + values[3] * values[3]);
+    if (length > 0 && std::isfinite(length)) reference = std::min(reference, length);
+  }
+  c.min_gradient = proof.prove_gradient(tube, reference);
   if (!(c.min_gradient > 0))
     throw Verdict{FlowCertificateStatus::undecided, "no lower bound of the gradient of E was proved", std::nullopt};
 
@@ -581,7 +728,7 @@ void prove_with(FlowProof& proof, const FlowInput& in, std::optional<SolveResult
   c.critical_points = 0;
   for (const CertifiedRoot& root : critical_points(in, solved, c).roots) {
     if (!root.inside_domain) continue;
-    const int count = count_through(proof, root.world, root.box.bounds, c.tube, points, oriented, in.options.seed, index++);
+    const int count = count_through(proof, root.world, root.box.bounds, tube, points, oriented, in.options.seed, index++);
     if (count != 1)
       throw Verdict{FlowCertificateStatus::undecided,
                     "a path across the tube through a critical point of the surface meets the mesh " +
@@ -674,7 +821,7 @@ FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
 
     // 2–5 with the flow of E; then, if that fails on a condition that depends on the function,
     // with the flow of the normalised function F (file comment).
-    FlowProof proof(surface, box, options, c, tolerances::flow_box_budget);
+    FlowProof proof(surface, box, options, c, tolerances::flow_box_budget, 1);
     try {
       prove_with(proof, in, solved, c);
     } catch (const Verdict& with_e) {
@@ -688,14 +835,37 @@ FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
                       with_e.location};
       }
       c.reason_with_E = with_e.reason;
-      FlowProof normalized(*F, box, options, c, c.boxes + tolerances::flow_normalized_box_budget);
       c.function = FlowFunction::normalized;
       c.eta = eta;
+      // F's flow with the tube ±ε′, then, if a condition that depends on the function fails, with
+      // the one-sided tube.
+      const auto attempt = [&](bool one_sided) {
+        FlowProof normalized(*F, box, options, c, tolerances::flow_normalized_box_budget,
+                             tolerances::flow_normalized_box_rounds);
+        normalized.compose_from(proof.system(), eta, F->normalization_exponent());
+        if (one_sided) normalized.make_one_sided();
+        try {
+          prove_with(normalized, in, solved, c);
+          c.box_rounds = normalized.rounds();
+        } catch (const Verdict&) {
+          c.box_rounds = normalized.rounds();
+          throw;
+        }
+      };
+      const std::string with_e_text = "with E: " + with_e.reason + "; with E/sqrt(|grad E|^2+eta^2): ";
       try {
-        prove_with(normalized, in, solved, c);
+        attempt(false);
       } catch (const Verdict& with_f) {
-        throw Verdict{with_f.status, "with E: " + with_e.reason + "; with E/sqrt(|grad E|^2+eta^2): " + with_f.reason,
-                      with_f.location ? with_f.location : with_e.location};
+        const std::optional<P3> at = with_f.location ? with_f.location : with_e.location;
+        if (with_f.status != FlowCertificateStatus::undecided || !with_f.depends_on_function)
+          throw Verdict{with_f.status, with_e_text + with_f.reason, at};
+        try {
+          attempt(true);
+        } catch (const Verdict& one_sided) {
+          throw Verdict{one_sided.status,
+                        with_e_text + with_f.reason + "; with it and a one-sided tube: " + one_sided.reason,
+                        one_sided.location ? one_sided.location : at};
+        }
       }
     }
   } catch (const Verdict& v) {
@@ -722,6 +892,9 @@ nlohmann::json to_json(const FlowCertificate& c, bool per_triangle) {
   j["location"] = c.location ? nlohmann::json(*c.location) : nlohmann::json(nullptr);
   j["epsilon"] = c.epsilon;
   j["tube"] = c.tube;
+  j["tube_lower"] = c.tube_lower;
+  j["tube_upper"] = c.tube_upper;
+  j["one_sided_tube"] = c.one_sided_tube;
   j["min_gradient"] = c.min_gradient;
   j["function"] = c.function == FlowFunction::E ? "E" : "E/sqrt(|grad E|^2+eta^2)";
   j["eta"] = c.eta;
@@ -734,6 +907,7 @@ nlohmann::json to_json(const FlowCertificate& c, bool per_triangle) {
   j["critical_points"] = c.critical_points;
   j["triangle_pieces"] = c.triangle_pieces;
   j["boxes"] = c.boxes;
+  j["box_rounds"] = c.box_rounds;
   j["interrupted"] = c.interrupted;
   j["time_limited"] = c.time_limited;
   j["seed"] = c.seed;

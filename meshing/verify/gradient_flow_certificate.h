@@ -60,6 +60,30 @@
 //! is wide where |∇E| is small; and at a critical point c of E, |F(c)| = |E(c)|/η, so c lies in
 //! F's tube only if |E(c)| ≤ ε′η.  The bounds are then distances along F's flow, ε_F/G_F.
 //!
+//! The enclosures of F and ∇F over the boxes of (a) and (b) are composed from those of E, ∇E and
+//! E's Hessian (detail::NormalizedEnclosure, flow_enclosure.h, which states the formulas and why
+//! they enclose; times 2^−k, exactly, where Surface stores F divided by 2^k), and met with the
+//! natural and mean-value enclosures of F's own symbolic derivatives where the composed ones do
+//! not decide a box.  F's tube proofs may examine tolerances::flow_normalized_box_budget boxes
+//! per round, in up to tolerances::flow_normalized_box_rounds rounds: a round that leaves less
+//! unexplored volume (the boxes still to examine) than there was when it began earns the next
+//! (FlowCertificate::box_rounds counts them).  The budget bounds the time only; what is proved
+//! does not depend on it.
+//!
+//! ## The one-sided tube
+//! The theorem and its proof hold with T = {x ∈ B : a ≤ E(x) ≤ b} for any a < 0 < b in place of
+//! {|E| ≤ ε′}: (a) asks E ∉ [a, b] on ∂B, (c) a < E < b on M (and still |E| ≤ ε there), and the
+//! paths of (e) start where E < a and end where E > b.  In the proof the flow carries {E = a}
+//! onto {E = b}, T ≅ Σ × [a, b], and the part of γ_c in T runs from {E = a} to {E = b}; nothing
+//! else changes, the distance bound included (x ∈ M reaches Σ after |E(x)| ≤ ε units of s).  When
+//! F's flow with ±ε′ leaves a condition that depends on the function unproved, the certificate
+//! tries F once more with a = f·ℓ and b = f·u, f = tolerances::flow_tube_factor, ℓ ≤ 0 ≤ u bounds
+//! of min F and max F on M (b = the least positive double if u = 0, a likewise): a mesh whose
+//! triangles lie on one side of Σ near a narrow gap (chords of the two spheres of near_sheets,
+//! with vertices on Σ) needs a wide tube on that side only, while the other side stays clear of
+//! the critical point of F in the gap.  The pieces of the triangles are then refined towards the
+//! least and the greatest value met at their centres separately (see below).
+//!
 //! The bound for one triangle τ is e_τ/G with e_τ = max over τ of |E|, or the smaller bound of
 //! flow_distance.h on τ where that one is proved: the arc from a point of τ to Σ is at most
 //! e_τ/G long, so the lemma there applies within that radius, and within any radius it proves.
@@ -79,14 +103,20 @@
 //!  - (d): ⟨∇E(x), N⟩ with N the interval enclosure of (b − a) × (c − a), over each piece's box
 //!    (natural ∇E(X) and mean-value ∇E(c) + H(X)(X − c)).  A piece is cut in four, down to
 //!    tolerances::flow_triangle_max_depth, while the sign is not decided or its bound of |E|
-//!    exceeds tolerances::flow_epsilon_slack times the largest |E| met at a piece's centre.
+//!    exceeds tolerances::flow_epsilon_slack times the largest |E| met at a piece's centre (with
+//!    the one-sided tube: while its upper bound of E exceeds the slack times max(0, the greatest
+//!    E met) or its lower bound is below the slack times min(0, the least E met)).  ℓ and u are
+//!    the least lower and the greatest upper bound of E over the pieces kept.
 //!  - (a): each face of B is subdivided (flat boxes) until every rectangle's enclosure of E
-//!    excludes [−ε′, ε′].
+//!    excludes [−ε′, ε′] (with the one-sided tube, [a, b]).
 //!  - (b): B is subdivided as in input_validation.h: a box whose enclosure of E excludes
-//!    [−ε′, ε′] holds no point of T and is dropped; otherwise, for g ≈ ∇E(c)/|∇E(c)| (then the
+//!    [−ε′, ε′] (resp. [a, b]) holds no point of T and is dropped; otherwise, for g ≈ ∇E(c)/|∇E(c)| (then the
 //!    axes), the enclosure of ⟨∇E, g⟩ over the box (natural ∩ mean value) with lower bound ℓ > 0
-//!    gives |∇E| ≥ ℓ there.  A box is cut until ℓ ≥ tolerances::flow_gradient_quality · |∇E(c)|
-//!    (or it reaches the minimum width, where any ℓ > 0 is kept); G is the least ℓ kept.
+//!    gives |∇E| ≥ ℓ there.  A box is cut until ℓ ≥ tolerances::flow_gradient_quality · min(|∇E(c)|, m)
+//!    (or it reaches the minimum width, where any ℓ > 0 is kept), m being the least |∇E| met so
+//!    far at points of T (M's vertices, and the centres of the boxes examined where |E| ≤ ε′ is
+//!    proved): a box where |∇E| is well above its least value on T need not be cut for a bound
+//!    that could not lower G.  G is the least ℓ kept, whatever m is.
 //!  - the distances: per triangle, the least of e_τ/G and the bounds of flow_distance.h within
 //!    the radii e_τ/G and FlowCertificateOptions::distance_radius.
 //!  - (e): the critical points come from the seed solve of meshing/inputs/seed_solve.h (certified, no
@@ -95,7 +125,7 @@
 //!    segment starts along ±∇E at its first point (the first along g ≈ ∇E(z)/|∇E(z)|), its
 //!    length starts at ε′/|∇E(z)| and doubles after a segment on whose boxes ⟨∇E, q − p⟩ > 0 is
 //!    proved (halves after a failure), until an end has E > ε′ (resp. < −ε′; interval point
-//!    values).  The crossings of γ_c with the triangles are decided with exact orientation
+//!    values; with the one-sided tube b, a and first lengths b/|∇E(z)|, −a/|∇E(z)|).  The crossings of γ_c with the triangles are decided with exact orientation
 //!    predicates; a path through an edge or a vertex of M, or with a joint in a triangle's
 //!    plane, is replaced by one whose first direction is perturbed.
 //! Each piece, box and path test also reads the options' interrupt flag and deadline.
@@ -170,6 +200,10 @@ struct [[nodiscard]] FlowCertificate {
   std::string reason_with_E;   //!< why E's flow did not prove it, when the normalised one was tried
   double epsilon = 0;        //!< ε: the largest certified bound of |E| over the triangles
   double tube = 0;           //!< ε′ = tolerances::flow_tube_factor · ε (T's half-width in E)
+  //! T = {tube_lower ≤ E ≤ tube_upper}: −ε′ and ε′, or with one_sided_tube the tube of "The
+  //! one-sided tube" (file comment).
+  double tube_lower = 0, tube_upper = 0;
+  bool one_sided_tube = false;
   double min_gradient = 0;   //!< G: certified lower bound of |∇E| on T (0: not proved)
   //! The largest of triangle_distance_bounds (≤ ε/G) when certified, else infinity: the two-sided
   //! Hausdorff distance between M and Σ is at most this.
@@ -183,6 +217,9 @@ struct [[nodiscard]] FlowCertificate {
   std::size_t critical_points = 0;      //!< of the height function on Σ, each with its path counted
   std::size_t triangle_pieces = 0;      //!< pieces examined for (c) and (d)
   std::size_t boxes = 0;                //!< boxes and rectangles examined for (a) and (b)
+  //! The rounds of tolerances::flow_normalized_box_budget boxes the normalised function's tube
+  //! proofs began (0: it was not tried).
+  std::size_t box_rounds = 0;
   double seconds = 0;
   std::uint64_t seed = 1;
 };
@@ -198,7 +235,8 @@ FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
 //! {status, reason, location, epsilon, tube, min_gradient, function ("E" or
 //!  "E/sqrt(|grad E|^2+eta^2)"), eta, reason_with_E, hausdorff_upper_bound,
 //!  hausdorff_relative (to the box diagonal), mesh_components, critical_points, triangle_pieces,
-//!  boxes, interrupted, time_limited, seed, seconds}; with `per_triangle`, also
+//!  tube_lower, tube_upper, one_sided_tube, boxes, box_rounds, interrupted, time_limited, seed,
+//!  seconds}; with `per_triangle`, also
 //!  triangle_distance_bounds.
 nlohmann::json to_json(const FlowCertificate& certificate, bool per_triangle = false);
 

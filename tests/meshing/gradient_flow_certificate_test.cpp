@@ -1,11 +1,13 @@
 #include "meshing/verify/gradient_flow_certificate.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
+#include "common/tolerances.h"
 #include "meshing/core/mesh_checker.h"
 #include "meshing/driver/del_mesh.h"
 #include "symbolic/catalog.h"
@@ -219,6 +221,94 @@ BOOST_AUTO_TEST_CASE(local_distance_bounds_tighten_the_hausdorff_bound) {
   BOOST_TEST(tight.hausdorff_upper_bound <= plain.hausdorff_upper_bound);
   BOOST_TEST(tight.hausdorff_upper_bound <= options.distance_radius);
   BOOST_TEST(tight.hausdorff_upper_bound >= sampled_distance_to_unit_sphere(m));
+}
+
+// delmesh's default mesh of two_blobs: ∇E vanishes inside and between the blobs, close enough
+// for E's tube to reach those points; the normalised function's tube (built from E's enclosures,
+// tolerances::flow_normalized_box_rounds rounds of budget) certifies it.  Every triangle's bound
+// is checked against a proved lower bound of the distance of its points to Σ: |∇E| ≤ L = 3.26
+// everywhere (each Gaussian w exp(−4r²) has gradient 8wr exp(−4r²) ≤ 8w exp(−1/2)/(2√2) <
+// 1.7156w, and the weights add up to 1.9), so d(x, Σ) ≥ |E(x)|/L.
+BOOST_AUTO_TEST_CASE(delmesh_two_blobs_output_is_certified_by_the_normalised_function) {
+  const CertifiedCatalogMesh m = mesh_and_certify("two_blobs", DelMeshOptions{});
+  const FlowCertificate& c = m.certificate;
+  BOOST_TEST_REQUIRE(c.status == FlowCertificateStatus::certified, c.reason);
+  BOOST_TEST((c.function == FlowFunction::normalized));
+  BOOST_TEST(c.reason_with_E.find("may vanish") != std::string::npos, c.reason_with_E);
+  BOOST_TEST(c.mesh_components == 2u);
+  BOOST_TEST(c.box_rounds >= 1u);
+  BOOST_TEST(c.box_rounds <= tolerances::flow_normalized_box_rounds);
+  const auto E = [](double x, double y, double z) {
+    return 0.3 - std::exp(-4 * ((x + 0.75) * (x + 0.75) + y * y + z * z)) -
+           0.9 * std::exp(-4 * ((x - 0.75) * (x - 0.75) + (y - 0.1) * (y - 0.1) + z * z));
+  };
+  const double L = 3.26;
+  BOOST_TEST_REQUIRE(c.triangle_distance_bounds.size() == m.triangles.size());
+  double farthest = 0;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const Point3 &a = m.points[m.triangles[t][0]], &b = m.points[m.triangles[t][1]], &d = m.points[m.triangles[t][2]];
+    for (int i = 0; i <= 8; ++i)
+      for (int j = 0; i + j <= 8; ++j) {
+        const double u = i / 8.0, v = j / 8.0, w = 1 - u - v;
+        const double lower = std::abs(E(w * a.x() + u * b.x() + v * d.x(), w * a.y() + u * b.y() + v * d.y(),
+                                         w * a.z() + u * b.z() + v * d.z())) / L;
+        BOOST_TEST(c.triangle_distance_bounds[t] >= lower);
+        farthest = std::max(farthest, lower);
+      }
+  }
+  BOOST_TEST(c.hausdorff_upper_bound >= farthest);
+  BOOST_TEST(c.hausdorff_upper_bound / m.box.diagonal() < 0.1);
+}
+
+// The chair and the tangle cube (delmesh's default meshes): a critical point of E lies in E's
+// tube; the normalised function's tube proof needs more than one round of its budget, each
+// leaving less of B unexplored, and certifies both.
+BOOST_AUTO_TEST_CASE(delmesh_chair_and_tanglecube_outputs_are_certified_in_rounds, *boost::unit_test::label("slow")) {
+  for (const std::string name : {"chair", "tanglecube"}) {
+    const CertifiedCatalogMesh m = mesh_and_certify(name, DelMeshOptions{});
+    const FlowCertificate& c = m.certificate;
+    BOOST_TEST_REQUIRE(c.status == FlowCertificateStatus::certified, name << ": " << c.reason);
+    BOOST_TEST((c.function == FlowFunction::normalized));
+    BOOST_TEST(c.reason_with_E.find("may vanish") != std::string::npos, c.reason_with_E);
+    BOOST_TEST(c.box_rounds >= 2u, name << ": " << c.box_rounds << " rounds");
+    BOOST_TEST(c.hausdorff_upper_bound > 0);
+  }
+}
+
+// delmesh's default mesh of near_sheets (two unit spheres 0.05 apart): its coarse triangles are
+// chords up to 0.2 inside the spheres, so E's tube and F's tube ±ε′ reach the box, and F's tube
+// also holds F's critical point in the gap.  Its vertices lie on Σ and its triangles inside, so
+// the one-sided tube (wide inside, thin outside) certifies it.  The distance of a point to Σ is
+// known exactly: min over the spheres of ||x − c| − 1|.
+BOOST_AUTO_TEST_CASE(delmesh_near_sheets_output_is_certified_with_a_one_sided_tube) {
+  const CertifiedCatalogMesh m = mesh_and_certify("near_sheets", DelMeshOptions{});
+  const FlowCertificate& c = m.certificate;
+  BOOST_TEST_REQUIRE(c.status == FlowCertificateStatus::certified, c.reason);
+  BOOST_TEST((c.function == FlowFunction::normalized));
+  BOOST_TEST(c.one_sided_tube);
+  BOOST_TEST(c.reason_with_E.find("boundary of the box") != std::string::npos, c.reason_with_E);
+  BOOST_TEST(c.tube_lower < 0);
+  BOOST_TEST(c.tube_upper > 0);
+  BOOST_TEST(c.tube_upper < 0.1 * -c.tube_lower);
+  BOOST_TEST(c.mesh_components == 2u);
+  const auto distance = [](double x, double y, double z) {
+    const auto to = [&](double cx) { return std::abs(std::sqrt((x - cx) * (x - cx) + y * y + z * z) - 1); };
+    return std::min(to(1.025), to(-1.025));
+  };
+  BOOST_TEST_REQUIRE(c.triangle_distance_bounds.size() == m.triangles.size());
+  double farthest = 0;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const Point3 &a = m.points[m.triangles[t][0]], &b = m.points[m.triangles[t][1]], &d = m.points[m.triangles[t][2]];
+    for (int i = 0; i <= 8; ++i)
+      for (int j = 0; i + j <= 8; ++j) {
+        const double u = i / 8.0, v = j / 8.0, w = 1 - u - v;
+        const double at = distance(w * a.x() + u * b.x() + v * d.x(), w * a.y() + u * b.y() + v * d.y(),
+                                   w * a.z() + u * b.z() + v * d.z());
+        BOOST_TEST(c.triangle_distance_bounds[t] >= at);
+        farthest = std::max(farthest, at);
+      }
+  }
+  BOOST_TEST(c.hausdorff_upper_bound >= farthest);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -88,7 +88,12 @@ Interval Enclosure::value_on_hull(const std::array<IBox, 3>& corners) const {
   return meet(v[0], vc[0] + affine + Interval(0.5) * quadratic);
 }
 
-double gradient_lower_bound(const Enclosure& en) {
+namespace {
+
+//! The best lower bound of |∇f| over the enclosure's box from |⟨∇f, g⟩|/‖g‖ for g = `first` (if
+//! `use_first`) and for the three axes; Enc::directional encloses ⟨∇f, w⟩.
+template <class Enc>
+double gradient_lower_bound_along(const Enc& en, const P3& first, bool use_first, double enough) {
   double best = 0;
   const auto try_direction = [&](const P3& g) {
     const IBox w = interval_point(g);
@@ -98,19 +103,104 @@ double gradient_lower_bound(const Enclosure& en) {
     const Interval lower = Interval(std::min(std::abs(s.inf()), std::abs(s.sup()))) / norm;
     best = std::max(best, lower.inf());
   };
-  P3 g{};
-  bool usable = false;
-  for (int i = 0; i < 3; ++i) {
-    g[i] = finite(en.vc[1 + i]) ? 0.5 * en.vc[1 + i].inf() + 0.5 * en.vc[1 + i].sup() : 0;
-    usable = usable || g[i] != 0;
-  }
-  if (usable) try_direction(g);
-  for (int k = 0; k < 3; ++k) {
+  if (use_first) try_direction(first);
+  for (int k = 0; k < 3 && !(best > 0 && best >= enough); ++k) {
     P3 axis{};
     axis[k] = 1;
     try_direction(axis);
   }
   return best;
+}
+
+double midpoint(const Interval& a) { return finite(a) ? 0.5 * a.inf() + 0.5 * a.sup() : 0; }
+
+}  // namespace
+
+double gradient_lower_bound(const Enclosure& en, double enough) {
+  P3 g{};
+  bool usable = false;
+  for (int i = 0; i < 3; ++i) {
+    g[i] = midpoint(en.vc[1 + i]);
+    usable = usable || g[i] != 0;
+  }
+  return gradient_lower_bound_along(en, g, usable, enough);
+}
+
+NormalizedEnclosure::NormalizedEnclosure(const CompiledSystem& system_of_E, const IBox& x, double eta)
+    : eta(eta), e(system_of_E, x) {
+  const Interval eta_squared = CGAL::square(Interval(eta));
+  Interval q = eta_squared, q_centre = eta_squared;
+  for (int i = 0; i < 3; ++i) {
+    gradient[i] = e.v[1 + i];
+    if (e.c2) {
+      Interval mv = e.vc[1 + i];
+      for (int k = 0; k < 3; ++k) mv += e.hessian(i, k) * e.d[k];
+      gradient[i] = meet(gradient[i], mv);
+    }
+    q += CGAL::square(gradient[i]);
+    q_centre += CGAL::square(e.vc[1 + i]);
+  }
+  s = Interval(1) / CGAL::sqrt(q);
+  s_centre = Interval(1) / CGAL::sqrt(q_centre);
+  usable = e.c2 && eta > 0 && finite(s) && finite(s_centre);
+  for (int i = 0; i < 3; ++i) usable = usable && finite(gradient[i]);
+}
+
+Interval NormalizedEnclosure::value() const {
+  if (!usable) return Interval::largest();
+  return e.value() * s;
+}
+
+Interval NormalizedEnclosure::value_at_centre() const {
+  if (!usable) return Interval::largest();
+  return e.vc[0] * s_centre;
+}
+
+Interval NormalizedEnclosure::directional(const IBox& w) const {
+  if (!usable) return Interval::largest();
+  // ⟨H ∇E, w⟩ = Σ_i w_i Σ_k H_ik ∂_k E.
+  Interval hgw(0);
+  for (int i = 0; i < 3; ++i) {
+    Interval row(0);
+    for (int k = 0; k < 3; ++k) row += e.hessian(i, k) * gradient[k];
+    hgw += row * w[i];
+  }
+  // s ⟨∇E, w⟩ by its monotonicity in a and b (header).
+  const Interval a = e.directional(w);
+  const Interval w2 = CGAL::square(w[0]) + CGAL::square(w[1]) + CGAL::square(w[2]);
+  Interval b = CGAL::square(Interval(eta));
+  for (int i = 0; i < 3; ++i) b += CGAL::square(gradient[i] - a * w[i] / w2);
+  Interval first = s * a;
+  if (finite(a) && finite(b) && finite(w2) && w2.inf() > 0 && b.inf() > 0) {
+    const auto at = [&](double a_end, double b_end) {
+      const Interval ai(a_end);
+      return ai / CGAL::sqrt(CGAL::square(ai) / w2 + Interval(b_end));
+    };
+    const Interval lo = at(a.inf(), a.inf() >= 0 ? b.sup() : b.inf());
+    const Interval hi = at(a.sup(), a.sup() >= 0 ? b.inf() : b.sup());
+    first = meet(first, Interval(lo.inf(), hi.sup()));
+  }
+  return first - value() * CGAL::square(s) * hgw;
+}
+
+P3 NormalizedEnclosure::centre_gradient(const CompiledSystem& system_of_E) const {
+  P3 g{};
+  if (!usable) return g;
+  double v[4], j[12];
+  system_of_E.values_and_jacobian<double>(e.c.data(), nullptr, v, j);
+  const double s_c = 1 / std::sqrt(v[1] * v[1] + v[2] * v[2] + v[3] * v[3] + eta * eta);
+  for (int i = 0; i < 3; ++i) {
+    double hg = 0;
+    for (int k = 0; k < 3; ++k) hg += j[3 * (1 + i) + k] * v[1 + k];
+    g[i] = s_c * v[1 + i] - v[0] * s_c * s_c * s_c * hg;
+  }
+  for (double& a : g)
+    if (!std::isfinite(a)) a = 0;
+  return g;
+}
+
+double gradient_lower_bound(const NormalizedEnclosure& en, const P3& g, double enough) {
+  return gradient_lower_bound_along(en, g, en.usable && (g[0] != 0 || g[1] != 0 || g[2] != 0), enough);
 }
 
 std::array<TrianglePiece, 4> TrianglePiece::children() const {

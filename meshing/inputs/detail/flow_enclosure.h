@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "symbolic/compiled_system.h"
@@ -54,7 +55,44 @@ struct Enclosure {
 
 //! A lower bound of |∇E| over the enclosure's box (0 if none is proved): |⟨∇E, g⟩|/‖g‖ for
 //! g ≈ ∇E(c) and for the three axes.
-double gradient_lower_bound(const Enclosure& en);
+double gradient_lower_bound(const Enclosure& en, double enough = std::numeric_limits<double>::infinity());
+
+//! F = E / sqrt(|∇E|² + η²) (η > 0) and ⟨∇F, w⟩ over a box X, composed from an Enclosure of E's
+//! system (E, ∇E and the Hessian H of E over X and at its centre c) instead of F's own symbolic
+//! derivatives:
+//!   F = E s,  s = (|∇E|² + η²)^(−1/2),  ∂s/∂x_i = −s³ (H∇E)_i,  ∇F = s ∇E − E s³ H∇E.
+//! ∇E over X is the natural enclosure met with the mean-value form ∇E(c) + H(X)(X − c); each
+//! factor then holds the value at every x ∈ X, so the products do.  In ⟨∇F, w⟩ the term
+//! s⟨∇E, w⟩ = a / sqrt(a²/|w|² + b), with a = ⟨∇E, w⟩ and b = |∇E − (a/|w|²) w|² + η² ≥ η², is
+//! increasing in a and, for a of one sign, monotone in b (decreasing for a > 0, increasing for
+//! a < 0): its range over the box of (a, b) is spanned by the two corners (a_lo, b_hi or b_lo)
+//! and (a_hi, b_lo or b_hi), each evaluated in interval arithmetic over |w|²; that range is met
+//! with the product s·a.
+struct NormalizedEnclosure {
+  double eta = 0;
+  Enclosure e;          //!< E's system over X
+  IBox gradient;        //!< ∇E over X
+  Interval s;           //!< (|∇E|² + η²)^(−1/2) over X
+  Interval s_centre;    //!< the same at c
+  bool usable = false;  //!< η > 0 and every enclosure finite (else the functions below return the whole line)
+
+  //! Precondition: a live RoundingGuard.
+  NormalizedEnclosure(const CompiledSystem& system_of_E, const IBox& x, double eta);
+  //! F over X.
+  Interval value() const;
+  //! F(c).
+  Interval value_at_centre() const;
+  //! ⟨∇F(x), w⟩ over X for a vector w (enclosed).
+  Interval directional(const IBox& w) const;
+  //! ∇F(c) in floating point (a direction, not a bound; 0 where not finite), from the system this
+  //! enclosure was made from.
+  P3 centre_gradient(const CompiledSystem& system_of_E) const;
+};
+
+//! A lower bound of |∇F| over the box (0 if none is proved): |⟨∇F, w⟩|/‖w‖ for w = g (g ≈ ∇F(c),
+//! when not 0) and for the three axes.
+double gradient_lower_bound(const NormalizedEnclosure& en, const P3& g,
+                            double enough = std::numeric_limits<double>::infinity());
 
 //! A piece of a triangle abc in its barycentric parameters (u, v), x = a + u (b − a) + v (c − a):
 //! corners dyadic, so the four children of a piece tile it exactly.

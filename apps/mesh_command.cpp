@@ -32,13 +32,9 @@
 #include "common/run_limits.h"
 #include "meshing/core/mesh_checker.h"
 #include "meshing/driver/del_mesh.h"
-#include "meshing/driver/scaled_run.h"
-#include "meshing/inputs/implicit_oracle.h"
-#include "meshing/inputs/input_validation.h"
+#include "meshing/inputs/make_oracle.h"
 #include "meshing/inputs/mesh_io.h"
-#include "meshing/inputs/mesh_oracle.h"
 #include "meshing/inputs/self_intersection_repair.h"
-#include "meshing/inputs/sharp_features.h"
 #include "meshing/verify/certificate.h"
 
 namespace delmesh::app {
@@ -214,64 +210,9 @@ MeshInputPlan plan_mesh_input(const MeshRequest& r, InputMesh mesh, const std::s
   return plan;
 }
 
-namespace {
-
-// The input's folded vertices: {count, locations (the first tolerances::floor_locations_listed)}.
-nlohmann::json folded_vertices_json(const InputMesh& m) {
-  nlohmann::json locations = nlohmann::json::array();
-  for (std::size_t i = 0; i < m.folded_vertices.size() && i < tolerances::floor_locations_listed; ++i) {
-    const Point3& x = m.mesh.point(m.folded_vertices[i]);
-    locations.push_back({x.x(), x.y(), x.z()});
-  }
-  return {{"count", m.folded_vertices.size()}, {"locations", locations}};
-}
-
-// The input's sharp features at the default feature angle (meshing/inputs/sharp_features.h): counts only.
-nlohmann::json features_json(const InputMesh& m) {
-  const FeatureSet f = detect_features(m.mesh, default_feature_angle_deg, m.folded_vertices);
-  return {{"angle_deg", f.angle_deg},
-          {"sharp_edges", f.sharp_edges},
-          {"curves", f.curves.size()},
-          {"closed_curves", f.closed_curves},
-          {"corners", f.corners.size()},
-          {"folded_corners", f.folded_corners}};
-}
-
-}  // namespace
-
-namespace {
-
-//! remesh() on the plan's oracle, built in `seconds_oracle` seconds.
-DelMeshResult remesh_on(const MeshInputPlan& plan, MeshOracle& oracle, double seconds_oracle,
-                        const DelMeshOptions& options) {
-  // The oracle works at unit scale (meshing/inputs/unit_scale.h); the run's lengths and results are converted.
-  DelMeshResult result = del_mesh(oracle, unit_scale_options(options, oracle.scale_exponent()));
-  restore_scale(result, oracle.scale_exponent());
-  const InputMesh& m = plan.mesh;
-  result.statistics["input_mesh"] = {{"file", plan.path},
-                                     {"faces_read", m.faces_read},
-                                     {"polygons_triangulated", m.polygons_triangulated},
-                                     {"vertices", m.report.vertices},
-                                     {"triangles", m.report.triangles},
-                                     {"components", m.report.components},
-                                     {"genus_per_component", m.report.genus_per_component},
-                                     {"box", {m.box.lo[0], m.box.hi[0], m.box.lo[1], m.box.hi[1], m.box.lo[2], m.box.hi[2]}},
-                                     {"bounding_box_diagonal", m.bounding_box_diagonal},
-                                     {"median_edge_length", m.median_edge_length},
-                                     {"components_reversed", m.components_reversed},
-                                     {"folded_vertices", folded_vertices_json(m)},
-                                     {"features", features_json(m)},
-                                     {"seconds_oracle_build", seconds_oracle}};
-  return result;
-}
-
-}  // namespace
-
 DelMeshResult remesh(const MeshInputPlan& plan, const DelMeshOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  MeshOracle oracle(plan.mesh.mesh, plan.mesh.box);
-  const double seconds_oracle = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return remesh_on(plan, oracle, seconds_oracle, options);
+  PreparedInput input = make_oracle(TriangleMeshInput{plan.path, &plan.mesh});
+  return del_mesh(input, options);
 }
 
 nlohmann::json run_statistics(const DelMeshResult& result, std::uint64_t seed, const std::optional<std::string>& mesh_file) {
@@ -287,12 +228,10 @@ nlohmann::json run_statistics(const DelMeshResult& result, std::uint64_t seed, c
 nlohmann::json mesh_statistics(const DelMeshResult& result, const SurfaceInput& input, std::uint64_t seed,
                                const std::optional<std::string>& mesh_file) {
   nlohmann::json statistics = run_statistics(result, seed, mesh_file);
-  if (!statistics.contains("surface")) {
-    statistics["surface"] = {{"name", input.name},
-                             {"equation", input.surface.text()},
-                             {"box", {input.box.lo[0], input.box.hi[0], input.box.lo[1], input.box.hi[1],
-                                      input.box.lo[2], input.box.hi[2]}}};
-  }
+  statistics["surface"] = {{"name", input.name},
+                           {"equation", input.surface.text()},
+                           {"box", {input.box.lo[0], input.box.hi[0], input.box.lo[1], input.box.hi[1],
+                                    input.box.lo[2], input.box.hi[2]}}};
   return statistics;
 }
 
@@ -307,6 +246,11 @@ struct MeshRun {
   const std::string& name() const { return plan ? plan->input.name : mesh_plan->name; }
   DelMeshOptions& options() { return plan ? plan->options : mesh_plan->options; }
   const std::vector<std::string>& warnings() const { return plan ? plan->warnings : mesh_plan->warnings; }
+  //! What make_oracle() builds the run's oracle from.
+  MesherInput input() const {
+    if (plan) return ImplicitInput{plan->input.name, plan->input.surface, plan->input.box, plan->options.solver};
+    return TriangleMeshInput{mesh_plan->path, &mesh_plan->mesh};
+  }
 };
 
 MeshRun plan_run(const MeshOptions& o) {
@@ -439,41 +383,24 @@ double seconds_left(const RunLimits& limits) {
   return left ? std::max(*left, std::numeric_limits<double>::denorm_min()) : 0;
 }
 
-//! del_mesh on the plan's surface: validation and the oracle under the watchdog, then the run in
-//! the time left.  The statistics' "seconds" count from the validation, as del_mesh's own do.
-//! If `normals` is given, it gets the unit normals of the mesh by the oracle's ∇E
-//! (surface_normals.h), before the oracle is gone.
-DelMeshResult mesh_surface(const MeshPlan& plan, DelMeshOptions options, PhaseWatchdog& watchdog,
-                           const RunLimits& limits, PointNormals* normals) {
+//! del_mesh on the run's input: the oracle (with the validation of an implicit surface) built
+//! under the watchdog, then the run in the time left.  The statistics' "seconds" count from the
+//! oracle's construction.  If `normals` is given and the input is an implicit surface, it gets the
+//! unit normals of the mesh by the oracle's ∇E (surface_normals.h), before the oracle is gone.
+DelMeshResult mesh_run(const MeshRun& run, DelMeshOptions options, PhaseWatchdog& watchdog, const RunLimits& limits,
+                       PointNormals* normals) {
   const auto start = std::chrono::steady_clock::now();
-  std::optional<ValidationReport> validation;
-  std::optional<ImplicitOracle> oracle;
+  std::optional<PreparedInput> input;
   {
-    const PhaseWatchdog::Phase phase(watchdog, "validating the surface and building its oracle");
-    validation.emplace(validate_input(plan.input.surface, plan.input.box));
-    oracle.emplace(plan.input.surface, plan.input.box, options.solver);
+    const PhaseWatchdog::Phase phase(watchdog, run.plan ? "validating the surface and building its oracle"
+                                                        : "building the oracle of the input mesh");
+    input.emplace(make_oracle(run.input()));
   }
   options.time_limit_seconds = seconds_left(limits);
-  const auto run_start = std::chrono::steady_clock::now();
-  DelMeshResult result = del_mesh(*oracle, options, validation->seconds);
-  certify_distance(result, plan.input.surface, plan.input.box, options, run_start);
-  if (normals) *normals = surface_normals(*oracle, result.mesh);
+  DelMeshResult result = del_mesh(*input, options);
+  if (normals && input->implicit) *normals = surface_normals(*input->implicit, result.mesh);
   result.statistics["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
-}
-
-//! remesh() with the oracle built under the watchdog and the run in the time left.
-DelMeshResult remesh_input(const MeshInputPlan& plan, DelMeshOptions options, PhaseWatchdog& watchdog,
-                           const RunLimits& limits) {
-  const auto start = std::chrono::steady_clock::now();
-  std::optional<MeshOracle> oracle;
-  {
-    const PhaseWatchdog::Phase phase(watchdog, "building the oracle of the input mesh");
-    oracle.emplace(plan.mesh.mesh, plan.mesh.box);
-  }
-  const double seconds_oracle = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  options.time_limit_seconds = seconds_left(limits);
-  return remesh_on(plan, *oracle, seconds_oracle, options);
 }
 
 //! One line on stderr for the statistics' "distance" certificate (del_mesh.h), if it was attempted.
@@ -528,9 +455,7 @@ ExitCode run_mesh(const MeshOptions& o) {
   options.interrupt = &interrupt_flag();
   const MeshFormat format = mesh_format(out);
   PointNormals normals;  // for a .vtp of an implicit surface
-  DelMeshResult result = run.plan ? mesh_surface(*run.plan, options, watchdog, limits,
-                                                 format == MeshFormat::vtp ? &normals : nullptr)
-                                  : remesh_input(*run.mesh_plan, options, watchdog, limits);
+  DelMeshResult result = mesh_run(run, options, watchdog, limits, format == MeshFormat::vtp ? &normals : nullptr);
   if (progress) progress->finish();
 
   nlohmann::json statistics =

@@ -43,10 +43,9 @@
 #include "meshing/core/mesh_checker.h"
 #include "meshing/core/theorem_bounds.h"
 #include "meshing/driver/del_mesh.h"
-#include "meshing/driver/scaled_run.h"
 #include "meshing/inputs/input_mesh.h"
+#include "meshing/inputs/make_oracle.h"
 #include "meshing/inputs/mesh_io.h"
-#include "meshing/inputs/mesh_oracle.h"
 
 using namespace delmesh;
 using namespace delmesh::experiments;
@@ -181,9 +180,9 @@ int main(int argc, char** argv) {
         DelMeshOptions options = base;
         options.phase = phase;
         options.min_spacing = min_spacing_fraction * input.median_edge_length;
-        MeshOracle oracle(input.mesh, input.box);  // at unit scale (meshing/inputs/unit_scale.h)
-        DelMeshResult result = del_mesh(oracle, unit_scale_options(options, oracle.scale_exponent()), seconds_validation);
-        restore_scale(result, oracle.scale_exponent());
+        PreparedInput prepared = make_oracle(TriangleMeshInput{path, &input});
+        prepared.seconds_validation = seconds_validation;  // reading and validating the mesh
+        DelMeshResult result = del_mesh(prepared, options);
         const fs::path mesh_file = dir / (name + "_" + label + ".off");
         write_mesh(result.mesh, mesh_file.string());
         write_json(dir / (name + "_" + label + "_stats.json"), result.statistics);

@@ -21,8 +21,8 @@
 #include "meshing/core/theorem_bounds.h"
 #include "meshing/driver/refinement.h"
 #include "meshing/driver/sample_topology.h"
-#include "meshing/inputs/implicit_oracle.h"
-#include "meshing/inputs/input_validation.h"
+#include "meshing/driver/scaled_run.h"
+#include "meshing/inputs/make_oracle.h"
 #include "meshing/verify/gradient_flow_certificate.h"
 
 namespace delmesh {
@@ -352,14 +352,33 @@ void certify_distance(DelMeshResult& result, const Surface& surface, const Box3&
   j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+namespace {
+
+// del_mesh on a prepared input, its clock (time limit, seconds) started at `start`.
+DelMeshResult mesh_prepared(PreparedInput& input, const DelMeshOptions& options,
+                            std::chrono::steady_clock::time_point start) {
+  check_options(input.oracle->box(), options);
+  const int k = input.scale_exponent;
+  DelMeshResult result = run(*input.oracle, unit_scale_options(options, k), input.seconds_validation, start);
+  restore_scale(result, k);
+  result.statistics[input.statistics_key] = input.statistics;
+  if (const ImplicitInput* implicit = input.implicit_input())
+    if (options.distance_certificate || options.max_distance)
+      certify_distance(result, implicit->surface, implicit->box, options, start);
+  return result;
+}
+
+}  // namespace
+
 DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   check_options(box, options);
-  const ValidationReport validation = validate_input(surface, box);
-  ImplicitOracle oracle(surface, box, options.solver);
-  DelMeshResult result = run(oracle, options, validation.seconds, start);
-  if (options.distance_certificate || options.max_distance) certify_distance(result, surface, box, options, start);
-  return result;
+  PreparedInput input = make_oracle(ImplicitInput{"surface", surface, box, options.solver});
+  return mesh_prepared(input, options, start);
+}
+
+DelMeshResult del_mesh(PreparedInput& input, const DelMeshOptions& options) {
+  return mesh_prepared(input, options, std::chrono::steady_clock::now());
 }
 
 DelMeshResult del_mesh(SurfaceOracle& oracle, const DelMeshOptions& options, double seconds_validation) {

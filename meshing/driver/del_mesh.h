@@ -106,11 +106,21 @@ inline constexpr MeshOption all_mesh_options[] = {MeshOption::lambda,       Mesh
 //! their other work, to name their own flags.
 std::optional<std::string> violated_range(MeshOption option, const DelMeshOptions& options);
 
-//! Meshes Σ = {E = 0} ⊂ interior(box).  Throws InvalidInput if Σ is empty in the box, meets the
-//! box boundary, or is singular (∇E = 0 somewhere on Σ), if the box is empty, or if an option is
-//! out of its range (violated_range: "lambda must satisfy 0 < lambda < 1/3").
-//! The run ends with certify_distance().
+//! Meshes Σ = {E = 0} ⊂ interior(box): make_oracle() on the ImplicitInput (surface, box,
+//! options.solver), then del_mesh() on it; the time limit and the statistics' seconds count the
+//! validation.  Throws InvalidInput if Σ is empty in the box, meets the box boundary, or is
+//! singular (∇E = 0 somewhere on Σ), if the box is empty, or if an option is out of its range
+//! (violated_range: "lambda must satisfy 0 < lambda < 1/3"), the options before the surface.
 DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOptions& options);
+
+struct PreparedInput;
+//! Meshes an input made ready by make_oracle() (meshing/inputs/make_oracle.h), of any kind: the
+//! run on its oracle, with the options' lengths at the oracle's unit scale and the result brought
+//! back (meshing/driver/scaled_run.h); the statistics get the input's description under its key
+//! ("surface" or "input_mesh") and its validation seconds; an implicit surface then gets
+//! certify_distance() when options.distance_certificate or options.max_distance asks for it.
+//! Throws InvalidInput as del_mesh(oracle, …) does.
+DelMeshResult del_mesh(PreparedInput& input, const DelMeshOptions& options);
 
 //! The gradient-flow certificate of a run's output (gradient_flow_certificate.h, under the run's
 //! time limit counted from `start`, with options.max_distance as its distance radius), if the run

@@ -271,27 +271,61 @@ AffineChart AffineChart::identity() {
 
 namespace {
 
+// E and ∇E over one box (and H when E has Hessians), and what the tests derive from them, each
+// computed once.
+struct BoxEnclosures {
+  Interval x[3], value, derivatives[12];  // the world box X, E(X), then ∇E(X) and H(X)
+  // H w over the box and ⟨∇E, w⟩ at the centre, computed by (iii′), which every box that reaches
+  // (iv) has been through (with Hessians, past the natural form of (iii)).
+  Interval hessian_w[3], centre_functional;
+  // The centre, and E and ∇E there, computed once a test needs them.
+  Interval centre[3], centre_world[3], centre_value, centre_gradient[3];
+  bool have_centre = false;
+  const Interval* gradient() const { return derivatives; }
+  const Interval* hessian() const { return derivatives + 3; }
+};
+
+// What (ii) and (iii) decided on a box: it misses Σ, or the functional keeps one sign on it with
+// slope bound `bound` (−1: neither).
+struct ConeDecision {
+  bool misses_surface = false;
+  double bound = -1;
+  int sign = 0;
+};
+
 // prove_gradient_cone() in dimension n = N, with the loops over the chart's coordinates of fixed
-// length.
+// length: the boxes of the cover still to examine, and what the examined ones proved.
 template <std::size_t N>
-GradientConeResult prove_cone_in(const CompiledSystem& E, const AffineChart& chart, const Domain& domain,
-                                 const std::array<double, 3>& w, std::size_t box_budget,
-                                 const SlopeRefinement& refinement) {
-  constexpr std::size_t n = N;
-  RoundingGuard guard;
-  const ChartMap map(chart);
-  GradientConeResult result;
-  double slope = std::numeric_limits<double>::infinity();
-  // The bounding box of the world enclosures of the cover's boxes that may hold points of Σ.
-  constexpr double infinity = std::numeric_limits<double>::infinity();
-  std::array<double, 3> surface_lo{infinity, infinity, infinity}, surface_hi{-infinity, -infinity, -infinity};
-  auto holds_surface = [&](const Interval* x) {
-    for (int k = 0; k < 3; ++k) {
-      surface_lo[k] = std::min(surface_lo[k], x[k].inf());
-      surface_hi[k] = std::max(surface_hi[k], x[k].sup());
+class ConeProver {
+ public:
+  ConeProver(const CompiledSystem& E, const AffineChart& chart, const Domain& domain, const std::array<double, 3>& w,
+             std::size_t box_budget, const SlopeRefinement& refinement)
+      : E_(E), map_(chart), domain_(domain), w_(w), box_budget_(box_budget), refinement_(refinement),
+        with_hessians_(E.has_hessians()), stack_(1) {
+    stack_.reserve(64);
+    stack_[0].active = all_half_spaces_active(domain);
+    for (std::size_t j = 0; j < n; ++j) stack_[0].u[j] = Interval(domain.box.bounds[j][0], domain.box.bounds[j][1]);
+  }
+
+  // Examines the boxes until none is left (the certificate is proved) or the attempt ends.
+  GradientConeResult run() {
+    while (!stack_.empty()) {
+      const Box box = stack_.back();
+      stack_.pop_back();
+      if (!examine(box)) return result_;
     }
-  };
-  const bool with_hessians = E.has_hessians();
+    result_.proved = true;
+    result_.slope = refinement_.target > 0 ? slope_ : 0;
+    result_.orientation = positive_seen_ == negative_seen_ ? 0 : positive_seen_ ? 1 : -1;
+    result_.surface_lo = surface_lo_;
+    result_.surface_hi = surface_hi_;
+    return result_;
+  }
+
+ private:
+  static constexpr std::size_t n = N;
+  static constexpr double infinity = std::numeric_limits<double>::infinity();
+
   // A box with whether it is known to lie inside P (then so do its halves: classify() is not
   // asked again), and the half-spaces not yet known to contain it (classify()'s mask).  A
   // refining box is a part of a box that (iii) dropped with slope bound `parent_slope`, split only
@@ -304,18 +338,158 @@ GradientConeResult prove_cone_in(const CompiledSystem& E, const AffineChart& cha
     double parent_slope = 0;
     std::uint64_t active = 0;
   };
-  std::size_t refining_boxes = 0, refining_created = 0;
-  bool positive_seen = false, negative_seen = false;  // signs of the functional on boxes (iii) dropped
-  std::vector<Box> stack(1);
-  stack.reserve(64);
-  stack[0].active = all_half_spaces_active(domain);
-  for (std::size_t j = 0; j < n; ++j) stack[0].u[j] = Interval(domain.box.bounds[j][0], domain.box.bounds[j][1]);
+
+  // Runs tests (i)-(iv) on one box and drops or splits it; false when the attempt ends there (the
+  // budget is spent, (iv) refuted the certificate, or no side splits).
+  bool examine(const Box& box) {
+    if (box.refining) {
+      ++refining_boxes_;
+    } else if (result_.boxes - refining_boxes_ >= box_budget_) {
+      return false;
+    }
+    ++result_.boxes;
+    std::uint64_t active = box.active;
+    const DomainSide side = box.inside ? DomainSide::inside : classify(domain_, box.u.data(), active);
+    if (side == DomainSide::outside) return true;  // (i)
+    const bool inside = side == DomainSide::inside;
+    BoxEnclosures e;
+    enclose(box.u, e);
+    if (certainly_nonzero(e.value)) return true;  // (ii), natural form
+    const ConeDecision decision = decide(box.u, e);
+    if (decision.misses_surface) return true;
+    if (decision.bound >= 0) {
+      keep_decided(box, inside, active, decision, e);
+      return true;
+    }
+    if (box.refining) {
+      slope_ = std::min(slope_, box.parent_slope);  // covered by its parent's decision
+      holds_surface(e.x);
+      return true;
+    }
+    std::optional<std::array<double, 3>> towards;
+    if (with_hessians_ && e.have_centre && n >= 2) {
+      towards = predicted_zero(map_, n, w_, e.centre, e.centre_value, e.centre_gradient, e.hessian());
+      if (refutes(box.u, inside, active, e)) return false;
+    }
+    // A side that no longer splits ends the attempt.
+    return split(box, inside, active, false, 0, e.gradient(), towards);
+  }
+
+  // E and ∇E over the box, and H with them when E has Hessians (one program: the tests want H on
+  // most boxes that (ii) does not drop, and it shares most of its work with ∇E).
+  void enclose(const std::array<Interval, 3>& u, BoxEnclosures& e) const {
+    map_.to_world(u.data(), e.x);
+    if (with_hessians_)
+      E_.values_and_derivatives<Interval>(e.x, nullptr, &e.value, e.derivatives);
+    else
+      E_.values_and_jacobian<Interval>(e.x, nullptr, &e.value, e.derivatives);
+  }
+
+  // Tests (ii) by the mean-value form and (iii) on a box that (ii)'s natural form did not drop.
+  ConeDecision decide(const std::array<Interval, 3>& u, BoxEnclosures& e) const {
+    ConeDecision d;
+    const Interval functional = inner(e.gradient(), w_);
+    if (certainly_nonzero(functional)) {
+      d.bound = refinement_.target > 0 ? box_slope(functional, e.gradient(), w_) : 0;  // (iii), natural form
+      d.sign = functional.inf() > 0 ? 1 : -1;
+      if (d.bound < refinement_.target && with_hessians_) {
+        // A sharper bound from the mean-value forms, unless the box misses Σ.
+        if (mean_value_excludes_zero(u, e)) return ConeDecision{true};
+        Interval g[3];
+        centred_gradient(u, e, g);
+        const Interval phi = meet(inner(g, w_), functional);
+        if (certainly_nonzero(phi)) d.bound = std::max(d.bound, box_slope(phi, g, w_));
+      }
+      return d;
+    }
+    if (mean_value_excludes_zero(u, e)) return ConeDecision{true};  // (ii), mean-value form
+    if (with_hessians_) {
+      // (iii′) the functional's mean-value form: its gradient is H w.
+      hessian_times(e.hessian(), w_, e.hessian_w);
+      e.centre_functional = inner(e.centre_gradient, w_);
+      Interval mean_functional = e.centre_functional;
+      for (std::size_t j = 0; j < n; ++j) mean_functional += map_.along(e.hessian_w, j) * (u[j] - e.centre[j]);
+      if (certainly_nonzero(mean_functional)) {
+        d.sign = mean_functional.inf() > 0 ? 1 : -1;
+        if (refinement_.target > 0) {
+          Interval g[3];
+          centred_gradient(u, e, g);
+          d.bound = box_slope(mean_functional, g, w_);
+        } else {
+          d.bound = 0;  // no slope asked for
+        }
+      }
+    }
+    return d;
+  }
+
+  // The centre of the box, and E (and ∇E with Hessians) there, once.
+  void at_centre(const std::array<Interval, 3>& u, BoxEnclosures& e) const {
+    if (e.have_centre) return;
+    for (std::size_t j = 0; j < n; ++j) e.centre[j] = Interval(CGAL::to_double(u[j]));
+    map_.to_world(e.centre, e.centre_world);
+    if (with_hessians_)
+      E_.values_and_jacobian<Interval>(e.centre_world, nullptr, &e.centre_value, e.centre_gradient);
+    else
+      E_.values<Interval>(e.centre_world, nullptr, &e.centre_value);
+    e.have_centre = true;
+  }
+
+  // Whether E's mean-value form about the centre excludes 0 from the box.
+  bool mean_value_excludes_zero(const std::array<Interval, 3>& u, BoxEnclosures& e) const {
+    at_centre(u, e);
+    Interval mean_value = e.centre_value;
+    for (std::size_t j = 0; j < n; ++j) mean_value += map_.along(e.gradient(), j) * (u[j] - e.centre[j]);
+    return certainly_nonzero(mean_value);
+  }
+
+  // ∇E on the box by its mean-value form about the centre, met with the natural enclosure.
+  void centred_gradient(const std::array<Interval, 3>& u, BoxEnclosures& e, Interval* g) const {
+    at_centre(u, e);
+    for (int k = 0; k < 3; ++k) {
+      Interval gk = e.centre_gradient[k];
+      for (std::size_t j = 0; j < n; ++j) gk += map_.along(e.hessian() + 3 * k, j) * (u[j] - e.centre[j]);
+      g[k] = meet(gk, e.gradient()[k]);
+    }
+  }
+
+  // Keeps the slope bound of a box that (iii) dropped, or splits the box into refining halves to
+  // raise a bound below the target while the refinement's budget lasts.
+  void keep_decided(const Box& box, bool inside, std::uint64_t active, const ConeDecision& decision,
+                    const BoxEnclosures& e) {
+    (decision.sign > 0 ? positive_seen_ : negative_seen_) = true;
+    const double box_bound = std::max(decision.bound, box.refining ? box.parent_slope : 0.0);
+    if (box_bound < refinement_.target && refining_created_ + 2 <= refinement_.box_budget &&
+        split(box, inside, active, true, box_bound, e.gradient())) {
+      refining_created_ += 2;
+      return;
+    }
+    slope_ = std::min(slope_, box_bound);
+    holds_surface(e.x);
+  }
+
+  // (iv) Whether a zero of the functional on Σ is proved inside P by the Krawczyk test on the
+  // box's slice; if so, it is the result's vanishing point.
+  bool refutes(const std::array<Interval, 3>& u, bool inside, std::uint64_t active, const BoxEnclosures& e) {
+    const SliceKrawczyk krawczyk(map_, n, e.gradient(), e.hessian_w);
+    const auto pair = krawczyk.unknowns();
+    const auto zero = krawczyk.image(pair, u, e.centre, e.centre_value, e.centre_functional, true);
+    bool inside_box = zero.has_value();
+    for (std::size_t j : pair)
+      inside_box = inside_box && u[j].inf() < (*zero)[j].inf() && (*zero)[j].sup() < u[j].sup();
+    if (!inside_box) return false;
+    std::uint64_t zero_active = active;
+    if (!inside && classify(domain_, zero->data(), zero_active) != DomainSide::inside) return false;
+    result_.vanishing_point = narrowed_zero(E_, map_, w_, n, pair, *zero);
+    return true;
+  }
+
   // Pushes the halves of `box` (the lower one on top) across the side of largest smear, the
   // width times the largest |∂E/∂u_j| on the box (`gradient` encloses ∇E there), or across the
   // widest side when the smear is not finite or its side no longer splits.  False if no side
   // splits.
-  auto split = [&](const Box& box, bool inside, std::uint64_t active, bool refining, double parent_slope,
-                   const Interval* gradient, const std::optional<std::array<double, 3>>& towards = std::nullopt) {
+  bool split(const Box& box, bool inside, std::uint64_t active, bool refining, double parent_slope,
+             const Interval* gradient, const std::optional<std::array<double, 3>>& towards = std::nullopt) {
     const auto& u = box.u;
     auto splits = [&](std::size_t j) {
       const double mid = 0.5 * (u[j].inf() + u[j].sup());
@@ -324,7 +498,7 @@ GradientConeResult prove_cone_in(const CompiledSystem& E, const AffineChart& cha
     std::size_t smeared = 0;
     double largest_smear = -1;
     for (std::size_t j = 0; j < n; ++j) {
-      const Interval d = map.along(gradient, j);
+      const Interval d = map_.along(gradient, j);
       const double smear = detail::width(u[j]) * std::max(std::abs(d.inf()), std::abs(d.sup()));
       if (smear > largest_smear) smeared = j, largest_smear = smear;
     }
@@ -336,145 +510,42 @@ GradientConeResult prove_cone_in(const CompiledSystem& E, const AffineChart& cha
     left.u[side] = Interval(lo, mid);
     right.u[side] = Interval(mid, hi);
     const bool upper_first = towards && (*towards)[side] > mid;
-    stack.push_back(upper_first ? left : right);
-    stack.push_back(upper_first ? right : left);
+    stack_.push_back(upper_first ? left : right);
+    stack_.push_back(upper_first ? right : left);
     return true;
-  };
-  while (!stack.empty()) {
-    const Box box = stack.back();
-    stack.pop_back();
-    if (box.refining) {
-      ++refining_boxes;
-    } else if (result.boxes - refining_boxes >= box_budget) {
-      return result;
-    }
-    ++result.boxes;
-    const auto& u = box.u;
-    std::uint64_t active = box.active;
-    const DomainSide side = box.inside ? DomainSide::inside : classify(domain, u.data(), active);
-    if (side == DomainSide::outside) continue;  // (i)
-    // E and ∇E over the box, and H with them when E has Hessians (one program: the tests below
-    // want H on most boxes that (ii) does not drop, and it shares most of its work with ∇E).
-    Interval x[3], value, derivatives[12];
-    const Interval* const gradient = derivatives;
-    const Interval* const hessian = derivatives + 3;
-    map.to_world(u.data(), x);
-    if (with_hessians)
-      E.values_and_derivatives<Interval>(x, nullptr, &value, derivatives);
-    else
-      E.values_and_jacobian<Interval>(x, nullptr, &value, derivatives);
-    if (certainly_nonzero(value)) continue;  // (ii), natural form
-    // The box's slope bound once (iii) drops it (−1: not dropped).
-    double box_bound = -1;
-    // The sign of the functional on the box once (iii) drops it.
-    int box_sign = 0;
-    const Interval functional = inner(gradient, w);
-    // H w over the box and ⟨∇E, w⟩ at the centre, computed by (iii′), which every box that
-    // reaches (iv) has been through (with Hessians, past the natural form of (iii)).
-    Interval hessian_w[3], centre_functional;
-    // The centre, and E and ∇E there, computed once a test needs them.
-    Interval centre[3], centre_world[3], centre_value, centre_gradient[3];
-    bool have_centre = false;
-    auto at_centre = [&] {
-      if (have_centre) return;
-      for (std::size_t j = 0; j < n; ++j) centre[j] = Interval(CGAL::to_double(u[j]));
-      map.to_world(centre, centre_world);
-      if (with_hessians)
-        E.values_and_jacobian<Interval>(centre_world, nullptr, &centre_value, centre_gradient);
-      else
-        E.values<Interval>(centre_world, nullptr, &centre_value);
-      have_centre = true;
-    };
-    auto mean_value_excludes_zero = [&] {
-      at_centre();
-      Interval mean_value = centre_value;
-      for (std::size_t j = 0; j < n; ++j) mean_value += map.along(gradient, j) * (u[j] - centre[j]);
-      return certainly_nonzero(mean_value);
-    };
-    // ∇E on the box by its mean-value form about the centre, met with the natural enclosure.
-    auto centred_gradient = [&](Interval* g) {
-      at_centre();
-      for (int k = 0; k < 3; ++k) {
-        Interval gk = centre_gradient[k];
-        for (std::size_t j = 0; j < n; ++j) gk += map.along(hessian + 3 * k, j) * (u[j] - centre[j]);
-        g[k] = meet(gk, gradient[k]);
-      }
-    };
-    if (certainly_nonzero(functional)) {
-      box_bound = refinement.target > 0 ? box_slope(functional, gradient, w) : 0;  // (iii), natural form
-      box_sign = functional.inf() > 0 ? 1 : -1;
-      if (box_bound < refinement.target && with_hessians) {
-        // A sharper bound from the mean-value forms, unless the box misses Σ.
-        if (mean_value_excludes_zero()) continue;
-        Interval g[3];
-        centred_gradient(g);
-        const Interval phi = meet(inner(g, w), functional);
-        if (certainly_nonzero(phi)) box_bound = std::max(box_bound, box_slope(phi, g, w));
-      }
-    } else {
-      if (mean_value_excludes_zero()) continue;  // (ii), mean-value form
-      if (with_hessians) {
-        // (iii′) the functional's mean-value form: its gradient is H w.
-        hessian_times(hessian, w, hessian_w);
-        centre_functional = inner(centre_gradient, w);
-        Interval mean_functional = centre_functional;
-        for (std::size_t j = 0; j < n; ++j) mean_functional += map.along(hessian_w, j) * (u[j] - centre[j]);
-        if (certainly_nonzero(mean_functional)) {
-          box_sign = mean_functional.inf() > 0 ? 1 : -1;
-          if (refinement.target > 0) {
-            Interval g[3];
-            centred_gradient(g);
-            box_bound = box_slope(mean_functional, g, w);
-          } else {
-            box_bound = 0;  // no slope asked for
-          }
-        }
-      }
-    }
-    if (box_bound >= 0) {
-      (box_sign > 0 ? positive_seen : negative_seen) = true;
-      box_bound = std::max(box_bound, box.refining ? box.parent_slope : 0.0);
-      if (box_bound < refinement.target && refining_created + 2 <= refinement.box_budget &&
-          split(box, side == DomainSide::inside, active, true, box_bound, gradient)) {
-        refining_created += 2;
-        continue;
-      }
-      slope = std::min(slope, box_bound);
-      holds_surface(x);
-      continue;
-    }
-    if (box.refining) {
-      slope = std::min(slope, box.parent_slope);  // covered by its parent's decision
-      holds_surface(x);
-      continue;
-    }
-    // (iv) A zero of the functional on Σ proved inside P refutes the certificate.
-    std::optional<std::array<double, 3>> towards;
-    if (with_hessians && have_centre && n >= 2) {
-      towards = predicted_zero(map, n, w, centre, centre_value, centre_gradient, hessian);
-      const SliceKrawczyk krawczyk(map, n, gradient, hessian_w);
-      const auto pair = krawczyk.unknowns();
-      const auto zero = krawczyk.image(pair, u, centre, centre_value, centre_functional, true);
-      bool inside_box = zero.has_value();
-      for (std::size_t j : pair)
-        inside_box = inside_box && u[j].inf() < (*zero)[j].inf() && (*zero)[j].sup() < u[j].sup();
-      if (inside_box) {
-        std::uint64_t zero_active = active;
-        if (side == DomainSide::inside || classify(domain, zero->data(), zero_active) == DomainSide::inside) {
-          result.vanishing_point = narrowed_zero(E, map, w, n, pair, *zero);
-          return result;
-        }
-      }
-    }
-    // A side that no longer splits ends the attempt.
-    if (!split(box, side == DomainSide::inside, active, false, 0, gradient, towards)) return result;
   }
-  result.proved = true;
-  result.slope = refinement.target > 0 ? slope : 0;
-  result.orientation = positive_seen == negative_seen ? 0 : positive_seen ? 1 : -1;
-  result.surface_lo = surface_lo;
-  result.surface_hi = surface_hi;
-  return result;
+
+  // Widens the bounding box of the cover's boxes that may hold points of Σ by a world box.
+  void holds_surface(const Interval* x) {
+    for (int k = 0; k < 3; ++k) {
+      surface_lo_[k] = std::min(surface_lo_[k], x[k].inf());
+      surface_hi_[k] = std::max(surface_hi_[k], x[k].sup());
+    }
+  }
+
+  const CompiledSystem& E_;
+  const ChartMap map_;
+  const Domain& domain_;
+  const std::array<double, 3>& w_;
+  const std::size_t box_budget_;
+  const SlopeRefinement& refinement_;
+  const bool with_hessians_;
+  GradientConeResult result_;
+  double slope_ = infinity;
+  // The bounding box of the world enclosures of the cover's boxes that may hold points of Σ.
+  std::array<double, 3> surface_lo_{infinity, infinity, infinity}, surface_hi_{-infinity, -infinity, -infinity};
+  std::size_t refining_boxes_ = 0, refining_created_ = 0;
+  bool positive_seen_ = false, negative_seen_ = false;  // signs of the functional on boxes (iii) dropped
+  std::vector<Box> stack_;
+};
+
+template <std::size_t N>
+GradientConeResult prove_cone_in(const CompiledSystem& E, const AffineChart& chart, const Domain& domain,
+                                 const std::array<double, 3>& w, std::size_t box_budget,
+                                 const SlopeRefinement& refinement) {
+  RoundingGuard guard;
+  ConeProver<N> prover(E, chart, domain, w, box_budget, refinement);
+  return prover.run();
 }
 
 }  // namespace

@@ -57,6 +57,8 @@ struct Verdict {
   //! False for what does not depend on the function whose flow is used: the seed solve on Σ and
   //! the crossing count (a topological invariant of M and Σ).
   bool depends_on_function = true;
+  //! False for what does not depend on the tube: the transversality of the triangles.
+  bool depends_on_tube = true;
 };
 
 IBox interval_point(const Point3& p) { return {Interval(p.x()), Interval(p.y()), Interval(p.z())}; }
@@ -672,7 +674,8 @@ void prove_with(FlowProof& proof, const FlowInput& in, std::optional<SolveResult
     const TriangleProof tp = prove_triangle(proof, points[tri[0]], points[tri[1]], points[tri[2]], c.triangle_pieces);
     if (tp.sign == 0)
       throw Verdict{FlowCertificateStatus::undecided,
-                    "triangle " + std::to_string(t) + " is not proved transverse to the gradient of E", tp.undecided_at};
+                    "triangle " + std::to_string(t) + " is not proved transverse to the gradient of E", tp.undecided_at,
+                    true, false};
     e_bound[t] = tp.e_bound;
     sign[t] = tp.sign * orientation.flip[t];
     c.epsilon = std::max(c.epsilon, tp.e_bound);
@@ -689,7 +692,7 @@ void prove_with(FlowProof& proof, const FlowInput& in, std::optional<SolveResult
       throw Verdict{FlowCertificateStatus::undecided,
                     "the gradient of E crosses the triangles of one component of the mesh in both directions "
                     "(at triangle " + std::to_string(t) + ")",
-                    P3{a.x(), a.y(), a.z()}};
+                    P3{a.x(), a.y(), a.z()}, true, false};
     }
   }
   std::vector<std::array<std::size_t, 3>> oriented = triangles;
@@ -837,8 +840,8 @@ FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
       c.reason_with_E = with_e.reason;
       c.function = FlowFunction::normalized;
       c.eta = eta;
-      // F's flow with the tube ±ε′, then, if a condition that depends on the function fails, with
-      // the one-sided tube.
+      // F's flow with the tube ±ε′, then, if a condition that depends on the function and the tube
+      // fails, with the one-sided tube.
       const auto attempt = [&](bool one_sided) {
         FlowProof normalized(*F, box, options, c, tolerances::flow_normalized_box_budget,
                              tolerances::flow_normalized_box_rounds);
@@ -857,7 +860,7 @@ FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
         attempt(false);
       } catch (const Verdict& with_f) {
         const std::optional<P3> at = with_f.location ? with_f.location : with_e.location;
-        if (with_f.status != FlowCertificateStatus::undecided || !with_f.depends_on_function)
+        if (with_f.status != FlowCertificateStatus::undecided || !with_f.depends_on_function || !with_f.depends_on_tube)
           throw Verdict{with_f.status, with_e_text + with_f.reason, at};
         try {
           attempt(true);

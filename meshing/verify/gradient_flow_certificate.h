@@ -76,7 +76,8 @@
 //! paths of (e) start where E < a and end where E > b.  In the proof the flow carries {E = a}
 //! onto {E = b}, T ≅ Σ × [a, b], and the part of γ_c in T runs from {E = a} to {E = b}; nothing
 //! else changes, the distance bound included (x ∈ M reaches Σ after |E(x)| ≤ ε units of s).  When
-//! F's flow with ±ε′ leaves a condition that depends on the function unproved, the certificate
+//! F's flow with ±ε′ leaves a condition that depends on the function and the tube unproved (not
+//! the transversality of the triangles, which is the same with any tube), the certificate
 //! tries F once more with a = f·ℓ and b = f·u, f = tolerances::flow_tube_factor, ℓ ≤ 0 ≤ u bounds
 //! of min F and max F on M (b = the least positive double if u = 0, a likewise): a mesh whose
 //! triangles lie on one side of Σ near a narrow gap (chords of the two spheres of near_sheets,

@@ -1,0 +1,55 @@
+#include <filesystem>
+#include <string>
+
+#include <boost/test/unit_test.hpp>
+#include <nlohmann/json.hpp>
+
+#include "tests/apps/run_delmesh.h"
+#include "tests/meshing/feature_meshes.h"
+#include "tests/temp_dir.h"
+
+using namespace delmesh::test;
+
+namespace {
+
+// `delmesh mesh --input-mesh` on CGAL's data mesh `name` at the default λ; its statistics.
+nlohmann::json remesh_statistics(const std::string& name, int expected_exit_code) {
+  TempDir dir;
+  const std::string input = cgal_data_mesh(name, dir);
+  const RunResult r = run_delmesh({"mesh", "--input-mesh", input, "--out", "out.off", "--stats", "out.json", "--quiet"},
+                                  dir.path);
+  BOOST_TEST(r.exit_code == expected_exit_code, r.err);
+  return nlohmann::json::parse(read_text(dir.path / "out.json"));
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(closed_ball_statistics)
+
+// CGAL's eight (genus 2, 634 triangles): the run ends complete, every Voronoi face of the output's
+// vertices meets the input in a closed ball, and the output is exactly Del S|Σ: the statistics
+// say the output is proved homeomorphic to the input.
+BOOST_AUTO_TEST_CASE(eight_is_proved_homeomorphic) {
+  const nlohmann::json stats = remesh_statistics("eight", 0);
+  const nlohmann::json& c = stats["closed_ball"];
+  BOOST_TEST(c["status"] == "holds");
+  BOOST_TEST(c["cells"] == stats["vertices"]);
+  BOOST_TEST(c["restricted_delaunay_triangles"] == stats["triangles"]);
+  BOOST_TEST(c["violations"]["count"] == 0);
+  BOOST_TEST(c["non_generic"]["count"] == 0);
+  BOOST_TEST(c["output_equals_restricted_delaunay"] == true);
+  BOOST_TEST(c["proves_homeomorphism"] == true);
+  BOOST_TEST(c["seconds"].get<double>() >= 0);
+}
+
+// CGAL's cube (12 triangles): its creases keep the smooth-surface checks from ending complete
+// (exit code 5, uncertified), but the closed-ball check proves the output homeomorphic to it.
+BOOST_AUTO_TEST_CASE(cube_is_uncertified_but_proved) {
+  const nlohmann::json stats = remesh_statistics("cube", 5);
+  BOOST_TEST(stats["status"] == "uncertified");
+  const nlohmann::json& c = stats["closed_ball"];
+  BOOST_TEST(c["status"] == "holds");
+  BOOST_TEST(c["proves_homeomorphism"] == true);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

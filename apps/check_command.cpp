@@ -231,8 +231,8 @@ TopologyCertificates certify_topology(const std::vector<Point3>& points,
 
 namespace {
 
-ExitCode run_check(const CheckOptions& o) {
-  const bool with_bounds = o.lambda_option->count() > 0;
+// The option combinations `check` refuses (InvalidInput), and the certificate method asked for.
+CertifyMethod validated_method(const CheckOptions& o, bool with_bounds) {
   if (with_bounds) require_bounds_lambda(o.lambda);
   if (o.certify && !o.surface.given())
     throw InvalidInput("--certify needs the surface: --surface NAME, or --expr E with --box B");
@@ -243,6 +243,85 @@ ExitCode run_check(const CheckOptions& o) {
   const CertifyMethod method = parse_enum<CertifyMethod>(o.method, "--method");
   if (!std::isfinite(o.time_limit) || o.time_limit < 0 || o.time_limit > max_time_limit_seconds)
     throw InvalidInput("--time-limit must be >= 0 and <= 1e9 seconds (0: none), got " + format_number(o.time_limit));
+  return method;
+}
+
+// The mesh checker's lines of the text report: counts, topology and quality.
+void print_mesh_report(std::ostream& out, const std::string& mesh, const MeshReport& report) {
+  out << "mesh:                  " << mesh << "\n";
+  out << "vertices:              " << report.vertices << "\n";
+  out << "edges:                 " << report.edges << "\n";
+  out << "triangles:             " << report.triangles << "\n";
+  out << "components:            " << report.components << "\n";
+  out << "euler characteristic:  " << report.euler_characteristic << "\n";
+  // The genus only of the components that are closed orientable 2-manifolds, "-" elsewhere.
+  out << "genus per component:  ";
+  bool undefined = false;
+  for (int g : report.genus_per_component) {
+    out << " " << (g >= 0 ? std::to_string(g) : "-");
+    undefined = undefined || g < 0;
+  }
+  if (undefined) out << "  (-: not a closed orientable 2-manifold, genus undefined)";
+  out << "\n";
+  out << "closed:                " << yes_no(report.closed);
+  if (!report.closed)
+    out << " (" << count_of(report.boundary_edges, "boundary edge") << " in "
+        << count_of(report.boundary_loops, "boundary loop") << ")";
+  out << "\n";
+  out << "manifold:              " << yes_no(report.manifold);
+  if (report.nonmanifold_edges > 0 || report.nonmanifold_vertices > 0)
+    out << " (" << count_of(report.nonmanifold_edges, "non-manifold edge") << ", "
+        << count_of(report.nonmanifold_vertices, "non-manifold vertex") << ")";
+  else if (!report.manifold)
+    out << " (it has boundary)";
+  out << "\n";
+  out << "orientable:            " << yes_no(report.orientable);
+  if (report.orientable && !report.oriented) out << " (but the triangles are not consistently oriented)";
+  out << "\n";
+  out << "min angle (deg):       " << report.min_angle_deg << "\n";
+  out << "max radius-edge ratio: " << report.max_radius_edge_ratio << "\n";
+  out << "max roughness (rad):   " << report.max_roughness_rad << "\n";
+}
+
+// The text report: the mesh checker's lines, the comparison with Theorem 6.1's bounds for λ when
+// asked, and the certificates with their verdict when they ran.
+void print_text_report(std::ostream& out, const CheckOptions& o, bool with_bounds, const CheckVerdict& verdict,
+                       const std::optional<TopologyCertificates>& certificates) {
+  print_mesh_report(out, o.mesh, verdict.report);
+  if (with_bounds) {
+    const TheoremBounds& bounds = verdict.bounds;
+    out << "Theorem 6.1 bounds for lambda = " << format_number(o.lambda) << ":\n";
+    out << "  min angle >= " << bounds.min_angle_deg << " deg: " << pass_fail(verdict.angle_ok) << "\n";
+    out << "  radius-edge ratio <= " << bounds.max_radius_edge_ratio << ": " << pass_fail(verdict.ratio_ok) << "\n";
+    out << "  roughness <= " << bounds.max_roughness_rad << " rad: " << pass_fail(verdict.roughness_ok) << "\n";
+  }
+  if (certificates) {
+    if (certificates->delaunay) print_certificate(out, *certificates->delaunay);
+    if (certificates->flow) print_flow_certificate(out, *certificates->flow);
+    out << "topology:              " << certificates->verdict
+        << (certificates->method.empty() ? "" : " (" + certificates->method + ")") << ": " << certificates->reason
+        << "\n";
+  }
+  out.flush();
+}
+
+// The exit code, with the warning of a certificate stopped by a signal or the time limit.
+ExitCode check_exit_code(const CheckVerdict& verdict, const std::optional<TopologyCertificates>& certificates) {
+  if (certificates && certificates->interrupted()) {
+    print_warning("interrupted by a signal: the certificate is incomplete (status undecided)");
+    return ExitCode::limit_reached;
+  }
+  if (certificates && certificates->time_limited()) {
+    print_warning("stopped by --time-limit: the certificate is incomplete (status undecided)");
+    return ExitCode::limit_reached;
+  }
+  const bool certified = !certificates || certificates->verdict == "certified";
+  return verdict.all_pass() && certified ? ExitCode::complete : ExitCode::check_failed;
+}
+
+ExitCode run_check(const CheckOptions& o) {
+  const bool with_bounds = o.lambda_option->count() > 0;
+  const CertifyMethod method = validated_method(o, with_bounds);
   const auto start = RunLimits::Clock::now();
   const RunLimits limits = RunLimits::after(o.time_limit, &interrupt_flag(), start);
   const RunLimits::Scope limits_scope(limits);
@@ -271,74 +350,14 @@ ExitCode run_check(const CheckOptions& o) {
   }
   phase.reset();
   for (const std::string& warning : verdict.warnings) print_warning(warning);
-  const MeshReport& report = verdict.report;
-  const TheoremBounds& bounds = verdict.bounds;
-
   if (o.json) {
     nlohmann::ordered_json out = verdict.to_json();
     if (certificates) out.update(certificates->to_json());
     print_json(std::cout, out);
   } else {
-    std::cout << "mesh:                  " << o.mesh << "\n";
-    std::cout << "vertices:              " << report.vertices << "\n";
-    std::cout << "edges:                 " << report.edges << "\n";
-    std::cout << "triangles:             " << report.triangles << "\n";
-    std::cout << "components:            " << report.components << "\n";
-    std::cout << "euler characteristic:  " << report.euler_characteristic << "\n";
-    // The genus only of the components that are closed orientable 2-manifolds, "-" elsewhere.
-    std::cout << "genus per component:  ";
-    bool undefined = false;
-    for (int g : report.genus_per_component) {
-      std::cout << " " << (g >= 0 ? std::to_string(g) : "-");
-      undefined = undefined || g < 0;
-    }
-    if (undefined) std::cout << "  (-: not a closed orientable 2-manifold, genus undefined)";
-    std::cout << "\n";
-    std::cout << "closed:                " << yes_no(report.closed);
-    if (!report.closed)
-      std::cout << " (" << count_of(report.boundary_edges, "boundary edge") << " in "
-                << count_of(report.boundary_loops, "boundary loop") << ")";
-    std::cout << "\n";
-    std::cout << "manifold:              " << yes_no(report.manifold);
-    if (report.nonmanifold_edges > 0 || report.nonmanifold_vertices > 0)
-      std::cout << " (" << count_of(report.nonmanifold_edges, "non-manifold edge") << ", "
-                << count_of(report.nonmanifold_vertices, "non-manifold vertex") << ")";
-    else if (!report.manifold)
-      std::cout << " (it has boundary)";
-    std::cout << "\n";
-    std::cout << "orientable:            " << yes_no(report.orientable);
-    if (report.orientable && !report.oriented) std::cout << " (but the triangles are not consistently oriented)";
-    std::cout << "\n";
-    std::cout << "min angle (deg):       " << report.min_angle_deg << "\n";
-    std::cout << "max radius-edge ratio: " << report.max_radius_edge_ratio << "\n";
-    std::cout << "max roughness (rad):   " << report.max_roughness_rad << "\n";
-    if (with_bounds) {
-      std::cout << "Theorem 6.1 bounds for lambda = " << format_number(o.lambda) << ":\n";
-      std::cout << "  min angle >= " << bounds.min_angle_deg << " deg: " << pass_fail(verdict.angle_ok) << "\n";
-      std::cout << "  radius-edge ratio <= " << bounds.max_radius_edge_ratio << ": " << pass_fail(verdict.ratio_ok)
-                << "\n";
-      std::cout << "  roughness <= " << bounds.max_roughness_rad << " rad: " << pass_fail(verdict.roughness_ok)
-                << "\n";
-    }
-    if (certificates) {
-      if (certificates->delaunay) print_certificate(std::cout, *certificates->delaunay);
-      if (certificates->flow) print_flow_certificate(std::cout, *certificates->flow);
-      std::cout << "topology:              " << certificates->verdict
-                << (certificates->method.empty() ? "" : " (" + certificates->method + ")") << ": "
-                << certificates->reason << "\n";
-    }
-    std::cout.flush();
+    print_text_report(std::cout, o, with_bounds, verdict, certificates);
   }
-  if (certificates && certificates->interrupted()) {
-    print_warning("interrupted by a signal: the certificate is incomplete (status undecided)");
-    return ExitCode::limit_reached;
-  }
-  if (certificates && certificates->time_limited()) {
-    print_warning("stopped by --time-limit: the certificate is incomplete (status undecided)");
-    return ExitCode::limit_reached;
-  }
-  const bool certified = !certificates || certificates->verdict == "certified";
-  return verdict.all_pass() && certified ? ExitCode::complete : ExitCode::check_failed;
+  return check_exit_code(verdict, certificates);
 }
 
 }  // namespace

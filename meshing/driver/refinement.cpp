@@ -17,6 +17,75 @@ namespace {
 
 EdgeKey as_edge(const std::array<VertexId, 3>& s) { return {s[0], s[1]}; }
 
+// The log's record of an insertion of witness w (the ids and the nearest sample come later).
+InsertionRecord insertion_record(const Witness& w, VertexId partner_of) {
+  InsertionRecord record;
+  record.point = w.point;
+  record.kind = w.kind;
+  record.from_undecided = w.from_undecided;
+  record.partner_of = partner_of;
+  return record;
+}
+
+// Whether a witness at `point` may be inserted, from its nearest sample: refused within the
+// duplicate distance (counted as rejected) and below the termination floor (recorded, not
+// inserted).  `refused` says whether it refused.
+struct InsertionFilter {
+  double duplicate_distance, floor;
+  const Vec3& point;
+  std::size_t& rejected;
+  std::size_t& floor_hits;
+  std::vector<Vec3>& floor_locations;
+  bool refused = false;
+
+  bool accepts(const Nearest& nearest) {
+    if (nearest.distance <= duplicate_distance) {
+      ++rejected;
+      refused = true;
+    } else if (nearest.distance < floor) {
+      // The termination floor: recorded, not inserted.
+      ++floor_hits;
+      if (floor_locations.size() < tolerances::floor_locations_listed &&
+          std::find(floor_locations.begin(), floor_locations.end(), point) == floor_locations.end())
+        floor_locations.push_back(point);
+      refused = true;
+    }
+    return !refused;
+  }
+};
+
+// x's neighbours q in its closed star, ascending: the edges xq of the star.
+std::vector<VertexId> star_neighbours(VertexId x, const std::vector<Delaunay::StarTriangle>& star) {
+  std::vector<VertexId> neighbours;
+  neighbours.reserve(2 * star.size());
+  for (const auto& s : star)
+    if (s.contains_vertex)
+      for (VertexId v : s.key)
+        if (v != x) neighbours.push_back(v);
+  detail::sort_distinct_ids(neighbours);
+  return neighbours;
+}
+
+// The records of x's star brought up to date (RestrictedDelaunay::prepare_star()), and with the
+// geometry checks V_x's certificate, towards the slope that certifies the facets of all the new
+// edges xq (they lie in V_x; facet_section_certified() takes those it certifies from it),
+// alongside the records: neither reads what the other writes (restricted_delaunay.h), and V_x is
+// built from its Delaunay cells `cells`, read with the star, without a walk of Del S on the other
+// thread.  Not while only the topology checks run: their cells are large and their certificates
+// often fail, and a failure here would be paid again by Silhouette.
+std::vector<RestrictedDelaunay::StarRecord> prepare_star_records(
+    RestrictedDelaunay& restricted, const detail::ParallelFor& parallel, bool geometry_enabled, VertexId x,
+    const std::vector<Delaunay::StarTriangle>& star, const std::vector<std::array<VertexId, 4>>& cells,
+    const std::vector<VertexId>& neighbours) {
+  std::vector<RestrictedDelaunay::StarRecord> records;
+  auto prepare_records = [&] { records = restricted.prepare_star(star, parallel); };
+  if (geometry_enabled)
+    parallel.invoke([&] { restricted.certify_new_cell(x, cells, neighbours); }, prepare_records);
+  else
+    prepare_records();
+  return records;
+}
+
 }  // namespace
 
 std::vector<Refinement::Step> Refinement::make_table() {
@@ -152,33 +221,17 @@ std::optional<VertexId> Refinement::timed_insert(const Witness& w, VertexId part
 }
 
 std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId partner_of) {
-  InsertionRecord record;
-  record.point = w.point;
-  record.kind = w.kind;
-  record.from_undecided = w.from_undecided;
-  record.partner_of = partner_of;
+  InsertionRecord record = insertion_record(w, partner_of);
   // The nearest sample comes with the insertion's own search (Delaunay::insert_tracking()); a
   // point too close to it is refused before Del S changes.
-  bool refused = false;
-  const NearestTest accept = [&](const Nearest& nearest) {
-    if (nearest.distance <= limits_.duplicate_relative_distance * oracle_.diagonal()) {
-      ++rejected_;
-      refused = true;
-    } else if (nearest.distance < floor_for(w.kind)) {
-      // The termination floor: recorded, not inserted.
-      ++floor_hits_;
-      if (floor_locations_.size() < tolerances::floor_locations_listed &&
-          std::find(floor_locations_.begin(), floor_locations_.end(), w.point) == floor_locations_.end())
-        floor_locations_.push_back(w.point);
-      refused = true;
-    }
-    return !refused;
-  };
+  InsertionFilter filter{limits_.duplicate_relative_distance * oracle_.diagonal(), floor_for(w.kind), w.point,
+                         rejected_, floor_hits_, floor_locations_};
+  const NearestTest accept = [&filter](const Nearest& nearest) { return filter.accepts(nearest); };
   auto [id, change, nearest] = del_.insert_tracking(w.point, w.kind == CheckKind::seed, w.measured_from, accept);
   record.nearest = nearest.id;
   record.nearest_distance = nearest.distance;
   if (!id) {
-    if (!refused) ++rejected_;
+    if (!filter.refused) ++rejected_;
     return std::nullopt;
   }
   const VertexId x = *id;
@@ -202,27 +255,9 @@ std::optional<VertexId> Refinement::insert_and_queue(const Witness& w, VertexId 
   std::vector<std::array<VertexId, 4>> cells;  // x's Delaunay cells, read in the same walk
   const auto star = del_.closed_star(x, geometry_enabled_ ? &cells : nullptr);
   star_changed.reserve(star_changed.size() + 3 * star.size());  // at most three per star triangle
-  // x's neighbours q, ascending: the edges xq of the star.
-  std::vector<VertexId> neighbours;
-  neighbours.reserve(2 * star.size());
-  for (const auto& s : star)
-    if (s.contains_vertex)
-      for (VertexId v : s.key)
-        if (v != x) neighbours.push_back(v);
-  detail::sort_distinct_ids(neighbours);
-  std::vector<RestrictedDelaunay::StarRecord> records;
-  auto prepare_records = [&] { records = restricted_.prepare_star(star, parallel_); };
-  if (geometry_enabled_) {
-    // V_x's certificate, towards the slope that certifies the facets of all the new edges xq
-    // (they lie in V_x; facet_section_certified() takes those it certifies from it), alongside the
-    // records: neither reads what the other writes (restricted_delaunay.h), and V_x is built
-    // from its Delaunay cells, read here with the star, without a walk of Del S on the other
-    // thread.  Not while only the topology checks run: their cells are large and their
-    // certificates often fail, and a failure here would be paid again by Silhouette.
-    parallel_.invoke([&] { restricted_.certify_new_cell(x, cells, neighbours); }, prepare_records);
-  } else {
-    prepare_records();
-  }
+  const std::vector<VertexId> neighbours = star_neighbours(x, star);
+  const std::vector<RestrictedDelaunay::StarRecord> records =
+      prepare_star_records(restricted_, parallel_, geometry_enabled_, x, star, cells, neighbours);
   for (std::size_t i = 0; i < star.size(); ++i) {
     const auto& t = star[i].key;
     const VoronoiEdgeRecord& r = *records[i].record;

@@ -218,6 +218,92 @@ Insertion Delaunay::insert_tracking(const std::array<double, 3>& p, bool is_seed
   return insertion;
 }
 
+namespace {
+
+// |q − p|² for the point q of vertex u.
+double squared_distance(const detail::DelaunayImpl& impl, const detail::Dt::Vertex_handle& u,
+                        const std::array<double, 3>& p) {
+  using detail::operator-;
+  const auto d = impl.points[u->info().id] - p;
+  return detail::dot(d, d);
+}
+
+// Reports u (at squared distance d2) as p's nearest sample into `nearest` (if asked); false if
+// `accept` refuses p.
+bool report_nearest(Nearest* nearest, const NearestTest* accept, const detail::Dt::Vertex_handle& u, double d2) {
+  const Nearest n{u->info().id, std::sqrt(d2)};
+  if (nearest) *nearest = n;
+  return !accept || (*accept)(n);
+}
+
+// The cavity of `point` (the cells in conflict with it, from `cell` that contains it), its
+// boundary facets and its internal facets, into the implementation's scratch lists.
+void find_cavity(detail::DelaunayImpl& impl, const Point3& point, detail::Dt::Cell_handle cell) {
+  impl.cavity_boundary.clear();
+  impl.cavity_internal.clear();
+  impl.cavity_cells.clear();
+  impl.dt.find_conflicts(point, cell, std::back_inserter(impl.cavity_boundary), std::back_inserter(impl.cavity_cells),
+                         std::back_inserter(impl.cavity_internal));
+}
+
+// p's nearest sample among the vertices of the cavity, which holds it (insert_tracking() in the
+// header), with its squared distance; ties go to the smaller id.
+std::pair<detail::Dt::Vertex_handle, double> nearest_cavity_vertex(const detail::DelaunayImpl& impl,
+                                                                   const std::array<double, 3>& p) {
+  detail::Dt::Vertex_handle best;
+  double best_d2 = 0;
+  for (const auto& c : impl.cavity_cells)
+    for (int k = 0; k < 4; ++k) {
+      const auto u = c->vertex(k);
+      if (impl.dt.is_infinite(u)) continue;
+      const double d2 = squared_distance(impl, u, p);
+      if (best == detail::Dt::Vertex_handle() || d2 < best_d2 || (d2 == best_d2 && u->info().id < best->info().id)) {
+        best = u;
+        best_d2 = d2;
+      }
+    }
+  return {best, best_d2};
+}
+
+// The faces the cavity changes, into `change`: an edge of the cavity shrinks if it lies on a
+// boundary facet and is destroyed otherwise (the boundary facets' edges are taken first, each edge
+// once); the boundary facets shrink and the internal ones are destroyed.
+void record_cavity_change(detail::DelaunayImpl& impl, InsertionChange& change) {
+  auto& boundary = impl.cavity_boundary;
+  auto& internal = impl.cavity_internal;
+  detail::CavityEdges& seen = impl.cavity_edges;
+  seen.start(3 * (boundary.size() + internal.size()));
+  change.shrunk_triangles.reserve(boundary.size());
+  change.destroyed_triangles.reserve(internal.size());
+  change.shrunk_edges.reserve(3 * boundary.size());
+  change.destroyed_edges.reserve(3 * internal.size());
+  for (const auto& [facets, triangles, edges] :
+       {std::tie(boundary, change.shrunk_triangles, change.shrunk_edges),
+        std::tie(internal, change.destroyed_triangles, change.destroyed_edges)})
+    for (const auto& f : facets)
+      if (const auto t = facet_key(impl.dt, f)) {
+        triangles.push_back(*t);
+        for (const EdgeKey& e : {EdgeKey{(*t)[0], (*t)[1]}, EdgeKey{(*t)[0], (*t)[2]}, EdgeKey{(*t)[1], (*t)[2]}})
+          if (seen.add(e)) edges.push_back(e);
+      }
+  change.local = true;
+}
+
+// Gives the new vertex v (at p) the next id and records it; returns the id.
+VertexId register_vertex(detail::DelaunayImpl& impl, const detail::Dt::Vertex_handle& v,
+                         const std::array<double, 3>& p, bool is_seed) {
+  const VertexId id = static_cast<VertexId>(impl.handles.size());
+  v->info().id = id;
+  v->info().is_seed = is_seed;
+  impl.handles.push_back(v);
+  impl.points.push_back(p);
+  impl.seeds.push_back(is_seed ? 1 : 0);
+  ++impl.alive;
+  return id;
+}
+
+}  // namespace
+
 std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, bool is_seed,
                                                InsertionChange* change, Nearest* nearest, VertexId hint,
                                                const NearestTest* accept) {
@@ -227,17 +313,6 @@ std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, b
   const Point3 point(p[0], p[1], p[2]);
   if (change) *change = InsertionChange{};
   if (nearest) *nearest = Nearest{};
-  auto squared_distance = [&](const detail::Dt::Vertex_handle& u) {
-    using detail::operator-;
-    const auto d = impl_->points[u->info().id] - p;
-    return detail::dot(d, d);
-  };
-  // Reports u (at squared distance d2) as p's nearest sample; false if p is not to be inserted.
-  auto report_nearest = [&](const detail::Dt::Vertex_handle& u, double d2) {
-    const Nearest n{u->info().id, std::sqrt(d2)};
-    if (nearest) *nearest = n;
-    return !accept || (*accept)(n);
-  };
   detail::Dt::Vertex_handle v;
   if (dt.dimension() == 3) {
     detail::Dt::Locate_type lt;
@@ -245,76 +320,34 @@ std::optional<VertexId> Delaunay::insert_point(const std::array<double, 3>& p, b
     const auto cell = contains(hint) ? dt.locate(point, lt, li, lj, impl_->handles[hint]->cell())
                                      : dt.locate(point, lt, li, lj);
     if (lt == detail::Dt::VERTEX) {
-      if (nearest || accept) report_nearest(cell->vertex(li), 0);
+      if (nearest || accept) report_nearest(nearest, accept, cell->vertex(li), 0);
       return std::nullopt;
     }
     if (change) {
       // The cavity (the cells in conflict with p): its internal facets are destroyed, its boundary
       // facets shrink, and p is starred from its boundary (Bowyer–Watson) without a second search.
-      auto& boundary = impl_->cavity_boundary;
-      auto& internal = impl_->cavity_internal;
-      auto& cavity = impl_->cavity_cells;
-      boundary.clear();
-      internal.clear();
-      cavity.clear();
-      dt.find_conflicts(point, cell, std::back_inserter(boundary), std::back_inserter(cavity),
-                        std::back_inserter(internal));
+      find_cavity(*impl_, point, cell);
       if (nearest || accept) {
-        // p's nearest sample is a vertex of the cavity (insert_tracking() in the header).
-        detail::Dt::Vertex_handle best;
-        double best_d2 = 0;
-        for (const auto& c : cavity)
-          for (int k = 0; k < 4; ++k) {
-            const auto u = c->vertex(k);
-            if (dt.is_infinite(u)) continue;
-            const double d2 = squared_distance(u);
-            if (best == detail::Dt::Vertex_handle() || d2 < best_d2 ||
-                (d2 == best_d2 && u->info().id < best->info().id)) {
-              best = u;
-              best_d2 = d2;
-            }
-          }
-        if (!report_nearest(best, best_d2)) return std::nullopt;
+        const auto [best, best_d2] = nearest_cavity_vertex(*impl_, p);
+        if (!report_nearest(nearest, accept, best, best_d2)) return std::nullopt;
       }
-      // An edge of the cavity shrinks if it lies on a boundary facet and is destroyed otherwise:
-      // the boundary facets' edges are taken first, each edge once.
-      detail::CavityEdges& seen = impl_->cavity_edges;
-      seen.start(3 * (boundary.size() + internal.size()));
-      change->shrunk_triangles.reserve(boundary.size());
-      change->destroyed_triangles.reserve(internal.size());
-      change->shrunk_edges.reserve(3 * boundary.size());
-      change->destroyed_edges.reserve(3 * internal.size());
-      for (const auto& [facets, triangles, edges] :
-           {std::tie(boundary, change->shrunk_triangles, change->shrunk_edges),
-            std::tie(internal, change->destroyed_triangles, change->destroyed_edges)})
-        for (const auto& f : facets)
-          if (const auto t = facet_key(dt, f)) {
-            triangles.push_back(*t);
-            for (const EdgeKey& e : {EdgeKey{(*t)[0], (*t)[1]}, EdgeKey{(*t)[0], (*t)[2]}, EdgeKey{(*t)[1], (*t)[2]}})
-              if (seen.add(e)) edges.push_back(e);
-          }
-      change->local = true;
-      v = dt.insert_in_hole(point, cavity.begin(), cavity.end(), boundary.front().first, boundary.front().second);
+      record_cavity_change(*impl_, *change);
+      const auto& boundary = impl_->cavity_boundary;
+      v = dt.insert_in_hole(point, impl_->cavity_cells.begin(), impl_->cavity_cells.end(), boundary.front().first,
+                            boundary.front().second);
     } else {
       v = dt.insert(point, lt, cell, li, lj);  // insert(): no nearest sample asked for
     }
   } else {
     if ((nearest || accept) && impl_->alive > 0) {
       const auto u = dt.nearest_vertex(point);
-      if (!report_nearest(u, squared_distance(u))) return std::nullopt;
+      if (!report_nearest(nearest, accept, u, squared_distance(*impl_, u, p))) return std::nullopt;
     }
     const std::size_t before = dt.number_of_vertices();
     v = dt.insert(point);
     if (dt.number_of_vertices() == before) return std::nullopt;  // coincides with a vertex
   }
-  const VertexId id = static_cast<VertexId>(impl_->handles.size());
-  v->info().id = id;
-  v->info().is_seed = is_seed;
-  impl_->handles.push_back(v);
-  impl_->points.push_back(p);
-  impl_->seeds.push_back(is_seed ? 1 : 0);
-  ++impl_->alive;
-  return id;
+  return register_vertex(*impl_, v, p, is_seed);
 }
 
 void Delaunay::remove(VertexId id) {

@@ -147,6 +147,84 @@ bool in_box(const Vec3& x, const std::array<Vec3, 2>& box) {
   return true;
 }
 
+// Step 1 of facet_misses_surface(): F's Voronoi edges (edges[i] of boundary[i]) and the ends of
+// the valid ones in `ends`; `inside_box` says whether every edge is valid with both ends at
+// Voronoi vertices.  False when an edge proves nothing: it meets Σ (which puts a point of Σ in
+// F), it is degenerate, or it has no line.
+bool facet_edge_ends(const Delaunay& del, const EdgeKey& e, const std::vector<Delaunay::RingTriangle>& ring,
+                     const std::vector<const VoronoiEdgeRecord*>& boundary, std::vector<VoronoiEdge>& edges,
+                     BoundingBox& ends, bool& inside_box) {
+  for (std::size_t i = 0; i < boundary.size(); ++i) {
+    const VoronoiEdgeRecord* r = boundary[i];
+    if (!r->crossings().empty() || !r->candidates().empty() || !r->unresolved().empty() || r->edge_degenerate())
+      return false;
+    const VoronoiEdge& edge = edges.emplace_back(r->edge(del, make_triangle_key(e[0], e[1], ring[i].third)));
+    if (!edge.valid) {
+      // An edge that is neither valid nor degenerate lies outside B, unless it has no line at all
+      // (a triangle with no normal), which proves nothing.
+      if (!(norm(edge.direction) > 0)) return false;
+      inside_box = false;
+      continue;
+    }
+    inside_box = inside_box && edge.at_vertex0 && edge.at_vertex1;
+    ends.add(edge.at(edge.t0));
+    ends.add(edge.at(edge.t1));
+  }
+  return true;
+}
+
+// Step 2 of facet_misses_surface(): adds to `ends` the points y of Π ∩ (edges of B) in F, i.e. on
+// p's side of the bisector of p and each r (up to the margin, so that rounding can only add
+// points).
+void add_box_edge_points(const Delaunay& del, const Box3& clip, const EdgeKey& e,
+                         const std::vector<Delaunay::RingTriangle>& ring, double margin, BoundingBox& ends) {
+  const Vec3& p = del.point(e[0]);
+  const Vec3& q = del.point(e[1]);
+  for (const Vec3& y : plane_box_edge_points(0.5 * (p + q), q - p, clip)) {
+    const bool in_facet = std::all_of(ring.begin(), ring.end(), [&](const Delaunay::RingTriangle& t) {
+      const Vec3& r = del.point(t.third);
+      const Vec3 w = r - p;
+      return dot(w, y) - dot(w, 0.5 * (r + p)) <= margin * norm(w);
+    });
+    if (in_facet) ends.add(y);
+  }
+}
+
+// The distance from x to the box [lo, hi].
+double distance_outside(const Vec3& x, const Vec3& lo, const Vec3& hi) {
+  double out = 0;
+  for (int k = 0; k < 3; ++k) out += std::pow(std::max({0.0, lo[k] - x[k], x[k] - hi[k]}), 2);
+  return std::sqrt(out);
+}
+
+// Step 4 of facet_misses_surface(): the largest δ = dist(v, box of `ends`) + ρ(v) over the
+// Voronoi vertices v of F's valid edges (apexes from the ring) that may lie in B (those farther
+// than ρ(v) from B are not vertices of F ∩ B).  The static radii are asked first, up to a
+// quarter of the margin; the interval ones if δ is then too large.
+double voronoi_vertex_reach(const Delaunay& del, const Box3& clip, const std::vector<Delaunay::RingTriangle>& ring,
+                            const std::vector<VoronoiEdge>& edges, const BoundingBox& ends, double margin) {
+  thread_local std::vector<std::array<VertexId, 4>> cells;
+  cells.clear();
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const VoronoiEdge& edge = edges[i];
+    if (!edge.valid || (!edge.at_vertex0 && !edge.at_vertex1)) continue;
+    const TriangleKey& t = edge.triangle;
+    for (VertexId apex : ring[i].apexes)
+      if (apex >= 0) cells.push_back({t[0], t[1], t[2], apex});
+  }
+  double reach = 0;
+  for (const double enough : {0.25 * margin, 0.0}) {
+    reach = 0;
+    for (const auto& c : cells) {
+      const VoronoiVertex v = certified_voronoi_vertex(del, c, enough);
+      if (!(distance_outside(v.centre, clip.lo, clip.hi) > v.radius))
+        reach = std::max(reach, distance_outside(v.centre, ends.lo, ends.hi) + v.radius);
+    }
+    if (2 * reach <= margin) break;
+  }
+  return reach;
+}
+
 }  // namespace
 
 RestrictedDelaunay::RestrictedDelaunay(const Delaunay& del, SurfaceOracle& oracle, std::uint64_t seed)
@@ -307,78 +385,21 @@ bool RestrictedDelaunay::facet_misses_surface(const EdgeKey& e, const std::vecto
   // F.  An edge that meets Σ puts a point of Σ in F; a degenerate one proves nothing.
   BoundingBox ends;
   bool inside_box = true;  // every Voronoi edge of F valid, with both ends at Voronoi vertices
-  // The edges of F (edges[i] of boundary[i]).
-  thread_local std::vector<VoronoiEdge> edges;
+  thread_local std::vector<VoronoiEdge> edges;  // the edges of F (edges[i] of boundary[i])
   edges.clear();
-  for (std::size_t i = 0; i < boundary.size(); ++i) {
-    const VoronoiEdgeRecord* r = boundary[i];
-    if (!r->crossings().empty() || !r->candidates().empty() || !r->unresolved().empty() || r->edge_degenerate())
-      return false;
-    const VoronoiEdge& edge = edges.emplace_back(r->edge(del_, make_triangle_key(e[0], e[1], ring[i].third)));
-    if (!edge.valid) {
-      // An edge that is neither valid nor degenerate lies outside B, unless it has no line at all
-      // (a triangle with no normal), which proves nothing.
-      if (!(norm(edge.direction) > 0)) return false;
-      inside_box = false;
-      continue;
-    }
-    inside_box = inside_box && edge.at_vertex0 && edge.at_vertex1;
-    ends.add(edge.at(edge.t0));
-    ends.add(edge.at(edge.t1));
-  }
+  if (!facet_edge_ends(del_, e, ring, boundary, edges, ends, inside_box)) return false;
   const double margin = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
-  if (!inside_box) {
-    // Step 2: the third kind: points y of Π ∩ (edges of B) in F, i.e. on p's side of the
-    // bisector of p and each r (up to the margin, so that rounding can only add points).
-    const Vec3& p = del_.point(e[0]);
-    const Vec3& q = del_.point(e[1]);
-    for (const Vec3& y : plane_box_edge_points(0.5 * (p + q), q - p, oracle_.clip_box())) {
-      const bool in_facet = std::all_of(ring.begin(), ring.end(), [&](const Delaunay::RingTriangle& t) {
-        const Vec3& r = del_.point(t.third);
-        const Vec3 w = r - p;
-        return dot(w, y) - dot(w, 0.5 * (r + p)) <= margin * norm(w);
-      });
-      if (in_facet) ends.add(y);
-    }
-  }
+  // Step 2: the third kind, points of Π ∩ (edges of B) in F.
+  if (!inside_box) add_box_edge_points(del_, oracle_.clip_box(), e, ring, margin, ends);
   if (ends.empty()) return false;
   // Step 3: E of one sign on the box enlarged by the margin (needed in any case).
   BoundingBox box = ends;
   box.enlarge(margin);
   if (!excludes_zero_on(oracle_, box.lo, box.hi, tolerances::facet_miss_box_budget)) return false;
-  // Step 4: the largest δ = dist(v, box of the points) + ρ(v) over the Voronoi vertices v that
-  // may lie in B (those farther than ρ(v) from B are not vertices of F ∩ B): every exact Voronoi
-  // vertex of F ∩ B lies within δ of that box.  If 2δ exceeds the margin, the proof is redone
-  // on the box enlarged by 2δ when every edge of F ends at Voronoi vertices, and not attempted
-  // otherwise.
-  auto outside = [](const Vec3& x, const Vec3& lo, const Vec3& hi) {
-    double out = 0;
-    for (int k = 0; k < 3; ++k) out += std::pow(std::max({0.0, lo[k] - x[k], x[k] - hi[k]}), 2);
-    return std::sqrt(out);
-  };
-  const Box3& clip = oracle_.clip_box();
-  // The cells t·apex of the Voronoi vertices of F's valid edges (apexes from the ring).
-  thread_local std::vector<std::array<VertexId, 4>> cells;
-  cells.clear();
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const VoronoiEdge& edge = edges[i];
-    if (!edge.valid || (!edge.at_vertex0 && !edge.at_vertex1)) continue;
-    const TriangleKey& t = edge.triangle;
-    for (VertexId apex : ring[i].apexes)
-      if (apex >= 0) cells.push_back({t[0], t[1], t[2], apex});
-  }
-  // (The static radii are asked first, up to a quarter of the margin; the interval ones if δ
-  // is then too large.)
-  double reach = 0;
-  for (const double enough : {0.25 * margin, 0.0}) {
-    reach = 0;
-    for (const auto& c : cells) {
-      const VoronoiVertex v = certified_voronoi_vertex(del_, c, enough);
-      if (!(outside(v.centre, clip.lo, clip.hi) > v.radius))
-        reach = std::max(reach, outside(v.centre, ends.lo, ends.hi) + v.radius);
-    }
-    if (2 * reach <= margin) break;
-  }
+  // Step 4: every exact Voronoi vertex of F ∩ B lies within δ = voronoi_vertex_reach() of the
+  // box of the points.  If 2δ exceeds the margin, the proof is redone on the box enlarged by 2δ
+  // when every edge of F ends at Voronoi vertices, and not attempted otherwise.
+  const double reach = voronoi_vertex_reach(del_, oracle_.clip_box(), ring, edges, ends, margin);
   if (!std::isfinite(reach)) return false;
   if (2 * reach > margin) {
     if (!inside_box) return false;
@@ -741,6 +762,165 @@ std::optional<double> monotone_zero(const SurfaceOracle& oracle, const VoronoiEd
   }
 }
 
+// Whether E keeps one sign on a box holding e's segment and on the connectors from the shared
+// Voronoi vertices `shared` to e's ends: the polyline misses Σ, which is all SurfaceLine could
+// answer.  Tried first on the box that also holds the shared vertices (one evaluation), then on
+// the segment's box with the connectors proved apart.
+bool segment_signed(const SurfaceOracle& oracle, const VoronoiEdge& e, const std::array<Vec3, 2>& shared) {
+  const auto box = segment_box(e);
+  std::array<Vec3, 2> wide = box;
+  for (int i = 0; i < 2; ++i)
+    if (i == 0 ? e.at_vertex0 : e.at_vertex1)
+      for (int k = 0; k < 3; ++k) {
+        wide[0][k] = std::min(wide[0][k], shared[i][k]);
+        wide[1][k] = std::max(wide[1][k], shared[i][k]);
+      }
+  const bool widened = wide != box;
+  if (oracle.value_sign(wide[0], wide[1]) != 0) return true;
+  if (!widened) return false;
+  const int sign = oracle.value_sign(box[0], box[1]);
+  if (sign == 0) return false;
+  bool connectors_agree = true;
+  for (int i = 0; i < 2 && connectors_agree; ++i)
+    if ((i == 0 ? e.at_vertex0 : e.at_vertex1) && !in_box(shared[i], box))
+      connectors_agree = connector_sign(oracle, e.at(i == 0 ? e.t0 : e.t1), shared[i]) == sign;
+  return connectors_agree;
+}
+
+// The crossings, candidates and unresolved regions of one Voronoi edge e with Σ, gathered into
+// `lists` from SurfaceLine's answer on e's segment and from e's connectors.  e is seen as the
+// other faces see it: the polyline v0, at(t0), at(t1), v1, whose ends v_i at Voronoi vertices are
+// the shared points of voronoi_edge_ends() (at(t0) and at(t1) otherwise).  The connector from v_i
+// to at(t_i) is as long as v_i's distance from e's line, which the circumcentre's error can make
+// far longer than a rounding.
+class EdgeCrossings {
+ public:
+  EdgeCrossings(SurfaceOracle& oracle, const VoronoiEdge& e, const std::array<Vec3, 2>& shared,
+                VoronoiEdgeLists& lists)
+      : oracle_(oracle), e_(e), shared_(shared), lists_(lists) {}
+
+  // SurfaceLine's certified roots: crossings, or zeros near a Voronoi vertex (add_near_vertex).
+  void add_roots(const std::vector<CertifiedRoot>& roots) {
+    const double vertex_tol = tolerances::duplicate_sample_relative_distance * oracle_.diagonal();
+    for (const auto& root : roots) {
+      const double t = root.midpoint[0], lo = root.box.bounds[0][0], hi = root.box.bounds[0][1];
+      if (e_.at_vertex0 && std::abs(t - e_.t0) <= vertex_tol) {
+        add_near_vertex(e_.t0, true, lo, hi);
+      } else if (e_.at_vertex1 && std::abs(t - e_.t1) <= vertex_tol) {
+        add_near_vertex(e_.t1, false, lo, hi);
+      } else {
+        lists_.crossings.push_back(root.world);
+        lists_.crossing_range.push_back({lo, hi});
+      }
+    }
+  }
+
+  // SurfaceLine's undecided regions: a boundary root next to a Voronoi vertex is settled there;
+  // another becomes a candidate where its projection onto Σ lies on e, and unresolved otherwise.
+  void add_undecided(const std::vector<UndecidedBox>& undecided) {
+    const double face_tol = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
+    for (const auto& u : undecided) {
+      const double lo = u.box.bounds[0][0], hi = u.box.bounds[0][1];
+      const double tm = 0.5 * (lo + hi);
+      const bool near0 = std::abs(tm - e_.t0) <= std::abs(tm - e_.t1);
+      if (u.reason == UndecidedReason::boundary_root && (near0 ? e_.at_vertex0 : e_.at_vertex1)) {
+        add_near_vertex(near0 ? e_.t0 : e_.t1, near0, lo, hi);
+        continue;
+      }
+      const auto x = oracle_.project(u.world);
+      const double tol = std::max(face_tol, hi - lo);
+      if (x) {
+        const double tx = dot(*x - e_.point, e_.direction);
+        const double off = distance(*x, e_.at(tx));
+        if (off <= tol && tx >= e_.t0 - tol && tx <= e_.t1 + tol) {
+          lists_.candidates.push_back(*x);
+          lists_.candidate_range.push_back({std::min(lo, tx - tol), std::max(hi, tx + tol)});
+          continue;
+        }
+      }
+      lists_.unresolved.push_back(u.world);
+    }
+  }
+
+  // The connectors not settled above whose sign is not proved: each may hold a zero that
+  // SurfaceLine, on e's line, cannot see.  If E(v) = 0 up to rounding, the zero is at the vertex:
+  // settled by add_near_vertex() with R = [v, a], a = at(tv).  If E is proved strictly monotone
+  // along it (the sign of ⟨∇E, a − v⟩ on [v, a]) and non-zero at both ends, it holds one zero if
+  // the signs differ (a crossing, reported at a) and none otherwise; else several zeros are
+  // possible: a crossing at v, unresolved.
+  void settle_connectors() {
+    for (int i = 0; i < 2; ++i) {
+      if (!(i == 0 ? e_.at_vertex0 : e_.at_vertex1) || settled_at_vertex_[i] || end_sign(i) != 0) continue;
+      const double tv = i == 0 ? e_.t0 : e_.t1;
+      const Vec3 a = e_.at(tv), v = shared_[i];
+      const int sv = oracle_.value_sign(v), sa = oracle_.value_sign(a);
+      if (sv == 0) {
+        // E(v) = 0 up to rounding: a zero at the Voronoi vertex, settled as above (§5.1).
+        add_near_vertex(tv, i == 0, tv, tv);
+        continue;
+      }
+      if (sa != 0 && oracle_.gradient_sign(v, a, a - v) != 0) {
+        if (sv == sa) continue;
+        lists_.crossings.push_back(a);
+      } else {
+        lists_.crossings.push_back(v);
+        lists_.unresolved.push_back(v);
+      }
+      lists_.crossing_range.push_back({tv, tv});
+    }
+  }
+
+  // Whether e's dual triangle is in Tri S|Σ: e crosses Σ, other than at one Voronoi vertex that
+  // §5.1 excludes.
+  bool restricted() const {
+    const bool lone_excluded_vertex =
+        lists_.crossings.size() == 1 && vertex_root_excluded_.size() == 1 && vertex_root_excluded_[0];
+    return !lists_.crossings.empty() && !lone_excluded_vertex;
+  }
+
+ private:
+  // The proved sign of E on the connector of end i, or 0.
+  int end_sign(int i) const { return connector_sign(oracle_, e_.at(i == 0 ? e_.t0 : e_.t1), shared_[i]); }
+
+  // A zero of E in the parameter range [lo, hi] that may be at the Voronoi vertex v = e.at(tv)
+  // (a certified root within the vertex tolerance, or a boundary_root region the isolator could
+  // not separate from v), settled by interval proofs on the part R of [lo, hi] ∪ {tv} in e.
+  // The vertex v is the point voronoi_edge_ends() shares with the other edges at it, so they all
+  // see the same sign of E(v).  R runs from v through the connector to at(tv), then along e.
+  void add_near_vertex(double tv, bool at_start, double lo, double hi) {
+    const double tf = at_start ? std::max(hi, tv) : std::min(lo, tv);  // the far end of R
+    const Vec3 into = at_start ? e_.direction : (-1.0) * e_.direction;  // direction of u − v
+    settled_at_vertex_[at_start ? 0 : 1] = true;
+    const Vec3 v = shared_[at_start ? 0 : 1];
+    const int s = oracle_.gradient_sign(v, e_.at(tf), into);
+    const int sv = oracle_.value_sign(v);
+    if (s == 0) {
+      // E is not proved monotone on R: it may hold several zeros.  Kept as a crossing, unresolved.
+      lists_.crossings.push_back(v);
+      lists_.crossing_range.push_back({lo, hi});
+      lists_.unresolved.push_back(v);
+    } else if (sv == 0) {
+      // E(v) = 0 up to rounding and E monotone on R: v is R's only zero, the §5.1 case.
+      lists_.crossings.push_back(v);
+      lists_.crossing_range.push_back({std::min(lo, tv), std::max(hi, tv)});
+      vertex_root_excluded_.push_back(s > 0);
+    } else if (const auto t = monotone_zero(oracle_, e_, tv, tf, sv)) {
+      // E(v) ≠ 0: R's one zero is a crossing inside e (none if E keeps its sign on R).
+      lists_.crossings.push_back(e_.at(*t));
+      lists_.crossing_range.push_back({lo, hi});
+    }
+  }
+
+  SurfaceOracle& oracle_;
+  const VoronoiEdge& e_;
+  const std::array<Vec3, 2>& shared_;
+  VoronoiEdgeLists& lists_;
+  // Zeros at Voronoi vertices: whether each would be excluded by §5.1 if it were the only one.
+  std::vector<bool> vertex_root_excluded_;
+  // Whether a zero next to each end's Voronoi vertex was settled (add_near_vertex()).
+  std::array<bool, 2> settled_at_vertex_{false, false};
+};
+
 }  // namespace
 
 bool RestrictedDelaunay::kept_connectors_clean(const VoronoiEdgeRecord& r, const TriangleKey& t,
@@ -787,136 +967,16 @@ VoronoiEdgeRecord RestrictedDelaunay::compute(const TriangleKey& t, const std::a
     if (!near.roots.empty() || !near.undecided.empty()) lists.unresolved.push_back(e.at(e.t0));
   }
   if (!e.valid) return finish();
-  // The edge as the other faces see it: the polyline v0, at(t0), at(t1), v1, whose ends v_i at
-  // Voronoi vertices are the shared points of voronoi_edge_ends() (at(t0) and at(t1) otherwise).
-  // The connector from v_i to at(t_i) is as long as v_i's distance from e's line, which the
-  // circumcentre's error can make far longer than a rounding.
-  auto shared_ends = [&]() -> const std::array<Vec3, 2>& { return shared; };
-  // The proved sign of E on the connector of end i, or 0.
-  auto end_sign = [&](int i) { return connector_sign(oracle_, e.at(i == 0 ? e.t0 : e.t1), shared_ends()[i]); };
-  // E keeps one sign on a box holding the segment and on the connectors: the polyline misses Σ,
-  // which is all SurfaceLine could answer.  Tried first on the box that also holds the shared
-  // vertices (one evaluation), then on the segment's box with the connectors proved apart.
-  const auto box = segment_box(e);
-  std::array<Vec3, 2> wide = box;
-  for (int i = 0; i < 2; ++i)
-    if (i == 0 ? e.at_vertex0 : e.at_vertex1)
-      for (int k = 0; k < 3; ++k) {
-        wide[0][k] = std::min(wide[0][k], shared_ends()[i][k]);
-        wide[1][k] = std::max(wide[1][k], shared_ends()[i][k]);
-      }
-  const bool widened = wide != box;
-  if (oracle_.value_sign(wide[0], wide[1]) != 0) {
+  if (segment_signed(oracle_, e, shared)) {
     r.segment_signed = true;
     return finish();
   }
-  if (widened) {
-    if (const int sign = oracle_.value_sign(box[0], box[1]); sign != 0) {
-      bool connectors_agree = true;
-      for (int i = 0; i < 2 && connectors_agree; ++i)
-        if ((i == 0 ? e.at_vertex0 : e.at_vertex1) && !in_box(shared_ends()[i], box))
-          connectors_agree = end_sign(i) == sign;
-      if (connectors_agree) {
-        r.segment_signed = true;
-        return finish();
-      }
-    }
-  }
   const auto result = oracle_.surface_line(e.point, e.direction, e.t0, e.t1);
-  const double face_tol = tolerances::face_membership_relative_tolerance * oracle_.diagonal();
-  // Zeros at Voronoi vertices: whether each would be excluded by §5.1 if it were the only one.
-  std::vector<bool> vertex_root_excluded;
-  // Whether a zero next to each end's Voronoi vertex was settled (add_near_vertex()).
-  std::array<bool, 2> settled_at_vertex{false, false};
-  // A zero of E in the parameter range [lo, hi] that may be at the Voronoi vertex v = e.at(tv)
-  // (a certified root within the vertex tolerance, or a boundary_root region the isolator could
-  // not separate from v), settled by interval proofs on the part R of [lo, hi] ∪ {tv} in e.
-  // The vertex v is the point voronoi_edge_ends() shares with the other edges at it, so they all
-  // see the same sign of E(v).  R runs from v through the connector to at(tv), then along e.
-  auto add_near_vertex = [&](double tv, bool at_start, double lo, double hi) {
-    const double tf = at_start ? std::max(hi, tv) : std::min(lo, tv);  // the far end of R
-    const Vec3 into = at_start ? e.direction : (-1.0) * e.direction;   // direction of u − v
-    settled_at_vertex[at_start ? 0 : 1] = true;
-    const Vec3 v = shared_ends()[at_start ? 0 : 1];
-    const int s = oracle_.gradient_sign(v, e.at(tf), into);
-    const int sv = oracle_.value_sign(v);
-    if (s == 0) {
-      // E is not proved monotone on R: it may hold several zeros.  Kept as a crossing, unresolved.
-      lists.crossings.push_back(v);
-      lists.crossing_range.push_back({lo, hi});
-      lists.unresolved.push_back(v);
-    } else if (sv == 0) {
-      // E(v) = 0 up to rounding and E monotone on R: v is R's only zero, the §5.1 case.
-      lists.crossings.push_back(v);
-      lists.crossing_range.push_back({std::min(lo, tv), std::max(hi, tv)});
-      vertex_root_excluded.push_back(s > 0);
-    } else if (const auto t = monotone_zero(oracle_, e, tv, tf, sv)) {
-      // E(v) ≠ 0: R's one zero is a crossing inside e (none if E keeps its sign on R).
-      lists.crossings.push_back(e.at(*t));
-      lists.crossing_range.push_back({lo, hi});
-    }
-  };
-  const double vertex_tol = tolerances::duplicate_sample_relative_distance * oracle_.diagonal();
-  for (const auto& root : result.roots) {
-    const double t = root.midpoint[0], lo = root.box.bounds[0][0], hi = root.box.bounds[0][1];
-    if (e.at_vertex0 && std::abs(t - e.t0) <= vertex_tol) {
-      add_near_vertex(e.t0, true, lo, hi);
-    } else if (e.at_vertex1 && std::abs(t - e.t1) <= vertex_tol) {
-      add_near_vertex(e.t1, false, lo, hi);
-    } else {
-      lists.crossings.push_back(root.world);
-      lists.crossing_range.push_back({lo, hi});
-    }
-  }
-  for (const auto& u : result.undecided) {
-    const double lo = u.box.bounds[0][0], hi = u.box.bounds[0][1];
-    const double tm = 0.5 * (lo + hi);
-    const bool near0 = std::abs(tm - e.t0) <= std::abs(tm - e.t1);
-    if (u.reason == UndecidedReason::boundary_root && (near0 ? e.at_vertex0 : e.at_vertex1)) {
-      add_near_vertex(near0 ? e.t0 : e.t1, near0, lo, hi);
-      continue;
-    }
-    const auto x = oracle_.project(u.world);
-    const double tol = std::max(face_tol, hi - lo);
-    if (x) {
-      const double tx = dot(*x - e.point, e.direction);
-      const double off = distance(*x, e.at(tx));
-      if (off <= tol && tx >= e.t0 - tol && tx <= e.t1 + tol) {
-        lists.candidates.push_back(*x);
-        lists.candidate_range.push_back({std::min(lo, tx - tol), std::max(hi, tx + tol)});
-        continue;
-      }
-    }
-    lists.unresolved.push_back(u.world);
-  }
-  // A connector not settled above whose sign is not proved may hold a zero that SurfaceLine, on
-  // e's line, cannot see.  If E(v) = 0 up to rounding, the zero is at the vertex: settled by
-  // add_near_vertex() with R = [v, a], a = at(tv).  If E is proved strictly monotone along it
-  // (the sign of ⟨∇E, a − v⟩ on [v, a]) and non-zero at both ends, it holds one zero if the signs
-  // differ (a crossing, reported at a) and none otherwise; else several zeros are possible: a
-  // crossing at v, unresolved.
-  for (int i = 0; i < 2; ++i) {
-    if (!(i == 0 ? e.at_vertex0 : e.at_vertex1) || settled_at_vertex[i] || end_sign(i) != 0) continue;
-    const double tv = i == 0 ? e.t0 : e.t1;
-    const Vec3 a = e.at(tv), v = shared_ends()[i];
-    const int sv = oracle_.value_sign(v), sa = oracle_.value_sign(a);
-    if (sv == 0) {
-      // E(v) = 0 up to rounding: a zero at the Voronoi vertex, settled as above (§5.1).
-      add_near_vertex(tv, i == 0, tv, tv);
-      continue;
-    }
-    if (sa != 0 && oracle_.gradient_sign(v, a, a - v) != 0) {
-      if (sv == sa) continue;
-      lists.crossings.push_back(a);
-    } else {
-      lists.crossings.push_back(v);
-      lists.unresolved.push_back(v);
-    }
-    lists.crossing_range.push_back({tv, tv});
-  }
-  const bool lone_excluded_vertex =
-      lists.crossings.size() == 1 && vertex_root_excluded.size() == 1 && vertex_root_excluded[0];
-  r.restricted = !lists.crossings.empty() && !lone_excluded_vertex;
+  EdgeCrossings crossings(oracle_, e, shared, lists);
+  crossings.add_roots(result.roots);
+  crossings.add_undecided(result.undecided);
+  crossings.settle_connectors();
+  r.restricted = crossings.restricted();
   return finish();
 }
 

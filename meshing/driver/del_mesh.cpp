@@ -111,10 +111,8 @@ nlohmann::json unsettled_json(const std::vector<Unsettled>& unsettled, const std
 }
 
 void check_options(const Box3& box, const DelMeshOptions& options) {
-  for (MeshOption option : all_mesh_options) {
-    if (const auto range = violated_range(option, options))
-      throw InvalidInput(std::string(enum_name(option)) + " must " + *range);
-  }
+  if (const auto violation = options.validate())
+    throw InvalidInput(std::string(enum_name(violation->option)) + " must " + violation->requirement);
   for (int k = 0; k < 3; ++k)
     if (!(box.lo[k] < box.hi[k])) throw InvalidInput("the box is empty");
 }
@@ -124,9 +122,7 @@ RefinementLimits refinement_limits(const DelMeshOptions& options, std::chrono::s
   RefinementLimits limits;
   limits.min_spacing = options.min_spacing;
   limits.max_points = options.max_points;
-  if (options.time_limit_seconds > 0)
-    limits.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                  std::chrono::duration<double>(options.time_limit_seconds));
+  limits.deadline = deadline_of(options, start);
   limits.progress = options.progress;
   limits.start = start;
   limits.interrupt = options.interrupt;
@@ -264,37 +260,6 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
 
 }  // namespace
 
-std::optional<std::string> violated_range(MeshOption option, const DelMeshOptions& options) {
-  switch (option) {
-    case MeshOption::lambda:
-      if (!(options.lambda > 0) || !(options.lambda < alpha_lambda_bound)) return "satisfy 0 < lambda < 1/3";
-      break;
-    case MeshOption::size_bound:
-      if (options.size_bound && !(std::isfinite(*options.size_bound) && *options.size_bound > 0))
-        return "be a positive length";
-      break;
-    case MeshOption::max_distance:
-      if (options.max_distance && !(std::isfinite(*options.max_distance) && *options.max_distance > 0))
-        return "be a positive length";
-      break;
-    case MeshOption::max_points:
-      if (options.max_points < 1) return "be at least 1";
-      break;
-    case MeshOption::time_limit:
-      static_assert(max_time_limit_seconds == 1e9, "the requirement below states the bound");
-      if (!(options.time_limit_seconds >= 0 && options.time_limit_seconds <= max_time_limit_seconds))
-        return "be >= 0 and <= 1e9 seconds (0: none)";
-      break;
-    case MeshOption::threads:
-      if (options.threads < 0) return "be >= 0 (0: every hardware thread)";
-      break;
-    case MeshOption::min_spacing:
-      if (!(std::isfinite(options.min_spacing) && options.min_spacing >= 0)) return "be a length >= 0 (0: no floor)";
-      break;
-  }
-  return std::nullopt;
-}
-
 void certify_distance(DelMeshResult& result, const Surface& surface, const Box3& box, const DelMeshOptions& options,
                       std::chrono::steady_clock::time_point start) {
   auto& j = result.statistics;
@@ -314,7 +279,7 @@ void certify_distance(DelMeshResult& result, const Surface& surface, const Box3&
     FlowCertificateOptions flow;
     flow.seed = options.seed;
     flow.interrupt = options.interrupt;
-    flow.deadline = refinement_limits(options, start).deadline;
+    flow.deadline = deadline_of(options, start);
     flow.distance_radius = options.max_distance.value_or(0);
     flow.surface_validated = true;
     std::vector<Point3> points;

@@ -40,6 +40,11 @@
 //! benchmark and distance (whose default δ, 1e-3 of the box diagonal, is no larger) run CGAL with
 //! --cgal-error-bound (default 1e-6; delmesh's points are certified roots to full double
 //! precision); coarsest and demo keep CGAL's default, the setting users meet.
+//! Mesh_3 takes its initial points where rays from one centre first cross Σ, so it can miss a
+//! whole component (one blob of two_blobs at every size).  --mesh3-seed-components gives every
+//! Mesh_3 run initial points on every component as well: CGAL's intersections of Σ with short
+//! segments along ∇E through the certified critical points of a generic height function
+//! (delmesh's seed solve; at least two per component); its runs say ";seeded_K" (K points).
 //! Every mesh is judged by the independent checker (meshing/core/mesh_checker.h) against the catalog's
 //! topology.  Output: <out-dir>/compare_cgal.csv, one row per run of every experiment (and the
 //! meshes under <out-dir>/meshes/); distance also writes distance.csv and distance.md.
@@ -78,7 +83,10 @@
 #include "experiments/child_process.h"
 #include "experiments/experiment_support.h"
 #include "meshing/driver/del_mesh.h"
+#include "meshing/inputs/implicit_oracle.h"
 #include "meshing/inputs/mesh_io.h"
+#include "meshing/inputs/seed_solve.h"
+#include "solvers/domain.h"
 #include "symbolic/catalog.h"
 
 namespace {
@@ -187,12 +195,86 @@ using M3Triangulation = CGAL::Mesh_triangulation_3<MeshDomain>::type;
 using M3Complex = CGAL::Mesh_complex_3_in_triangulation_3<M3Triangulation>;
 using M3Criteria = CGAL::Mesh_criteria_3<M3Triangulation>;
 
+//! Mesh_3's domain with more initial points: Labeled_mesh_domain_3's own (where rays from the
+//! bounding sphere's centre to random points of its boundary first cross Σ, so a component that no
+//! such ray meets first gets none, and Mesh_3 never finds it), then one per seed.  For a seed p
+//! with unit gradient direction n, the point is CGAL's own intersection of Σ with the segment
+//! [p - r n, p + r n] (r = seed_reach), with its surface patch index; a seed whose segment CGAL
+//! does not find crossing Σ is skipped.  Everything else is the wrapped domain's.
+class SeededMeshDomain : public MeshDomain {
+ public:
+  struct Seed {
+    Point3 point;
+    Vector3 normal;  //!< unit
+  };
+  SeededMeshDomain(MeshDomain domain, std::vector<Seed> seeds, double seed_reach)
+      : MeshDomain(std::move(domain)), seeds_(std::move(seeds)), reach_(seed_reach) {}
+
+  struct Construct_initial_points {
+    const SeededMeshDomain& domain;
+    //! Writes the wrapped domain's initial points (its default count), then one
+    //! std::pair<Point_3, Index> per seed that CGAL finds on Σ.
+    template <class OutputIterator>
+    OutputIterator operator()(OutputIterator out) const {
+      return add_seeds(domain.MeshDomain::construct_initial_points_object()(out));
+    }
+    //! The same with `n` points of the wrapped domain.
+    template <class OutputIterator>
+    OutputIterator operator()(OutputIterator out, int n) const {
+      return add_seeds(domain.MeshDomain::construct_initial_points_object()(out, n));
+    }
+    template <class OutputIterator>
+    OutputIterator add_seeds(OutputIterator out) const {
+      const auto crosses = domain.do_intersect_surface_object();
+      const auto intersection = domain.construct_intersection_object();
+      for (const Seed& s : domain.seeds_) {
+        const Kernel::Segment_3 segment(s.point - domain.reach_ * s.normal, s.point + domain.reach_ * s.normal);
+        if (!crosses(segment)) continue;
+        const auto hit = intersection(segment);
+        *out++ = std::make_pair(std::get<0>(hit), std::get<1>(hit));
+      }
+      return out;
+    }
+  };
+  Construct_initial_points construct_initial_points_object() const { return Construct_initial_points{*this}; }
+  std::size_t seed_count() const { return seeds_.size(); }
+
+ private:
+  std::vector<Seed> seeds_;
+  double reach_;
+};
+
+//! The critical points of a generic height function on Σ (delmesh's seed solve,
+//! meshing/inputs/seed_solve.h, certified: each in a box holding exactly one) with the unit
+//! direction of ∇E there: at least two (a least and a greatest height) on every component of Σ.
+//! Throws InvalidInput when the solve leaves a region undecided or finds no point.
+std::vector<SeededMeshDomain::Seed> component_seeds(const CatalogEntry& entry, const CompiledE& E) {
+  ImplicitOracle oracle(entry.surface(), entry.box, SolverBackend::subdivision);
+  const Box3& b = entry.box;
+  const Domain domain = Domain::from_box({{b.lo[0], b.hi[0]}, {b.lo[1], b.hi[1]}, {b.lo[2], b.hi[2]}});
+  const SolveResult r = seed_solve(oracle, generic_direction(1, 0), domain);
+  if (r.status != SolveStatus::complete || !r.undecided.empty() || r.roots.empty())
+    throw InvalidInput("--mesh3-seed-components: the seed solve on " + entry.name + " was not complete");
+  std::vector<SeededMeshDomain::Seed> seeds;
+  for (const CertifiedRoot& root : r.roots) {
+    std::array<double, 3> g{};
+    E.value_and_gradient(root.world, g);
+    const double length = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    seeds.push_back({Point3(root.world[0], root.world[1], root.world[2]),
+                     Vector3(g[0] / length, g[1] / length, g[2] / length)});
+  }
+  return seeds;
+}
+
+//! Mesh_3 with CGAL's initial points, and, when `seeds` is not empty, a SeededMeshDomain's seed
+//! points too (each seed segment 1e-3 of the bounding sphere's diameter long on either side).
 Run run_mesh_3(const CompiledE& E, const std::array<double, 3>& centre, double squared_radius,
-               const CgalSettings& s) {
+               const CgalSettings& s, const std::vector<SeededMeshDomain::Seed>& seeds = {}) {
   CGAL::get_default_random() = CGAL::Random(cgal_seed);
   Run run;
   run.method = "mesh_3";
   run.parameters = s.text() + ";facet_criteria_only;no_perturb;no_exude";
+  if (!seeds.empty()) run.parameters += ";seeded_" + std::to_string(seeds.size());
   const Stopwatch clock;
   namespace p = CGAL::parameters;
   MeshDomain domain = MeshDomain::create_implicit_mesh_domain(
@@ -200,7 +282,13 @@ Run run_mesh_3(const CompiledE& E, const std::array<double, 3>& centre, double s
       Kernel::Sphere_3(Point3(centre[0], centre[1], centre[2]), squared_radius),
       p::relative_error_bound = s.relative_error_bound);
   M3Criteria criteria(p::facet_angle = s.angle_deg, p::facet_size = s.radius, p::facet_distance = s.distance);
-  M3Complex complex = CGAL::make_mesh_3<M3Complex>(domain, criteria, p::no_perturb(), p::no_exude());
+  M3Complex complex;
+  if (seeds.empty()) {
+    complex = CGAL::make_mesh_3<M3Complex>(domain, criteria, p::no_perturb(), p::no_exude());
+  } else {
+    const SeededMeshDomain seeded(std::move(domain), seeds, 2e-3 * std::sqrt(squared_radius));
+    complex = CGAL::make_mesh_3<M3Complex>(seeded, criteria, p::no_perturb(), p::no_exude());
+  }
   const auto to_point = [](const M3Triangulation::Point& wp) {
     return Point3(wp.point().x(), wp.point().y(), wp.point().z());
   };
@@ -358,13 +446,19 @@ struct Prepared {
   CompiledE E;
   std::array<double, 3> centre;
   double squared_radius;
+  std::vector<SeededMeshDomain::Seed> mesh3_seeds;  //!< Mesh_3's initial points; empty: CGAL's
 };
+
+//! --mesh3-seed-components: Mesh_3 starts from component_seeds() instead of its own rays.
+bool mesh3_seed_components = false;
 
 Prepared prepare(const std::string& name) {
   const CatalogEntry& entry = catalog_entry(name);
   CompiledE E(entry.surface());
   const auto centre = inside_point(E, entry.box);
-  return Prepared{&entry, E, centre, enclosing_squared_radius(centre, entry.box)};
+  Prepared s{&entry, E, centre, enclosing_squared_radius(centre, entry.box), {}};
+  if (mesh3_seed_components) s.mesh3_seeds = component_seeds(entry, s.E);
+  return s;
 }
 
 // --- sampled distances between a mesh and Σ ------------------------------------------------------
@@ -602,7 +696,7 @@ DistanceRow distance_row(Context& context, const DistanceExperiment& x, const Pr
     row.certificate_seconds = certificate.value("seconds", std::numeric_limits<double>::quiet_NaN());
   }
   const CgalSettings settings{x.cgal_angle, 0, row.delta, x.cgal_error_bound};
-  Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings);
+  Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings, s.mesh3_seeds);
   row.mesh_3 = measure(context, s, m3, surface_points);
   std::cout << "distance " << row.surface << " delta=" << row.delta << ": delmesh " << row.delmesh.status << ", "
             << row.delmesh.vertices << " vertices, " << row.delmesh.seconds << " s, certificate "
@@ -700,7 +794,8 @@ void run_memory_child(const std::string& method, const std::string& item, const 
   const Prepared s = prepare(name);
   Run run;
   if (method == "mesh_3") {
-    run = run_mesh_3(s.E, s.centre, s.squared_radius, CgalSettings{m.cgal_angle, h, h / 10, m.cgal_error_bound});
+    run = run_mesh_3(s.E, s.centre, s.squared_radius, CgalSettings{m.cgal_angle, h, h / 10, m.cgal_error_bound},
+                     s.mesh3_seeds);
   } else if (method == "delmesh") {
     run = run_delmesh(*s.entry, m.lambda, h, m.base);
   } else if (method != "none") {
@@ -845,6 +940,10 @@ int main(int argc, char** argv) {
                  "after the --threads run, and report its ratio to Mesh_3, its wall time over the --threads run's "
                  "(the speed-up, paired per round) and whether the two meshes are identical")
       ->check(CLI::Range(0, 1024));
+  app.add_flag("--mesh3-seed-components", mesh3_seed_components,
+               "Mesh_3's initial points on every component of the surface: CGAL's intersections with it near the "
+               "certified critical points of a generic height function (delmesh's seed solve), instead of CGAL's "
+               "rays from one centre");
   app.add_option("--cgal-seed", cgal_seed, "seed of CGAL's default random generator")->capture_default_str();
   app.add_option("--time-limit", base.time_limit_seconds, "delmesh time limit per run (s), 0 none")
       ->capture_default_str();
@@ -903,7 +1002,7 @@ int main(int argc, char** argv) {
         nlohmann::json statistics;
         std::size_t vertices = 0;
         for (int round = 1; round <= repeat; ++round) {
-          Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings);
+          Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings, s.mesh3_seeds);
           record(context, "benchmark", *s.entry, m3, s.E, round);
           if (skip_delmesh) continue;
           Run dm = run_delmesh(*s.entry, lambda, h, base);
@@ -966,7 +1065,7 @@ int main(int argc, char** argv) {
           const CgalSettings settings{cgal_angle, radius, radius / 10};
           Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, settings);
           record(context, "coarsest", *s.entry, sm, s.E);
-          Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings);
+          Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings, s.mesh3_seeds);
           const MeshReport r = record(context, "coarsest", *s.entry, m3, s.E);
           if (!coarsest_m3 && r.has_topology(s.entry->genus_per_component)) coarsest_m3 = m3;
         }
@@ -990,7 +1089,7 @@ int main(int argc, char** argv) {
           const CgalSettings coarse{cgal_angle, radius, radius / 10};
           Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, coarse);
           record(context, "demo", *s.entry, sm, s.E);
-          Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, coarse);
+          Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, coarse, s.mesh3_seeds);
           record(context, "demo", *s.entry, m3, s.E);
         }
         if (!skip_delmesh) {

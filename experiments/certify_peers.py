@@ -12,6 +12,12 @@ ellipsoid) this program makes triangle meshes with three meshers:
       facet distance is chosen through H (--cgal-sizes).  Its "demo" experiment adds the coarse
       radii of --cgal-demo-radii (distance radius/10) at CGAL's default error bound 1e-3, the
       setting users meet.  Setting text: "H=<size> d=<distance> err=<bound>".
+  cgal_mesh_3_seeded
+      Mesh_3 on the benchmark cases again, with compare_cgal --mesh3-seed-components: CGAL's own
+      initial points plus, on every component of Sigma, CGAL's intersections with it near the
+      certified critical points of a generic height function (delmesh's seed solve), which
+      Mesh_3's rays from one centre can miss (a whole blob of two_blobs).  Setting text adds
+      "seeds=<count>".  --no-seeded-mesh-3 skips them.
   marching_cubes
       skimage.measure.marching_cubes (Lewiner) of E sampled at the nodes of a grid over the
       catalog box with N cells along the box's longest side (--mc-resolutions) and cells of about
@@ -67,6 +73,20 @@ Columns of the table (<out-dir>/certify_peers.md and .csv; the CSV has more):
   auto                 topology.verdict and topology.method of the --method auto run.
 
 A mesh whose genus differs from the catalog's and that is certified is flagged UNSOUND as well.
+
+After the table, certify_peers.md has three sections:
+  Acceptance figures   read off the rows: for torus, genus2 and two_blobs the seeded Mesh_3 rows at
+                       facet distance <= diagonal/200 (vertices, components, verdict, bound,
+                       sampled); the coarsest certified marching-cubes torus; how many
+                       wrong-topology meshes either method certified; the rows whose bound is below
+                       the sampled distance and the largest bound/sampled.
+  default outputs      `delmesh mesh --surface NAME` for each surface of --catalog (default every
+                       catalog surface), checked with `--certify --method both`: each method's
+                       verdict and whether they agree.
+  cost                 `delmesh mesh --surface S --size-bound H` (--cost-surface, --cost-size-bound)
+                       and the gradient-flow check of its output, --cost-runs runs each: the process
+                       wall times, the statistics' and the certificate's own seconds, and the ratio
+                       of the certificate's to the mesh run's (medians).
 Meshes are kept under <out-dir>/meshes, the check reports under <out-dir>/checks.
 
 Needs numpy, scipy and scikit-image (e.g. /usr/bin/python3 on the project's machine; Debian
@@ -420,14 +440,12 @@ def _without_triangle_bounds(report):
 
 
 # --- the mesh list ----------------------------------------------------------------------------
-def cgal_meshes(args, surface, mesh_dir, log):
-    """Runs compare_cgal for one surface; returns [(mesher, setting, path)]."""
-    out = os.path.join(mesh_dir, "cgal", surface)
+def run_compare_cgal(args, surface, out, extra, log):
+    """Runs compare_cgal for one surface into `out` with the benchmark cases of --cgal-sizes and
+    the arguments `extra`; returns [(method, setting, path, radius)] of the meshes it wrote."""
     os.makedirs(out, exist_ok=True)
     cases = ",".join(f"{surface}:{h:g}" for h in args.cgal_sizes)
-    command = [args.compare_cgal, "--experiments", "benchmark,demo", "--skip-delmesh", "--cases", cases,
-               "--demo-surfaces", surface, "--coarse-radii", *[f"{r:g}" for r in args.cgal_demo_radii],
-               "--out-dir", out]
+    command = [args.compare_cgal, "--skip-delmesh", "--cases", cases, *extra, "--out-dir", out]
     log(" ".join(command))
     try:
         subprocess.run(command, capture_output=True, text=True, timeout=args.timeout, check=True)
@@ -437,17 +455,35 @@ def cgal_meshes(args, surface, mesh_dir, log):
     found = []
     pattern = re.compile(r"compare_(benchmark|demo)_" + re.escape(surface) +
                          r"_(mesh_3|surface_mesher)_angle_[^_]+_radius_([^_]+)_distance_([^_]+)"
-                         r"(?:_relative_error_bound_([^_]+))?_")
+                         r"(?:_relative_error_bound_([^_]+))?_.*?(seeded_\d+)?\.off$")
     for path in sorted(glob.glob(os.path.join(out, "meshes", "*.off"))):
         m = pattern.match(os.path.basename(path))
         if not m:
             continue
-        _, method, radius, distance, error = m.groups()
+        _, method, radius, distance, error, seeded = m.groups()
         setting = f"H={float(radius):g} d={float(distance):g} err={error or '1e-3'}"
-        found.append((f"cgal_{method}", setting, path, float(radius)))
-    # Coarse first, Mesh_3 before Surface_mesher.
-    found.sort(key=lambda t: (t[0] != "cgal_mesh_3", -t[3], "err=1e-3" in t[1]))
-    return [(m, s, p) for m, s, p, _ in found]
+        if seeded:
+            method += "_seeded"
+            setting += f" seeds={seeded.split('_')[1]}"
+        found.append((method, setting, path, float(radius)))
+    return found
+
+
+def cgal_meshes(args, surface, mesh_dir, log):
+    """Runs compare_cgal for one surface: its benchmark and demo experiments, and (unless
+    --no-seeded-mesh-3) the benchmark's Mesh_3 again with --mesh3-seed-components (mesher
+    cgal_mesh_3_seeded); returns [(mesher, setting, path)]."""
+    found = run_compare_cgal(args, surface, os.path.join(mesh_dir, "cgal", surface),
+                             ["--experiments", "benchmark,demo", "--demo-surfaces", surface, "--coarse-radii",
+                              *[f"{r:g}" for r in args.cgal_demo_radii]], log)
+    if not args.no_seeded_mesh_3:
+        seeded = run_compare_cgal(args, surface, os.path.join(mesh_dir, "cgal_seeded", surface),
+                                  ["--experiments", "benchmark", "--mesh3-seed-components"], log)
+        found += [f for f in seeded if f[0] == "mesh_3_seeded"]
+    order = {"mesh_3": 0, "mesh_3_seeded": 1, "surface_mesher": 2}
+    # Coarse first; Mesh_3, seeded Mesh_3, Surface_mesher.
+    found.sort(key=lambda t: (order[t[0]], -t[3], "err=1e-3" in t[1]))
+    return [(f"cgal_{m}", s, p) for m, s, p, _ in found]
 
 
 def delmesh_meshes(args, surface, mesh_dir, log):
@@ -488,7 +524,7 @@ def mc_meshes(args, surface, E, mesh_dir, log):
 
 
 # --- the table --------------------------------------------------------------------------------
-COLUMNS = ["surface", "mesher", "setting", "vertices", "triangles", "genus", "expected_genus", "genus_ok",
+COLUMNS = ["surface", "mesher", "setting", "vertices", "triangles", "components", "genus", "expected_genus", "genus_ok",
            "closed_manifold", "gf_verdict", "gf_reason", "gf_location", "gf_bound", "gf_bound_relative",
            "gf_epsilon", "gf_min_gradient", "gf_seconds", "gf_wall_seconds", "gf_exit",
            "auto_verdict", "auto_method", "auto_reason", "auto_bound", "auto_wall_seconds",
@@ -557,6 +593,135 @@ def summary(rows):
     return "\n".join(out)
 
 
+def catalog_both(args, names, out_dir, log):
+    """delmesh's default output of each catalog surface, checked with --method both; returns the
+    Markdown section and its rows."""
+    mesh_dir = os.path.join(out_dir, "catalog")
+    os.makedirs(mesh_dir, exist_ok=True)
+    rows = []
+    for name in names:
+        stem = os.path.join(mesh_dir, name)
+        command = [args.delmesh, "mesh", "--surface", name, "--out", stem + ".off", "--quiet",
+                   "--time-limit", str(args.timeout)]
+        log(" ".join(command))
+        subprocess.run(command, capture_output=True, text=True, timeout=args.timeout + 60)
+        report, code, wall, _ = certify(args.delmesh, stem + ".off", name, "both", args.timeout,
+                                        stem + ".both.json")
+        report = report if isinstance(report, dict) else {}
+        rd = report.get("certificate") or {}
+        gf = report.get("gradient_flow") or {}
+        topo = report.get("topology") or {}
+        row = {"surface": name, "vertices": report.get("vertices"),
+               "genus": json.dumps(report.get("genus_per_component")), "rd": rd.get("status") or f"exit {code}",
+               "gf": gf.get("status") or f"exit {code}", "gf_reason": gf.get("reason") or "",
+               "bound": gf.get("hausdorff_upper_bound"), "relative": gf.get("hausdorff_relative"),
+               "rd_seconds": rd.get("seconds"), "gf_seconds": gf.get("seconds"), "verdict": topo.get("verdict"),
+               "reason": topo.get("reason") or ""}
+        row["agree"] = row["rd"] == row["gf"]
+        rows.append(row)
+        log(f"catalog {name}: {row['vertices']} vertices, restricted-delaunay {row['rd']}, gradient-flow {row['gf']}"
+            f" {row['gf_reason']}, both: {row['verdict']} ({row['reason']})")
+    lines = ["## delmesh's default output of every catalog surface, `--method both`", "",
+             "`delmesh mesh --surface NAME` (no size bound), then `delmesh check OUT --surface NAME --certify "
+             "--method both`.", "",
+             "| surface | vertices | genus | restricted-delaunay | gradient-flow | agree | bound | bound/diag "
+             "| RD s | GF s | verdict |", "|---|---:|---|---|---|---|---:|---:|---:|---:|---|"]
+    for r in rows:
+        gf = r["gf"] + (f" ({r['gf_reason']})" if r["gf_reason"] else "")
+        lines.append("| " + " | ".join([r["surface"], fmt(r["vertices"]), r["genus"], r["rd"], gf.replace("|", "/"),
+                                        "yes" if r["agree"] else "NO", fmt(r["bound"]), fmt(r["relative"]),
+                                        fmt(r["rd_seconds"]), fmt(r["gf_seconds"]),
+                                        f"{r['verdict']} ({r['reason']})".replace("|", "/")]) + " |")
+    agree = sum(r["agree"] for r in rows)
+    both = sum(r["rd"] == "certified" and r["gf"] == "certified" for r in rows)
+    lines += ["", f"Both methods agree on {agree} of {len(rows)} surfaces; both certified on {both}."]
+    return "\n".join(lines), rows
+
+
+def cost(args, out_dir, log):
+    """Seconds of `delmesh mesh --surface S --size-bound H` and of the gradient-flow certificate of
+    its output, --cost-runs runs each (alternating); returns the Markdown section."""
+    mesh_dir = os.path.join(out_dir, "cost")
+    os.makedirs(mesh_dir, exist_ok=True)
+    stem = os.path.join(mesh_dir, f"{args.cost_surface}_{args.cost_size_bound:g}")
+    mesh_wall, mesh_seconds, check_wall, cert_seconds, vertices, status = [], [], [], [], None, None
+    for run in range(args.cost_runs):
+        command = [args.delmesh, "mesh", "--surface", args.cost_surface, "--size-bound", f"{args.cost_size_bound:g}",
+                   "--out", stem + ".off", "--stats", stem + ".json", "--quiet"]
+        start = time.monotonic()
+        subprocess.run(command, capture_output=True, text=True, timeout=args.timeout + 60, check=True)
+        mesh_wall.append(time.monotonic() - start)
+        with open(stem + ".json") as f:
+            stats = json.load(f)
+        mesh_seconds.append(stats.get("seconds"))
+        report, code, wall, check_command = certify(args.delmesh, stem + ".off", args.cost_surface, "gradient-flow",
+                                                    args.timeout, stem + f".check{run + 1}.json")
+        flow = report.get("gradient_flow", {}) if isinstance(report, dict) else {}
+        check_wall.append(wall)
+        cert_seconds.append(flow.get("seconds"))
+        vertices = report.get("vertices") if isinstance(report, dict) else None
+        status = flow.get("status")
+        log(f"cost run {run + 1}: mesh {mesh_wall[-1]:.2f} s wall ({fmt(mesh_seconds[-1])} s in statistics), "
+            f"{vertices} vertices; gradient-flow {status} in {fmt(cert_seconds[-1])} s (check wall {wall:.2f} s)")
+    med = lambda v: float(np.median([x for x in v if isinstance(x, (int, float))])) if v else float("nan")
+    ratio_cert = med(cert_seconds) / med(mesh_wall)
+    ratio_wall = med(check_wall) / med(mesh_wall)
+    lines = ["## Cost of the certificate", "",
+             f"`delmesh mesh --surface {args.cost_surface} --size-bound {args.cost_size_bound:g}` and "
+             f"`delmesh check OUT --surface {args.cost_surface} --certify --method gradient-flow --json`, "
+             f"{args.cost_runs} runs each (alternating); medians. Mesh: {vertices} vertices, gradient-flow {status}.", "",
+             "| | run seconds | median |", "|---|---|---:|",
+             f"| delmesh mesh (process wall) | {', '.join(f'{x:.2f}' for x in mesh_wall)} | {med(mesh_wall):.2f} |",
+             f"| delmesh mesh (statistics seconds) | {', '.join(fmt(x) for x in mesh_seconds)} | {fmt(med(mesh_seconds))} |",
+             f"| gradient-flow certificate (gradient_flow.seconds) | {', '.join(fmt(x) for x in cert_seconds)} "
+             f"| {fmt(med(cert_seconds))} |",
+             f"| delmesh check (process wall: reading, checks, certificate) | {', '.join(f'{x:.2f}' for x in check_wall)} "
+             f"| {med(check_wall):.2f} |", "",
+             f"Certificate / mesh: {ratio_cert:.3g} (certificate seconds), {ratio_wall:.3g} (check process wall) "
+             f"(target <= 2)."]
+    return "\n".join(lines), {"ratio_cert": ratio_cert, "ratio_wall": ratio_wall, "vertices": vertices,
+                              "status": status}
+
+
+def acceptance(rows, catalog_rows, cost_result, catalog):
+    """The Markdown section that reads the acceptance figures off the rows."""
+    lines = ["## Acceptance figures", ""]
+    for surface in ("torus", "genus2", "two_blobs"):
+        if surface not in catalog:
+            continue
+        diag = Implicit(catalog[surface]["equation"], catalog[surface]["box"]).diagonal
+        fine = [r for r in rows if r["surface"] == surface and r["mesher"] == "cgal_mesh_3_seeded"
+                and float(re.search(r"d=([^ ]+)", r["setting"]).group(1)) <= diag / 200]
+        for r in fine:
+            lines.append(f"- {surface} Mesh_3 seeded {r['setting']} (facet distance <= diag/200 = {diag / 200:.4g}): "
+                         f"{fmt(r['vertices'])} vertices, {r['components']} components, genus {r['genus']}, "
+                         f"gradient-flow {r['gf_verdict']}, bound {fmt(r['gf_bound'])}, sampled "
+                         f"{fmt(r['sampled_hausdorff'])}")
+        if not fine:
+            lines.append(f"- {surface}: no seeded Mesh_3 row at facet distance <= diag/200")
+    mc = sorted((int(r["setting"][2:]), r["gf_verdict"]) for r in rows
+                if r["surface"] == "torus" and r["mesher"] == "marching_cubes")
+    certified_n = [n for n, v in mc if v == "certified"]
+    lines.append(f"- marching-cubes torus: coarsest certified N = {certified_n[0] if certified_n else '-'} "
+                 f"(verdicts: {', '.join(f'N={n} {v}' for n, v in mc)})")
+    wrong = [r for r in rows if not r["genus_ok"]]
+    wrong_certified = [r for r in wrong if r["gf_verdict"] == "certified" or r["auto_verdict"] == "certified"]
+    lines.append(f"- wrong-topology meshes: {len(wrong)}, certified by either method: {len(wrong_certified)}")
+    unsound = [r for r in rows if "UNSOUND" in r["flags"]]
+    ratios = [r["ratio"] for r in rows if isinstance(r["ratio"], float) and math.isfinite(r["ratio"])]
+    lines.append(f"- certified bound below the sampled distance: {len(unsound)} rows; bound/sampled over "
+                 f"{len(ratios)} certified meshes: max {max(ratios) if ratios else float('nan'):.3g}")
+    if catalog_rows:
+        agree = sum(r["agree"] for r in catalog_rows)
+        both = sum(r["rd"] == "certified" and r["gf"] == "certified" for r in catalog_rows)
+        lines.append(f"- delmesh's default output, --method both: agree on {agree} of {len(catalog_rows)}, "
+                     f"both certified on {both}")
+    if cost_result:
+        lines.append(f"- cost ({cost_result['vertices']} vertices, {cost_result['status']}): certificate / mesh "
+                     f"{cost_result['ratio_cert']:.3g}, check process / mesh {cost_result['ratio_wall']:.3g}")
+    return "\n".join(lines)
+
+
 def main():
     parser = argparse.ArgumentParser(
         description="Certify CGAL, marching-cubes and delmesh meshes of catalog surfaces with `delmesh check "
@@ -581,6 +746,14 @@ def main():
     parser.add_argument("--delmesh-size-bounds", type=float, nargs="*", default=[0.1, 0.05],
                         help="delmesh --size-bound values (a run without size bound is always made)")
     parser.add_argument("--no-cgal", action="store_true", help="skip the CGAL meshes")
+    parser.add_argument("--no-seeded-mesh-3", action="store_true",
+                        help="skip the Mesh_3 runs with initial points on every component")
+    parser.add_argument("--catalog", default="all",
+                        help="catalog surfaces whose default delmesh output is checked with --method both "
+                             "(comma separated; 'all' for every surface of `delmesh surfaces`, 'none' for none)")
+    parser.add_argument("--cost-surface", default="torus", help="surface of the cost measurement ('none': skip it)")
+    parser.add_argument("--cost-size-bound", type=float, default=0.02, help="delmesh --size-bound of the cost mesh")
+    parser.add_argument("--cost-runs", type=int, default=3, help="runs of each of mesh and certificate")
     parser.add_argument("--timeout", type=float, default=600, help="seconds per delmesh run (mesh or check)")
     parser.add_argument("--sigma-cells", type=int, default=256,
                         help="cells along the box's longest side of the grid whose nodes near Sigma are projected "
@@ -655,6 +828,7 @@ def main():
             row["genus_ok"] = genus is not None and sorted(genus) == sorted(expected) and \
                 bool(report.get("closed_manifold"))
             row["closed_manifold"] = report.get("closed_manifold")
+            row["components"] = report.get("components")
             flow = gf.get("gradient_flow", {}) if isinstance(gf, dict) else {}
             row["gf_verdict"] = flow.get("status") or ("timeout" if gf_code == "timeout" else f"exit {gf_code}")
             row["gf_reason"] = flow.get("reason") or ""
@@ -700,8 +874,18 @@ def main():
                 f"{row['auto_verdict']} {row['auto_method']} {row['flags']}")
             write_tables(rows, out_dir, header)
     table = write_tables(rows, out_dir, header)
+    names = [] if args.catalog == "none" else (list(catalog) if args.catalog == "all" else args.catalog.split(","))
+    catalog_text, catalog_rows = catalog_both(args, names, out_dir, log) if names else ("", [])
+    cost_text, cost_result = cost(args, out_dir, log) if args.cost_surface != "none" else ("", None)
+    sections = [acceptance(rows, catalog_rows, cost_result, catalog), catalog_text, cost_text]
+    with open(os.path.join(out_dir, "certify_peers.md"), "a") as f:
+        f.write("".join("\n" + text + "\n" for text in sections if text))
     log("")
     log(table)
+    for text in sections:
+        if text:
+            log("")
+            log(text)
     log("")
     log(summary(rows))
     log(f"total {time.monotonic() - started:.0f} s; wrote {os.path.join(out_dir, 'certify_peers.md')} and .csv")

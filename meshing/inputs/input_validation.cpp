@@ -410,11 +410,110 @@ struct Evidence {
   std::string detail;     // the proof, or what was found instead
 };
 
+// Whether singular_proof() proves a singular point of Σ from the points `near`; if so, the proof
+// is e's detail.
+bool proved_singular(const Surface& surface, const Box3& domain, const std::vector<Point>& near, Evidence& e) {
+  const std::string proof = singular_proof(surface, domain, near);
+  if (proof.empty()) return false;
+  e.singular = true;
+  e.detail = proof;
+  return true;
+}
+
+// Krawczyk steps on ∇E = 0 from the box x that holds its unique zero, while they shrink it by
+// the refinement ratio.
+void refine_critical_box(const CompiledSystem& gradient_only, std::vector<Interval>& x) {
+  for (int it = 0; it < tolerances::root_refinement_iterations; ++it) {
+    const KrawczykResult next = krawczyk_test(gradient_only, {}, x);
+    if (next.outcome != KrawczykOutcome::unique_root) break;
+    double before = 0, after = 0;
+    for (int i = 0; i < 3; ++i) {
+      before = std::max(before, x[i].sup() - x[i].inf());
+      after = std::max(after, next.contracted[i].sup() - next.contracted[i].inf());
+    }
+    x = next.contracted;
+    if (!(after < tolerances::root_refinement_shrink_ratio * before)) break;
+  }
+}
+
+// What E on the tight box x of the only critical point within r of p says: off Σ (E ≠ 0), or,
+// with E ∋ 0 and narrow, a singular point if singular_proof() proves one.  False when E on x
+// decides neither.
+bool critical_point_verdict(const CompiledSystem& system, const Surface& surface, const Box3& domain,
+                            const Scales& scale, const Point& p, double r, const std::vector<Interval>& x,
+                            Evidence& e) {
+  Interval v[4];
+  system.values<Interval>(x.data(), nullptr, v);
+  for (int i = 0; i < 3; ++i) e.where[i] = centre(x[i]);
+  std::ostringstream s;
+  if (certainly_nonzero(v[0])) {
+    s << " (Krawczyk certifies that the only critical point of E within " << r << " of " << point_text(p)
+      << ", the point nearest to a singular one found near it, lies off the surface, at "
+      << point_text(e.where) << " where |E| >= " << std::min(std::abs(v[0].inf()), std::abs(v[0].sup())) << ")";
+    e.detail = s.str();
+    return true;
+  }
+  if (finite(v[0]) && v[0].sup() - v[0].inf() <= tolerances::singular_evidence_relative_residual * scale.E) {
+    if (proved_singular(surface, domain, {e.where, p}, e)) return true;
+    s << " (Krawczyk certifies a critical point of E within " << r << " of " << point_text(e.where)
+      << ", at which |E| <= " << std::max(std::abs(v[0].inf()), std::abs(v[0].sup()))
+      << "; that it lies on the surface is not proved)";
+    e.detail = s.str();
+    return true;
+  }
+  return false;
+}
+
+// A critical point certified by Krawczyk on ∇E = 0 in p ± r (r = w, w/16, w/16², ...: interval
+// overestimation of the Hessian may need r far below w), refined to a tight box X.  It is the
+// only critical point in p ± r, so E(X) decides: E ∋ 0 on a tight X is evidence of a singular
+// point, E ≠ 0 on X proves that there is none in p ± r.  False when no attempt decided.
+bool critical_point_evidence(const CompiledSystem& system, const CompiledSystem& gradient_only, const Surface& surface,
+                             const Box3& domain, const Scales& scale, const Point& p, double w, Evidence& e) {
+  double r = w;
+  for (int attempt = 0; attempt < tolerances::singular_evidence_krawczyk_attempts; ++attempt, r /= 16) {
+    RoundingGuard guard;
+    std::vector<Interval> x(3);
+    for (int k = 0; k < 3; ++k) x[k] = Interval(p[k]) + Interval(-r, r);
+    KrawczykResult k = krawczyk_test(gradient_only, {}, x);
+    if (k.outcome == KrawczykOutcome::no_root) {  // ∇E ≠ 0 on p ± r: no singular point at p
+      std::ostringstream s;
+      s << " (Krawczyk proves that grad E has no zero within " << r << " of " << point_text(p)
+        << ", the point nearest to a singular one found near it)";
+      e.detail = s.str();
+      return true;
+    }
+    if (k.outcome == KrawczykOutcome::unique_root) {
+      x = k.contracted;
+      refine_critical_box(gradient_only, x);
+      return critical_point_verdict(system, surface, domain, scale, p, r, x, e);
+    }
+  }
+  return false;
+}
+
+// A degenerate singular point: (E, ∇E) vanish at p to within rho relative to their scales; proved
+// by singular_proof(), or noted in e's detail.
+void residual_evidence(const CompiledSystem& system, const Surface& surface, const Box3& domain, const Scales& scale,
+                       const Point& p, Evidence& e) {
+  const double rho = tolerances::singular_evidence_relative_residual;
+  double v[4];
+  system.values<double>(p.data(), nullptr, v);
+  const double gradient = std::max({std::abs(v[1]), std::abs(v[2]), std::abs(v[3])});
+  if (!(std::abs(v[0]) <= rho * scale.E && gradient <= rho * scale.gradient)) return;
+  e.where = p;
+  if (proved_singular(surface, domain, {p}, e)) return;
+  std::ostringstream s;
+  s << " (near " << point_text(p) << " |E| = " << std::abs(v[0]) << " and |grad E| = " << gradient
+    << ", relative to their scales " << scale.E << " and " << scale.gradient
+    << " over the box; that both vanish there is not proved)";
+  e.detail = s.str();
+}
+
 // Looks for a singular point of Σ near the undecided box b (header: "Undecided boxes ...").
 Evidence singular_evidence(const CompiledSystem& system, std::optional<CompiledSystem>& gradient_only,
                            const Surface& surface, const Box3& domain, const Scales& scale, const Box& b,
                            bool prove_anyway) {
-  const double rho = tolerances::singular_evidence_relative_residual;
   Evidence e;
   double w = 0;
   for (int k = 0; k < 3; ++k) {
@@ -422,99 +521,17 @@ Evidence singular_evidence(const CompiledSystem& system, std::optional<CompiledS
     w = std::max(w, b[k].sup() - b[k].inf());
   }
   const Point p = gauss_newton(system, scale, e.where);
-  if (prove_anyway) {
-    // Whatever the residuals (Gauss–Newton approaches a degenerate singular point slowly), a proof
-    // from the box's centre or p costs little on the first few boxes and is a proof wherever found.
-    const std::string proof = singular_proof(surface, domain, {e.where, p});
-    if (!proof.empty()) {
-      e.singular = true;
-      e.detail = proof;
-      return e;
-    }
-  }
+  // Whatever the residuals (Gauss–Newton approaches a degenerate singular point slowly), a proof
+  // from the box's centre or p costs little on the first few boxes and is a proof wherever found.
+  if (prove_anyway && proved_singular(surface, domain, {e.where, p}, e)) return e;
   for (int k = 0; k < 3; ++k)
     if (!(p[k] >= b[k].inf() - w && p[k] <= b[k].sup() + w)) return e;
-
-  // A critical point certified by Krawczyk on ∇E = 0 in p ± r (r = w, w/16, w/16², ...: interval
-  // overestimation of the Hessian may need r far below w), refined to a tight box X.  It is the
-  // only critical point in p ± r, so E(X) decides: E ∋ 0 on a tight X is evidence of a singular
-  // point, E ≠ 0 on X proves that there is none in p ± r.
   if (!gradient_only) {
     const auto& g = surface.gradient();
     gradient_only.emplace(std::vector<GiNaC::ex>{g[0], g[1], g[2]}, unknowns(), std::vector<GiNaC::symbol>{});
   }
-  double r = w;
-  for (int attempt = 0; attempt < tolerances::singular_evidence_krawczyk_attempts; ++attempt, r /= 16) {
-    RoundingGuard guard;
-    std::vector<Interval> x(3);
-    for (int k = 0; k < 3; ++k) x[k] = Interval(p[k]) + Interval(-r, r);
-    KrawczykResult k = krawczyk_test(*gradient_only, {}, x);
-    if (k.outcome == KrawczykOutcome::no_root) {  // ∇E ≠ 0 on p ± r: no singular point at p
-      std::ostringstream s;
-      s << " (Krawczyk proves that grad E has no zero within " << r << " of " << point_text(p)
-        << ", the point nearest to a singular one found near it)";
-      e.detail = s.str();
-      return e;
-    }
-    if (k.outcome == KrawczykOutcome::unique_root) {
-      x = k.contracted;
-      for (int it = 0; it < tolerances::root_refinement_iterations; ++it) {
-        const KrawczykResult next = krawczyk_test(*gradient_only, {}, x);
-        if (next.outcome != KrawczykOutcome::unique_root) break;
-        double before = 0, after = 0;
-        for (int i = 0; i < 3; ++i) {
-          before = std::max(before, x[i].sup() - x[i].inf());
-          after = std::max(after, next.contracted[i].sup() - next.contracted[i].inf());
-        }
-        x = next.contracted;
-        if (!(after < tolerances::root_refinement_shrink_ratio * before)) break;
-      }
-      Interval v[4];
-      system.values<Interval>(x.data(), nullptr, v);
-      for (int i = 0; i < 3; ++i) e.where[i] = centre(x[i]);
-      std::ostringstream s;
-      if (certainly_nonzero(v[0])) {
-        s << " (Krawczyk certifies that the only critical point of E within " << r << " of " << point_text(p)
-          << ", the point nearest to a singular one found near it, lies off the surface, at "
-          << point_text(e.where) << " where |E| >= " << std::min(std::abs(v[0].inf()), std::abs(v[0].sup())) << ")";
-        e.detail = s.str();
-        return e;
-      }
-      if (finite(v[0]) && v[0].sup() - v[0].inf() <= rho * scale.E) {
-        const std::string proof = singular_proof(surface, domain, {e.where, p});
-        if (!proof.empty()) {
-          e.singular = true;
-          e.detail = proof;
-          return e;
-        }
-        s << " (Krawczyk certifies a critical point of E within " << r << " of " << point_text(e.where)
-          << ", at which |E| <= " << std::max(std::abs(v[0].inf()), std::abs(v[0].sup()))
-          << "; that it lies on the surface is not proved)";
-        e.detail = s.str();
-        return e;
-      }
-      break;
-    }
-  }
-
-  // A degenerate singular point: (E, ∇E) vanish at p to within rho relative to their scales.
-  double v[4];
-  system.values<double>(p.data(), nullptr, v);
-  const double gradient = std::max({std::abs(v[1]), std::abs(v[2]), std::abs(v[3])});
-  if (std::abs(v[0]) <= rho * scale.E && gradient <= rho * scale.gradient) {
-    e.where = p;
-    const std::string proof = singular_proof(surface, domain, {p});
-    if (!proof.empty()) {
-      e.singular = true;
-      e.detail = proof;
-      return e;
-    }
-    std::ostringstream s;
-    s << " (near " << point_text(p) << " |E| = " << std::abs(v[0]) << " and |grad E| = " << gradient
-      << ", relative to their scales " << scale.E << " and " << scale.gradient
-      << " over the box; that both vanish there is not proved)";
-    e.detail = s.str();
-  }
+  if (critical_point_evidence(system, *gradient_only, surface, domain, scale, p, w, e)) return e;
+  residual_evidence(system, surface, domain, scale, p, e);
   return e;
 }
 
@@ -577,109 +594,191 @@ std::size_t check_box_faces(const CompiledSystem& system, const Box3& box) {
   return examined;
 }
 
-std::size_t check_regular(const CompiledSystem& system, const Surface& surface, const Box3& box) {
-  double domain_width = 0;
-  for (int k = 0; k < 3; ++k) domain_width = std::max(domain_width, box.hi[k] - box.lo[k]);
-  const double min_width = tolerances::validation_min_box_relative_width * domain_width;
-  const double deep_min_width = tolerances::validation_deep_min_box_relative_width * domain_width;
-  std::size_t deep_boxes = 0;
-  const Scales scale = domain_scales(system, box);
-  std::optional<CompiledSystem> gradient_only;
+// The volume of a box given by its bounds (lo, hi per coordinate).
+double bounds_volume(const std::array<double, 6>& b) { return (b[1] - b[0]) * (b[3] - b[2]) * (b[5] - b[4]); }
 
-  std::vector<std::array<double, 6>> stack{{box.lo[0], box.hi[0], box.lo[1], box.hi[1], box.lo[2], box.hi[2]}};
+// What check_regular()'s bisection left: the boxes it could not decide, and why it stopped.
+struct RegularitySearch {
+  std::vector<std::array<double, 6>> stack;  // the boxes not examined
   std::vector<Box> undecided;
   std::vector<std::array<double, 6>> undecided_bounds;
   std::string first_note;  // what singular_evidence found near the first undecided box
-  std::size_t looked_at = 0;  // boxes singular_evidence looked at
   std::size_t examined = 0;
   bool budget_exhausted = false;
-  // The budget grows by rounds while each round decides volume (tolerances::validation_box_rounds).
-  const auto volume = [](const std::array<double, 6>& b) { return (b[1] - b[0]) * (b[3] - b[2]) * (b[5] - b[4]); };
-  const double domain_volume = volume(stack.front());
-  double unexplored_before = domain_volume;  // the stack's volume when the round began
   std::size_t rounds = 1;
-  double unexplored = domain_volume;
-  while (!stack.empty()) {
-    RunLimits::current().check("validating the surface");
-    if (examined >= rounds * tolerances::mesher_box_budget_global) {
-      unexplored = 0;
-      for (const auto& b : stack) unexplored += volume(b);
-      if (rounds < tolerances::validation_box_rounds && unexplored < unexplored_before) {
-        ++rounds;
-        unexplored_before = unexplored;
-      } else {
-        budget_exhausted = true;
+  double domain_volume = 0;
+  double unexplored = 0;  // the stack's volume when the budget was last checked
+};
+
+// The bisection of the domain into boxes on which ∇E ≠ 0 on Σ is proved (box_is_regular()),
+// looking for evidence of a singular point on the boxes that stay undecided.  The budget grows by
+// rounds while each round decides volume (tolerances::validation_box_rounds).
+class RegularityBisection {
+ public:
+  RegularityBisection(const CompiledSystem& system, const Surface& surface, const Box3& box, const Scales& scale)
+      : system_(system), surface_(surface), box_(box), scale_(scale) {
+    double domain_width = 0;
+    for (int k = 0; k < 3; ++k) domain_width = std::max(domain_width, box.hi[k] - box.lo[k]);
+    min_width_ = tolerances::validation_min_box_relative_width * domain_width;
+    deep_min_width_ = tolerances::validation_deep_min_box_relative_width * domain_width;
+    s_.stack = {{box.lo[0], box.hi[0], box.lo[1], box.hi[1], box.lo[2], box.hi[2]}};
+    s_.domain_volume = bounds_volume(s_.stack.front());
+    s_.unexplored = unexplored_before_ = s_.domain_volume;
+  }
+
+  // The width below which a box is bisected only within the deep budget.
+  double deep_min_width() const { return deep_min_width_; }
+
+  // Examines the boxes until none is left or the budget runs out.
+  RegularitySearch run() {
+    while (!s_.stack.empty()) {
+      RunLimits::current().check("validating the surface");
+      if (s_.examined >= s_.rounds * tolerances::mesher_box_budget_global && !next_round()) {
+        s_.budget_exhausted = true;
         break;
       }
+      const auto bounds = s_.stack.back();
+      s_.stack.pop_back();
+      ++s_.examined;
+      examine(bounds);
     }
-    const auto bounds = stack.back();
-    stack.pop_back();
-    ++examined;
+    return std::move(s_);
+  }
+
+ private:
+  // Whether the budget grows by another round: while rounds are left and the last one decided
+  // volume (the stack's volume shrank).
+  bool next_round() {
+    s_.unexplored = 0;
+    for (const auto& b : s_.stack) s_.unexplored += bounds_volume(b);
+    if (s_.rounds < tolerances::validation_box_rounds && s_.unexplored < unexplored_before_) {
+      ++s_.rounds;
+      unexplored_before_ = s_.unexplored;
+      return true;
+    }
+    return false;
+  }
+
+  // Drops a box proved regular; otherwise bisects it across its widest side, or keeps it
+  // undecided once it is too narrow (or does not split).
+  void examine(const std::array<double, 6>& bounds) {
     Box b;
     bool dropped = false;
     {
       RoundingGuard guard;
       for (int k = 0; k < 3; ++k) b[k] = Interval(bounds[2 * k], bounds[2 * k + 1]);
-      dropped = box_is_regular<Interval>(system, bounds);
+      dropped = box_is_regular<Interval>(system_, bounds);
     }
-    if (dropped) continue;
+    if (dropped) return;
     int side = 0;
     for (int k = 1; k < 3; ++k)
       if (bounds[2 * k + 1] - bounds[2 * k] > bounds[2 * side + 1] - bounds[2 * side]) side = k;
     const double lo = bounds[2 * side], hi = bounds[2 * side + 1], split = 0.5 * (lo + hi);
     const bool splittable = split > lo && split < hi;
-    if (hi - lo < min_width || !splittable) {
+    if (hi - lo < min_width_ || !splittable) {
       // Evidence is looked for once, on the boxes that have just crossed min_width; below it a
       // box without evidence is bisected on, down to deep_min_width, within the deep budget.
-      if (hi - lo >= 0.5 * min_width || !splittable) {
-        const Evidence evidence = singular_evidence(system, gradient_only, surface, box, scale, b,
-                                                    looked_at++ < tolerances::singular_proof_boxes_without_evidence);
-        if (evidence.singular) throw InvalidInput("the surface is singular: the gradient of E vanishes on it" + evidence.detail);
-        if (undecided.empty() && !evidence.detail.empty()) first_note = evidence.detail;
+      if (hi - lo >= 0.5 * min_width_ || !splittable) look_for_evidence(b);
+      if (!splittable || hi - lo < deep_min_width_ || deep_boxes_ >= tolerances::validation_deep_box_budget) {
+        s_.undecided.push_back(b);
+        s_.undecided_bounds.push_back(bounds);
+        return;
       }
-      if (!splittable || hi - lo < deep_min_width || deep_boxes >= tolerances::validation_deep_box_budget) {
-        undecided.push_back(b);
-        undecided_bounds.push_back(bounds);
-        continue;
-      }
-      ++deep_boxes;
+      ++deep_boxes_;
     }
     auto lower = bounds, upper = bounds;
     lower[2 * side + 1] = split;
     upper[2 * side] = split;
-    stack.push_back(upper);
-    stack.push_back(lower);
+    s_.stack.push_back(upper);
+    s_.stack.push_back(lower);
   }
-  // Escalation (header): the undecided boxes again in MPFI, within validation_mpfi_box_budget.
-  std::size_t mpfi_budget = tolerances::validation_mpfi_box_budget;
-  if (!budget_exhausted) {
-    std::vector<Box> still;
-    for (std::size_t i = 0; i < undecided.size(); ++i) {
-      // A box on which the double enclosures overflow stays undecided: the mesher computes in
-      // double precision, so the domain is too large for it whatever MPFI proves.
-      Interval v[4];
-      {
-        RoundingGuard guard;
-        system.values<Interval>(undecided[i].data(), nullptr, v);
-      }
-      const bool overflows = surface.is_polynomial() && !(finite(v[0]) && finite(v[1]) && finite(v[2]) && finite(v[3]));
-      if (overflows || mpfi_budget == 0 || !regular_in_mpfi(system, undecided_bounds[i], mpfi_budget))
-        still.push_back(undecided[i]);
-    }
-    undecided.swap(still);
-  }
-  if (undecided.empty() && !budget_exhausted) return examined;
 
+  // singular_evidence() near b: throws InvalidInput with a proof of a singular point; keeps the
+  // note of what it found near the first undecided box.
+  void look_for_evidence(const Box& b) {
+    const Evidence evidence = singular_evidence(system_, gradient_only_, surface_, box_, scale_, b,
+                                                looked_at_++ < tolerances::singular_proof_boxes_without_evidence);
+    if (evidence.singular) throw InvalidInput("the surface is singular: the gradient of E vanishes on it" + evidence.detail);
+    if (s_.undecided.empty() && !evidence.detail.empty()) s_.first_note = evidence.detail;
+  }
+
+  const CompiledSystem& system_;
+  const Surface& surface_;
+  const Box3& box_;
+  const Scales& scale_;
+  std::optional<CompiledSystem> gradient_only_;
+  double min_width_ = 0, deep_min_width_ = 0;
+  std::size_t deep_boxes_ = 0;
+  std::size_t looked_at_ = 0;  // boxes singular_evidence looked at
+  double unexplored_before_ = 0;  // the stack's volume when the round began
+  RegularitySearch s_;
+};
+
+// Escalation (header): the undecided boxes again in MPFI, within validation_mpfi_box_budget.  A
+// box on which the double enclosures overflow stays undecided: the mesher computes in double
+// precision, so the domain is too large for it whatever MPFI proves.
+void retry_in_mpfi(const CompiledSystem& system, const Surface& surface, RegularitySearch& search) {
+  std::size_t mpfi_budget = tolerances::validation_mpfi_box_budget;
+  std::vector<Box> still;
+  for (std::size_t i = 0; i < search.undecided.size(); ++i) {
+    Interval v[4];
+    {
+      RoundingGuard guard;
+      system.values<Interval>(search.undecided[i].data(), nullptr, v);
+    }
+    const bool overflows = surface.is_polynomial() && !(finite(v[0]) && finite(v[1]) && finite(v[2]) && finite(v[3]));
+    if (overflows || mpfi_budget == 0 || !regular_in_mpfi(system, search.undecided_bounds[i], mpfi_budget))
+      still.push_back(search.undecided[i]);
+  }
+  search.undecided.swap(still);
+}
+
+// How small |∇E| may be near the first undecided box, whose centre is `where`: its value at the
+// point of smallest (E, ∇E) residual found from there (an upper bound on its minimum; no positive
+// lower bound is proved), and whether E or ∇E is not finite on the box.
+void describe_first_undecided(std::ostream& s, const CompiledSystem& system, const Surface& surface,
+                              const Scales& scale, const Box& first, const Point& where) {
+  double width = 0;
+  for (int k = 0; k < 3; ++k) width = std::max(width, first[k].sup() - first[k].inf());
+  const Point p = gauss_newton(system, scale, where);
+  bool near = true;
+  for (int k = 0; k < 3; ++k) near = near && std::abs(p[k] - where[k]) <= width;
+  const Point at = near ? p : where;
+  double values[4];
+  system.values<double>(at.data(), nullptr, values);
+  const double gradient = std::sqrt(values[1] * values[1] + values[2] * values[2] + values[3] * values[3]);
+  if (std::isfinite(gradient) && std::isfinite(values[0]))
+    s << "; |grad E| may be as small as " << gradient << " there (its value at " << point_text(at)
+      << ", where |E| = " << std::abs(values[0]) << ")";
+  Interval v[4];
+  {
+    RoundingGuard guard;
+    system.values<Interval>(first.data(), nullptr, v);
+  }
+  if (!(finite(v[0]) && finite(v[1]) && finite(v[2]) && finite(v[3]))) {
+    // A polynomial has no pole: an infinite enclosure there is an overflow of double precision.
+    if (surface.is_polynomial())
+      s << " (E or its gradient overflows double precision there: the box is too large for E; rescale the "
+           "coordinates or shrink the box)";
+    else
+      s << " (E or its gradient is undefined, unbounded or beyond double precision there)";
+  }
+}
+
+// check_regular()'s error: why the search stopped, and where it left boxes undecided.
+std::string irregularity_message(const CompiledSystem& system, const Surface& surface, const Scales& scale,
+                                 const RegularitySearch& search, double deep_min_width) {
+  const auto& undecided = search.undecided;
   Point where{};
   if (!undecided.empty())
     for (int k = 0; k < 3; ++k) where[k] = centre(undecided.front()[k]);
   std::ostringstream s;
   s << "cannot certify that the gradient of E is non-zero on the surface: ";
-  if (budget_exhausted)
-    s << "the budget of " << rounds << " × " << tolerances::mesher_box_budget_global << " boxes ran out with "
-      << stack.size() << " boxes unexplored (" << std::setprecision(3) << 100 * unexplored / domain_volume
-      << std::setprecision(6) << "% of the box's volume"
-      << (rounds < tolerances::validation_box_rounds ? ", no less than after the round before" : "") << ") and "
+  if (search.budget_exhausted)
+    s << "the budget of " << search.rounds << " × " << tolerances::mesher_box_budget_global << " boxes ran out with "
+      << search.stack.size() << " boxes unexplored (" << std::setprecision(3)
+      << 100 * search.unexplored / search.domain_volume << std::setprecision(6) << "% of the box's volume"
+      << (search.rounds < tolerances::validation_box_rounds ? ", no less than after the round before" : "") << ") and "
       << undecided.size() << " undecided";
   else
     s << undecided.size() << " boxes stay undecided (bisected down to width " << deep_min_width << " or the budget of "
@@ -688,39 +787,22 @@ std::size_t check_regular(const CompiledSystem& system, const Surface& surface, 
       << " boxes)";
   if (!undecided.empty()) {
     s << ", the first near " << point_text(where) << ", with no singular point proved near them";
-    // How small |∇E| may be there: its value at the point of smallest (E, ∇E) residual found from
-    // the box's centre (an upper bound on its minimum; no positive lower bound is proved).
-    double width = 0;
-    for (int k = 0; k < 3; ++k) width = std::max(width, undecided.front()[k].sup() - undecided.front()[k].inf());
-    const Point p = gauss_newton(system, scale, where);
-    bool near = true;
-    for (int k = 0; k < 3; ++k) near = near && std::abs(p[k] - where[k]) <= width;
-    const Point at = near ? p : where;
-    double values[4];
-    system.values<double>(at.data(), nullptr, values);
-    const double gradient = std::sqrt(values[1] * values[1] + values[2] * values[2] + values[3] * values[3]);
-    if (std::isfinite(gradient) && std::isfinite(values[0]))
-      s << "; |grad E| may be as small as " << gradient << " there (its value at " << point_text(at)
-        << ", where |E| = " << std::abs(values[0]) << ")";
-    Interval v[4];
-    {
-      RoundingGuard guard;
-      system.values<Interval>(undecided.front().data(), nullptr, v);
-    }
-    if (!(finite(v[0]) && finite(v[1]) && finite(v[2]) && finite(v[3]))) {
-      // A polynomial has no pole: an infinite enclosure there is an overflow of double precision.
-      if (surface.is_polynomial())
-        s << " (E or its gradient overflows double precision there: the box is too large for E; rescale the "
-             "coordinates or shrink the box)";
-      else
-        s << " (E or its gradient is undefined, unbounded or beyond double precision there)";
-    }
-    s << first_note;
-  } else if (!stack.empty()) {
-    const auto& u = stack.back();
+    describe_first_undecided(s, system, surface, scale, undecided.front(), where);
+    s << search.first_note;
+  } else if (!search.stack.empty()) {
+    const auto& u = search.stack.back();
     s << ", the next near " << point_text({0.5 * (u[0] + u[1]), 0.5 * (u[2] + u[3]), 0.5 * (u[4] + u[5])});
   }
-  throw InvalidInput(s.str());
+  return s.str();
+}
+
+std::size_t check_regular(const CompiledSystem& system, const Surface& surface, const Box3& box) {
+  const Scales scale = domain_scales(system, box);
+  RegularityBisection bisection(system, surface, box, scale);
+  RegularitySearch search = bisection.run();
+  if (!search.budget_exhausted) retry_in_mpfi(system, surface, search);
+  if (search.undecided.empty() && !search.budget_exhausted) return search.examined;
+  throw InvalidInput(irregularity_message(system, surface, scale, search, bisection.deep_min_width()));
 }
 
 }  // namespace

@@ -107,17 +107,12 @@ bool FeatureSet::is_corner(SurfaceMesh::Vertex_index v) const {
   return std::binary_search(corners.begin(), corners.end(), v);
 }
 
-FeatureSet detect_features(const SurfaceMesh& mesh, double angle_deg, const std::vector<Vertex>& folded) {
-  require_angle(angle_deg);
-  for (Vertex v : folded)
-    if (!mesh.is_valid(v) || std::size_t(v) >= mesh.num_vertices())
-      throw PreconditionViolation("detect_features: a folded vertex is not a vertex of the mesh");
-  FeatureSet set;
-  set.angle_deg = angle_deg;
+namespace {
 
-  // Feature edges.
+// The feature edges of the mesh into `set` (border edges and edges whose faces' normals differ by
+// more than angle_deg), sorted, with their counts; returns the flag of each edge.
+std::vector<char> mark_feature_edges(const SurfaceMesh& mesh, double angle_deg, FeatureSet& set) {
   std::vector<char> feature(mesh.num_edges(), 0);
-  const auto is_feature = [&](Edge e) { return feature[std::size_t(e)] != 0; };
   for (Edge e : mesh.edges()) {
     const Halfedge h = mesh.halfedge(e), o = mesh.opposite(h);
     if (mesh.is_border(h) || mesh.is_border(o)) {
@@ -131,13 +126,23 @@ FeatureSet detect_features(const SurfaceMesh& mesh, double angle_deg, const std:
     set.feature_edges.push_back(e);
   }
   std::sort(set.feature_edges.begin(), set.feature_edges.end());
+  return feature;
+}
 
-  // Feature degree of each vertex, and the corners.
+// The number of feature edges at each vertex.
+std::vector<std::size_t> feature_degrees(const SurfaceMesh& mesh, const std::vector<Edge>& feature_edges) {
   std::vector<std::size_t> degree(mesh.num_vertices(), 0);
-  for (Edge e : set.feature_edges) {
+  for (Edge e : feature_edges) {
     ++degree[std::size_t(mesh.vertex(e, 0))];
     ++degree[std::size_t(mesh.vertex(e, 1))];
   }
+  return degree;
+}
+
+// The corners into `set` (vertices of feature degree 1 or at least 3, and the folded vertices),
+// sorted, with the count of folded ones; returns the flag of each vertex.
+std::vector<char> mark_corners(const SurfaceMesh& mesh, const std::vector<std::size_t>& degree,
+                               const std::vector<Vertex>& folded, FeatureSet& set) {
   std::vector<char> corner(mesh.num_vertices(), 0);
   for (Vertex v : mesh.vertices())
     if (degree[std::size_t(v)] == 1 || degree[std::size_t(v)] >= 3) corner[std::size_t(v)] = 1;
@@ -149,53 +154,77 @@ FeatureSet detect_features(const SurfaceMesh& mesh, double angle_deg, const std:
   for (Vertex v : mesh.vertices())
     if (corner[std::size_t(v)]) set.corners.push_back(v);
   std::sort(set.corners.begin(), set.corners.end());
+  return corner;
+}
 
-  // The feature edges at each vertex, ascending by edge index.
-  const auto feature_edges_at = [&](Vertex v) {
+// Walks the feature curves: along feature edges from a vertex until a corner, each edge once.
+class CurveWalker {
+ public:
+  CurveWalker(const SurfaceMesh& mesh, const std::vector<char>& feature, const std::vector<char>& corner)
+      : mesh_(mesh), feature_(feature), corner_(corner), used_(mesh.num_edges(), 0) {}
+
+  // The feature edges at v, ascending by edge index.
+  std::vector<Edge> feature_edges_at(Vertex v) const {
     std::vector<Edge> at;
-    if (mesh.halfedge(v) == SurfaceMesh::null_halfedge()) return at;
-    for (Halfedge h : CGAL::halfedges_around_target(v, mesh))
-      if (is_feature(mesh.edge(h))) at.push_back(mesh.edge(h));
+    if (mesh_.halfedge(v) == SurfaceMesh::null_halfedge()) return at;
+    for (Halfedge h : CGAL::halfedges_around_target(v, mesh_))
+      if (feature_[std::size_t(mesh_.edge(h))] != 0) at.push_back(mesh_.edge(h));
     std::sort(at.begin(), at.end());
     return at;
-  };
-  std::vector<char> used(mesh.num_edges(), 0);
-  const auto other_end = [&](Edge e, Vertex v) { return mesh.vertex(e, 0) == v ? mesh.vertex(e, 1) : mesh.vertex(e, 0); };
+  }
+
+  // The end of e other than v.
+  Vertex other_end(Edge e, Vertex v) const { return mesh_.vertex(e, 0) == v ? mesh_.vertex(e, 1) : mesh_.vertex(e, 0); }
+
+  // Whether a walk has taken e.
+  bool used(Edge e) const { return used_[std::size_t(e)] != 0; }
+
   // From vertex `from` along feature edge `first` until a corner, or back at `stop` (a closed
   // curve without corner).
-  const auto walk = [&](Vertex from, Edge first, Vertex stop) {
+  FeatureCurve walk(Vertex from, Edge first, Vertex stop) {
     FeatureCurve curve;
     curve.vertices.push_back(from);
     Edge e = first;
     Vertex v = from;
     while (true) {
-      used[std::size_t(e)] = 1;
+      used_[std::size_t(e)] = 1;
       curve.edges.push_back(e);
       v = other_end(e, v);
       curve.vertices.push_back(v);
-      if (corner[std::size_t(v)] || v == stop) break;
+      if (corner_[std::size_t(v)] || v == stop) break;
       // v has exactly two feature edges; go on along the one not just used.
       Edge next = e;
       for (Edge f : feature_edges_at(v))
         if (f != e) next = f;
-      if (next == e || used[std::size_t(next)]) break;  // (not reached for a degree-2 vertex)
+      if (next == e || used_[std::size_t(next)]) break;  // (not reached for a degree-2 vertex)
       e = next;
     }
     curve.closed = curve.vertices.back() == curve.vertices.front();
     return curve;
-  };
+  }
+
+ private:
+  const SurfaceMesh& mesh_;
+  const std::vector<char>& feature_;
+  const std::vector<char>& corner_;
+  std::vector<char> used_;
+};
+
+// The feature curves into `set`: those from each corner, then the closed curves without a corner,
+// each found from its smallest vertex.
+void trace_curves(const SurfaceMesh& mesh, const std::vector<std::size_t>& degree, const std::vector<char>& corner,
+                  CurveWalker& walker, FeatureSet& set) {
   for (Vertex c : set.corners)
-    for (Edge e : feature_edges_at(c))
-      if (!used[std::size_t(e)]) set.curves.push_back(walk(c, e, c));
-  // Closed curves without a corner: each is found from its smallest vertex.
+    for (Edge e : walker.feature_edges_at(c))
+      if (!walker.used(e)) set.curves.push_back(walker.walk(c, e, c));
   for (Vertex v : mesh.vertices()) {
     if (degree[std::size_t(v)] != 2 || corner[std::size_t(v)]) continue;
-    const std::vector<Edge> at = feature_edges_at(v);
-    if (used[std::size_t(at[0])]) continue;
+    const std::vector<Edge> at = walker.feature_edges_at(v);
+    if (walker.used(at[0])) continue;
     // Every vertex of this unused cycle has a larger index than v, since the cycles are found in
     // ascending order of their smallest vertex: start towards the smaller neighbour.
-    const Vertex n0 = other_end(at[0], v), n1 = other_end(at[1], v);
-    FeatureCurve curve = walk(v, n0 < n1 ? at[0] : at[1], v);
+    const Vertex n0 = walker.other_end(at[0], v), n1 = walker.other_end(at[1], v);
+    FeatureCurve curve = walker.walk(v, n0 < n1 ? at[0] : at[1], v);
     curve.without_corner = true;
     set.curves.push_back(std::move(curve));
   }
@@ -203,6 +232,22 @@ FeatureSet detect_features(const SurfaceMesh& mesh, double angle_deg, const std:
     set.closed_curves += curve.closed;
     set.curves_without_corner += curve.without_corner;
   }
+}
+
+}  // namespace
+
+FeatureSet detect_features(const SurfaceMesh& mesh, double angle_deg, const std::vector<Vertex>& folded) {
+  require_angle(angle_deg);
+  for (Vertex v : folded)
+    if (!mesh.is_valid(v) || std::size_t(v) >= mesh.num_vertices())
+      throw PreconditionViolation("detect_features: a folded vertex is not a vertex of the mesh");
+  FeatureSet set;
+  set.angle_deg = angle_deg;
+  const std::vector<char> feature = mark_feature_edges(mesh, angle_deg, set);
+  const std::vector<std::size_t> degree = feature_degrees(mesh, set.feature_edges);
+  const std::vector<char> corner = mark_corners(mesh, degree, folded, set);
+  CurveWalker walker(mesh, feature, corner);
+  trace_curves(mesh, degree, corner, walker, set);
   return set;
 }
 

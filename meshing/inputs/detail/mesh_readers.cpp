@@ -639,11 +639,56 @@ PolygonSoup read_off(const std::string& path, const std::string& contents) {
   return soup;
 }
 
-PolygonSoup read_ply(const std::string& path, const std::string& contents) {
-  // 1. The header, line by line, up to end_header.
-  std::size_t at = 0;
+namespace {
+
+// What a PLY header declares: its elements with their properties, the format (0 ascii, 1 binary
+// little-endian, 2 binary big-endian) and where the body begins.
+struct PlyHeader {
   std::vector<PlyElement> elements;
-  int format = -1;  // 0 ascii, 1 binary little-endian, 2 binary big-endian
+  int format = -1;
+  std::size_t body = 0;
+};
+
+// The format named by a header's format line `words`.
+int ply_format(const std::string& path, const std::vector<std::string_view>& words, const std::string& where) {
+  if (words.size() < 2) mesh_file_error(path, where + ": the format line names no format");
+  if (words[1] == "ascii") return 0;
+  if (words[1] == "binary_little_endian") return 1;
+  if (words[1] == "binary_big_endian") return 2;
+  mesh_file_error(path, where + ": unknown format '" + printable(std::string(words[1])) + "'");
+}
+
+// The element declared by an element line `words`, not one of `elements` already declared.
+PlyElement ply_element(const std::string& path, const std::vector<std::string_view>& words, const std::string& where,
+                       const std::vector<PlyElement>& elements) {
+  if (words.size() != 3) mesh_file_error(path, where + ": an element line is 'element NAME COUNT'");
+  PlyElement e;
+  e.name = std::string(words[1]);
+  e.count = header_count(path, words[2], "number of " + printable(e.name) + " elements");
+  for (const PlyElement& other : elements)
+    if (other.name == e.name) mesh_file_error(path, where + ": element '" + printable(e.name) + "' is declared twice");
+  return e;
+}
+
+// The property declared by a property line `words`.
+PlyProperty ply_property(const std::string& path, const std::vector<std::string_view>& words, const std::string& where) {
+  PlyProperty p;
+  const bool list = words.size() >= 2 && words[1] == "list";
+  if (list ? words.size() != 5 : words.size() != 3)
+    mesh_file_error(path, where + ": a property line is 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'");
+  p.list = list;
+  if (list && (!parse_ply_type(words[2], p.count_type) || !is_integral(p.count_type)))
+    mesh_file_error(path, where + ": '" + printable(std::string(words[2])) + "' is not an integer type for a list's size");
+  if (!parse_ply_type(words[list ? 3 : 1], p.type))
+    mesh_file_error(path, where + ": unknown type '" + printable(std::string(words[list ? 3 : 1])) + "'");
+  p.name = std::string(words[list ? 4 : 2]);
+  return p;
+}
+
+// The header, line by line, up to end_header; throws for anything it does not declare properly.
+PlyHeader read_ply_header(const std::string& path, const std::string& contents) {
+  PlyHeader h;
+  std::size_t at = 0;
   bool ended = false;
   for (std::size_t line_number = 1; at < contents.size(); ++line_number) {
     const std::size_t end = std::min(contents.find('\n', at), contents.size());
@@ -666,102 +711,106 @@ PolygonSoup read_ply(const std::string& path, const std::string& contents) {
     }
     if (keyword == "comment" || keyword == "obj_info") continue;
     if (keyword == "format") {
-      if (words.size() < 2) mesh_file_error(path, where + ": the format line names no format");
-      if (words[1] == "ascii") format = 0;
-      else if (words[1] == "binary_little_endian") format = 1;
-      else if (words[1] == "binary_big_endian") format = 2;
-      else mesh_file_error(path, where + ": unknown format '" + printable(std::string(words[1])) + "'");
+      h.format = ply_format(path, words, where);
     } else if (keyword == "element") {
-      if (words.size() != 3) mesh_file_error(path, where + ": an element line is 'element NAME COUNT'");
-      PlyElement e;
-      e.name = std::string(words[1]);
-      e.count = header_count(path, words[2], "number of " + printable(e.name) + " elements");
-      for (const PlyElement& other : elements)
-        if (other.name == e.name) mesh_file_error(path, where + ": element '" + printable(e.name) + "' is declared twice");
-      elements.push_back(std::move(e));
+      h.elements.push_back(ply_element(path, words, where, h.elements));
     } else if (keyword == "property") {
-      if (elements.empty()) mesh_file_error(path, where + ": a property line comes before any element line");
-      PlyProperty p;
-      const bool list = words.size() >= 2 && words[1] == "list";
-      if (list ? words.size() != 5 : words.size() != 3)
-        mesh_file_error(path, where + ": a property line is 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'");
-      p.list = list;
-      if (list && (!parse_ply_type(words[2], p.count_type) || !is_integral(p.count_type)))
-        mesh_file_error(path, where + ": '" + printable(std::string(words[2])) + "' is not an integer type for a list's size");
-      if (!parse_ply_type(words[list ? 3 : 1], p.type))
-        mesh_file_error(path, where + ": unknown type '" + printable(std::string(words[list ? 3 : 1])) + "'");
-      p.name = std::string(words[list ? 4 : 2]);
-      elements.back().properties.push_back(std::move(p));
+      if (h.elements.empty()) mesh_file_error(path, where + ": a property line comes before any element line");
+      h.elements.back().properties.push_back(ply_property(path, words, where));
     } else {
       mesh_file_error(path, where + ": unknown header keyword '" + printable(std::string(keyword)) + "'");
     }
   }
   if (!ended) mesh_file_error(path, "PLY header has no end_header");
-  if (format < 0) mesh_file_error(path, "the PLY header has no format line");
-  const std::size_t body = std::min(at, contents.size());
-  for (const PlyElement& e : elements) check_count_fits(path, e.count, contents.size() - body);
+  if (h.format < 0) mesh_file_error(path, "the PLY header has no format line");
+  h.body = std::min(at, contents.size());
+  for (const PlyElement& e : h.elements) check_count_fits(path, e.count, contents.size() - h.body);
+  return h;
+}
 
-  // 2. Where the coordinates and the faces' indices are.
+// Where the coordinates and the faces' indices are: their property numbers in the vertex and
+// face elements.
+struct PlyLayout {
   int x = -1, y = -1, z = -1, indices = -1;
+};
+
+PlyLayout ply_layout(const std::string& path, const std::vector<PlyElement>& elements) {
+  PlyLayout l;
   for (const PlyElement& e : elements) {
     for (std::size_t k = 0; k < e.properties.size(); ++k) {
       const PlyProperty& p = e.properties[k];
       if (e.name == "vertex" && (p.name == "x" || p.name == "y" || p.name == "z")) {
         if (p.list) mesh_file_error(path, "the vertex property '" + p.name + "' is a list, not a number");
-        (p.name == "x" ? x : p.name == "y" ? y : z) = static_cast<int>(k);
+        (p.name == "x" ? l.x : p.name == "y" ? l.y : l.z) = static_cast<int>(k);
       }
       if (e.name == "face" && (p.name == "vertex_indices" || p.name == "vertex_index")) {
         if (!p.list || !is_integral(p.type))
           mesh_file_error(path, "the face property '" + p.name + "' is not a list of integers");
-        indices = static_cast<int>(k);
+        l.indices = static_cast<int>(k);
       }
     }
-    if (e.name == "vertex" && (x < 0 || y < 0 || z < 0))
+    if (e.name == "vertex" && (l.x < 0 || l.y < 0 || l.z < 0))
       mesh_file_error(path, "the vertex element lacks one of the properties x, y, z");
-    if (e.name == "face" && indices < 0)
+    if (e.name == "face" && l.indices < 0)
       mesh_file_error(path, "the face element has no list property vertex_indices");
   }
+  return l;
+}
 
+// The instances of one element of the body: a vertex's coordinates and a face's indices into
+// `soup`, the other properties and elements read past.
+void read_ply_element(const std::string& path, const std::string& contents, const PlyElement& e,
+                      const PlyLayout& layout, PlyBody& in, PolygonSoup& soup) {
+  const bool vertex = e.name == "vertex", face = e.name == "face";
+  if (vertex) reserve(contents, soup, e.count, 0);
+  if (face) reserve(contents, soup, 0, e.count);
+  const std::string what = vertex || face ? e.name : "element '" + printable(e.name) + "'";
+  const RunLimits& limits = RunLimits::current();
+  for (std::uintmax_t i = 0; i < e.count; ++i) {
+    limits.check("reading the mesh file");
+    const std::string where = what + " " + std::to_string(i);
+    double c[3] = {0, 0, 0};
+    for (std::size_t k = 0; k < e.properties.size(); ++k) {
+      const PlyProperty& p = e.properties[k];
+      PlyValue value;
+      if (!p.list) {
+        if (!in.read(path, p.type, where, value)) truncated_in(path, what, i, e.count);
+        if (vertex && static_cast<int>(k) == layout.x) c[0] = value.real;
+        if (vertex && static_cast<int>(k) == layout.y) c[1] = value.real;
+        if (vertex && static_cast<int>(k) == layout.z) c[2] = value.real;
+        continue;
+      }
+      if (!in.read(path, p.count_type, where, value)) truncated_in(path, what, i, e.count);
+      if (value.whole < 0) mesh_file_error(path, where + ": the list '" + printable(p.name) + "' has a negative size");
+      const auto size = static_cast<std::uintmax_t>(value.whole);
+      if (!(face && static_cast<int>(k) == layout.indices)) {
+        if (!in.skip(path, p.type, size, where)) truncated_in(path, what, i, e.count);
+        continue;
+      }
+      check_face_size(path, i, static_cast<long long>(std::min<std::uintmax_t>(size, 3)));
+      for (std::uintmax_t j = 0; j < size; ++j) {
+        if (!in.read(path, p.type, where, value)) truncated_in(path, what, i, e.count);
+        soup.corners.push_back(static_cast<std::size_t>(value.whole));
+      }
+    }
+    if (vertex) soup.points.emplace_back(c[0], c[1], c[2]);
+    if (face) soup.offsets.push_back(soup.corners.size());
+  }
+}
+
+}  // namespace
+
+PolygonSoup read_ply(const std::string& path, const std::string& contents) {
+  // 1. The header, line by line, up to end_header.
+  const PlyHeader header = read_ply_header(path, contents);
+  // 2. Where the coordinates and the faces' indices are.
+  const PlyLayout layout = ply_layout(path, header.elements);
   // 3. The body, element after element.
   PolygonSoup soup;
-  PlyBody in(contents, body, format);
-  for (const PlyElement& e : elements) {
+  PlyBody in(contents, header.body, header.format);
+  for (const PlyElement& e : header.elements) {
     if (e.properties.empty()) continue;  // takes no bytes
-    const bool vertex = e.name == "vertex", face = e.name == "face";
-    if (vertex) reserve(contents, soup, e.count, 0);
-    if (face) reserve(contents, soup, 0, e.count);
-    const std::string what = vertex || face ? e.name : "element '" + printable(e.name) + "'";
-    const RunLimits& limits = RunLimits::current();
-    for (std::uintmax_t i = 0; i < e.count; ++i) {
-      limits.check("reading the mesh file");
-      const std::string where = what + " " + std::to_string(i);
-      double c[3] = {0, 0, 0};
-      for (std::size_t k = 0; k < e.properties.size(); ++k) {
-        const PlyProperty& p = e.properties[k];
-        PlyValue value;
-        if (!p.list) {
-          if (!in.read(path, p.type, where, value)) truncated_in(path, what, i, e.count);
-          if (vertex && static_cast<int>(k) == x) c[0] = value.real;
-          if (vertex && static_cast<int>(k) == y) c[1] = value.real;
-          if (vertex && static_cast<int>(k) == z) c[2] = value.real;
-          continue;
-        }
-        if (!in.read(path, p.count_type, where, value)) truncated_in(path, what, i, e.count);
-        if (value.whole < 0) mesh_file_error(path, where + ": the list '" + printable(p.name) + "' has a negative size");
-        const auto size = static_cast<std::uintmax_t>(value.whole);
-        if (!(face && static_cast<int>(k) == indices)) {
-          if (!in.skip(path, p.type, size, where)) truncated_in(path, what, i, e.count);
-          continue;
-        }
-        check_face_size(path, i, static_cast<long long>(std::min<std::uintmax_t>(size, 3)));
-        for (std::uintmax_t j = 0; j < size; ++j) {
-          if (!in.read(path, p.type, where, value)) truncated_in(path, what, i, e.count);
-          soup.corners.push_back(static_cast<std::size_t>(value.whole));
-        }
-      }
-      if (vertex) soup.points.emplace_back(c[0], c[1], c[2]);
-      if (face) soup.offsets.push_back(soup.corners.size());
-    }
+    read_ply_element(path, contents, e, layout, in, soup);
   }
   return soup;
 }

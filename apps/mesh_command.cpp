@@ -30,7 +30,6 @@
 #include "common/errors.h"
 #include "common/peak_memory.h"
 #include "common/run_limits.h"
-#include "meshing/checks/closed_ball.h"
 #include "meshing/core/mesh_checker.h"
 #include "meshing/driver/del_mesh.h"
 #include "meshing/inputs/make_oracle.h"
@@ -211,49 +210,9 @@ MeshInputPlan plan_mesh_input(const MeshRequest& r, InputMesh mesh, const std::s
   return plan;
 }
 
-namespace {
-
-//! The statistics' "closed_ball": the closed-ball check (meshing/checks/closed_ball.h) of the
-//! output's vertices on the input mesh, and whether the output's triangles are exactly Del S|Σ.
-//! It runs at the oracle's unit scale k (the input and output times 2^-k, exactly: the decisions
-//! are the same, and the interval filter stays in range); its witnesses and locations are given
-//! back at the input's scale.  Not attempted after a run stopped by its time limit or an
-//! interrupt, nor on an empty output.
-nlohmann::json closed_ball_statistics(const DelMeshResult& result, const SurfaceMesh& input, int k) {
-  if (result.status == MeshStatus::time_limit || result.status == MeshStatus::interrupted)
-    return {{"status", "not attempted"}, {"reason", "the run ended " + to_text(result.status)}};
-  if (result.mesh.number_of_vertices() == 0 || result.mesh.has_garbage())
-    return {{"status", "not attempted"}, {"reason", "the output has no vertex"}};
-  const auto scaled = [](const Point3& x, int e) {
-    return Point3(std::ldexp(x.x(), e), std::ldexp(x.y(), e), std::ldexp(x.z(), e));
-  };
-  SurfaceMesh sigma = input;
-  for (const auto v : sigma.vertices()) sigma.point(v) = scaled(sigma.point(v), -k);
-  std::vector<Point3> samples;
-  for (const auto v : result.mesh.vertices()) samples.push_back(scaled(result.mesh.point(v), -k));
-  const ClosedBallResult check = closed_ball_check(samples, sigma);
-  nlohmann::json j = closed_ball_json(check, tolerances::floor_locations_listed);
-  for (auto& entry : j["violations"]["first"]) {
-    for (auto& x : entry["witness"]) x = std::ldexp(x.get<double>(), k);
-    entry["witness_distance"] = std::ldexp(entry["witness_distance"].get<double>(), k);
-  }
-  for (auto& entry : j["non_generic"]["first"])
-    for (auto& x : entry["location"]) x = std::ldexp(x.get<double>(), k);
-  const RestrictedDelaunayComparison same = compare_with_restricted_delaunay(check, result.mesh);
-  j["output_equals_restricted_delaunay"] = same.equal;
-  j["only_restricted_delaunay"] = same.only_restricted_delaunay;
-  j["only_output"] = same.only_mesh;
-  j["proves_homeomorphism"] = check.status == ClosedBallStatus::holds && same.equal;
-  return j;
-}
-
-}  // namespace
-
 DelMeshResult remesh(const MeshInputPlan& plan, const DelMeshOptions& options) {
   PreparedInput input = make_oracle(TriangleMeshInput{plan.path, &plan.mesh});
-  DelMeshResult result = del_mesh(input, options);
-  result.statistics["closed_ball"] = closed_ball_statistics(result, plan.mesh.mesh, input.scale_exponent);
-  return result;
+  return del_mesh(input, options);
 }
 
 nlohmann::json run_statistics(const DelMeshResult& result, std::uint64_t seed, const std::optional<std::string>& mesh_file) {
@@ -441,8 +400,6 @@ DelMeshResult mesh_run(const MeshRun& run, DelMeshOptions options, PhaseWatchdog
   DelMeshResult result = del_mesh(*input, options);
   if (normals && input->implicit) *normals = surface_normals(*input->implicit, result.mesh);
   result.statistics["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (run.mesh_plan)
-    result.statistics["closed_ball"] = closed_ball_statistics(result, run.mesh_plan->mesh.mesh, input->scale_exponent);
   return result;
 }
 

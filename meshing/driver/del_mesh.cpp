@@ -12,13 +12,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
+#include <variant>
 
 #include "common/errors.h"
+#include "common/tolerances.h"
 #include "meshing/core/detail/key_order.h"
 #include "meshing/core/detail/vec3.h"
 #include "meshing/core/mesh_checker.h"
 #include "meshing/core/theorem_bounds.h"
+#include "meshing/driver/closed_ball_refinement.h"
 #include "meshing/driver/refinement.h"
 #include "meshing/driver/sample_topology.h"
 #include "meshing/driver/scaled_run.h"
@@ -210,9 +214,10 @@ void add_run_statistics(nlohmann::json& j, Refinement& refinement, const Surface
 
 // The run on a validated input whose clock (time limit, seconds) started at `start`: SampleTopology,
 // then (phase all) Quality and Smooth; the output mesh, its defects and the certification; the
-// statistics.
+// statistics.  With `sigma` (a triangle-mesh input at the oracle's scale), each phase ends with
+// the closed-ball refinement and the status follows decide_pl_status (closed_ball_refinement.h).
 DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double seconds_validation,
-                  std::chrono::steady_clock::time_point start) {
+                  std::chrono::steady_clock::time_point start, const SurfaceMesh* sigma = nullptr) {
   const RefinementLimits limits = refinement_limits(options, start);
   oracle.set_run_controls(options.seed, limits.deadline);
   Refinement refinement(oracle, options.seed, limits, RecheckPolicy::new_faces, options.threads,
@@ -221,12 +226,15 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
   const SampleTopologyResult sampled = sample_topology(refinement);
   const SeedReport& seeds = sampled.seeds;
   MeshStatus status = sampled.status;
+  ClosedBallRefinement closed_ball;
+  if (sigma) status = refine_closed_ball(refinement, *sigma, status, closed_ball);
   const TopologyPhase topology{refinement.delaunay().size(),
                                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                                refinement.insertions_json(), refinement.floor_json()};
   if (status == MeshStatus::complete && options.phase == MeshPhase::all) {
     refinement.enable_geometry(options.lambda, options.size_bound, options.max_distance);
     status = refinement.run();
+    if (sigma) status = refine_closed_ball(refinement, *sigma, status, closed_ball);
   }
 
   DelMeshResult result;
@@ -240,6 +248,15 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
   // tracking may have missed a point of Σ on a face that was then taken as clean.
   const bool solver_certified = !oracle.gave_uncertified_answers();
   if (!solver_certified && result.status == MeshStatus::complete) result.status = MeshStatus::uncertified;
+  nlohmann::json closed_ball_statistics;
+  if (sigma) {
+    const bool geometry = status == MeshStatus::complete && options.phase == MeshPhase::all;
+    const PlStatusDecision decision =
+        decide_pl_status(refinement, *sigma, closed_ball, status, certification, !defects.empty(), solver_certified,
+                         options.lambda, geometry);
+    result.status = decision.status;
+    closed_ball_statistics = closed_ball_refinement_json(closed_ball, decision);
+  }
 
   auto& j = result.statistics;
   j["status"] = text_of(result.status);
@@ -254,6 +271,7 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
   j["clip_box"] = {clip.lo[0], clip.hi[0], clip.lo[1], clip.hi[1], clip.lo[2], clip.hi[2]};
   add_output_statistics(j, report, inconsistent, not_added, options.lambda);
   add_run_statistics(j, refinement, oracle, certification, defects, seeds, topology);
+  if (sigma) j["closed_ball"] = std::move(closed_ball_statistics);
   j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
@@ -324,8 +342,30 @@ DelMeshResult mesh_prepared(PreparedInput& input, const DelMeshOptions& options,
                             std::chrono::steady_clock::time_point start) {
   check_options(input.oracle->box(), options);
   const int k = input.scale_exponent;
-  DelMeshResult result = run(*input.oracle, unit_scale_options(options, k), input.seconds_validation, start);
+  // A triangle mesh's Σ at the oracle's scale (times 2^-k, exactly) for the closed-ball check.
+  std::optional<SurfaceMesh> sigma;
+  if (const auto* triangles = std::get_if<TriangleMeshInput>(&input.input); triangles && triangles->mesh) {
+    sigma = triangles->mesh->mesh;
+    for (const auto v : sigma->vertices()) {
+      const Point3& x = sigma->point(v);
+      sigma->point(v) = Point3(std::ldexp(x.x(), -k), std::ldexp(x.y(), -k), std::ldexp(x.z(), -k));
+    }
+  }
+  DelMeshResult result = run(*input.oracle, unit_scale_options(options, k), input.seconds_validation, start,
+                             sigma ? &*sigma : nullptr);
   restore_scale(result, k);
+  if (result.statistics.contains("closed_ball")) {
+    // Its witnesses and locations back at the input's scale.
+    auto& c = result.statistics["closed_ball"];
+    if (c.contains("violations"))
+      for (auto& entry : c["violations"]["first"]) {
+        for (auto& x : entry["witness"]) x = std::ldexp(x.get<double>(), k);
+        entry["witness_distance"] = std::ldexp(entry["witness_distance"].get<double>(), k);
+      }
+    if (c.contains("non_generic"))
+      for (auto& entry : c["non_generic"]["first"])
+        for (auto& x : entry["location"]) x = std::ldexp(x.get<double>(), k);
+  }
   result.statistics[input.statistics_key] = input.statistics;
   if (const ImplicitInput* implicit = input.implicit_input())
     if (options.distance_certificate || options.max_distance)

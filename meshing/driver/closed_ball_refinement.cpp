@@ -1,0 +1,212 @@
+// Closed-ball refinement and the status rule of a PL run.  See closed_ball_refinement.h.
+#include "meshing/driver/closed_ball_refinement.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <set>
+#include <utility>
+
+#include "common/tolerances.h"
+#include "meshing/checks/check_registry.h"
+#include "meshing/checks/smooth.h"
+#include "meshing/core/theorem_bounds.h"
+#include "meshing/inputs/sharp_features.h"
+#include "meshing/voronoi/restricted_voronoi_mesh.h"
+
+namespace delmesh {
+
+namespace {
+
+using Seconds = std::chrono::duration<double>;
+
+// The check on the current samples (ascending ids); record.sample_ids maps back.
+void check_now(Refinement& refinement, const SurfaceMesh& sigma, ClosedBallRefinement& record,
+               RestrictedVoronoiMesh* diagram_out) {
+  const auto& del = refinement.delaunay();
+  record.sample_ids = del.vertices();
+  std::vector<Point3> samples;
+  samples.reserve(record.sample_ids.size());
+  for (VertexId v : record.sample_ids) {
+    const auto& p = del.point(v);
+    samples.emplace_back(p[0], p[1], p[2]);
+  }
+  RestrictedVoronoiMesh diagram = restricted_voronoi_mesh(samples, sigma);
+  record.last = closed_ball_check(diagram, samples);
+  record.last_is_current = true;
+  ++record.checks;
+  if (diagram_out) *diagram_out = std::move(diagram);
+}
+
+// The row whose floor and counts a closed-ball witness takes: the topology row of the face's
+// dimension (cells TopoDisk, facets FacetCycle, Voronoi edges VorEdge).
+CheckKind witness_kind(int dimension) {
+  return dimension == 3 ? CheckKind::topo_disk : dimension == 2 ? CheckKind::facet_cycle : CheckKind::vor_edge;
+}
+
+bool is_topology_row(CheckKind kind) {
+  switch (kind) {
+    case CheckKind::seed:
+    case CheckKind::vor_edge:
+    case CheckKind::facet_contact:
+    case CheckKind::topo_disk:
+    case CheckKind::facet_cycle:
+    case CheckKind::silhouette:
+      return true;
+    default:
+      return false;
+  }
+}
+
+using IdPair = std::pair<VertexId, VertexId>;
+
+// The pairs {p, q} (ids, p < q) whose restricted facet has a point on a sharp input edge: an
+// edge cut of B(p, q) on that edge is a vertex of one of the diagram's polygons.
+std::set<IdPair> crease_facets(const RestrictedVoronoiMesh& diagram, const SurfaceMesh& sigma,
+                               const std::vector<VertexId>& ids) {
+  const FeatureSet features = detect_features(sigma);
+  std::set<IdPair> pairs;
+  for (const auto& cell : diagram.cells)
+    for (const auto& polygon : cell)
+      for (const auto& v : polygon.vertices) {
+        if (v.kind != RvdVertexKind::edge_cut) continue;
+        const auto h = sigma.halfedge(SurfaceMesh::Vertex_index(static_cast<SurfaceMesh::size_type>(v.input[0])),
+                                      SurfaceMesh::Vertex_index(static_cast<SurfaceMesh::size_type>(v.input[1])));
+        if (h == SurfaceMesh::null_halfedge() || !features.is_feature_edge(sigma.edge(h))) continue;
+        const VertexId p = ids[v.sites[0]], q = ids[v.sites[1]];
+        pairs.insert({std::min(p, q), std::max(p, q)});
+      }
+  return pairs;
+}
+
+}  // namespace
+
+MeshStatus refine_closed_ball(Refinement& refinement, const SurfaceMesh& sigma, MeshStatus status,
+                              ClosedBallRefinement& record) {
+  const auto start = std::chrono::steady_clock::now();
+  while (status == MeshStatus::complete) {
+    if (refinement.limit_passed()) break;
+    check_now(refinement, sigma, record, nullptr);
+    if (record.last.status != ClosedBallStatus::violated) break;
+    std::size_t inserted = 0;
+    for (const auto& v : record.last.violations) {
+      if (refinement.limit_passed()) break;
+      const Witness w{v.witness, witness_kind(v.dimension), record.sample_ids[v.sites.front()], false};
+      if (refinement.insert(w)) {
+        ++inserted;
+      } else {
+        ++record.witnesses_rejected;
+      }
+    }
+    record.witnesses_inserted += inserted;
+    if (inserted == 0) break;
+    record.last_is_current = false;
+    ++record.rounds;
+    status = refinement.run();
+  }
+  record.seconds += Seconds(std::chrono::steady_clock::now() - start).count();
+  return status;
+}
+
+PlStatusDecision decide_pl_status(Refinement& refinement, const SurfaceMesh& sigma,
+                                  const ClosedBallRefinement& record, MeshStatus run_status,
+                                  const Certification& certification, bool output_defective,
+                                  bool solver_certified, double lambda, bool geometry) {
+  PlStatusDecision d;
+  d.status = certification.status;
+  if (!solver_certified && d.status == MeshStatus::complete) d.status = MeshStatus::uncertified;
+  if (!record.last_is_current) {
+    d.blocking = certification.unsettled.size();
+    return d;
+  }
+  // (b): Tri S|Σ against Del S|Σ, as sets of id triples.
+  std::vector<TriangleKey> tri = refinement.restricted().triangles();
+  for (auto& t : tri) std::sort(t.begin(), t.end());
+  std::sort(tri.begin(), tri.end());
+  std::vector<TriangleKey> del;
+  del.reserve(record.last.restricted_delaunay.size());
+  for (const auto& s : record.last.restricted_delaunay) {
+    TriangleKey t{record.sample_ids[s[0]], record.sample_ids[s[1]], record.sample_ids[s[2]]};
+    std::sort(t.begin(), t.end());
+    del.push_back(t);
+  }
+  std::sort(del.begin(), del.end());
+  std::vector<TriangleKey> only;
+  std::set_difference(del.begin(), del.end(), tri.begin(), tri.end(), std::back_inserter(only));
+  d.only_restricted_delaunay = only.size();
+  only.clear();
+  std::set_difference(tri.begin(), tri.end(), del.begin(), del.end(), std::back_inserter(only));
+  d.only_output = only.size();
+  const bool repeated = std::adjacent_find(tri.begin(), tri.end()) != tri.end();
+  d.output_equals_restricted_delaunay = d.only_restricted_delaunay == 0 && d.only_output == 0 && !repeated;
+  d.proves_homeomorphism = record.last.status == ClosedBallStatus::holds && d.output_equals_restricted_delaunay;
+  if (!d.proves_homeomorphism) {
+    d.blocking = certification.unsettled.size();
+    return d;
+  }
+
+  // Smooth findings: the edges giving each location, and whether their facets meet a crease.
+  std::map<std::array<double, 3>, std::vector<EdgeKey>> smooth_edges;
+  std::set<IdPair> creases;
+  const bool any_smooth = std::any_of(certification.unsettled.begin(), certification.unsettled.end(),
+                                      [](const Unsettled& u) { return u.check == CheckKind::smooth; });
+  if (any_smooth && geometry && lambda < beta_lambda_bound) {
+    const double threshold = 2 * beta(lambda);
+    std::set<EdgeKey> edges;
+    for (const auto& t : tri)
+      for (const auto& e : {make_edge_key(t[0], t[1]), make_edge_key(t[0], t[2]), make_edge_key(t[1], t[2])})
+        edges.insert(e);
+    for (const auto& e : edges)
+      if (auto w = smooth_witness(refinement.restricted(), e, threshold)) smooth_edges[w->point].push_back(e);
+    ClosedBallRefinement again;
+    RestrictedVoronoiMesh diagram;
+    check_now(refinement, sigma, again, &diagram);
+    creases = crease_facets(diagram, sigma, again.sample_ids);
+  }
+  const auto crease_smooth = [&](const Unsettled& u) {
+    if (u.check != CheckKind::smooth) return false;
+    const auto it = smooth_edges.find(u.location);
+    if (it == smooth_edges.end()) return false;
+    return std::all_of(it->second.begin(), it->second.end(),
+                       [&](const EdgeKey& e) { return creases.count({e[0], e[1]}) > 0; });
+  };
+  for (const auto& u : certification.unsettled) {
+    const bool integrity = u.reason == UnsettledReason::record_count_mismatch;
+    if (!integrity && is_topology_row(u.check)) {
+      d.exempt[check_kind_name(u.check)][std::string(enum_name(u.reason))] += 1;
+      ++d.exempt_count;
+    } else if (crease_smooth(u)) {
+      d.exempt[check_kind_name(u.check)][std::string(enum_name(u.reason)) + " (crease)"] += 1;
+      ++d.exempt_count;
+    } else {
+      ++d.blocking;
+    }
+  }
+  if (run_status == MeshStatus::complete && d.blocking == 0 && !output_defective && solver_certified)
+    d.status = MeshStatus::complete;
+  return d;
+}
+
+nlohmann::json closed_ball_refinement_json(const ClosedBallRefinement& record, const PlStatusDecision& decision) {
+  nlohmann::json j = record.checks > 0 ? closed_ball_json(record.last, tolerances::floor_locations_listed)
+                                       : nlohmann::json{{"status", "not attempted"}};
+  j["current"] = record.last_is_current;
+  j["checks"] = record.checks;
+  j["rounds"] = record.rounds;
+  j["witnesses_inserted"] = record.witnesses_inserted;
+  j["witnesses_rejected"] = record.witnesses_rejected;
+  j["seconds_refinement"] = record.seconds;
+  j["output_equals_restricted_delaunay"] = decision.output_equals_restricted_delaunay;
+  j["only_restricted_delaunay"] = decision.only_restricted_delaunay;
+  j["only_output"] = decision.only_output;
+  j["proves_homeomorphism"] = decision.proves_homeomorphism;
+  j["exempt"] = {{"count", decision.exempt_count},
+                 {"by_kind", decision.exempt},
+                 {"blocking", decision.blocking},
+                 {"rule",
+                  "closed-ball property holds and Tri S|Σ = Del S|Σ (Edelsbrunner-Shah): topology-row findings, "
+                  "and Smooth findings on edges whose Voronoi facet meets a sharp input edge, do not block complete"}};
+  return j;
+}
+
+}  // namespace delmesh

@@ -183,6 +183,67 @@ std::size_t orient_outward(SurfaceMesh& mesh) {
   return static_cast<std::size_t>(std::count(reversed.begin(), reversed.end(), 1));
 }
 
+// "vertex 3 (x, y, z), vertex 7 (...), ...": the corners of face f by their indices in the file.
+std::string face_corners(const SurfaceMesh& mesh, SurfaceMesh::Face_index f, const Complaint& fail,
+                         const CompactSoup& soup) {
+  std::string corners;
+  for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+    corners += (corners.empty() ? "" : ", ") + fail.vertex(soup.file_index[static_cast<std::size_t>(v)]);
+  return corners;
+}
+
+// Step 6: no degenerate triangle (exact collinearity test).
+void check_no_degenerate_triangle(const SurfaceMesh& mesh, const Complaint& fail, const CompactSoup& soup) {
+  for (SurfaceMesh::Face_index f : mesh.faces()) {
+    if (!PMP::is_degenerate_triangle_face(f, mesh)) continue;
+    fail("a triangle is degenerate (its vertices are collinear): " + face_corners(mesh, f, fail, soup));
+  }
+}
+
+// Step 7: no self-intersection (exact predicates); the first pair found is named.
+void check_no_self_intersection(const SurfaceMesh& mesh, const Complaint& fail, const CompactSoup& soup) {
+  std::vector<std::pair<SurfaceMesh::Face_index, SurfaceMesh::Face_index>> crossing;
+  PMP::self_intersections(mesh, std::back_inserter(crossing), CGAL::parameters::maximum_number(1));
+  if (crossing.empty()) return;
+  fail("the surface intersects itself, e.g. the triangle of " + face_corners(mesh, crossing.front().first, fail, soup) +
+       " meets the triangle of " + face_corners(mesh, crossing.front().second, fail, soup));
+}
+
+// Step 8: a mesh far from the origin is resolved finely enough by its coordinates.
+void check_resolution(const CGAL::Bbox_3& bounds, double diagonal, const Complaint& fail) {
+  const double largest = std::max({std::abs(bounds.xmin()), std::abs(bounds.xmax()), std::abs(bounds.ymin()),
+                                   std::abs(bounds.ymax()), std::abs(bounds.zmin()), std::abs(bounds.zmax())});
+  const double unit = largest - std::nextafter(largest, 0.0);  // a unit in the last place there
+  if (largest >= tolerances::input_mesh_far_ratio * diagonal &&
+      !(diagonal >= tolerances::input_mesh_min_resolution * unit))
+    fail("the mesh lies too far from the origin for its size: its bounding-box diagonal spans only " +
+         std::to_string(static_cast<long long>(diagonal / unit)) +
+         " units in the last place of its coordinates (at least " +
+         std::to_string(static_cast<long long>(tolerances::input_mesh_min_resolution)) +
+         " are needed); translate it towards the origin");
+}
+
+// The domain box: the bounding box enlarged by the margin, and by at least one step of double
+// outward (a margin below half a unit in the last place of a (subnormal) bound rounds away).
+void enlarge_to_domain(const CGAL::Bbox_3& bounds, double diagonal, Box3& box) {
+  const double margin = tolerances::input_mesh_box_margin * diagonal;
+  for (int i = 0; i < 3; ++i) {
+    box.lo[i] = std::min(bounds.min(i) - margin, std::nextafter(bounds.min(i), -HUGE_VAL));
+    box.hi[i] = std::max(bounds.max(i) + margin, std::nextafter(bounds.max(i), HUGE_VAL));
+  }
+}
+
+// The lower median of the mesh's edge lengths.
+double median_edge_length(const SurfaceMesh& mesh) {
+  std::vector<double> lengths;
+  lengths.reserve(mesh.number_of_edges());
+  for (SurfaceMesh::Edge_index e : mesh.edges()) {
+    const Point3 &p = mesh.point(mesh.vertex(e, 0)), &q = mesh.point(mesh.vertex(e, 1));
+    lengths.push_back(length_of(q.x() - p.x(), q.y() - p.y(), q.z() - p.z()));
+  }
+  return lower_median(std::move(lengths));
+}
+
 }  // namespace
 
 InputMesh validate_input_mesh(const std::vector<Point3>& points, const std::vector<std::vector<std::size_t>>& polygons,
@@ -206,36 +267,13 @@ InputMesh validate_input_mesh(const std::vector<Point3>& points, const std::vect
   if (!PMP::is_polygon_soup_a_polygon_mesh(soup.polygons))
     fail("the faces do not form a polygon mesh");  // excluded by steps 2-5; kept as a guard
   PMP::polygon_soup_to_polygon_mesh(soup.points, soup.polygons, input.mesh);
-  const auto file_vertex = [&](SurfaceMesh::Vertex_index v) {
-    return fail.vertex(soup.file_index[static_cast<std::size_t>(v)]);
-  };
   if (input.polygons_triangulated > 0 && !PMP::triangulate_faces(input.mesh))
     fail("a face with more than three vertices could not be triangulated (a degenerate polygon)");
   limits.check(phase, true);
-
-  // 6. No degenerate triangle (exact collinearity test).
-  for (SurfaceMesh::Face_index f : input.mesh.faces()) {
-    if (!PMP::is_degenerate_triangle_face(f, input.mesh)) continue;
-    std::string corners;
-    for (auto v : CGAL::vertices_around_face(input.mesh.halfedge(f), input.mesh))
-      corners += (corners.empty() ? "" : ", ") + file_vertex(v);
-    fail("a triangle is degenerate (its vertices are collinear): " + corners);
-  }
-
-  // 7. No self-intersection (exact predicates); the first pair found is named.
+  // 6. No degenerate triangle; 7. no self-intersection.
+  check_no_degenerate_triangle(input.mesh, fail, soup);
   limits.check(phase, true);
-  std::vector<std::pair<SurfaceMesh::Face_index, SurfaceMesh::Face_index>> crossing;
-  PMP::self_intersections(input.mesh, std::back_inserter(crossing), CGAL::parameters::maximum_number(1));
-  if (!crossing.empty()) {
-    const auto triangle = [&](SurfaceMesh::Face_index f) {
-      std::string corners;
-      for (auto v : CGAL::vertices_around_face(input.mesh.halfedge(f), input.mesh))
-        corners += (corners.empty() ? "" : ", ") + file_vertex(v);
-      return "the triangle of " + corners;
-    };
-    fail("the surface intersects itself, e.g. " + triangle(crossing.front().first) + " meets " +
-         triangle(crossing.front().second));
-  }
+  check_no_self_intersection(input.mesh, fail, soup);
 
   // Outward orientation, the domain box and the measures.
   limits.check(phase, true);
@@ -246,31 +284,10 @@ InputMesh validate_input_mesh(const std::vector<Point3>& points, const std::vect
   const CGAL::Bbox_3 bounds = CGAL::bbox_3(soup.points.begin(), soup.points.end());
   input.bounding_box_diagonal =
       length_of(bounds.xmax() - bounds.xmin(), bounds.ymax() - bounds.ymin(), bounds.zmax() - bounds.zmin());
-  // 8. A mesh far from the origin is resolved finely enough by its coordinates.
-  const double largest = std::max({std::abs(bounds.xmin()), std::abs(bounds.xmax()), std::abs(bounds.ymin()),
-                                   std::abs(bounds.ymax()), std::abs(bounds.zmin()), std::abs(bounds.zmax())});
-  const double unit = largest - std::nextafter(largest, 0.0);  // a unit in the last place there
-  if (largest >= tolerances::input_mesh_far_ratio * input.bounding_box_diagonal &&
-      !(input.bounding_box_diagonal >= tolerances::input_mesh_min_resolution * unit))
-    fail("the mesh lies too far from the origin for its size: its bounding-box diagonal spans only " +
-         std::to_string(static_cast<long long>(input.bounding_box_diagonal / unit)) +
-         " units in the last place of its coordinates (at least " +
-         std::to_string(static_cast<long long>(tolerances::input_mesh_min_resolution)) +
-         " are needed); translate it towards the origin");
-  const double margin = tolerances::input_mesh_box_margin * input.bounding_box_diagonal;
-  for (int i = 0; i < 3; ++i) {
-    // At least one step of double outward: a margin below half a unit in the last place of a
-    // (subnormal) bound rounds away.
-    input.box.lo[i] = std::min(bounds.min(i) - margin, std::nextafter(bounds.min(i), -HUGE_VAL));
-    input.box.hi[i] = std::max(bounds.max(i) + margin, std::nextafter(bounds.max(i), HUGE_VAL));
-  }
-  std::vector<double> lengths;
-  lengths.reserve(input.mesh.number_of_edges());
-  for (SurfaceMesh::Edge_index e : input.mesh.edges()) {
-    const Point3 &p = input.mesh.point(input.mesh.vertex(e, 0)), &q = input.mesh.point(input.mesh.vertex(e, 1));
-    lengths.push_back(length_of(q.x() - p.x(), q.y() - p.y(), q.z() - p.z()));
-  }
-  input.median_edge_length = lower_median(std::move(lengths));
+  // 8. Coordinates fine enough for the mesh's size.
+  check_resolution(bounds, input.bounding_box_diagonal, fail);
+  enlarge_to_domain(bounds, input.bounding_box_diagonal, input.box);
+  input.median_edge_length = median_edge_length(input.mesh);
   input.folded_vertices = folded_vertices(input.mesh);
   return input;
 }

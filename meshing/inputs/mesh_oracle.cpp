@@ -455,6 +455,126 @@ VertexPassage vertex_passage(const std::vector<Point3>& link, const Point3& pa, 
   return winding != 0 ? VertexPassage::crosses : VertexPassage::touches;
 }
 
+// The contacts of the segment [A, B] = {p + t·v : t ∈ [t0, t1]} with the mesh faces it meets,
+// by kind: crossings inside a face, contacts through an edge or a vertex (all exact
+// orientations), ends on a face's plane, and faces in whose plane it runs.
+class SegmentContacts {
+ public:
+  SegmentContacts(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& faces, const Vec3& p,
+                  const Vec3& v, double t0, double t1)
+      : points_(points), faces_(faces), p_(p), v_(v), t0_(t0), t1_(t1), A_(p + t0 * v), B_(p + t1 * v),
+        pa_(point(A_)), pb_(point(B_)) {}
+
+  const Point3& pa() const { return pa_; }
+  const Point3& pb() const { return pb_; }
+
+  // Classifies the contact with face f.
+  void add_face(int f) {
+    const Point3 a = point(vertex(f, 0)), b = point(vertex(f, 1)), c = point(vertex(f, 2));
+    const int sa = CGAL::orientation(a, b, c, pa_), sb = CGAL::orientation(a, b, c, pb_);
+    if (sa == 0 && sb == 0) {
+      coplanar_ = true;
+      return;
+    }
+    if (sa == 0 || sb == 0) {
+      (sa == 0 ? zero_at_t0_ : zero_at_t1_) = true;
+      return;
+    }
+    // A and B are on opposite sides; where the line passes relative to the face's edges.
+    int zeros = 0, zero_edge = -1;
+    for (int k = 0; k < 3; ++k) {
+      const Point3 x = point(vertex(f, k)), y = point(vertex(f, (k + 1) % 3));
+      if (CGAL::orientation(pa_, pb_, x, y) == CGAL::COPLANAR) {
+        ++zeros;
+        zero_edge = k;
+      }
+    }
+    if (zeros == 0) {
+      interior_.push_back({crossing_t(f), f});
+    } else if (zeros == 1) {
+      const int u = faces_[f][zero_edge], w = faces_[f][(zero_edge + 1) % 3];
+      edge_hits_[{std::min(u, w), std::max(u, w)}].push_back({f, sa});
+    } else {
+      // Two edges through the line: it passes through their common vertex.
+      for (int k = 0; k < 3; ++k) {
+        const Point3 x = point(vertex(f, k));
+        if (CGAL::collinear(pa_, pb_, x)) vertex_hits_.insert(faces_[f][k]);
+      }
+    }
+  }
+
+  // Whether the segment runs in the plane of a face.
+  bool coplanar() const { return coplanar_; }
+
+  // The roots and undecided regions of the contacts (`link`: each vertex's link polygon).
+  void report(const std::vector<std::vector<int>>& link, SolveResult& result) const {
+    for (const auto& [t, f] : interior_) result.roots.push_back(point_root({t}, p_ + t * v_));
+    report_edge_hits(result);
+    report_vertex_hits(link, result);
+    if (zero_at_t0_) result.undecided.push_back(point_region({t0_}, A_, UndecidedReason::boundary_root));
+    if (zero_at_t1_) result.undecided.push_back(point_region({t1_}, B_, UndecidedReason::boundary_root));
+    if (coplanar_) {
+      UndecidedBox r;
+      r.box.bounds.push_back({t0_, t1_});
+      r.reason = UndecidedReason::non_isolated;
+      r.world = 0.5 * (A_ + B_);
+      result.undecided.push_back(r);
+    }
+  }
+
+ private:
+  const Vec3& vertex(int f, int k) const { return points_[faces_[f][k]]; }
+
+  // The parameter of the segment's crossing with the plane of face f (A and B on opposite sides).
+  double crossing_t(int f) const {
+    const Vec3& a = vertex(f, 0);
+    const Vec3 n = cross(vertex(f, 1) - a, vertex(f, 2) - a);
+    const double ha = dot(A_ - a, n), hb = dot(B_ - a, n);
+    const double s = std::clamp(ha == hb ? 0.5 : ha / (ha - hb), 0.0, 1.0);
+    return t0_ + s * (t1_ - t0_);
+  }
+
+  // The line crosses Σ at an edge iff A lies on the same side of both faces' planes (the two
+  // faces, seen along the line, lie on opposite sides of the edge); otherwise it touches.
+  void report_edge_hits(SolveResult& result) const {
+    for (const auto& [edge, faces] : edge_hits_) {
+      const double t = crossing_t(faces.front().first);
+      const Vec3 x = p_ + t * v_;
+      if (faces.size() == 2 && faces[0].second == faces[1].second)
+        result.roots.push_back(point_root({t}, x));
+      else
+        result.undecided.push_back(point_region({t}, x, UndecidedReason::singular_root));
+    }
+  }
+
+  // The line crosses Σ at a vertex iff vertex_passage() says so; otherwise it touches, or it
+  // runs in a face's plane.
+  void report_vertex_hits(const std::vector<std::vector<int>>& link, SolveResult& result) const {
+    for (int vtx : vertex_hits_) {
+      const Vec3& x = points_[vtx];
+      const double t = std::clamp(t0_ + dot(x - A_, B_ - A_) / dot(B_ - A_, B_ - A_) * (t1_ - t0_), t0_, t1_);
+      std::vector<Point3> polygon;
+      for (int w : link[vtx]) polygon.push_back(point(points_[w]));
+      if (vertex_passage(polygon, pa_, pb_) == VertexPassage::crosses)
+        result.roots.push_back(point_root({t}, x));
+      else
+        result.undecided.push_back(point_region({t}, x, UndecidedReason::singular_root));
+    }
+  }
+
+  const std::vector<Vec3>& points_;
+  const std::vector<std::array<int, 3>>& faces_;
+  const Vec3 p_, v_;
+  const double t0_, t1_;
+  const Vec3 A_, B_;
+  const Point3 pa_, pb_;
+  bool zero_at_t0_ = false, zero_at_t1_ = false, coplanar_ = false;
+  // Contacts through a mesh edge: per edge (sorted vertex pair), the faces' plane sides of A.
+  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> edge_hits_;  // edge -> (face, side of A)
+  std::set<int> vertex_hits_;
+  std::vector<std::pair<double, int>> interior_;  // (t, face)
+};
+
 }  // namespace
 
 SolveResult MeshOracle::surface_line(const Vec3& p, const Vec3& v, double t0, double t1) {
@@ -462,92 +582,16 @@ SolveResult MeshOracle::surface_line(const Vec3& p, const Vec3& v, double t0, do
   const Impl& m = *impl_;
   SolveResult result;
   if (!(t0 < t1)) return finish(line_index, std::move(result), start);
-  const Vec3 A = p + t0 * v, B = p + t1 * v;
-  const Point3 pa = point(A), pb = point(B);
+  SegmentContacts contacts(m.points, m.faces, p, v, t0, t1);
   std::vector<Face> hit;
-  m.tree.all_intersected_primitives(Kernel::Segment_3(pa, pb), std::back_inserter(hit));
+  m.tree.all_intersected_primitives(Kernel::Segment_3(contacts.pa(), contacts.pb()), std::back_inserter(hit));
   std::sort(hit.begin(), hit.end());
   result.counters.boxes = hit.size();
-  // The parameter of the segment's crossing with the plane of face f (A and B on opposite sides).
-  auto crossing_t = [&](int f) {
-    const Vec3& a = m.vertex(f, 0);
-    const Vec3 n = cross(m.vertex(f, 1) - a, m.vertex(f, 2) - a);
-    const double ha = dot(A - a, n), hb = dot(B - a, n);
-    const double s = std::clamp(ha == hb ? 0.5 : ha / (ha - hb), 0.0, 1.0);
-    return t0 + s * (t1 - t0);
-  };
-  bool zero_at_t0 = false, zero_at_t1 = false, coplanar = false;
-  // Contacts through a mesh edge: per edge (sorted vertex pair), the faces' plane sides of A.
-  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> edge_hits;  // edge -> (face, side of A)
-  std::set<int> vertex_hits;
-  std::vector<std::pair<double, int>> interior;  // (t, face)
-  for (Face face : hit) {
-    const int f = static_cast<int>(face.idx());
-    const Point3 a = point(m.vertex(f, 0)), b = point(m.vertex(f, 1)), c = point(m.vertex(f, 2));
-    const int sa = CGAL::orientation(a, b, c, pa), sb = CGAL::orientation(a, b, c, pb);
-    if (sa == 0 && sb == 0) {
-      coplanar = true;
-      continue;
-    }
-    if (sa == 0 || sb == 0) {
-      (sa == 0 ? zero_at_t0 : zero_at_t1) = true;
-      continue;
-    }
-    // A and B are on opposite sides; where the line passes relative to the face's edges.
-    int zeros = 0, zero_edge = -1;
-    for (int k = 0; k < 3; ++k) {
-      const Point3 x = point(m.vertex(f, k)), y = point(m.vertex(f, (k + 1) % 3));
-      if (CGAL::orientation(pa, pb, x, y) == CGAL::COPLANAR) {
-        ++zeros;
-        zero_edge = k;
-      }
-    }
-    if (zeros == 0) {
-      interior.push_back({crossing_t(f), f});
-    } else if (zeros == 1) {
-      const int u = m.faces[f][zero_edge], w = m.faces[f][(zero_edge + 1) % 3];
-      edge_hits[{std::min(u, w), std::max(u, w)}].push_back({f, sa});
-    } else {
-      // Two edges through the line: it passes through their common vertex.
-      for (int k = 0; k < 3; ++k) {
-        const Point3 x = point(m.vertex(f, k));
-        if (CGAL::collinear(pa, pb, x)) vertex_hits.insert(m.faces[f][k]);
-      }
-    }
-  }
-  for (const auto& [t, f] : interior) result.roots.push_back(point_root({t}, p + t * v));
-  for (const auto& [edge, faces] : edge_hits) {
-    // The line crosses Σ at the edge iff A lies on the same side of both faces' planes (the two
-    // faces, seen along the line, lie on opposite sides of the edge); otherwise it touches.
-    const double t = crossing_t(faces.front().first);
-    const Vec3 x = p + t * v;
-    if (faces.size() == 2 && faces[0].second == faces[1].second)
-      result.roots.push_back(point_root({t}, x));
-    else
-      result.undecided.push_back(point_region({t}, x, UndecidedReason::singular_root));
-  }
-  for (int vtx : vertex_hits) {
-    const Vec3& x = m.points[vtx];
-    const double t = std::clamp(t0 + dot(x - A, B - A) / dot(B - A, B - A) * (t1 - t0), t0, t1);
-    std::vector<Point3> link;
-    for (int w : m.link[vtx]) link.push_back(point(m.points[w]));
-    if (vertex_passage(link, pa, pb) == VertexPassage::crosses)
-      result.roots.push_back(point_root({t}, x));
-    else
-      result.undecided.push_back(point_region({t}, x, UndecidedReason::singular_root));
-  }
-  if (zero_at_t0) result.undecided.push_back(point_region({t0}, A, UndecidedReason::boundary_root));
-  if (zero_at_t1) result.undecided.push_back(point_region({t1}, B, UndecidedReason::boundary_root));
-  if (coplanar) {
-    UndecidedBox r;
-    r.box.bounds.push_back({t0, t1});
-    r.reason = UndecidedReason::non_isolated;
-    r.world = 0.5 * (A + B);
-    result.undecided.push_back(r);
-  }
+  for (Face face : hit) contacts.add_face(static_cast<int>(face.idx()));
+  contacts.report(m.link, result);
   std::sort(result.roots.begin(), result.roots.end(),
             [](const CertifiedRoot& x, const CertifiedRoot& y) { return x.midpoint[0] < y.midpoint[0]; });
-  result.status = coplanar ? SolveStatus::non_isolated : SolveStatus::undecided;
+  result.status = contacts.coplanar() ? SolveStatus::non_isolated : SolveStatus::undecided;
   return finish(line_index, std::move(result), start);
 }
 

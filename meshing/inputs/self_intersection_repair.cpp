@@ -99,6 +99,84 @@ bool take(const std::string& buffer, std::size_t& at, T& value) {
   return true;
 }
 
+// The child's message: CGAL's verdict, then the repaired mesh as a triangle soup (the points'
+// coordinates, then each face's size and vertex indices).
+std::string encode_attempt(bool fixed, SurfaceMesh& mesh) {
+  mesh.collect_garbage();
+  std::vector<Point3> points;
+  Polygons faces;
+  PMP::polygon_mesh_to_polygon_soup(mesh, points, faces);
+  std::string buffer;
+  append(buffer, std::uint8_t(fixed));
+  append(buffer, std::uint64_t(points.size()));
+  for (const Point3& p : points)
+    for (double x : {p.x(), p.y(), p.z()}) append(buffer, x);
+  append(buffer, std::uint64_t(faces.size()));
+  for (const auto& face : faces) {
+    append(buffer, std::uint64_t(face.size()));
+    for (std::size_t v : face) append(buffer, std::uint64_t(v));
+  }
+  return buffer;
+}
+
+// Decodes encode_attempt()'s message into the verdict and the soup; false if it is malformed.
+bool decode_attempt(const std::string& buffer, std::uint8_t& fixed, std::vector<Point3>& points, Polygons& faces) {
+  std::size_t at = 0;
+  std::uint64_t count = 0;
+  bool ok = take(buffer, at, fixed) && take(buffer, at, count);
+  for (std::uint64_t i = 0; ok && i < count; ++i) {
+    double x = 0, y = 0, z = 0;
+    ok = take(buffer, at, x) && take(buffer, at, y) && take(buffer, at, z);
+    points.emplace_back(x, y, z);
+  }
+  ok = ok && take(buffer, at, count);
+  for (std::uint64_t i = 0; ok && i < count; ++i) {
+    std::uint64_t size = 0;
+    ok = take(buffer, at, size) && size <= points.size();
+    std::vector<std::size_t> face;
+    for (std::uint64_t k = 0; ok && k < size; ++k) {
+      std::uint64_t v = 0;
+      ok = take(buffer, at, v) && v < points.size();
+      face.push_back(static_cast<std::size_t>(v));
+    }
+    faces.push_back(std::move(face));
+  }
+  return ok && at == buffer.size();
+}
+
+// The child process: runs `repair` on a copy of `input` and writes the result to `fd`; exits 0
+// when it was written, 2 when the write failed and 1 on an exception.
+[[noreturn]] void repair_in_child(int fd, const SurfaceMesh& input, bool (*repair)(SurfaceMesh&)) {
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  // A crash ends the child as a crash, whatever handlers the parent installed (a test
+  // framework's would report it as the parent's failure).
+  for (int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(signal, SIG_DFL);
+  int code = 0;
+  try {
+    SurfaceMesh mesh = input;
+    const bool fixed = repair(mesh);
+    const std::string buffer = encode_attempt(fixed, mesh);
+    code = write_all(fd, buffer.data(), buffer.size()) ? 0 : 2;
+  } catch (...) {
+    code = 1;
+  }
+  ::close(fd);
+  ::_exit(code);
+}
+
+// Everything readable from fd until its end.
+std::string read_all(int fd) {
+  std::string buffer;
+  char chunk[1 << 16];
+  while (true) {
+    const ssize_t n = ::read(fd, chunk, sizeof chunk);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    buffer.append(chunk, static_cast<std::size_t>(n));
+  }
+  return buffer;
+}
+
 //! Runs `repair` on a copy of `input` in a forked child process, so that a crash of CGAL's
 //! experimental code (autorefinement dies with SIGSEGV on CGAL's diplodocus.off) becomes a
 //! failed attempt instead of the end of the program.  The child sends back CGAL's verdict and the
@@ -119,44 +197,10 @@ Attempt run_isolated(const SurfaceMesh& input, const char* name, bool (*repair)(
   }
   if (pid == 0) {
     ::close(fds[0]);
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-    // A crash ends the child as a crash, whatever handlers the parent installed (a test
-    // framework's would report it as the parent's failure).
-    for (int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(signal, SIG_DFL);
-    int code = 0;
-    try {
-      SurfaceMesh mesh = input;
-      const bool fixed = repair(mesh);
-      mesh.collect_garbage();
-      std::vector<Point3> points;
-      Polygons faces;
-      PMP::polygon_mesh_to_polygon_soup(mesh, points, faces);
-      std::string buffer;
-      append(buffer, std::uint8_t(fixed));
-      append(buffer, std::uint64_t(points.size()));
-      for (const Point3& p : points)
-        for (double x : {p.x(), p.y(), p.z()}) append(buffer, x);
-      append(buffer, std::uint64_t(faces.size()));
-      for (const auto& face : faces) {
-        append(buffer, std::uint64_t(face.size()));
-        for (std::size_t v : face) append(buffer, std::uint64_t(v));
-      }
-      code = write_all(fds[1], buffer.data(), buffer.size()) ? 0 : 2;
-    } catch (...) {
-      code = 1;
-    }
-    ::close(fds[1]);
-    ::_exit(code);
+    repair_in_child(fds[1], input, repair);
   }
   ::close(fds[1]);
-  std::string buffer;
-  char chunk[1 << 16];
-  while (true) {
-    const ssize_t n = ::read(fds[0], chunk, sizeof chunk);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    buffer.append(chunk, static_cast<std::size_t>(n));
-  }
+  const std::string buffer = read_all(fds[0]);
   ::close(fds[0]);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
@@ -169,30 +213,10 @@ Attempt run_isolated(const SurfaceMesh& input, const char* name, bool (*repair)(
     attempt.failure = std::string(name) + " failed (an exception in CGAL)";
     return attempt;
   }
-  std::size_t at = 0;
   std::uint8_t fixed = 0;
-  std::uint64_t count = 0;
-  bool ok = take(buffer, at, fixed) && take(buffer, at, count);
   std::vector<Point3> points;
-  for (std::uint64_t i = 0; ok && i < count; ++i) {
-    double x = 0, y = 0, z = 0;
-    ok = take(buffer, at, x) && take(buffer, at, y) && take(buffer, at, z);
-    points.emplace_back(x, y, z);
-  }
   Polygons faces;
-  ok = ok && take(buffer, at, count);
-  for (std::uint64_t i = 0; ok && i < count; ++i) {
-    std::uint64_t size = 0;
-    ok = take(buffer, at, size) && size <= points.size();
-    std::vector<std::size_t> face;
-    for (std::uint64_t k = 0; ok && k < size; ++k) {
-      std::uint64_t v = 0;
-      ok = take(buffer, at, v) && v < points.size();
-      face.push_back(static_cast<std::size_t>(v));
-    }
-    faces.push_back(std::move(face));
-  }
-  if (!ok || at != buffer.size() || !PMP::is_polygon_soup_a_polygon_mesh(faces)) {
+  if (!decode_attempt(buffer, fixed, points, faces) || !PMP::is_polygon_soup_a_polygon_mesh(faces)) {
     attempt.failure = std::string(name) + " returned a mesh that is not a polygon mesh";
     return attempt;
   }
@@ -227,6 +251,75 @@ std::string implausible(const SurfaceMesh& input, const SurfaceMesh& refined) {
   if (!(area_after >= 0.5 * area_before))
     return "autorefinement kept " + std::to_string(area_after / area_before * 100) + "% of the area only";
   return "";
+}
+
+// Autorefinement (exact, keeps the outer surface) of the closed mesh: true with result.input
+// validated when it worked, else false with why in `failure`.
+bool try_autorefinement(const SurfaceMesh& mesh, const std::string& source, RepairedInput& result,
+                        std::string& failure) {
+  Attempt attempt = run_isolated(mesh, "autorefinement", autorefine);
+  RunLimits::current().check("repairing the input mesh", true);
+  SurfaceMesh& refined = attempt.mesh;
+  const bool fixed = attempt.fixed;
+  if (!attempt.finished) {
+    failure = attempt.failure;
+    return false;
+  }
+  if (!(fixed && !refined.is_empty() && CGAL::is_closed(refined))) {
+    failure = fixed ? "autorefinement left an open or empty mesh" : "autorefinement could not fix every "
+                                                                    "self-intersection";
+    return false;
+  }
+  refined.collect_garbage();
+  failure = implausible(mesh, refined);
+  if (!failure.empty()) return false;
+  try {
+    result.input = validate_repaired(refined, source, "autorefinement");
+  } catch (const InvalidInput& e) {
+    failure = e.what();
+    return false;
+  }
+  return true;
+}
+
+// Local removal (moves the surface near the intersections) of the closed mesh: true with
+// result.input validated when it worked, else false with why appended to `failure`.
+bool try_local_removal(const SurfaceMesh& mesh, const std::string& source, RepairedInput& result,
+                       std::string& failure) {
+  Attempt attempt = run_isolated(mesh, "local remeshing", remove_locally);
+  RunLimits::current().check("repairing the input mesh", true);
+  SurfaceMesh& local = attempt.mesh;
+  const bool fixed = attempt.fixed;
+  if (!attempt.finished) {
+    failure += "; " + attempt.failure;
+    return false;
+  }
+  if (!(fixed && !local.is_empty() && CGAL::is_closed(local))) {
+    failure += fixed ? "; local remeshing left an open or empty mesh"
+                     : "; local remeshing could not fix every self-intersection";
+    return false;
+  }
+  try {
+    result.input = validate_repaired(local, source, "local remeshing");
+  } catch (const InvalidInput& e) {
+    failure += "; " + std::string(e.what());
+    return false;
+  }
+  return true;
+}
+
+// The refusal when neither repair worked.  A refusal from validate_repaired already names the
+// mesh and the option; the message keeps one of each.
+std::string repair_refusal(const std::string& source, std::size_t intersecting_pairs, const std::string& failure) {
+  const std::string prefix = "input mesh '" + source + "': --repair could not remove the self-intersections: ";
+  std::string reasons;
+  for (std::size_t at = 0; at < failure.size();) {
+    const std::size_t found = failure.find(prefix, at);
+    reasons += failure.substr(at, found == std::string::npos ? std::string::npos : found - at);
+    if (found == std::string::npos) break;
+    at = found + prefix.size();
+  }
+  return prefix + std::to_string(intersecting_pairs) + " pairs of triangles intersect; " + reasons;
 }
 
 }  // namespace
@@ -268,65 +361,13 @@ RepairedInput repair_input_mesh(const std::vector<Point3>& points, const Polygon
   report.faces_before = mesh->number_of_faces();
   report.vertices_before = mesh->number_of_vertices();
   limits.check(phase, true);
-
   std::string failure;
-  // Autorefinement: exact, keeps the outer surface.
-  {
-    Attempt attempt = run_isolated(*mesh, "autorefinement", autorefine);
-    limits.check(phase, true);
-    SurfaceMesh& refined = attempt.mesh;
-    const bool fixed = attempt.fixed;
-    if (!attempt.finished) {
-      failure = attempt.failure;
-    } else if (fixed && !refined.is_empty() && CGAL::is_closed(refined)) {
-      refined.collect_garbage();
-      failure = implausible(*mesh, refined);
-      if (failure.empty()) {
-        try {
-          result.input = validate_repaired(refined, source, "autorefinement");
-          report.method = "autorefine";
-        } catch (const InvalidInput& e) {
-          failure = e.what();
-        }
-      }
-    } else {
-      failure = fixed ? "autorefinement left an open or empty mesh" : "autorefinement could not fix every "
-                                                                      "self-intersection";
-    }
-  }
-  // Local removal: moves the surface near the intersections.
-  if (report.method == "none") {
-    Attempt attempt = run_isolated(*mesh, "local remeshing", remove_locally);
-    limits.check(phase, true);
-    SurfaceMesh& local = attempt.mesh;
-    const bool fixed = attempt.fixed;
-    if (!attempt.finished) {
-      failure += "; " + attempt.failure;
-    } else if (fixed && !local.is_empty() && CGAL::is_closed(local)) {
-      try {
-        result.input = validate_repaired(local, source, "local remeshing");
-        report.method = "local";
-      } catch (const InvalidInput& e) {
-        failure += "; " + std::string(e.what());
-      }
-    } else {
-      failure += fixed ? "; local remeshing left an open or empty mesh"
-                       : "; local remeshing could not fix every self-intersection";
-    }
-  }
-  if (report.method == "none") {
-    // A refusal from validate_repaired already names the mesh and the option; keep one of each.
-    const std::string prefix = "input mesh '" + source + "': --repair could not remove the self-intersections: ";
-    std::string reasons;
-    for (std::size_t at = 0; at < failure.size();) {
-      const std::size_t found = failure.find(prefix, at);
-      reasons += failure.substr(at, found == std::string::npos ? std::string::npos : found - at);
-      if (found == std::string::npos) break;
-      at = found + prefix.size();
-    }
-    throw InvalidInput(prefix + std::to_string(report.intersecting_pairs) + " pairs of triangles intersect; " +
-                       reasons);
-  }
+  if (try_autorefinement(*mesh, source, result, failure))
+    report.method = "autorefine";
+  else if (try_local_removal(*mesh, source, result, failure))
+    report.method = "local";
+  else
+    throw InvalidInput(repair_refusal(source, report.intersecting_pairs, failure));
   report.faces_after = result.input.mesh.number_of_faces();
   report.vertices_after = result.input.mesh.number_of_vertices();
   finish();

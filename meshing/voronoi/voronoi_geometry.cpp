@@ -711,46 +711,32 @@ void add_clipped(const Vec3& a, const Vec3& v, double t0, double t1, const Box3&
   points.add(a + hi * v);
 }
 
-// V_p ∩ B when V_p is unbounded, from the Delaunay dual rather than by clipping.  V_p ∩ B is a
-// convex polytope, the hull of its vertices, each of which is
-//  (1) a Voronoi vertex of V_p in B (the circumcentre of a finite cell of p),
-//  (2) a point where an edge of V_p crosses ∂B: the edge dual to a triangle pqr is the segment
-//      between the Voronoi vertices of the two cells at pqr, or, when one of them is infinite
-//      (pqr on the convex hull), the ray from the other's Voronoi vertex along pqr's normal away
-//      from that cell's fourth vertex, or
-//  (3) a point where a facet of V_p crosses an edge of B, or (4) a corner of B in V_p: both are
-//      ends of the segment (edge of B) ∩ V_p, cut out of the edge by the bisectors of p and its
-//      neighbours.
-// So V_p ∩ B lies in the bounding box of these points, which is enlarged and intersected with B
-// as in cell_in_bounds().  A bisector parallel to an edge of B (within
-// tolerances::parallel_half_space_relative_slope) removes the edge only when the edge lies
-// beyond it by more than the enlargement; otherwise it is not applied, which can only widen the
-// box.  Nothing if a Voronoi vertex is not finite (a flat cell) or a hull triangle is flat (its
-// ray has no direction): the caller clips instead.
-std::optional<VoronoiCell> cell_from_dual(const Delaunay& del, VertexId site, const Box3& box,
-                                          const std::vector<std::array<VertexId, 4>>& cells,
-                                          const std::vector<Vec3>& corners, const std::vector<VertexId>& neighbours) {
-  if (del.dimension() != 3) return std::nullopt;
-  const Vec3& p = del.point(site);
-  auto finite_cell = [&](std::size_t k) { return cells[k][1] >= 0 && cells[k][2] >= 0 && cells[k][3] >= 0; };
-  BoundingBox points;
-  // (1), and the triangles pqr of the cells, each with the cell it came from.
-  struct Side {
-    VertexId q, r;
-    std::size_t cell;
-    VertexId fourth;
-    bool operator<(const Side& o) const {
-      const std::uint64_t a = detail::pair_word(q, r), b = detail::pair_word(o.q, o.r);
-      return a < b || (a == b && cell < o.cell);
-    }
-  };
-  std::vector<Side> sides;
+// A triangle pqr of a cell of p (q < r), with the cell it came from and that cell's fourth vertex.
+struct CellSide {
+  VertexId q, r;
+  std::size_t cell;
+  VertexId fourth;
+  bool operator<(const CellSide& o) const {
+    const std::uint64_t a = detail::pair_word(q, r), b = detail::pair_word(o.q, o.r);
+    return a < b || (a == b && cell < o.cell);
+  }
+};
+
+// Whether p's cell `cells[k]` is finite (no infinite vertex).
+bool finite_cell(const std::vector<std::array<VertexId, 4>>& cells, std::size_t k) {
+  return cells[k][1] >= 0 && cells[k][2] >= 0 && cells[k][3] >= 0;
+}
+
+// cell_from_dual()'s points (1), the Voronoi vertices in B, and the triangles of the cells into
+// `sides`; false if a Voronoi vertex is not finite.
+bool add_voronoi_vertices(const std::vector<std::array<VertexId, 4>>& cells, const std::vector<Vec3>& corners,
+                          const Box3& box, BoundingBox& points, std::vector<CellSide>& sides) {
   sides.reserve(3 * cells.size());
   for (std::size_t k = 0; k < cells.size(); ++k) {
     const auto& c = cells[k];
-    if (finite_cell(k)) {
+    if (finite_cell(cells, k)) {
       const Vec3& v = corners[k];
-      if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) return std::nullopt;
+      if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) return false;
       if (box.contains(v)) points.add(v);
     }
     for (int j = 1; j < 4; ++j) {
@@ -758,25 +744,39 @@ std::optional<VoronoiCell> cell_from_dual(const Delaunay& del, VertexId site, co
       sides.push_back({std::min(q, r), std::max(q, r), k, c[j]});
     }
   }
-  // (2): each finite triangle pqr lies in two cells of p.
+  return true;
+}
+
+// cell_from_dual()'s points (2), where the edges of V_p cross ∂B: each finite triangle pqr lies in
+// two cells of p.  False when the cells are not a closed star or a hull triangle is flat (its ray
+// has no direction): the caller clips then.
+bool add_edge_crossings(const Delaunay& del, const Vec3& p, std::vector<CellSide>& sides,
+                        const std::vector<std::array<VertexId, 4>>& cells, const std::vector<Vec3>& corners,
+                        const Box3& box, BoundingBox& points) {
   std::sort(sides.begin(), sides.end());
   for (std::size_t i = 0; i + 1 < sides.size(); i += 2) {
-    const Side &s = sides[i], &t = sides[i + 1];
-    if (s.q != t.q || s.r != t.r) return std::nullopt;  // not a closed star: let the caller clip
-    if (s.q < 0) continue;                               // a triangle with the infinite vertex
-    const bool fs = finite_cell(s.cell), ft = finite_cell(t.cell);
+    const CellSide &s = sides[i], &t = sides[i + 1];
+    if (s.q != t.q || s.r != t.r) return false;  // not a closed star: let the caller clip
+    if (s.q < 0) continue;                        // a triangle with the infinite vertex
+    const bool fs = finite_cell(cells, s.cell), ft = finite_cell(cells, t.cell);
     if (fs && ft) {
       add_clipped(corners[s.cell], corners[t.cell] - corners[s.cell], 0, 1, box, points);
     } else if (fs || ft) {
-      const Side& f = fs ? s : t;
+      const CellSide& f = fs ? s : t;
       Vec3 n = cross(del.point(f.q) - p, del.point(f.r) - p);
-      if (!(norm(n) > 0)) return std::nullopt;  // a flat hull triangle has no ray: let the caller clip
+      if (!(norm(n) > 0)) return false;  // a flat hull triangle has no ray: let the caller clip
       if (dot(n, del.point(f.fourth) - p) > 0) n = -1.0 * n;
       add_clipped(corners[f.cell], n, 0, std::numeric_limits<double>::infinity(), box, points);
     }
   }
-  // (3) and (4): the edges of B cut by the bisectors.
-  const double margin = tolerances::face_membership_relative_tolerance * box.diagonal();
+  return true;
+}
+
+// cell_from_dual()'s points (3) and (4): the ends of the parts of B's edges that the bisectors of
+// p and its neighbours leave (a bisector parallel to an edge removes it only when the edge lies
+// beyond it by more than `margin`).
+void add_box_edge_sections(const Delaunay& del, const Vec3& p, const Box3& box, const std::vector<VertexId>& neighbours,
+                           double margin, BoundingBox& points) {
   // The bisector of p and each neighbour x: normal w = x − p through the midpoint m, and |w|.
   struct Bisector {
     Vec3 w, m;
@@ -813,6 +813,34 @@ std::optional<VoronoiCell> cell_from_dual(const Delaunay& del, VertexId site, co
       points.add(b);
     }
   }
+}
+// V_p ∩ B when V_p is unbounded, from the Delaunay dual rather than by clipping.  V_p ∩ B is a
+// convex polytope, the hull of its vertices, each of which is
+//  (1) a Voronoi vertex of V_p in B (the circumcentre of a finite cell of p),
+//  (2) a point where an edge of V_p crosses ∂B: the edge dual to a triangle pqr is the segment
+//      between the Voronoi vertices of the two cells at pqr, or, when one of them is infinite
+//      (pqr on the convex hull), the ray from the other's Voronoi vertex along pqr's normal away
+//      from that cell's fourth vertex, or
+//  (3) a point where a facet of V_p crosses an edge of B, or (4) a corner of B in V_p: both are
+//      ends of the segment (edge of B) ∩ V_p, cut out of the edge by the bisectors of p and its
+//      neighbours.
+// So V_p ∩ B lies in the bounding box of these points, which is enlarged and intersected with B
+// as in cell_in_bounds().  A bisector parallel to an edge of B (within
+// tolerances::parallel_half_space_relative_slope) removes the edge only when the edge lies
+// beyond it by more than the enlargement; otherwise it is not applied, which can only widen the
+// box.  Nothing if a Voronoi vertex is not finite (a flat cell) or a hull triangle is flat (its
+// ray has no direction): the caller clips instead.
+std::optional<VoronoiCell> cell_from_dual(const Delaunay& del, VertexId site, const Box3& box,
+                                          const std::vector<std::array<VertexId, 4>>& cells,
+                                          const std::vector<Vec3>& corners, const std::vector<VertexId>& neighbours) {
+  if (del.dimension() != 3) return std::nullopt;
+  const Vec3& p = del.point(site);
+  BoundingBox points;
+  std::vector<CellSide> sides;
+  if (!add_voronoi_vertices(cells, corners, box, points, sides)) return std::nullopt;  // (1)
+  if (!add_edge_crossings(del, p, sides, cells, corners, box, points)) return std::nullopt;  // (2)
+  const double margin = tolerances::face_membership_relative_tolerance * box.diagonal();
+  add_box_edge_sections(del, p, box, neighbours, margin, points);  // (3) and (4)
   if (points.empty()) return std::nullopt;
   return cell_in_bounds(del, site, box, points, neighbours, margin);
 }

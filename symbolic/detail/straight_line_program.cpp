@@ -611,6 +611,61 @@ std::size_t multiply_truncated(const T* a, std::size_t da, const T* b, std::size
   return dc;
 }
 
+//! out = a^e truncated after t^(n−1) (a of degree bound da), by square-and-multiply on truncated
+//! series, out starting as the series 1; `power` and `product` are scratch of n coefficients.
+//! Returns out's degree bound.
+template <class T>
+std::size_t power_truncated(const T* a, std::size_t da, std::int32_t e, std::size_t n, T* power, T* product, T* out) {
+  out[0] = T(1);
+  std::size_t d = 0;
+  std::copy(a, a + da + 1, power);
+  std::size_t dp = da;
+  for (; e > 0; e >>= 1) {
+    if (e & 1) {
+      d = multiply_truncated(out, d, power, dp, n, product);
+      std::copy(product, product + d + 1, out);
+    }
+    if (e > 1) {
+      dp = multiply_truncated(power, dp, power, dp, n, product);
+      std::copy(product, product + dp + 1, power);
+    }
+  }
+  return d;
+}
+
+//! One instruction of a polynomial program on series truncated after t^(n−1): writes its
+//! register `out` up to its degree bound d, from the registers (n coefficients each) and their
+//! degree bounds; `power` and `product` are scratch of n coefficients.  False for an instruction
+//! that is not polynomial.
+template <class T>
+bool series_instruction(const Instruction& ins, const T* registers, const std::size_t* degree, std::size_t n,
+                        T* power, T* product, T* out, std::size_t& d) {
+  auto reg = [&](std::int32_t i) { return registers + static_cast<std::size_t>(i) * n; };
+  const T* a = reg(ins.a);
+  const std::size_t da = degree[ins.a];
+  switch (ins.op) {
+    case OpCode::add:
+    case OpCode::sub: {
+      const T* b = reg(ins.b);
+      d = std::max(da, degree[ins.b]);
+      if (ins.op == OpCode::add)
+        for (std::size_t i = 0; i <= d; ++i) out[i] = a[i] + b[i];
+      else
+        for (std::size_t i = 0; i <= d; ++i) out[i] = a[i] - b[i];
+      return true;
+    }
+    case OpCode::neg:
+      d = da;
+      for (std::size_t i = 0; i <= d; ++i) out[i] = -a[i];
+      return true;
+    case OpCode::mul:
+    case OpCode::scale: d = multiply_truncated(a, da, reg(ins.b), degree[ins.b], n, out); return true;
+    case OpCode::square: d = multiply_truncated(a, da, a, da, n, out); return true;
+    case OpCode::pow: d = power_truncated(a, da, ins.b, n, power, product, out); return true;
+    default: return false;  // excluded by is_polynomial_program()
+  }
+}
+
 }  // namespace
 
 template <class T>
@@ -652,49 +707,10 @@ bool StraightLineProgram::evaluate_along_line(const T* point, const T* direction
   for (std::size_t k = 0; k < n_c; ++k) reg(static_cast<std::int32_t>(n_inputs_ + k))[0] = constant_values[k];
   const std::int32_t first = static_cast<std::int32_t>(n_inputs_ + n_c);
   for (std::size_t k = 0; k < code_.size(); ++k) {
-    const Instruction& ins = code_[k];
     T* out = reg(first + static_cast<std::int32_t>(k));
-    const T* a = reg(ins.a);
-    const std::size_t da = degree[ins.a];
-    std::size_t& d = degree[n_inputs_ + n_c + k];
-    switch (ins.op) {
-      case OpCode::add:
-      case OpCode::sub: {
-        const T* b = reg(ins.b);
-        d = std::max(da, degree[ins.b]);
-        if (ins.op == OpCode::add)
-          for (std::size_t i = 0; i <= d; ++i) out[i] = a[i] + b[i];
-        else
-          for (std::size_t i = 0; i <= d; ++i) out[i] = a[i] - b[i];
-        break;
-      }
-      case OpCode::neg:
-        d = da;
-        for (std::size_t i = 0; i <= d; ++i) out[i] = -a[i];
-        break;
-      case OpCode::mul:
-      case OpCode::scale: d = multiply_truncated(a, da, reg(ins.b), degree[ins.b], n, out); break;
-      case OpCode::square: d = multiply_truncated(a, da, a, da, n, out); break;
-      case OpCode::pow: {
-        // Square-and-multiply on truncated series: out = a^e (out starts as the series 1).
-        out[0] = T(1);
-        d = 0;
-        std::copy(a, a + da + 1, power.begin());
-        std::size_t dp = da;
-        for (std::int32_t e = ins.b; e > 0; e >>= 1) {
-          if (e & 1) {
-            d = multiply_truncated(out, d, power.data(), dp, n, product.data());
-            std::copy(product.begin(), product.begin() + d + 1, out);
-          }
-          if (e > 1) {
-            dp = multiply_truncated(power.data(), dp, power.data(), dp, n, product.data());
-            std::copy(product.begin(), product.begin() + dp + 1, power.begin());
-          }
-        }
-        break;
-      }
-      default: return false;  // excluded by is_polynomial_program()
-    }
+    if (!series_instruction(code_[k], registers.data(), degree.data(), n, power.data(), product.data(), out,
+                            degree[n_inputs_ + n_c + k]))
+      return false;
   }
   for (std::size_t j = 0; j < outputs_.size(); ++j) std::copy(reg(outputs_[j]), reg(outputs_[j]) + n, outputs + j * n);
   return true;

@@ -115,7 +115,10 @@ PlStatusDecision decide_pl_status(Refinement& refinement, const SurfaceMesh& sig
   PlStatusDecision d;
   d.status = certification.status;
   if (!solver_certified && d.status == MeshStatus::complete) d.status = MeshStatus::uncertified;
-  if (!record.last_is_current) {
+  // The check speaks of the final S only if no sample was inserted or removed since (a later
+  // phase's run() may have inserted many).
+  d.check_current = record.last_is_current && refinement.delaunay().vertices() == record.sample_ids;
+  if (!d.check_current) {
     d.blocking = certification.unsettled.size();
     return d;
   }
@@ -190,7 +193,7 @@ PlStatusDecision decide_pl_status(Refinement& refinement, const SurfaceMesh& sig
 nlohmann::json closed_ball_refinement_json(const ClosedBallRefinement& record, const PlStatusDecision& decision) {
   nlohmann::json j = record.checks > 0 ? closed_ball_json(record.last, tolerances::floor_locations_listed)
                                        : nlohmann::json{{"status", "not attempted"}};
-  j["current"] = record.last_is_current;
+  j["current"] = decision.check_current;
   j["checks"] = record.checks;
   j["rounds"] = record.rounds;
   j["witnesses_inserted"] = record.witnesses_inserted;

@@ -77,6 +77,8 @@ MeshStatus refine_closed_ball(Refinement& refinement, const SurfaceMesh& sigma, 
 //! The outcome of the status rule of the file comment.
 struct PlStatusDecision {
   MeshStatus status = MeshStatus::uncertified;
+  //! record.last was computed on the final samples (else nothing below is decided)
+  bool check_current = false;
   bool proves_homeomorphism = false;         //!< (a) and (b)
   bool output_equals_restricted_delaunay = false;
   std::size_t only_restricted_delaunay = 0;  //!< triples of Del S|Σ not in Tri S|Σ
@@ -90,7 +92,8 @@ struct PlStatusDecision {
 //! Decides the status of a PL run (file comment).  `run_status` is the last run()'s,
 //! `certification` Refinement::certify()'s, `output_defective` and `solver_certified` as in
 //! del_mesh; `lambda` the run's λ (Smooth's threshold 2β(λ)), `geometry` whether the geometry rows
-//! ran.  Precondition: record.last_is_current, or the answer is certification.status.
+//! ran.  Unless record.last was computed on the final samples (the Delaunay vertices are still
+//! record.sample_ids), nothing is exempt and the status is certification.status's.
 PlStatusDecision decide_pl_status(Refinement& refinement, const SurfaceMesh& sigma,
                                   const ClosedBallRefinement& record, MeshStatus run_status,
                                   const Certification& certification, bool output_defective,

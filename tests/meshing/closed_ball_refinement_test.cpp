@@ -86,6 +86,18 @@ BOOST_AUTO_TEST_CASE(ring_sample_of_a_torus_is_refined_to_a_torus) {
   const nlohmann::json j = closed_ball_refinement_json(record, decision);
   BOOST_TEST(j["rounds"] == record.rounds);
   BOOST_TEST(j["proves_homeomorphism"] == true);
+
+  // A sample inserted after the check (as a later phase would) makes the check stale: nothing is
+  // decided from it and the status is certify()'s.
+  const Point3& x = sigma.point(SurfaceMesh::Vertex_index(3));
+  BOOST_TEST_REQUIRE(refinement.insert(Witness{{x.x(), x.y(), x.z()}, CheckKind::quality, -1, false}).has_value());
+  const MeshStatus again = refinement.run();
+  const Certification later = refinement.certify(again, false);
+  const PlStatusDecision stale = decide_pl_status(refinement, sigma, record, again, later, false, true, 0.06, false);
+  BOOST_TEST(!stale.check_current);
+  BOOST_TEST(!stale.proves_homeomorphism);
+  BOOST_TEST(stale.exempt_count == 0u);
+  BOOST_TEST(stale.status == later.status);
 }
 
 // A run that did not end complete is left alone: no check, no insertion.

@@ -318,13 +318,11 @@ std::string lambda_tag(double lambda) {
   return out.str();
 }
 
-}  // namespace
+// The name and value of each parameter in a CSV file's metadata.
+using CsvParameters = std::vector<std::pair<std::string, std::string>>;
 
-int main(int argc, char** argv) {
-  delmesh::back_heap_with_huge_pages();
-  CLI::App app{"Theorem 6.1 by experiment: DelMesh over a lambda sweep, checked by the independent "
-               "checker against the bounds, with real epsilon-samples for the size; writes "
-               "<out-dir>/lambda_sweep.csv, eps_sample.csv, eps_reference.csv, lfs_estimate.csv"};
+// The sweep's command line.
+struct SweepOptions {
   std::string surfaces = "sphere,ellipsoid,torus,genus2,metaball,two_blobs,thin_handle,near_sheets";
   std::vector<double> lambdas{0.06, 0.05, 0.04, 0.03, 0.02};
   std::string out_dir = "out";
@@ -333,223 +331,313 @@ int main(int argc, char** argv) {
   std::string expr, box_text, expr_name, eps_reference_path;
   std::vector<int> expr_genus;
   EpsParameters eps;
-  eps.epsilons = {0.1, 0.15, 0.19};
   DelMeshOptions base;
-  auto* surfaces_option = app.add_option("--surfaces", surfaces, "catalog names, comma separated")->capture_default_str();
-  auto* expr_option = app.add_option("--expr", expr, "a surface E(x,y,z) = 0 to sweep as well (with --box, --name)");
-  auto* box_option = app.add_option("--box", box_text, "x0,x1,y0,y1,z0,z1: the box of --expr");
-  auto* name_option = app.add_option("--name", expr_name, "the name of --expr in the CSV and file names");
-  app.add_option("--genus", expr_genus, "genus of each component of --expr (ascending), for topology_correct");
-  expr_option->needs(box_option)->needs(name_option);
-  box_option->needs(expr_option);
-  name_option->needs(expr_option);
-  app.add_option("--lambdas", lambdas, "values of lambda")->capture_default_str();
-  app.add_option("--seed", base.seed, "delmesh seed")->capture_default_str();
-  app.add_option("--threads", base.threads, "delmesh threads (0: every hardware thread)")->capture_default_str();
-  app.add_option("--time-limit", base.time_limit_seconds, "delmesh time limit per run (s), 0 none")
+  CLI::Option* surfaces_option = nullptr;
+  CLI::Option* expr_option = nullptr;
+
+  SweepOptions() { eps.epsilons = {0.1, 0.15, 0.19}; }
+};
+
+// The options of the sweep's command line, into `o`.
+void add_sweep_options(CLI::App& app, SweepOptions& o) {
+  o.surfaces_option = app.add_option("--surfaces", o.surfaces, "catalog names, comma separated")->capture_default_str();
+  o.expr_option = app.add_option("--expr", o.expr, "a surface E(x,y,z) = 0 to sweep as well (with --box, --name)");
+  auto* box_option = app.add_option("--box", o.box_text, "x0,x1,y0,y1,z0,z1: the box of --expr");
+  auto* name_option = app.add_option("--name", o.expr_name, "the name of --expr in the CSV and file names");
+  app.add_option("--genus", o.expr_genus, "genus of each component of --expr (ascending), for topology_correct");
+  o.expr_option->needs(box_option)->needs(name_option);
+  box_option->needs(o.expr_option);
+  name_option->needs(o.expr_option);
+  app.add_option("--lambdas", o.lambdas, "values of lambda")->capture_default_str();
+  app.add_option("--seed", o.base.seed, "delmesh seed")->capture_default_str();
+  app.add_option("--threads", o.base.threads, "delmesh threads (0: every hardware thread)")->capture_default_str();
+  app.add_option("--time-limit", o.base.time_limit_seconds, "delmesh time limit per run (s), 0 none")
       ->capture_default_str();
-  app.add_option("--max-points", base.max_points, "delmesh point limit per run")->capture_default_str();
-  app.add_option("--resolution", resolution, "integration cells per chart: n x 2n")->capture_default_str();
-  app.add_option("--epsilons", eps.epsilons, "epsilon of the epsilon-samples")->capture_default_str();
-  app.add_option("--sample-seed", eps.sample.seed, "seed of the dense reference sample")->capture_default_str();
-  app.add_option("--relative-spacing", eps.sample.relative_spacing,
+  app.add_option("--max-points", o.base.max_points, "delmesh point limit per run")->capture_default_str();
+  app.add_option("--resolution", o.resolution, "integration cells per chart: n x 2n")->capture_default_str();
+  app.add_option("--epsilons", o.eps.epsilons, "epsilon of the epsilon-samples")->capture_default_str();
+  app.add_option("--sample-seed", o.eps.sample.seed, "seed of the dense reference sample")->capture_default_str();
+  app.add_option("--relative-spacing", o.eps.sample.relative_spacing,
                  "reference sample: cell edge <= this times lfs")->capture_default_str();
-  app.add_option("--eps-reference", eps_reference_path,
+  app.add_option("--eps-reference", o.eps_reference_path,
                  "read the epsilon-samples from this eps_reference.csv instead of computing them");
-  app.add_flag("--eps-only", eps_only, "compute the epsilon-samples (eps_reference.csv, lfs_estimate.csv) only");
-  app.add_flag("--no-eps-samples", no_eps, "no epsilon-samples (lambda_sweep.csv only)");
-  app.add_option("--out-dir", out_dir, "output directory")->capture_default_str();
-  app.add_flag("--no-meshes", no_meshes, "do not write the meshes");
+  app.add_flag("--eps-only", o.eps_only, "compute the epsilon-samples (eps_reference.csv, lfs_estimate.csv) only");
+  app.add_flag("--no-eps-samples", o.no_eps, "no epsilon-samples (lambda_sweep.csv only)");
+  app.add_option("--out-dir", o.out_dir, "output directory")->capture_default_str();
+  app.add_flag("--no-meshes", o.no_meshes, "do not write the meshes");
+}
+
+// The surfaces: the catalog names (all of --surfaces, or none if only --expr is given) and --expr.
+std::vector<SweepSurface> sweep_surfaces(const SweepOptions& o) {
+  std::vector<SweepSurface> sweep;
+  if (!(o.expr_option->count() && !o.surfaces_option->count()))
+    for (const std::string& name : split(o.surfaces)) {
+      const CatalogEntry& entry = catalog_entry(name);
+      sweep.push_back({name, entry.surface(), entry.box, entry.genus_per_component, entry.local_feature_size});
+    }
+  if (o.expr_option->count()) {
+    check_name(o.expr_name);
+    std::optional<std::vector<int>> genus;
+    if (!o.expr_genus.empty()) {
+      genus = o.expr_genus;
+      std::sort(genus->begin(), genus->end());
+    }
+    sweep.push_back({o.expr_name, Surface::parse(o.expr), Box3::parse(o.box_text), genus, {}});
+  }
+  return sweep;
+}
+
+// The option values the sweep refuses (InvalidInput).
+void check_sweep_options(const SweepOptions& o) {
+  for (double e : o.eps.epsilons)
+    if (!(e > 0 && e < 1)) throw InvalidInput("--epsilons must lie in (0, 1)");
+  if (!(o.eps.sample.relative_spacing > 0 && o.eps.sample.relative_spacing < 1))
+    throw InvalidInput("--relative-spacing must lie in (0, 1)");
+  if (o.no_eps && (o.eps_only || !o.eps_reference_path.empty()))
+    throw InvalidInput("--no-eps-samples excludes --eps-only and --eps-reference");
+}
+
+// The parameters of the ε-samples, as the CSV files' metadata records them.
+CsvParameters sampling_parameters(const EpsParameters& eps) {
+  std::string epsilons;
+  for (std::size_t k = 0; k < eps.epsilons.size(); ++k) epsilons += (k ? ";" : "") + field(eps.epsilons[k]);
+  return {{"sample_seed", field(static_cast<long long>(eps.sample.seed))},
+          {"relative_spacing", field(eps.sample.relative_spacing)},
+          {"max_spacing", field(eps.sample.max_spacing)},
+          {"epsilons", epsilons}};
+}
+
+// The line printed for a surface's ε-samples.
+void print_eps_reference(const std::string& name, const EpsReference& r) {
+  std::cout << name << ": reference sample " << r.reference_points << " points, lfs " << r.lfs_source;
+  if (r.error) std::cout << " (pole estimate: relative error max " << r.error->max << " median " << r.error->median << ")";
+  std::cout << "; eps-samples";
+  for (std::size_t k = 0; k < r.epsilons.size(); ++k) std::cout << " " << r.epsilons[k] << ": " << r.sizes[k];
+  std::cout << std::endl;
+}
+
+// The ε-samples, once per surface: computed (and written to eps_reference.csv and
+// lfs_estimate.csv), or read back with --eps-reference.
+std::map<std::string, EpsReference> eps_references(const SweepOptions& o, const std::vector<SweepSurface>& sweep,
+                                                   const CsvParameters& sampling, const std::string& surface_names) {
+  std::map<std::string, EpsReference> references;
+  std::optional<CsvWriter> reference_csv, lfs_csv;
+  if (o.eps_reference_path.empty()) {
+    auto parameters = sampling;
+    parameters.insert(parameters.begin(), {"surfaces", surface_names});
+    reference_csv.emplace(fs::path(o.out_dir) / "eps_reference.csv", "lambda_sweep", parameters,
+                          eps_reference_columns());
+    lfs_csv.emplace(fs::path(o.out_dir) / "lfs_estimate.csv", "lambda_sweep", parameters,
+                    std::vector<std::string>{"surface", "x", "y", "z", "lfs_estimate", "lfs_analytic"});
+  }
+  for (const SweepSurface& s : sweep) {
+    EpsReference r;
+    if (o.eps_reference_path.empty()) {
+      r = eps_reference(s, o.eps, *lfs_csv);
+      write_eps_reference(*reference_csv, s.name, r);
+    } else {
+      r = read_eps_reference(o.eps_reference_path, s.name, sampling);
+    }
+    print_eps_reference(s.name, r);
+    references[s.name] = r;
+  }
+  if (reference_csv) {
+    reference_csv->close();
+    lfs_csv->close();
+    std::cout << "wrote " << reference_csv->path().string() << ", " << lfs_csv->path().string() << std::endl;
+  }
+  return references;
+}
+
+// The columns of lambda_sweep.csv.
+std::vector<std::string> sweep_columns() {
+  std::vector<std::string> columns{"surface", "lambda", "status", "seconds", "expected_genus", "topology_correct"};
+  append(columns, report_columns());
+  append(columns, {"bound_min_angle_deg", "bound_max_radius_edge_ratio", "bound_max_roughness_rad",
+                   "angle_ok", "ratio_ok", "roughness_ok", "lfs_integral", "vertices_lambda2",
+                   "vertices_lambda2_over_lfs_integral", "theorem_size_bound", "size_ok",
+                   "insertions_quality", "insertions_smooth", "insertions_topology", "seed", "lfs_source"});
+  return columns;
+}
+
+// The columns of eps_sample.csv.
+std::vector<std::string> eps_sample_columns() {
+  return {"surface", "lambda", "seed", "status", "topology_correct", "vertices",
+          "lfs_source", "epsilon", "eps_sample_vertices", "size_ratio",
+          "reference_points", "covering_ratio", "lfs_relative_error_max",
+          "lfs_relative_error_median", "lfs_integral", "vertices_lambda2_over_lfs_integral"};
+}
+
+// I = ∫_Σ dA/lfs² for a surface whose lfs is known in closed form and that has a chart (printed
+// with the closed forms where they are known); nothing otherwise.
+std::optional<double> surface_lfs_integral(const SweepSurface& s, int resolution) {
+  const CompiledE E(s.surface);
+  const auto chart = charts().find(s.name);
+  if (!s.analytic_lfs || chart == charts().end()) return std::nullopt;
+  const double integral = lfs_integral(s.analytic_lfs, s.box, E, chart->second, resolution);
+  std::cout << s.name << ": integral of 1/lfs^2 over the surface = " << integral;
+  if (s.name == "sphere") std::cout << " (closed form 4 pi = " << 4 * pi << ")";
+  if (s.name == "torus") std::cout << " (closed form 4 pi^2 R / r = " << 4 * pi * pi / 0.4 << ")";
+  if (s.name == "thin_handle") std::cout << " (closed form 4 pi^2 R / r = " << 4 * pi * pi / 0.08 << ")";
+  std::cout << std::endl;
+  return integral;
+}
+
+// One DelMesh run of the sweep and the checker's report on its mesh.
+struct SweepRun {
+  std::string status;
+  double seconds = 0;
+  MeshReport report;
+  nlohmann::json statistics;
+};
+
+// DelMesh on surface s for λ (the mesh written under meshes/ unless --no-meshes); an error is
+// the run's status, with the CSV's separators replaced.
+SweepRun run_delmesh(const SweepSurface& s, double lambda, const SweepOptions& o) {
+  DelMeshOptions options = o.base;
+  options.lambda = lambda;
+  options.distance_certificate = false;  // the sweep measures the mesher's sample and shape
+  const Stopwatch clock;
+  SweepRun run;
+  try {
+    DelMeshResult result = del_mesh(s.surface, s.box, options);
+    std::ostringstream text;
+    text << result.status;
+    run.status = text.str();
+    run.statistics = result.statistics;
+    run.report = check_mesh(result.mesh);
+    if (!o.no_meshes) {
+      fs::create_directories(fs::path(o.out_dir) / "meshes");
+      write_mesh(result.mesh,
+                 (fs::path(o.out_dir) / "meshes" / ("sweep_" + s.name + "_l" + lambda_tag(lambda) + ".off")).string());
+    }
+  } catch (const std::exception& e) {
+    run.status = std::string("error: ") + e.what();
+    for (char& c : run.status)
+      if (c == ',' || c == '\n') c = ';';
+  }
+  run.seconds = clock.seconds();
+  return run;
+}
+
+// What a run's row compares with Theorem 6.1, shared by both CSV files.
+struct RunJudgement {
+  bool checked = false, correct = false;
+  std::string correct_field;
+  double v_l2 = 0;  // |S| λ²
+};
+
+// The run's row of lambda_sweep.csv and its line on standard output: the checker's report
+// against the bounds for λ, and the size against the integral where it is known.
+RunJudgement record_run(CsvWriter& csv, const SweepSurface& s, double lambda, const SweepRun& run,
+                        const std::optional<double>& integral, const std::string& lfs_source, std::uint64_t seed) {
+  const MeshReport& report = run.report;
+  const TheoremBounds bounds = theorem_bounds(lambda);
+  RunJudgement j;
+  j.checked = s.genus_per_component.has_value();
+  j.correct = j.checked && report.has_topology(*s.genus_per_component);
+  const bool angle_ok = report.triangles > 0 && report.min_angle_deg >= bounds.min_angle_deg;
+  const bool ratio_ok = report.triangles > 0 && report.max_radius_edge_ratio <= bounds.max_radius_edge_ratio;
+  const bool roughness_ok = report.triangles > 0 && report.max_roughness_rad <= bounds.max_roughness_rad;
+  j.v_l2 = static_cast<double>(report.vertices) * lambda * lambda;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double size_bound = integral ? 2 * (2 + 5 * lambda) * (2 + 5 * lambda) / (pi * lambda * lambda) * *integral : nan;
+  const auto& insertions = run.statistics.contains("insertions") ? run.statistics["insertions"] : nlohmann::json::object();
+  auto count = [&insertions](const char* key) { return insertions.value(key, 0LL); };
+  j.correct_field = j.checked ? field(j.correct) : std::string("nan");
+  std::vector<std::string> row{s.name, field(lambda), run.status, field(run.seconds),
+                               s.genus_per_component ? field(*s.genus_per_component) : std::string("nan"),
+                               j.correct_field};
+  append(row, report_fields(report));
+  append(row, {field(bounds.min_angle_deg), field(bounds.max_radius_edge_ratio),
+               field(bounds.max_roughness_rad), field(angle_ok), field(ratio_ok), field(roughness_ok),
+               field(integral ? *integral : nan), field(j.v_l2), field(integral ? j.v_l2 / *integral : nan),
+               field(size_bound),
+               integral ? field(static_cast<double>(report.vertices) <= size_bound) : std::string("nan"),
+               field(count("quality")), field(count("smooth")),
+               field(count("vor_edge") + count("facet_contact") + count("topo_disk") +
+                     count("facet_cycle") + count("silhouette")),
+               field(static_cast<long long>(seed)), lfs_source});
+  csv.row(row);
+  std::cout << s.name << " lambda=" << lambda << " " << run.status << " " << run.seconds << " s: " << report
+            << " | bounds " << bounds
+            << (!j.checked ? " topology not checked" : j.correct ? " topology ok" : " TOPOLOGY WRONG")
+            << (angle_ok && ratio_ok && roughness_ok ? " bounds ok" : " BOUND VIOLATED") << std::endl;
+  return j;
+}
+
+// Theorem 6.1(iii) against the ε-samples: the run's rows of eps_sample.csv, size_ratio =
+// |S| λ² / (|ε-sample| ε²) for each ε.
+void record_eps_rows(CsvWriter& eps_csv, const SweepSurface& s, double lambda, const SweepRun& run,
+                     const RunJudgement& j, const EpsReference& r, const std::optional<double>& integral,
+                     std::uint64_t seed) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::cout << "  size_ratio";
+  for (std::size_t k = 0; k < r.epsilons.size(); ++k) {
+    const double eps_k = r.epsilons[k];
+    const double ratio =
+        run.report.vertices > 0 ? j.v_l2 / (static_cast<double>(r.sizes[k]) * eps_k * eps_k) : nan;
+    eps_csv.row({s.name, field(lambda), field(static_cast<long long>(seed)), run.status, j.correct_field,
+                 field(run.report.vertices), r.lfs_source, field(eps_k), field(r.sizes[k]), field(ratio),
+                 field(r.reference_points), field(r.covering[k]), field(r.error ? r.error->max : nan),
+                 field(r.error ? r.error->median : nan), field(integral ? *integral : nan),
+                 field(integral ? j.v_l2 / *integral : nan)});
+    std::cout << " eps=" << eps_k << ": " << ratio;
+  }
+  std::cout << std::endl;
+}
+
+// The sweep: the ε-samples, then DelMesh for every surface and λ, each run's rows written as it
+// ends.
+void run_sweep(const SweepOptions& o) {
+  const std::vector<SweepSurface> sweep = sweep_surfaces(o);
+  check_sweep_options(o);
+  const CsvParameters sampling = sampling_parameters(o.eps);
+  std::string surface_names;
+  for (const SweepSurface& s : sweep) surface_names += (surface_names.empty() ? "" : ";") + s.name;
+  std::map<std::string, EpsReference> references;
+  if (!o.no_eps) references = eps_references(o, sweep, sampling, surface_names);
+  if (o.eps_only) return;
+
+  const CsvParameters run_parameters{{"surfaces", surface_names},
+                                     {"seed", field(static_cast<long long>(o.base.seed))},
+                                     {"time_limit", field(o.base.time_limit_seconds)},
+                                     {"max_points", field(o.base.max_points)},
+                                     {"resolution", field(o.resolution)}};
+  CsvWriter csv(fs::path(o.out_dir) / "lambda_sweep.csv", "lambda_sweep", run_parameters, sweep_columns());
+  std::optional<CsvWriter> eps_csv;
+  if (!o.no_eps) {
+    auto parameters = run_parameters;
+    append(parameters, sampling);
+    eps_csv.emplace(fs::path(o.out_dir) / "eps_sample.csv", "lambda_sweep", parameters, eps_sample_columns());
+  }
+  for (const SweepSurface& s : sweep) {
+    const std::optional<double> integral = surface_lfs_integral(s, o.resolution);
+    const std::string lfs_source = s.analytic_lfs ? "analytic" : PoleLfsEstimate::name();
+    for (double lambda : o.lambdas) {
+      const SweepRun run = run_delmesh(s, lambda, o);
+      const RunJudgement j = record_run(csv, s, lambda, run, integral, lfs_source, o.base.seed);
+      if (eps_csv) record_eps_rows(*eps_csv, s, lambda, run, j, references.at(s.name), integral, o.base.seed);
+    }
+  }
+  csv.close();
+  std::cout << "wrote " << csv.path().string();
+  if (eps_csv) {
+    eps_csv->close();
+    std::cout << ", " << eps_csv->path().string();
+  }
+  std::cout << std::endl;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  delmesh::back_heap_with_huge_pages();
+  CLI::App app{"Theorem 6.1 by experiment: DelMesh over a lambda sweep, checked by the independent "
+               "checker against the bounds, with real epsilon-samples for the size; writes "
+               "<out-dir>/lambda_sweep.csv, eps_sample.csv, eps_reference.csv, lfs_estimate.csv"};
+  SweepOptions o;
+  add_sweep_options(app, o);
   if (const auto code = parse_command_line(app, argc, argv)) return *code;
-
-  return run_guarded([&] {
-    // The surfaces: the catalog names (all of --surfaces, or none if only --expr is given) and --expr.
-    std::vector<SweepSurface> sweep;
-    if (!(expr_option->count() && !surfaces_option->count()))
-      for (const std::string& name : split(surfaces)) {
-        const CatalogEntry& entry = catalog_entry(name);
-        sweep.push_back({name, entry.surface(), entry.box, entry.genus_per_component, entry.local_feature_size});
-      }
-    if (expr_option->count()) {
-      check_name(expr_name);
-      std::optional<std::vector<int>> genus;
-      if (!expr_genus.empty()) {
-        genus = expr_genus;
-        std::sort(genus->begin(), genus->end());
-      }
-      sweep.push_back({expr_name, Surface::parse(expr), Box3::parse(box_text), genus, {}});
-    }
-    for (double e : eps.epsilons)
-      if (!(e > 0 && e < 1)) throw InvalidInput("--epsilons must lie in (0, 1)");
-    if (!(eps.sample.relative_spacing > 0 && eps.sample.relative_spacing < 1))
-      throw InvalidInput("--relative-spacing must lie in (0, 1)");
-    if (no_eps && (eps_only || !eps_reference_path.empty()))
-      throw InvalidInput("--no-eps-samples excludes --eps-only and --eps-reference");
-    const std::vector<std::pair<std::string, std::string>> sampling_parameters{
-        {"sample_seed", field(static_cast<long long>(eps.sample.seed))},
-        {"relative_spacing", field(eps.sample.relative_spacing)},
-        {"max_spacing", field(eps.sample.max_spacing)},
-        {"epsilons", [&] {
-           std::string text;
-           for (std::size_t k = 0; k < eps.epsilons.size(); ++k) text += (k ? ";" : "") + field(eps.epsilons[k]);
-           return text;
-         }()}};
-    std::string surface_names;
-    for (const SweepSurface& s : sweep) surface_names += (surface_names.empty() ? "" : ";") + s.name;
-
-    // The ε-samples, once per surface.
-    std::map<std::string, EpsReference> references;
-    if (!no_eps) {
-      std::optional<CsvWriter> reference_csv, lfs_csv;
-      if (eps_reference_path.empty()) {
-        auto parameters = sampling_parameters;
-        parameters.insert(parameters.begin(), {"surfaces", surface_names});
-        reference_csv.emplace(fs::path(out_dir) / "eps_reference.csv", "lambda_sweep", parameters,
-                              eps_reference_columns());
-        lfs_csv.emplace(fs::path(out_dir) / "lfs_estimate.csv", "lambda_sweep", parameters,
-                        std::vector<std::string>{"surface", "x", "y", "z", "lfs_estimate", "lfs_analytic"});
-      }
-      for (const SweepSurface& s : sweep) {
-        EpsReference r;
-        if (eps_reference_path.empty()) {
-          r = eps_reference(s, eps, *lfs_csv);
-          write_eps_reference(*reference_csv, s.name, r);
-        } else {
-          r = read_eps_reference(eps_reference_path, s.name, sampling_parameters);
-        }
-        std::cout << s.name << ": reference sample " << r.reference_points << " points, lfs " << r.lfs_source;
-        if (r.error)
-          std::cout << " (pole estimate: relative error max " << r.error->max << " median " << r.error->median << ")";
-        std::cout << "; eps-samples";
-        for (std::size_t k = 0; k < r.epsilons.size(); ++k) std::cout << " " << r.epsilons[k] << ": " << r.sizes[k];
-        std::cout << std::endl;
-        references[s.name] = r;
-      }
-      if (reference_csv) {
-        reference_csv->close();
-        lfs_csv->close();
-        std::cout << "wrote " << reference_csv->path().string() << ", " << lfs_csv->path().string() << std::endl;
-      }
-    }
-    if (eps_only) return;
-
-    std::vector<std::string> columns{"surface", "lambda", "status", "seconds", "expected_genus",
-                                     "topology_correct"};
-    append(columns, report_columns());
-    append(columns, {"bound_min_angle_deg", "bound_max_radius_edge_ratio", "bound_max_roughness_rad",
-                     "angle_ok", "ratio_ok", "roughness_ok", "lfs_integral", "vertices_lambda2",
-                     "vertices_lambda2_over_lfs_integral", "theorem_size_bound", "size_ok",
-                     "insertions_quality", "insertions_smooth", "insertions_topology", "seed", "lfs_source"});
-    const std::vector<std::pair<std::string, std::string>> run_parameters{
-        {"surfaces", surface_names},
-        {"seed", field(static_cast<long long>(base.seed))},
-        {"time_limit", field(base.time_limit_seconds)},
-        {"max_points", field(base.max_points)},
-        {"resolution", field(resolution)}};
-    CsvWriter csv(fs::path(out_dir) / "lambda_sweep.csv", "lambda_sweep", run_parameters, columns);
-    std::optional<CsvWriter> eps_csv;
-    if (!no_eps) {
-      auto parameters = run_parameters;
-      append(parameters, sampling_parameters);
-      eps_csv.emplace(fs::path(out_dir) / "eps_sample.csv", "lambda_sweep", parameters,
-                      std::vector<std::string>{"surface", "lambda", "seed", "status", "topology_correct", "vertices",
-                                               "lfs_source", "epsilon", "eps_sample_vertices", "size_ratio",
-                                               "reference_points", "covering_ratio", "lfs_relative_error_max",
-                                               "lfs_relative_error_median", "lfs_integral",
-                                               "vertices_lambda2_over_lfs_integral"});
-    }
-    for (const SweepSurface& s : sweep) {
-      const CompiledE E(s.surface);
-      std::optional<double> integral;
-      const auto chart = charts().find(s.name);
-      if (s.analytic_lfs && chart != charts().end()) {
-        integral = lfs_integral(s.analytic_lfs, s.box, E, chart->second, resolution);
-        std::cout << s.name << ": integral of 1/lfs^2 over the surface = " << *integral;
-        if (s.name == "sphere") std::cout << " (closed form 4 pi = " << 4 * pi << ")";
-        if (s.name == "torus") std::cout << " (closed form 4 pi^2 R / r = " << 4 * pi * pi / 0.4 << ")";
-        if (s.name == "thin_handle") std::cout << " (closed form 4 pi^2 R / r = " << 4 * pi * pi / 0.08 << ")";
-        std::cout << std::endl;
-      }
-      const std::string lfs_source = s.analytic_lfs ? "analytic" : PoleLfsEstimate::name();
-      for (double lambda : lambdas) {
-        DelMeshOptions options = base;
-        options.lambda = lambda;
-        options.distance_certificate = false;  // the sweep measures the mesher's sample and shape
-        const Stopwatch clock;
-        std::string status;
-        MeshReport report;
-        nlohmann::json statistics;
-        try {
-          DelMeshResult result = del_mesh(s.surface, s.box, options);
-          std::ostringstream text;
-          text << result.status;
-          status = text.str();
-          statistics = result.statistics;
-          report = check_mesh(result.mesh);
-          if (!no_meshes) {
-            fs::create_directories(fs::path(out_dir) / "meshes");
-            write_mesh(result.mesh,
-                       (fs::path(out_dir) / "meshes" / ("sweep_" + s.name + "_l" + lambda_tag(lambda) + ".off")).string());
-          }
-        } catch (const std::exception& e) {
-          status = std::string("error: ") + e.what();
-          for (char& c : status)
-            if (c == ',' || c == '\n') c = ';';
-        }
-        const double seconds = clock.seconds();
-        const TheoremBounds bounds = theorem_bounds(lambda);
-        const bool checked = s.genus_per_component.has_value();
-        const bool correct = checked && report.has_topology(*s.genus_per_component);
-        const bool angle_ok = report.triangles > 0 && report.min_angle_deg >= bounds.min_angle_deg;
-        const bool ratio_ok = report.triangles > 0 && report.max_radius_edge_ratio <= bounds.max_radius_edge_ratio;
-        const bool roughness_ok = report.triangles > 0 && report.max_roughness_rad <= bounds.max_roughness_rad;
-        const double v_l2 = static_cast<double>(report.vertices) * lambda * lambda;
-        const double nan = std::numeric_limits<double>::quiet_NaN();
-        const double size_bound = integral ? 2 * (2 + 5 * lambda) * (2 + 5 * lambda) / (pi * lambda * lambda) * *integral : nan;
-        const auto& insertions = statistics.contains("insertions") ? statistics["insertions"] : nlohmann::json::object();
-        auto count = [&insertions](const char* key) { return insertions.value(key, 0LL); };
-        const std::string correct_field = checked ? field(correct) : std::string("nan");
-        std::vector<std::string> row{s.name, field(lambda), status, field(seconds),
-                                     s.genus_per_component ? field(*s.genus_per_component) : std::string("nan"),
-                                     correct_field};
-        append(row, report_fields(report));
-        append(row, {field(bounds.min_angle_deg), field(bounds.max_radius_edge_ratio),
-                     field(bounds.max_roughness_rad), field(angle_ok), field(ratio_ok), field(roughness_ok),
-                     field(integral ? *integral : nan), field(v_l2), field(integral ? v_l2 / *integral : nan),
-                     field(size_bound),
-                     integral ? field(static_cast<double>(report.vertices) <= size_bound) : std::string("nan"),
-                     field(count("quality")), field(count("smooth")),
-                     field(count("vor_edge") + count("facet_contact") + count("topo_disk") +
-                           count("facet_cycle") + count("silhouette")),
-                     field(static_cast<long long>(base.seed)), lfs_source});
-        csv.row(row);
-        std::cout << s.name << " lambda=" << lambda << " " << status << " " << seconds << " s: " << report
-                  << " | bounds " << bounds
-                  << (!checked ? " topology not checked" : correct ? " topology ok" : " TOPOLOGY WRONG")
-                  << (angle_ok && ratio_ok && roughness_ok ? " bounds ok" : " BOUND VIOLATED") << std::endl;
-        if (!eps_csv) continue;
-        // Theorem 6.1(iii) against the ε-samples: size_ratio = |S| λ² / (|ε-sample| ε²).
-        const EpsReference& r = references.at(s.name);
-        std::cout << "  size_ratio";
-        for (std::size_t k = 0; k < r.epsilons.size(); ++k) {
-          const double eps_k = r.epsilons[k];
-          const double ratio = report.vertices > 0 ? v_l2 / (static_cast<double>(r.sizes[k]) * eps_k * eps_k) : nan;
-          eps_csv->row({s.name, field(lambda), field(static_cast<long long>(base.seed)), status, correct_field,
-                        field(report.vertices), r.lfs_source, field(eps_k), field(r.sizes[k]), field(ratio),
-                        field(r.reference_points), field(r.covering[k]), field(r.error ? r.error->max : nan),
-                        field(r.error ? r.error->median : nan), field(integral ? *integral : nan),
-                        field(integral ? v_l2 / *integral : nan)});
-          std::cout << " eps=" << eps_k << ": " << ratio;
-        }
-        std::cout << std::endl;
-      }
-    }
-    csv.close();
-    std::cout << "wrote " << csv.path().string();
-    if (eps_csv) {
-      eps_csv->close();
-      std::cout << ", " << eps_csv->path().string();
-    }
-    std::cout << std::endl;
-  });
+  return run_guarded([&] { run_sweep(o); });
 }

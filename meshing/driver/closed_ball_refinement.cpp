@@ -12,11 +12,15 @@
 #include "meshing/checks/smooth.h"
 #include "meshing/core/theorem_bounds.h"
 #include "meshing/inputs/sharp_features.h"
+#include "meshing/core/detail/vec3.h"
 #include "meshing/voronoi/restricted_voronoi_mesh.h"
+#include "meshing/voronoi/voronoi_geometry.h"
 
 namespace delmesh {
 
 namespace {
+
+using namespace detail;
 
 using Seconds = std::chrono::duration<double>;
 
@@ -79,6 +83,30 @@ std::set<IdPair> crease_facets(const RestrictedVoronoiMesh& diagram, const Surfa
   return pairs;
 }
 
+// Where Tri S|Σ and Del S|Σ differ at t (PlStatusDecision's mismatch counts).
+void classify_mismatch(Refinement& refinement, const TriangleKey& t, PlStatusDecision& d) {
+  const Delaunay& del = refinement.delaunay();
+  const auto apexes = del.triangle_apexes(t);
+  if (!apexes) {
+    ++d.mismatch_not_delaunay;
+    return;
+  }
+  for (VertexId a : *apexes) {
+    if (a < 0) continue;
+    std::array<VertexId, 4> cell{t[0], t[1], t[2], a};
+    std::sort(cell.begin(), cell.end());
+    const Vec3 c = voronoi_vertex(del, cell);
+    const auto x = refinement.oracle().project(c);
+    if (!x) continue;
+    const double radius = norm(c - del.point(t[0]));
+    if (norm(c - *x) <= mismatch_vertex_relative_distance * radius) {
+      ++d.mismatch_at_voronoi_vertex;
+      return;
+    }
+  }
+  ++d.mismatch_elsewhere;
+}
+
 }  // namespace
 
 MeshStatus refine_closed_ball(Refinement& refinement, const SurfaceMesh& sigma, MeshStatus status,
@@ -137,9 +165,9 @@ PlStatusDecision decide_pl_status(Refinement& refinement, const SurfaceMesh& sig
   std::vector<TriangleKey> only;
   std::set_difference(del.begin(), del.end(), tri.begin(), tri.end(), std::back_inserter(only));
   d.only_restricted_delaunay = only.size();
-  only.clear();
   std::set_difference(tri.begin(), tri.end(), del.begin(), del.end(), std::back_inserter(only));
-  d.only_output = only.size();
+  d.only_output = only.size() - d.only_restricted_delaunay;
+  for (const auto& t : only) classify_mismatch(refinement, t, d);
   const bool repeated = std::adjacent_find(tri.begin(), tri.end()) != tri.end();
   d.output_equals_restricted_delaunay = d.only_restricted_delaunay == 0 && d.only_output == 0 && !repeated;
   d.proves_homeomorphism = record.last.status == ClosedBallStatus::holds && d.output_equals_restricted_delaunay;
@@ -202,6 +230,10 @@ nlohmann::json closed_ball_refinement_json(const ClosedBallRefinement& record, c
   j["output_equals_restricted_delaunay"] = decision.output_equals_restricted_delaunay;
   j["only_restricted_delaunay"] = decision.only_restricted_delaunay;
   j["only_output"] = decision.only_output;
+  j["mismatch"] = {{"at_voronoi_vertex", decision.mismatch_at_voronoi_vertex},
+                   {"not_delaunay", decision.mismatch_not_delaunay},
+                   {"elsewhere", decision.mismatch_elsewhere},
+                   {"vertex_relative_distance", mismatch_vertex_relative_distance}};
   j["proves_homeomorphism"] = decision.proves_homeomorphism;
   j["exempt"] = {{"count", decision.exempt_count},
                  {"by_kind", decision.exempt},

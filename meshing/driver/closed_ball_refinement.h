@@ -74,6 +74,10 @@ struct ClosedBallRefinement {
 MeshStatus refine_closed_ball(Refinement& refinement, const SurfaceMesh& sigma, MeshStatus status,
                               ClosedBallRefinement& record);
 
+//! A Voronoi vertex this close to Σ, relative to its circumradius, is "at Σ" for the mismatch
+//! classification (a few hundred units in the last place of the coordinates of a unit-scale run).
+inline constexpr double mismatch_vertex_relative_distance = 1e-12;
+
 //! The outcome of the status rule of the file comment.
 struct PlStatusDecision {
   MeshStatus status = MeshStatus::uncertified;
@@ -83,6 +87,14 @@ struct PlStatusDecision {
   bool output_equals_restricted_delaunay = false;
   std::size_t only_restricted_delaunay = 0;  //!< triples of Del S|Σ not in Tri S|Σ
   std::size_t only_output = 0;               //!< triangles of Tri S|Σ not in Del S|Σ
+  //! The triangles in one set and not the other, by where they differ (classify_mismatch):
+  //! at_voronoi_vertex — one of the triangle's Delaunay cells has its Voronoi vertex (the mesher's
+  //! computed one, voronoi_vertex()) within mismatch_vertex_relative_distance times its
+  //! circumradius of Σ: the mesher decided that Voronoi edge's crossing with its rounded vertex
+  //! and the §5.1 rule (restricted_delaunay.h), the exact check with the exact vertex, so the two
+  //! conventions for a zero at a Voronoi vertex differ there; not_delaunay — a triangle of Tri S|Σ
+  //! that is not a triangle of Del S (a stale record); elsewhere — any other.
+  std::size_t mismatch_at_voronoi_vertex = 0, mismatch_not_delaunay = 0, mismatch_elsewhere = 0;
   //! Exempt findings: check kind name → reason → count; and the findings still blocking.
   std::map<std::string, std::map<std::string, std::size_t>> exempt;
   std::size_t exempt_count = 0;

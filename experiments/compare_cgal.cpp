@@ -873,14 +873,9 @@ void run_memory_experiment(const Context& context, const std::vector<std::string
   std::cout << "wrote " << csv.path().string() << std::endl;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  delmesh::back_heap_with_huge_pages();
-  CLI::App app{"delmesh vs CGAL Surface_mesher and Mesh_3 (seconds-per-vertex benchmark, coarsest-topology "
-               "comparison, the topology demo, and on request the distance comparison: delmesh's certified "
-               "--max-distance against Mesh_3's facet_distance); writes <out-dir>/compare_cgal.csv, and for "
-               "distance <out-dir>/distance.csv and distance.md"};
+// --- the command line and the three table experiments ---------------------------------------------
+// The comparison's command line.
+struct CompareOptions {
   std::string surfaces = "torus,genus2", demo_surfaces = "thin_handle,two_blobs,near_sheets";
   std::string experiments_to_run = "benchmark,coarsest,demo";
   double lambda = lambda0;
@@ -894,48 +889,56 @@ int main(int argc, char** argv) {
   bool no_meshes = false, skip_delmesh = false;
   int repeat = 1;
   DelMeshOptions base;
-  base.progress = nullptr;
-  app.add_option("--surfaces", surfaces, "surfaces of coarsest and distance (catalog names, comma separated)")
-      ->capture_default_str();
-  app.add_option("--demo-surfaces", demo_surfaces, "demo surfaces")->capture_default_str();
-  app.add_option("--experiments", experiments_to_run, "any of benchmark,coarsest,demo,distance,memory")
-      ->capture_default_str();
   std::string memory_child_method;
-  app.add_option("--memory-child", memory_child_method,
+  std::optional<int> threads_compare;
+
+  CompareOptions() {
+    base.progress = nullptr;
+    base.threads = 1;
+  }
+};
+
+// The options of the comparison's command line, into `o` (and the globals mesh3_seed_components
+// and cgal_seed).
+void add_compare_options(CLI::App& app, CompareOptions& o) {
+  app.add_option("--surfaces", o.surfaces, "surfaces of coarsest and distance (catalog names, comma separated)")
+      ->capture_default_str();
+  app.add_option("--demo-surfaces", o.demo_surfaces, "demo surfaces")->capture_default_str();
+  app.add_option("--experiments", o.experiments_to_run, "any of benchmark,coarsest,demo,distance,memory")
+      ->capture_default_str();
+  app.add_option("--memory-child", o.memory_child_method,
                  "internal (the memory experiment's child): run mesh_3, delmesh or none on the one case of --cases "
                  "and print its vertices, seconds and status")
       ->group("");
-  app.add_option("--lambda", lambda, "delmesh lambda")->capture_default_str();
-  app.add_option("--cases", cases,
+  app.add_option("--lambda", o.lambda, "delmesh lambda")->capture_default_str();
+  app.add_option("--cases", o.cases,
                  "benchmark cases SURFACE:H, comma separated: delmesh with size bound H against CGAL with "
                  "facet size H and facet distance H/10")
       ->capture_default_str();
-  app.add_option("--repeat", repeat,
+  app.add_option("--repeat", o.repeat,
                  "benchmark rounds per case: Mesh_3 then delmesh, K times (Surface_mesher once); the summary "
                  "gives the median, least and greatest ratio")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
-  app.add_option("--relative-distances", relative_distances,
+  app.add_option("--relative-distances", o.relative_distances,
                  "distance: the distance bounds, comma separated, each times the surface's box diagonal: delmesh's "
                  "max_distance and Mesh_3's facet_distance")
       ->capture_default_str();
-  app.add_option("--angle", cgal_angle, "CGAL facet angle bound (deg)")->capture_default_str();
-  app.add_option("--cgal-error-bound", cgal_error_bound,
+  app.add_option("--angle", o.cgal_angle, "CGAL facet angle bound (deg)")->capture_default_str();
+  app.add_option("--cgal-error-bound", o.cgal_error_bound,
                  "benchmark and distance only: relative error bound of CGAL's implicit-surface bisection (times "
                  "the bounding sphere's diameter; CGAL's own default 1e-3, which coarsest and demo keep, exceeds "
                  "the facet distance H/10 on the catalog boxes for H <= 0.05, and is about distance's default "
                  "delta)")
       ->capture_default_str()
       ->check(CLI::Range(1e-15, 1e-1));
-  app.add_option("--coarse-radii", coarse_radii, "CGAL radius bounds of the demo (distance = radius/10)")
+  app.add_option("--coarse-radii", o.coarse_radii, "CGAL radius bounds of the demo (distance = radius/10)")
       ->capture_default_str();
-  app.add_option("--ladder", ladder, "CGAL radius bounds tried by 'coarsest' (distance = radius/10), coarse first")
+  app.add_option("--ladder", o.ladder, "CGAL radius bounds tried by 'coarsest' (distance = radius/10), coarse first")
       ->capture_default_str();
-  app.add_option("--seed", base.seed, "delmesh seed")->capture_default_str();
-  base.threads = 1;
-  app.add_option("--threads", base.threads, "delmesh threads (0: every hardware thread)")->capture_default_str();
-  std::optional<int> threads_compare;
-  app.add_option("--threads-compare", threads_compare,
+  app.add_option("--seed", o.base.seed, "delmesh seed")->capture_default_str();
+  app.add_option("--threads", o.base.threads, "delmesh threads (0: every hardware thread)")->capture_default_str();
+  app.add_option("--threads-compare", o.threads_compare,
                  "benchmark only: in each round also run delmesh with N threads (0: every hardware thread) right "
                  "after the --threads run, and report its ratio to Mesh_3, its wall time over the --threads run's "
                  "(the speed-up, paired per round) and whether the two meshes are identical")
@@ -945,164 +948,213 @@ int main(int argc, char** argv) {
                "certified critical points of a generic height function (delmesh's seed solve), instead of CGAL's "
                "rays from one centre");
   app.add_option("--cgal-seed", cgal_seed, "seed of CGAL's default random generator")->capture_default_str();
-  app.add_option("--time-limit", base.time_limit_seconds, "delmesh time limit per run (s), 0 none")
+  app.add_option("--time-limit", o.base.time_limit_seconds, "delmesh time limit per run (s), 0 none")
       ->capture_default_str();
-  app.add_option("--max-points", base.max_points, "delmesh point limit per run")->capture_default_str();
-  app.add_option("--out-dir", out_dir, "output directory")->capture_default_str();
-  app.add_flag("--no-meshes", no_meshes, "do not write the meshes");
-  app.add_flag("--skip-delmesh", skip_delmesh, "run only the CGAL meshers");
+  app.add_option("--max-points", o.base.max_points, "delmesh point limit per run")->capture_default_str();
+  app.add_option("--out-dir", o.out_dir, "output directory")->capture_default_str();
+  app.add_flag("--no-meshes", o.no_meshes, "do not write the meshes");
+  app.add_flag("--skip-delmesh", o.skip_delmesh, "run only the CGAL meshers");
+}
+
+// The parameters compare_cgal.csv's metadata records.
+std::vector<std::pair<std::string, std::string>> compare_parameters(const CompareOptions& o) {
+  return {{"lambda", field(o.lambda)},
+          {"benchmark_cases", o.cases},
+          {"threads", field(o.base.threads)},
+          {"threads_compare", o.threads_compare ? field(*o.threads_compare) : std::string("none")},
+          {"repeat", field(o.repeat)},
+          {"cgal_angle", field(o.cgal_angle)},
+          {"cgal_error_bound", field(o.cgal_error_bound)},
+          {"demo_radii", field_list(o.coarse_radii)},
+          {"ladder_radii", field_list(o.ladder)},
+          {"relative_distances", o.relative_distances},
+          {"seed", field(static_cast<long long>(o.base.seed))},
+          {"cgal_seed", field(static_cast<long long>(cgal_seed))},
+          {"time_limit", field(o.base.time_limit_seconds)},
+          {"cgal", CGAL_VERSION_STR}};
+}
+
+// The rounds of one benchmark case: per round Mesh_3's and delmesh's seconds per vertex and their
+// ratio; with --threads-compare the other thread count's ratios to Mesh_3, its wall time over the
+// --threads run's, and the rounds whose two meshes were identical; the last delmesh run's
+// statistics and vertices.
+struct BenchmarkRounds {
+  std::vector<double> m3_per_vertex, dm_per_vertex, ratios;
+  std::vector<double> other_per_vertex, other_ratios, time_ratios;
+  int identical_rounds = 0;
+  std::string base_threads, other_threads;
+  nlohmann::json statistics;
+  std::size_t vertices = 0;
+};
+
+// --threads-compare in one round: delmesh again with the other thread count, against the round's
+// run `dm` and Mesh_3.
+void compare_threads(Context& context, const CompareOptions& o, const Prepared& s, double h, const Run& dm, int round,
+                     BenchmarkRounds& b) {
+  DelMeshOptions other = o.base;
+  other.threads = *o.threads_compare;
+  Run dt = run_delmesh(*s.entry, o.lambda, h, other);
+  record(context, "benchmark", *s.entry, dt, s.E, round);
+  b.base_threads = threads_used(dm, o.base.threads);
+  b.other_threads = threads_used(dt, other.threads);
+  b.other_per_vertex.push_back(seconds_per_vertex(dt));
+  b.other_ratios.push_back(b.other_per_vertex.back() / b.m3_per_vertex.back());
+  b.time_ratios.push_back(dt.seconds / dm.seconds);
+  b.identical_rounds += same_mesh(dm, dt) ? 1 : 0;
+}
+
+// The --repeat rounds of one benchmark case: Mesh_3 then delmesh, each recorded.
+BenchmarkRounds benchmark_rounds(Context& context, const CompareOptions& o, const Prepared& s, const std::string& name,
+                                 double h, const CgalSettings& settings) {
+  BenchmarkRounds b;
+  for (int round = 1; round <= o.repeat; ++round) {
+    Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings, s.mesh3_seeds);
+    record(context, "benchmark", *s.entry, m3, s.E, round);
+    if (o.skip_delmesh) continue;
+    Run dm = run_delmesh(*s.entry, o.lambda, h, o.base);
+    const MeshReport report = record(context, "benchmark", *s.entry, dm, s.E, round);
+    b.m3_per_vertex.push_back(seconds_per_vertex(m3));
+    b.dm_per_vertex.push_back(seconds_per_vertex(dm));
+    b.ratios.push_back(b.dm_per_vertex.back() / b.m3_per_vertex.back());
+    if (o.repeat > 1)
+      std::cout << "benchmark " << name << " H=" << h << " round " << round << ": ratio " << b.ratios.back()
+                << std::endl;
+    // The same input and seed give the same mesh: a round that differs is reported.
+    if (round > 1 && report.vertices != b.vertices)
+      std::cout << "benchmark " << name << " H=" << h << " round " << round << ": delmesh made " << report.vertices
+                << " vertices, round 1 " << b.vertices << " (not reproducible)" << std::endl;
+    if (o.threads_compare) compare_threads(context, o, s, h, dm, round, b);
+    b.statistics = std::move(dm.statistics);
+    b.vertices = report.vertices;
+  }
+  return b;
+}
+
+// The summary lines of one benchmark case: medians of the rounds, delmesh's seconds per vertex
+// relative to the surface's first case (`first_per_vertex`), and its solver calls per vertex.
+void print_benchmark_summary(const CompareOptions& o, const std::string& name, double h, BenchmarkRounds& b,
+                             std::map<std::string, double>& first_per_vertex) {
+  const double per_vertex = median(b.dm_per_vertex);
+  const auto [first, inserted] = first_per_vertex.emplace(name, per_vertex);
+  std::cout << "benchmark " << name << " H=" << h << ": delmesh " << per_vertex * 1e6
+            << " us/vertex, Mesh_3 " << median(b.m3_per_vertex) * 1e6 << " us/vertex, ratio " << median(b.ratios)
+            << spread(b.ratios) << " (seconds per vertex: medians; target <= 3)";
+  if (!inserted) std::cout << ", delmesh us/vertex relative to the first " << name << " case " << per_vertex / first->second;
+  std::cout << std::endl;
+  if (o.threads_compare)
+    std::cout << "benchmark " << name << " H=" << h << " threads=" << b.other_threads << ": delmesh "
+              << median(b.other_per_vertex) * 1e6 << " us/vertex, ratio to Mesh_3 " << median(b.other_ratios)
+              << spread(b.other_ratios) << "; wall time over the threads=" << b.base_threads
+              << " run's " << median(b.time_ratios) << spread(b.time_ratios) << "; identical meshes in "
+              << b.identical_rounds << " of " << o.repeat << " rounds" << std::endl;
+  if (!b.statistics.is_null() && b.vertices) {
+    const double n = static_cast<double>(b.vertices);
+    std::cout << "  solver calls per vertex:";
+    for (const auto& [primitive, p] : b.statistics["solver"]["per_primitive"].items())
+      std::cout << " " << primitive << " " << p["calls"].get<double>() / n;
+    const auto& cone = b.statistics["solver"]["cone_certificates"];
+    std::cout << "; cone certificates per vertex " << cone["attempts"].get<double>() / n << " ("
+              << cone["proved"].get<double>() / n << " proved)" << std::endl;
+  }
+}
+
+// benchmark: seconds per vertex of delmesh over Mesh_3's per case, and how delmesh's seconds per
+// vertex grow with the mesh (relative to the surface's first case).
+void run_benchmark(Context& context, const CompareOptions& o) {
+  std::map<std::string, double> first_per_vertex;
+  for (const std::string& item : split(o.cases)) {
+    const auto [name, h] = parse_case(item);
+    const Prepared s = prepare(name);
+    const CgalSettings settings{o.cgal_angle, h, h / 10, o.cgal_error_bound};
+    Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, settings);
+    record(context, "benchmark", *s.entry, sm, s.E);
+    BenchmarkRounds b = benchmark_rounds(context, o, s, name, h, settings);
+    if (o.skip_delmesh) continue;
+    print_benchmark_summary(o, name, h, b, first_per_vertex);
+  }
+}
+
+// coarsest: delmesh without a size bound against the coarsest Mesh_3 setting of the ladder that
+// has the right topology.
+void run_coarsest(Context& context, const CompareOptions& o) {
+  for (const std::string& name : split(o.surfaces)) {
+    const Prepared s = prepare(name);
+    std::optional<Run> coarsest_m3;
+    for (double radius : o.ladder) {
+      const CgalSettings settings{o.cgal_angle, radius, radius / 10};
+      Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, settings);
+      record(context, "coarsest", *s.entry, sm, s.E);
+      Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings, s.mesh3_seeds);
+      const MeshReport r = record(context, "coarsest", *s.entry, m3, s.E);
+      if (!coarsest_m3 && r.has_topology(s.entry->genus_per_component)) coarsest_m3 = m3;
+    }
+    if (o.skip_delmesh) continue;
+    Run dm = run_delmesh(*s.entry, o.lambda, std::nullopt, o.base);
+    record(context, "coarsest", *s.entry, dm, s.E);
+    if (coarsest_m3) {
+      std::cout << "coarsest " << name << ": delmesh (no size bound) seconds per vertex / Mesh_3's at ["
+                << coarsest_m3->parameters
+                << "] = " << seconds_per_vertex(dm) / seconds_per_vertex(*coarsest_m3) << std::endl;
+    } else {
+      std::cout << "coarsest " << name << ": no Mesh_3 setting of the ladder had the right topology" << std::endl;
+    }
+  }
+}
+
+// demo: the CGAL meshers at the coarse radii and delmesh without a size bound on the demo surfaces.
+void run_demo(Context& context, const CompareOptions& o) {
+  for (const std::string& name : split(o.demo_surfaces)) {
+    const Prepared s = prepare(name);
+    for (double radius : o.coarse_radii) {
+      const CgalSettings coarse{o.cgal_angle, radius, radius / 10};
+      Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, coarse);
+      record(context, "demo", *s.entry, sm, s.E);
+      Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, coarse, s.mesh3_seeds);
+      record(context, "demo", *s.entry, m3, s.E);
+    }
+    if (!o.skip_delmesh) {
+      Run dm = run_delmesh(*s.entry, o.lambda, std::nullopt, o.base);
+      record(context, "demo", *s.entry, dm, s.E);
+    }
+  }
+}
+
+// The experiments of --experiments, in the order benchmark, coarsest, demo, distance, memory;
+// compare_cgal.csv gets the rows of the first three.
+void run_comparison(const CompareOptions& o, const MemorySettings& memory_settings) {
+  Context context;
+  context.out_dir = o.out_dir;
+  context.write_meshes = !o.no_meshes;
+  CsvWriter csv(fs::path(o.out_dir) / "compare_cgal.csv", "compare_cgal", compare_parameters(o), csv_columns());
+  context.csv = &csv;
+  const auto wanted = split(o.experiments_to_run);
+  auto wants = [&wanted](const std::string& name) {
+    return std::find(wanted.begin(), wanted.end(), name) != wanted.end();
+  };
+  if (wants("benchmark")) run_benchmark(context, o);
+  if (wants("coarsest")) run_coarsest(context, o);
+  if (wants("demo")) run_demo(context, o);
+  if (wants("distance"))
+    run_distance_experiment(context, {split(o.surfaces), positive_numbers("--relative-distances", o.relative_distances),
+                                      o.lambda, o.base, o.cgal_angle, o.cgal_error_bound, o.skip_delmesh});
+  if (wants("memory")) run_memory_experiment(context, split(o.cases), memory_settings);
+  csv.close();
+  std::cout << "wrote " << csv.path().string() << std::endl;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  delmesh::back_heap_with_huge_pages();
+  CLI::App app{"delmesh vs CGAL Surface_mesher and Mesh_3 (seconds-per-vertex benchmark, coarsest-topology "
+               "comparison, the topology demo, and on request the distance comparison: delmesh's certified "
+               "--max-distance against Mesh_3's facet_distance); writes <out-dir>/compare_cgal.csv, and for "
+               "distance <out-dir>/distance.csv and distance.md"};
+  CompareOptions o;
+  add_compare_options(app, o);
   if (const auto code = parse_command_line(app, argc, argv)) return *code;
-
-  const MemorySettings memory_settings{lambda, cgal_angle, cgal_error_bound, base};
-  if (!memory_child_method.empty())
-    return run_guarded([&] { run_memory_child(memory_child_method, cases, memory_settings); });
-  return run_guarded([&] {
-    Context context;
-    context.out_dir = out_dir;
-    context.write_meshes = !no_meshes;
-    CsvWriter csv(fs::path(out_dir) / "compare_cgal.csv", "compare_cgal",
-                  {{"lambda", field(lambda)},
-                   {"benchmark_cases", cases},
-                   {"threads", field(base.threads)},
-                   {"threads_compare", threads_compare ? field(*threads_compare) : std::string("none")},
-                   {"repeat", field(repeat)},
-                   {"cgal_angle", field(cgal_angle)},
-                   {"cgal_error_bound", field(cgal_error_bound)},
-                   {"demo_radii", field_list(coarse_radii)},
-                   {"ladder_radii", field_list(ladder)},
-                   {"relative_distances", relative_distances},
-                   {"seed", field(static_cast<long long>(base.seed))},
-                   {"cgal_seed", field(static_cast<long long>(cgal_seed))},
-                   {"time_limit", field(base.time_limit_seconds)},
-                   {"cgal", CGAL_VERSION_STR}},
-                  csv_columns());
-    context.csv = &csv;
-    const auto wanted = split(experiments_to_run);
-    auto wants = [&wanted](const std::string& name) {
-      return std::find(wanted.begin(), wanted.end(), name) != wanted.end();
-    };
-
-    if (wants("benchmark")) {
-      // Seconds per vertex of delmesh over Mesh_3's per case, and how delmesh's seconds per vertex
-      // grow with the mesh (relative to the surface's first case).
-      std::map<std::string, double> first_per_vertex;
-      for (const std::string& item : split(cases)) {
-        const auto [name, h] = parse_case(item);
-        const Prepared s = prepare(name);
-        const CgalSettings settings{cgal_angle, h, h / 10, cgal_error_bound};
-        Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, settings);
-        record(context, "benchmark", *s.entry, sm, s.E);
-        // Per round: Mesh_3's and delmesh's seconds per vertex, and their ratio.
-        std::vector<double> m3_per_vertex, dm_per_vertex, ratios;
-        // With --threads-compare: the other thread count's ratios to Mesh_3, its wall time over the
-        // --threads run's, and the rounds whose two meshes were identical.
-        std::vector<double> other_per_vertex, other_ratios, time_ratios;
-        int identical_rounds = 0;
-        std::string base_threads, other_threads;
-        nlohmann::json statistics;
-        std::size_t vertices = 0;
-        for (int round = 1; round <= repeat; ++round) {
-          Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings, s.mesh3_seeds);
-          record(context, "benchmark", *s.entry, m3, s.E, round);
-          if (skip_delmesh) continue;
-          Run dm = run_delmesh(*s.entry, lambda, h, base);
-          const MeshReport report = record(context, "benchmark", *s.entry, dm, s.E, round);
-          m3_per_vertex.push_back(seconds_per_vertex(m3));
-          dm_per_vertex.push_back(seconds_per_vertex(dm));
-          ratios.push_back(dm_per_vertex.back() / m3_per_vertex.back());
-          if (repeat > 1)
-            std::cout << "benchmark " << name << " H=" << h << " round " << round << ": ratio " << ratios.back()
-                      << std::endl;
-          // The same input and seed give the same mesh: a round that differs is reported.
-          if (round > 1 && report.vertices != vertices)
-            std::cout << "benchmark " << name << " H=" << h << " round " << round << ": delmesh made " << report.vertices
-                      << " vertices, round 1 " << vertices << " (not reproducible)" << std::endl;
-          if (threads_compare) {
-            DelMeshOptions other = base;
-            other.threads = *threads_compare;
-            Run dt = run_delmesh(*s.entry, lambda, h, other);
-            record(context, "benchmark", *s.entry, dt, s.E, round);
-            base_threads = threads_used(dm, base.threads);
-            other_threads = threads_used(dt, other.threads);
-            other_per_vertex.push_back(seconds_per_vertex(dt));
-            other_ratios.push_back(other_per_vertex.back() / m3_per_vertex.back());
-            time_ratios.push_back(dt.seconds / dm.seconds);
-            identical_rounds += same_mesh(dm, dt) ? 1 : 0;
-          }
-          statistics = std::move(dm.statistics);
-          vertices = report.vertices;
-        }
-        if (skip_delmesh) continue;
-        const double per_vertex = median(dm_per_vertex);
-        const auto [first, inserted] = first_per_vertex.emplace(name, per_vertex);
-        std::cout << "benchmark " << name << " H=" << h << ": delmesh " << per_vertex * 1e6
-                  << " us/vertex, Mesh_3 " << median(m3_per_vertex) * 1e6 << " us/vertex, ratio " << median(ratios)
-                  << spread(ratios) << " (seconds per vertex: medians; target <= 3)";
-        if (!inserted) std::cout << ", delmesh us/vertex relative to the first " << name << " case " << per_vertex / first->second;
-        std::cout << std::endl;
-        if (threads_compare)
-          std::cout << "benchmark " << name << " H=" << h << " threads=" << other_threads << ": delmesh "
-                    << median(other_per_vertex) * 1e6 << " us/vertex, ratio to Mesh_3 " << median(other_ratios)
-                    << spread(other_ratios) << "; wall time over the threads=" << base_threads
-                    << " run's " << median(time_ratios) << spread(time_ratios) << "; identical meshes in "
-                    << identical_rounds << " of " << repeat << " rounds" << std::endl;
-        if (!statistics.is_null() && vertices) {
-          const double n = static_cast<double>(vertices);
-          std::cout << "  solver calls per vertex:";
-          for (const auto& [primitive, p] : statistics["solver"]["per_primitive"].items())
-            std::cout << " " << primitive << " " << p["calls"].get<double>() / n;
-          const auto& cone = statistics["solver"]["cone_certificates"];
-          std::cout << "; cone certificates per vertex " << cone["attempts"].get<double>() / n << " ("
-                    << cone["proved"].get<double>() / n << " proved)" << std::endl;
-        }
-      }
-    }
-    if (wants("coarsest")) {
-      for (const std::string& name : split(surfaces)) {
-        const Prepared s = prepare(name);
-        std::optional<Run> coarsest_m3;
-        for (double radius : ladder) {
-          const CgalSettings settings{cgal_angle, radius, radius / 10};
-          Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, settings);
-          record(context, "coarsest", *s.entry, sm, s.E);
-          Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, settings, s.mesh3_seeds);
-          const MeshReport r = record(context, "coarsest", *s.entry, m3, s.E);
-          if (!coarsest_m3 && r.has_topology(s.entry->genus_per_component)) coarsest_m3 = m3;
-        }
-        if (!skip_delmesh) {
-          Run dm = run_delmesh(*s.entry, lambda, std::nullopt, base);
-          record(context, "coarsest", *s.entry, dm, s.E);
-          if (coarsest_m3) {
-            std::cout << "coarsest " << name << ": delmesh (no size bound) seconds per vertex / Mesh_3's at ["
-                      << coarsest_m3->parameters
-                      << "] = " << seconds_per_vertex(dm) / seconds_per_vertex(*coarsest_m3) << std::endl;
-          } else {
-            std::cout << "coarsest " << name << ": no Mesh_3 setting of the ladder had the right topology" << std::endl;
-          }
-        }
-      }
-    }
-    if (wants("demo")) {
-      for (const std::string& name : split(demo_surfaces)) {
-        const Prepared s = prepare(name);
-        for (double radius : coarse_radii) {
-          const CgalSettings coarse{cgal_angle, radius, radius / 10};
-          Run sm = run_surface_mesher(s.E, s.centre, s.squared_radius, coarse);
-          record(context, "demo", *s.entry, sm, s.E);
-          Run m3 = run_mesh_3(s.E, s.centre, s.squared_radius, coarse, s.mesh3_seeds);
-          record(context, "demo", *s.entry, m3, s.E);
-        }
-        if (!skip_delmesh) {
-          Run dm = run_delmesh(*s.entry, lambda, std::nullopt, base);
-          record(context, "demo", *s.entry, dm, s.E);
-        }
-      }
-    }
-    if (wants("distance"))
-      run_distance_experiment(context, {split(surfaces), positive_numbers("--relative-distances", relative_distances),
-                                        lambda, base, cgal_angle, cgal_error_bound, skip_delmesh});
-    if (wants("memory")) run_memory_experiment(context, split(cases), memory_settings);
-    csv.close();
-    std::cout << "wrote " << csv.path().string() << std::endl;
-  });
+  const MemorySettings memory_settings{o.lambda, o.cgal_angle, o.cgal_error_bound, o.base};
+  if (!o.memory_child_method.empty())
+    return run_guarded([&] { run_memory_child(o.memory_child_method, o.cases, memory_settings); });
+  return run_guarded([&] { run_comparison(o, memory_settings); });
 }

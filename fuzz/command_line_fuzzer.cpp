@@ -3,8 +3,8 @@
 //! per line (at most 64), after the program name.  The app is configured as in apps/main.cpp (keep
 //! the two in step) and parses the arguments as main() does.  Then, with a scratch directory that
 //! holds a small octahedron as m.off, m.ply and m.obj as the working directory:
-//!   - `surfaces` and `check` run (check only on a file of the scratch directory: no argument may
-//!     contain '/');
+//!   - `surfaces`, `check` and `report` run (check and report only on files of the scratch
+//!     directory: no argument may contain '/'; report writes its page there);
 //!   - `mesh` and `solve` are not run (they may mesh for minutes and write files), but their
 //!     --surface / --expr / --box are resolved as the commands do (SurfaceOptions::resolve).
 //! Parsing may only fail with a CLI::ParseError or InvalidInput and a command only with
@@ -119,6 +119,15 @@ void resolve_surface(CLI::App& sub) {
   expect_valid_or_invalid_input("SurfaceOptions::resolve", [&] { (void)surface.resolve(); });
 }
 
+//! The octahedron as m.off, m.obj and m.ply in the scratch directory (again after a `report`,
+//! whose --out may have named one of them).
+void write_scratch_meshes() {
+  for (const auto& [name, text] : {std::pair{"m.off", octahedron_off}, std::pair{"m.obj", octahedron_obj},
+                                   std::pair{"m.ply", octahedron_ply}}) {
+    std::ofstream(scratch_directory + "/" + name) << text;
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
@@ -132,10 +141,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
   }
   scratch_directory = pattern;
   std::atexit(remove_scratch_directory);
-  for (const auto& [name, text] : {std::pair{"m.off", octahedron_off}, std::pair{"m.obj", octahedron_obj},
-                                   std::pair{"m.ply", octahedron_ply}}) {
-    std::ofstream(scratch_directory + "/" + name) << text;
-  }
+  write_scratch_meshes();
   return 0;
 }
 
@@ -165,6 +171,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   commands.push_back(delmesh::app::add_solve_command(app));
   commands.push_back(delmesh::app::add_mesh_command(app));
   commands.push_back(delmesh::app::add_check_command(app));
+  commands.push_back(delmesh::app::add_report_command(app));
 
   const bool parsed = expect_valid_or_invalid_input("CLI::App::parse", [&] {
     try {
@@ -180,9 +187,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!command.subcommand->parsed()) continue;
     const std::string name = command.subcommand->get_name();
     Silence silence;
-    if (name == "surfaces" || (name == "check" && !has_slash && !has_certify)) {
+    if (name == "surfaces" || (name == "check" && !has_slash && !has_certify) || (name == "report" && !has_slash)) {
       InScratchDirectory scratch;
       expect_valid_or_invalid_input(name.c_str(), [&] { (void)command.run(); });
+      if (name == "report") write_scratch_meshes();
     } else if (name == "mesh" || name == "solve") {
       resolve_surface(*command.subcommand);
     }

@@ -539,6 +539,7 @@ class ConeProver {
   std::vector<Box> stack_;
 };
 
+// prove_gradient_cone() in dimension N, in the rounding mode interval arithmetic needs.
 template <std::size_t N>
 GradientConeResult prove_cone_in(const CompiledSystem& E, const AffineChart& chart, const Domain& domain,
                                  const std::array<double, 3>& w, std::size_t box_budget,

@@ -734,6 +734,7 @@ struct PlyLayout {
   int x = -1, y = -1, z = -1, indices = -1;
 };
 
+// The layout of the elements; throws when the vertex or face element lacks its properties.
 PlyLayout ply_layout(const std::string& path, const std::vector<PlyElement>& elements) {
   PlyLayout l;
   for (const PlyElement& e : elements) {

@@ -408,6 +408,8 @@ def run_json(command, timeout):
         done = subprocess.run(command, capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
         return None, "timeout", time.monotonic() - start, ""
+    except OSError as e:  # e.g. the binary is being relinked by a build
+        return None, f"error: {e.strerror}", time.monotonic() - start, str(e)
     seconds = time.monotonic() - start
     try:
         return json.loads(done.stdout), done.returncode, seconds, done.stderr

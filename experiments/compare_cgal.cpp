@@ -449,7 +449,7 @@ struct Prepared {
   std::vector<SeededMeshDomain::Seed> mesh3_seeds;  //!< Mesh_3's initial points; empty: CGAL's
 };
 
-//! --mesh3-seed-components: Mesh_3 starts from component_seeds() instead of its own rays.
+//! --mesh3-seed-components: Mesh_3 starts from component_seeds() as well as from its own rays.
 bool mesh3_seed_components = false;
 
 Prepared prepare(const std::string& name) {

@@ -17,6 +17,7 @@
 #include "symbolic/scalar_types.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 namespace delmesh {
 
@@ -103,8 +104,21 @@ CellEnds cell_ends(const Delaunay& del, const VoronoiEdge& e, const std::array<V
   const VertexId apex = apexes[0] >= 0 ? apexes[0] : apexes[1];
   const Vec3 v = vertex(apex);
   const double s = dot(v - e.point, e.direction);
-  // The ray leaves the hull on the side of t away from the finite cell's apex.
-  if (dot(del.point(apex) - del.point(t[0]), e.direction) > 0) {
+  // The ray leaves the hull on the side of t away from the finite cell's apex.  The apex's side is
+  // the exact orientation of (t0, t1, t2, apex) against the normal (t1 − t0) × (t2 − t0), of which
+  // e.direction is the rounded unit vector or its opposite (a sign the triangle's area decides):
+  // a cell flat to rounding (samples on a planar part of Σ) puts the apex within rounding of
+  // t's plane, where the sign of a dot product in doubles is not reliable.
+  const auto exact_point = [&](VertexId v) {
+    const auto& x = del.point(v);
+    return CGAL::Epick::Point_3(x[0], x[1], x[2]);
+  };
+  const CGAL::Orientation side = CGAL::orientation(exact_point(t[0]), exact_point(t[1]), exact_point(t[2]), exact_point(apex));
+  const bool apex_along_direction =
+      side == CGAL::COPLANAR
+          ? dot(del.point(apex) - del.point(t[0]), e.direction) > 0
+          : (side == CGAL::POSITIVE) == (dot(cross(del.point(t[1]) - del.point(t[0]), del.point(t[2]) - del.point(t[0])), e.direction) > 0);
+  if (apex_along_direction) {
     ends.hi = s;
     ends.hi_vertex = v;
   } else {

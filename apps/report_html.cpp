@@ -635,70 +635,87 @@ void add_if(std::vector<std::pair<std::string, std::string>>& rows, const Json& 
   }
 }
 
-}  // namespace
+//! Per triangle, in the soup's order: the measures the page shows and colours by, and the colour
+//! ranges drawn from them.  Angles and ratios are measured on the coordinates as given, areas on
+//! the normalised ones (relative to the mean triangle area).
+struct PageMeasures {
+  std::vector<double> min_angles, ratios, areas, angles;
+  std::size_t degenerate = 0;                  //!< triangles whose ratio is not finite
+  double largest_ratio = 1 / std::sqrt(3.0);   //!< over the finite ratios
+  double ratio_hi = 1;                         //!< the upper end of the ratio colour range
+  ColorRange angle_range{}, ratio_range{}, area_range{};
+};
 
-void write_report_page(std::ostream& out, const ReportPage& page) {
-  const TriangleSoup& soup = *page.soup;
+//! x centred on the box and divided by its half-diagonal.
+Vec3 normalised(const Point3& x, const Bounds& box) {
+  return Vec3{(x.x() - box.centre[0]) / box.half_diagonal, (x.y() - box.centre[1]) / box.half_diagonal,
+              (x.z() - box.centre[2]) / box.half_diagonal};
+}
+
+PageMeasures measure_triangles(const TriangleSoup& soup, const Bounds& box) {
   const std::size_t nt = soup.triangles.size();
-  const Bounds box = bounds_of(soup);
-
-  // The measures: angles and ratios on the coordinates as given, areas on the normalised ones.
-  std::vector<double> min_angles(nt), ratios(nt), areas(nt), angles;
-  angles.reserve(3 * nt);
+  PageMeasures m;
+  m.min_angles.resize(nt);
+  m.ratios.resize(nt);
+  m.areas.resize(nt);
+  m.angles.reserve(3 * nt);
   const auto at = [](const Point3& p) { return Vec3{p.x(), p.y(), p.z()}; };
-  const auto normalised = [&](const Point3& p) {
-    return Vec3{(p.x() - box.centre[0]) / box.half_diagonal, (p.y() - box.centre[1]) / box.half_diagonal,
-                (p.z() - box.centre[2]) / box.half_diagonal};
-  };
   double area_sum = 0;
-  std::size_t degenerate = 0;
   for (std::size_t t = 0; t < nt; ++t) {
     const auto& tri = soup.triangles[t];
-    const TriangleMeasures m = triangle_measures(at(soup.points[tri[0]]), at(soup.points[tri[1]]), at(soup.points[tri[2]]));
-    min_angles[t] = m.min_angle_deg;
-    ratios[t] = m.radius_edge_ratio;
-    degenerate += std::isfinite(m.radius_edge_ratio) ? 0 : 1;
-    angles.insert(angles.end(), m.angles_deg.begin(), m.angles_deg.end());
-    areas[t] = triangle_measures(normalised(soup.points[tri[0]]), normalised(soup.points[tri[1]]),
-                                 normalised(soup.points[tri[2]]))
-                   .area;
-    area_sum += areas[t];
+    const TriangleMeasures measures = triangle_measures(at(soup.points[tri[0]]), at(soup.points[tri[1]]), at(soup.points[tri[2]]));
+    m.min_angles[t] = measures.min_angle_deg;
+    m.ratios[t] = measures.radius_edge_ratio;
+    m.degenerate += std::isfinite(measures.radius_edge_ratio) ? 0 : 1;
+    m.angles.insert(m.angles.end(), measures.angles_deg.begin(), measures.angles_deg.end());
+    m.areas[t] = triangle_measures(normalised(soup.points[tri[0]], box), normalised(soup.points[tri[1]], box),
+                                   normalised(soup.points[tri[2]], box))
+                     .area;
+    area_sum += m.areas[t];
   }
   const double mean_area = nt > 0 && area_sum > 0 ? area_sum / static_cast<double>(nt) : 1;
-  for (double& a : areas) a /= mean_area;
+  for (double& a : m.areas) a /= mean_area;
 
-  double smallest_angle = 60, largest_ratio = 1 / std::sqrt(3.0), largest_area = 1, smallest_area = 0;
+  double smallest_angle = 60, largest_area = 1, smallest_area = 0;
   for (std::size_t t = 0; t < nt; ++t) {
-    smallest_angle = std::min(smallest_angle, min_angles[t]);
-    if (std::isfinite(ratios[t])) largest_ratio = std::max(largest_ratio, ratios[t]);
-    largest_area = std::max(largest_area, areas[t]);
+    smallest_angle = std::min(smallest_angle, m.min_angles[t]);
+    if (std::isfinite(m.ratios[t])) m.largest_ratio = std::max(m.largest_ratio, m.ratios[t]);
+    largest_area = std::max(largest_area, m.areas[t]);
   }
-  if (nt > 0) smallest_area = *std::min_element(areas.begin(), areas.end());
+  if (nt > 0) smallest_area = *std::min_element(m.areas.begin(), m.areas.end());
 
   const double angle_lo = std::min(50.0, 5 * std::floor(smallest_angle / 5));
-  const double ratio_hi = std::clamp(std::ceil(largest_ratio * 10) / 10, 1.0, 3.0);
-  const ColorRange angle_range{"min-angle", "Minimum angle (degrees)", angle_lo, 60, false};
-  const ColorRange ratio_range{"radius-edge", "Radius-edge ratio", 1 / std::sqrt(3.0), ratio_hi, true};
-  const ColorRange area_range{"area", "Area ÷ mean triangle area", std::floor(smallest_area * 10) / 10,
-                              std::max(std::ceil(largest_area * 10) / 10, std::floor(smallest_area * 10) / 10 + 0.1),
-                              false};
+  m.ratio_hi = std::clamp(std::ceil(m.largest_ratio * 10) / 10, 1.0, 3.0);
+  m.angle_range = {"min-angle", "Minimum angle (degrees)", angle_lo, 60, false};
+  m.ratio_range = {"radius-edge", "Radius-edge ratio", 1 / std::sqrt(3.0), m.ratio_hi, true};
+  m.area_range = {"area", "Area ÷ mean triangle area", std::floor(smallest_area * 10) / 10,
+                  std::max(std::ceil(largest_area * 10) / 10, std::floor(smallest_area * 10) / 10 + 0.1), false};
+  return m;
+}
 
-  // Statistics, if any.
-  const Json* stats = page.statistics ? &*page.statistics : nullptr;
-  const auto stat_number = [&](const std::string& pointer) -> std::optional<double> {
-    if (!stats) return std::nullopt;
+//! What the page reads from the run's statistics besides the tables: Theorem 6.1's bounds and the status.
+struct StatisticsBounds {
+  std::optional<double> angle, ratio, roughness;
+  std::string status;
+};
+
+StatisticsBounds bounds_in(const Json* stats) {
+  StatisticsBounds b;
+  if (!stats) return b;
+  const auto number_at = [&](const std::string& pointer) -> std::optional<double> {
     const Json* v = find(*stats, pointer);
     if (v && v->is_number()) return v->get<double>();
     return std::nullopt;
   };
-  const std::optional<double> angle_bound = stat_number("/bounds/min_angle_deg");
-  const std::optional<double> ratio_bound = stat_number("/bounds/max_radius_edge_ratio");
-  const std::optional<double> roughness_bound = stat_number("/bounds/max_roughness_rad");
-  std::string status;
-  if (stats)
-    if (const Json* s = find(*stats, "/status"); s && s->is_string()) status = s->get<std::string>();
+  b.angle = number_at("/bounds/min_angle_deg");
+  b.ratio = number_at("/bounds/max_radius_edge_ratio");
+  b.roughness = number_at("/bounds/max_roughness_rad");
+  if (const Json* s = find(*stats, "/status"); s && s->is_string()) b.status = s->get<std::string>();
+  return b;
+}
 
-  // --- head ---
+//! The document's head and the header line with the checked facts.
+void write_head(std::ostream& out, const ReportPage& page, std::size_t nt, const std::string& status) {
   out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
          "<meta name=\"generator\" content=\""
@@ -716,7 +733,11 @@ void write_report_page(std::ostream& out, const ReportPage& page) {
     out << "</div>\n";
   }
 
-  // --- viewer and panel ---
+}
+
+//! The 3-D view and the panel beside it: colour choice, legend, the facts at a glance, display toggles.
+void write_panel(std::ostream& out, const ReportPage& page, const Json* stats, const StatisticsBounds& bounds,
+                 std::size_t nt) {
   out << "<section class=\"viewer\">\n<div id=\"view\"><div id=\"view-status\">Loading the 3-D view…</div>"
          "<div id=\"view-hint\">drag: rotate · wheel: zoom · right-drag or shift-drag: pan · double-click: reset · "
          "click: pick a triangle</div></div>\n"
@@ -733,11 +754,11 @@ void write_report_page(std::ostream& out, const ReportPage& page) {
       return bound ? " " + badge(pass ? "pass" : "fail") : std::string();
     };
     glance.emplace_back("min angle", number(c.min_angle_deg, 4) + "°" +
-                                         verdict(angle_bound, nt > 0 && angle_bound && c.min_angle_deg >= *angle_bound));
+                                         verdict(bounds.angle, nt > 0 && bounds.angle && c.min_angle_deg >= *bounds.angle));
     glance.emplace_back("max radius-edge", number(c.max_radius_edge_ratio, 4) +
-                                               verdict(ratio_bound, nt > 0 && ratio_bound && c.max_radius_edge_ratio <= *ratio_bound));
+                                               verdict(bounds.ratio, nt > 0 && bounds.ratio && c.max_radius_edge_ratio <= *bounds.ratio));
     glance.emplace_back("max roughness", number(c.max_roughness_rad, 3) + " rad" +
-                                             verdict(roughness_bound, nt > 0 && roughness_bound && c.max_roughness_rad <= *roughness_bound));
+                                             verdict(bounds.roughness, nt > 0 && bounds.roughness && c.max_roughness_rad <= *bounds.roughness));
     glance.emplace_back("topology", (c.closed && c.manifold && c.orientable ? "closed 2-manifold" : std::string("not a closed 2-manifold")) +
                                         ", genus " + escape(text_of(c.genus_per_component)));
     if (stats)
@@ -758,46 +779,54 @@ void write_report_page(std::ostream& out, const ReportPage& page) {
          "<div><h2>Picked triangle</h2><div id=\"pick\" class=\"muted\">Click a triangle to see its measures.</div></div>\n"
          "</aside>\n</section>\n";
 
-  // --- histograms ---
+}
+
+//! The cards with the histograms of the angles and of the radius-edge ratios; they open the section
+//! of cards that write_report_page() closes.
+void write_histograms(std::ostream& out, const ReportPage& page, const PageMeasures& m, const StatisticsBounds& bounds) {
+  const std::size_t nt = m.ratios.size();
   out << "<section class=\"cards\">\n<div class=\"card\"><h2>Angles</h2>\n";
   {
     double largest_angle = 0;
-    for (const double a : angles) largest_angle = std::max(largest_angle, a);
+    for (const double a : m.angles) largest_angle = std::max(largest_angle, a);
     const double hi = std::clamp(30 * std::ceil(largest_angle / 30), 120.0, 180.0);
     const auto bins = static_cast<std::size_t>(hi / 2);
-    const Histogram all = histogram(angles, 0, hi, bins);
-    const Histogram smallest = histogram(min_angles, 0, hi, bins);
+    const Histogram all = histogram(m.angles, 0, hi, bins);
+    const Histogram smallest = histogram(m.min_angles, 0, hi, bins);
     std::vector<Marker> markers;
     if (nt > 0) markers.push_back({page.check.min_angle_deg, "min " + number(page.check.min_angle_deg, 4) + "°", false, false});
-    if (angle_bound) markers.push_back({*angle_bound, "bound " + number(*angle_bound, 4) + "°", true, true});
-    write_histogram(out, smallest, angle_range, &all, markers, 30, "angle (degrees)", 3);
+    if (bounds.angle) markers.push_back({*bounds.angle, "bound " + number(*bounds.angle, 4) + "°", true, true});
+    write_histogram(out, smallest, m.angle_range, &all, markers, 30, "angle (degrees)", 3);
     out << "<div class=\"caption\">Bars: the smallest angle of each triangle, coloured as in the view. Line: all "
         << 3 * nt << " angles. Bins of 2°.";
-    if (angle_bound) out << " Dashed: Theorem 6.1's lower bound for λ.";
+    if (bounds.angle) out << " Dashed: Theorem 6.1's lower bound for λ.";
     out << "</div>\n";
   }
   out << "</div>\n<div class=\"card\"><h2>Radius-edge ratios</h2>\n";
   {
-    const double hi = std::max(ratio_hi, ratio_bound ? std::ceil(*ratio_bound * 10) / 10 : 0.0);
-    const Histogram h = histogram(ratios, 0.5, hi, 60);
+    const double hi = std::max(m.ratio_hi, bounds.ratio ? std::ceil(*bounds.ratio * 10) / 10 : 0.0);
+    const Histogram h = histogram(m.ratios, 0.5, hi, 60);
     std::vector<Marker> markers;
     markers.push_back({1 / std::sqrt(3.0), "equilateral 1/√3", true, false});
     if (nt > 0 && std::isfinite(page.check.max_radius_edge_ratio))
       markers.push_back({page.check.max_radius_edge_ratio, "max " + number(page.check.max_radius_edge_ratio, 4), false, true});
-    if (ratio_bound) markers.push_back({*ratio_bound, "bound " + number(*ratio_bound, 4), true, false});
-    write_histogram(out, h, ratio_range, nullptr, markers, hi - 0.5 > 1.2 ? 0.5 : 0.1, "circumradius / shortest edge", 3);
+    if (bounds.ratio) markers.push_back({*bounds.ratio, "bound " + number(*bounds.ratio, 4), true, false});
+    write_histogram(out, h, m.ratio_range, nullptr, markers, hi - 0.5 > 1.2 ? 0.5 : 0.1, "circumradius / shortest edge", 3);
     out << "<div class=\"caption\">One count per triangle, coloured as in the view; " << h.counts.size()
         << " bins from 0.5 to " << number(hi, 3) << ".";
-    if (h.above > degenerate)
-      out << " " << h.above - degenerate << " triangles above " << number(hi, 3) << " (the largest ratio is "
-          << number(largest_ratio, 4) << ").";
-    if (degenerate > 0) out << " " << degenerate << " degenerate (ratio ∞).";
-    if (ratio_bound) out << " Dashed at right: the quality bound 1 + λ.";
+    if (h.above > m.degenerate)
+      out << " " << h.above - m.degenerate << " triangles above " << number(hi, 3) << " (the largest ratio is "
+          << number(m.largest_ratio, 4) << ").";
+    if (m.degenerate > 0) out << " " << m.degenerate << " degenerate (ratio ∞).";
+    if (bounds.ratio) out << " Dashed at right: the quality bound 1 + λ.";
     out << "</div>\n";
   }
   out << "</div>\n";
 
-  // --- the checker's report ---
+}
+
+//! The card of the independent checker's report on the file.
+void write_mesh_card(std::ostream& out, const ReportPage& page, const Bounds& box) {
   const MeshReport& c = page.check;
   std::vector<std::pair<std::string, std::string>> rows{
       {"file", "<span class=\"eq\">" + escape(page.mesh_name) + "</span>"},
@@ -821,126 +850,131 @@ void write_report_page(std::ostream& out, const ReportPage& page) {
   write_table(out, rows);
   out << "</div>\n";
 
-  if (stats) {
+}
+
+//! The card of the run's settings and results, with Theorem 6.1's bounds checked on the file.
+void write_run_card(std::ostream& out, const ReportPage& page, const Json& stats, const StatisticsBounds& bounds) {
+  const MeshReport& c = page.check;
+  const std::size_t nt = page.soup->triangles.size();
+  std::vector<std::pair<std::string, std::string>> rows;
+  add_if(rows, stats, "status", "/status");
+  add_if(rows, stats, "status of the run", "/run_status");
+  add_if(rows, stats, "surface", "/surface/name");
+  if (const Json* e = find(stats, "/surface/equation"); e && e->is_string())
+    rows.emplace_back("equation", "<span class=\"eq\">" + escape(e->get<std::string>()) + " = 0</span>");
+  add_if(rows, stats, "box", "/surface/box");
+  add_if(rows, stats, "input mesh", "/input_mesh/file");
+  add_if(rows, stats, "λ", "/lambda");
+  add_if(rows, stats, "phase", "/phase");
+  add_if(rows, stats, "size bound", "/size_bound");
+  add_if(rows, stats, "seed", "/seed");
+  add_if(rows, stats, "vertices", "/vertices");
+  add_if(rows, stats, "triangles", "/triangles");
+  add_if(rows, stats, "genus per component", "/genus_per_component");
+  add_if(rows, stats, "Theorem 6.1 applies", "/theorem_applies");
+  add_if(rows, stats, "solver certified", "/solver_certified");
+  add_if(rows, stats, "unsettled findings", "/unsettled/count");
+  add_if(rows, stats, "seconds", "/seconds");
+  add_if(rows, stats, "threads", "/threads");
+  out << "<div class=\"card\"><h2>Run (" << escape(page.statistics_name) << ")</h2>\n";
+  write_table(out, rows);
+  if (bounds.angle || bounds.ratio || bounds.roughness) {
     rows.clear();
-    add_if(rows, *stats, "status", "/status");
-    add_if(rows, *stats, "status of the run", "/run_status");
-    add_if(rows, *stats, "surface", "/surface/name");
-    if (const Json* e = find(*stats, "/surface/equation"); e && e->is_string())
-      rows.emplace_back("equation", "<span class=\"eq\">" + escape(e->get<std::string>()) + " = 0</span>");
-    add_if(rows, *stats, "box", "/surface/box");
-    add_if(rows, *stats, "input mesh", "/input_mesh/file");
-    add_if(rows, *stats, "λ", "/lambda");
-    add_if(rows, *stats, "phase", "/phase");
-    add_if(rows, *stats, "size bound", "/size_bound");
-    add_if(rows, *stats, "seed", "/seed");
-    add_if(rows, *stats, "vertices", "/vertices");
-    add_if(rows, *stats, "triangles", "/triangles");
-    add_if(rows, *stats, "genus per component", "/genus_per_component");
-    add_if(rows, *stats, "Theorem 6.1 applies", "/theorem_applies");
-    add_if(rows, *stats, "solver certified", "/solver_certified");
-    add_if(rows, *stats, "unsettled findings", "/unsettled/count");
-    add_if(rows, *stats, "seconds", "/seconds");
-    add_if(rows, *stats, "threads", "/threads");
-    out << "<div class=\"card\"><h2>Run (" << escape(page.statistics_name) << ")</h2>\n";
+    const auto bound_row = [&](const std::string& label, std::optional<double> bound, double value, bool at_least,
+                               const std::string& unit) {
+      if (!bound) return;
+      const bool pass = nt > 0 && (at_least ? value >= *bound : value <= *bound);
+      rows.emplace_back(label + (at_least ? " ≥ " : " ≤ ") + number(*bound, 6) + unit,
+                        number(value, 6) + unit + " " + badge(pass ? "pass" : "fail"));
+    };
+    bound_row("min angle", bounds.angle, c.min_angle_deg, true, "°");
+    bound_row("radius-edge ratio", bounds.ratio, c.max_radius_edge_ratio, false, "");
+    bound_row("roughness", bounds.roughness, c.max_roughness_rad, false, " rad");
+    out << "<h2 style=\"margin-top:14px\">Theorem 6.1's bounds, on this file</h2>\n";
     write_table(out, rows);
-    if (angle_bound || ratio_bound || roughness_bound) {
-      rows.clear();
-      const auto bound_row = [&](const std::string& label, std::optional<double> bound, double value, bool at_least,
-                                 const std::string& unit) {
-        if (!bound) return;
-        const bool pass = nt > 0 && (at_least ? value >= *bound : value <= *bound);
-        rows.emplace_back(label + (at_least ? " ≥ " : " ≤ ") + number(*bound, 6) + unit,
-                          number(value, 6) + unit + " " + badge(pass ? "pass" : "fail"));
-      };
-      bound_row("min angle", angle_bound, c.min_angle_deg, true, "°");
-      bound_row("radius-edge ratio", ratio_bound, c.max_radius_edge_ratio, false, "");
-      bound_row("roughness", roughness_bound, c.max_roughness_rad, false, " rad");
-      out << "<h2 style=\"margin-top:14px\">Theorem 6.1's bounds, on this file</h2>\n";
+  }
+  out << "</div>\n";
+}
+
+//! The card of the certificates: the distance (gradient flow) and, with --certify, the topology.
+void write_certificate_card(std::ostream& out, const Json& stats) {
+  std::vector<std::pair<std::string, std::string>> rows;
+  if (const Json* d = find(stats, "/distance"); d && d->is_object()) {
+    add_if(rows, *d, "status", "/status");
+    add_if(rows, *d, "Hausdorff distance ≤", "/hausdorff_upper_bound");
+    if (const Json* r = find(*d, "/hausdorff_relative"); r && r->is_number())
+      rows.emplace_back("… relative to the box diagonal", number(100 * r->get<double>(), 3) + " %");
+    add_if(rows, *d, "|E| on the mesh ≤ ε", "/epsilon");
+    add_if(rows, *d, "tube |E| ≤", "/tube");
+    add_if(rows, *d, "|∇E| on the tube ≥", "/min_gradient");
+    add_if(rows, *d, "critical points", "/critical_points");
+    add_if(rows, *d, "mesh components", "/mesh_components");
+    add_if(rows, *d, "triangle pieces", "/triangle_pieces");
+    add_if(rows, *d, "boxes", "/boxes");
+    add_if(rows, *d, "seconds", "/seconds");
+    if (const Json* r = find(*d, "/reason"); r && r->is_string() && !r->get<std::string>().empty())
+      add_if(rows, *d, "reason", "/reason");
+    add_if(rows, *d, "at", "/location");
+    add_if(rows, *d, "max distance asked", "/max_distance");
+  }
+  std::vector<std::pair<std::string, std::string>> topology;
+  if (const Json* t = find(stats, "/certificate"); t && t->is_object()) {
+    if (const Json* v = find(*t, "/topology"); v && v->is_object()) {
+      add_if(topology, *v, "topology", "/verdict");
+      add_if(topology, *v, "by", "/method");
+      add_if(topology, *v, "why", "/reason");
+    }
+    add_if(topology, *t, "restricted-Delaunay status", "/certificate/status");
+    add_if(topology, *t, "Tri S|Σ = mesh", "/certificate/restricted_matches_mesh");
+    add_if(topology, *t, "gradient-flow status", "/gradient_flow/status");
+  }
+  if (!rows.empty() || !topology.empty()) {
+    out << "<div class=\"card\"><h2>Certificate</h2>\n";
+    if (!rows.empty()) {
+      out << "<div class=\"caption\" style=\"margin:0 0 6px\">Distance to the surface, proved by the gradient flow "
+             "(the two-sided Hausdorff distance is at most the bound when the status is certified).</div>\n";
       write_table(out, rows);
     }
+    if (!topology.empty()) {
+      out << "<h2 style=\"margin-top:14px\">Topology (--certify)</h2>\n";
+      write_table(out, topology);
+    }
     out << "</div>\n";
+  }
 
-    // The certificates: the distance (gradient flow) and, with --certify, the topology.
-    rows.clear();
-    if (const Json* d = find(*stats, "/distance"); d && d->is_object()) {
-      add_if(rows, *d, "status", "/status");
-      add_if(rows, *d, "Hausdorff distance ≤", "/hausdorff_upper_bound");
-      if (const Json* r = find(*d, "/hausdorff_relative"); r && r->is_number())
-        rows.emplace_back("… relative to the box diagonal", number(100 * r->get<double>(), 3) + " %");
-      add_if(rows, *d, "|E| on the mesh ≤ ε", "/epsilon");
-      add_if(rows, *d, "tube |E| ≤", "/tube");
-      add_if(rows, *d, "|∇E| on the tube ≥", "/min_gradient");
-      add_if(rows, *d, "critical points", "/critical_points");
-      add_if(rows, *d, "mesh components", "/mesh_components");
-      add_if(rows, *d, "triangle pieces", "/triangle_pieces");
-      add_if(rows, *d, "boxes", "/boxes");
-      add_if(rows, *d, "seconds", "/seconds");
-      if (const Json* r = find(*d, "/reason"); r && r->is_string() && !r->get<std::string>().empty())
-        add_if(rows, *d, "reason", "/reason");
-      add_if(rows, *d, "at", "/location");
-      add_if(rows, *d, "max distance asked", "/max_distance");
-    }
-    std::vector<std::pair<std::string, std::string>> topology;
-    if (const Json* t = find(*stats, "/certificate"); t && t->is_object()) {
-      if (const Json* v = find(*t, "/topology"); v && v->is_object()) {
-        add_if(topology, *v, "topology", "/verdict");
-        add_if(topology, *v, "by", "/method");
-        add_if(topology, *v, "why", "/reason");
-      }
-      add_if(topology, *t, "restricted-Delaunay status", "/certificate/status");
-      add_if(topology, *t, "Tri S|Σ = mesh", "/certificate/restricted_matches_mesh");
-      add_if(topology, *t, "gradient-flow status", "/gradient_flow/status");
-    }
-    if (!rows.empty() || !topology.empty()) {
-      out << "<div class=\"card\"><h2>Certificate</h2>\n";
-      if (!rows.empty()) {
-        out << "<div class=\"caption\" style=\"margin:0 0 6px\">Distance to the surface, proved by the gradient flow "
-               "(the two-sided Hausdorff distance is at most the bound when the status is certified).</div>\n";
-        write_table(out, rows);
-      }
-      if (!topology.empty()) {
-        out << "<h2 style=\"margin-top:14px\">Topology (--certify)</h2>\n";
-        write_table(out, topology);
-      }
-      out << "</div>\n";
-    }
+}
 
-    // Everything, flattened: the top-level scalars, then one table per object.
-    out << "<div class=\"card wide\"><h2>All statistics</h2>\n";
+//! Every statistic, flattened: the top-level scalars, then one table per object.
+void write_all_statistics(std::ostream& out, const Json& stats) {
+  std::vector<std::pair<std::string, std::string>> rows;
+  out << "<div class=\"card wide\"><h2>All statistics</h2>\n";
+  for (auto it = stats.begin(); it != stats.end(); ++it)
+    if (is_scalar(it.value()) || (it.value().is_array() && std::all_of(it.value().begin(), it.value().end(), is_scalar)))
+      flatten(it.value(), it.key(), rows);
+  out << "<details><summary>general (" << rows.size() << ")</summary>\n";
+  write_table(out, rows);
+  out << "</details>\n";
+  for (auto it = stats.begin(); it != stats.end(); ++it) {
+    if (is_scalar(it.value()) || (it.value().is_array() && std::all_of(it.value().begin(), it.value().end(), is_scalar)))
+      continue;
     rows.clear();
-    for (auto it = stats->begin(); it != stats->end(); ++it)
-      if (is_scalar(it.value()) || (it.value().is_array() && std::all_of(it.value().begin(), it.value().end(), is_scalar)))
-        flatten(it.value(), it.key(), rows);
-    out << "<details><summary>general (" << rows.size() << ")</summary>\n";
+    flatten(it.value(), "", rows);
+    out << "<details><summary>" << escape(it.key()) << " (" << rows.size() << ")</summary>\n";
     write_table(out, rows);
     out << "</details>\n";
-    for (auto it = stats->begin(); it != stats->end(); ++it) {
-      if (is_scalar(it.value()) || (it.value().is_array() && std::all_of(it.value().begin(), it.value().end(), is_scalar)))
-        continue;
-      rows.clear();
-      flatten(it.value(), "", rows);
-      out << "<details><summary>" << escape(it.key()) << " (" << rows.size() << ")</summary>\n";
-      write_table(out, rows);
-      out << "</details>\n";
-    }
-    out << "</div>\n";
-  } else {
-    out << "<div class=\"card\"><h2>Run</h2><p class=\"muted\">No statistics given. <code>delmesh report MESH --stats "
-           "STATS.json</code> adds the run, the certificate and every statistic of <code>delmesh mesh</code>.</p></div>\n";
   }
-  out << "</section>\n";
-  out << "<footer>Written by " << escape(page.program_version) << " (<code>delmesh report</code>) with three.js "
-      << escape(page.three_js_version)
-      << " (MIT license), embedded: this file needs no network. Coordinates are shown centred and scaled to unit "
-         "half-diagonal; measures are computed on the original coordinates.</footer>\n";
+  out << "</div>\n";
+}
 
-  // --- data and code ---
+//! The embedded data (normalised positions, triangles, measures, colour ranges and map) and the code.
+void write_mesh_data(std::ostream& out, const ReportPage& page, const Bounds& box, const PageMeasures& m) {
+  const TriangleSoup& soup = *page.soup;
+  const std::size_t nt = soup.triangles.size();
   std::ostringstream data;
   data << "{\"name\":" << json_string(page.mesh_name) << ",\"color\":\"" << enum_name(page.color)
        << "\",\"positions\":[";
   for (std::size_t i = 0; i < soup.points.size(); ++i) {
-    const Vec3 x = normalised(soup.points[i]);
+    const Vec3 x = normalised(soup.points[i], box);
     data << (i ? "," : "") << json_number(x[0], 7) << "," << json_number(x[1], 7) << "," << json_number(x[2], 7);
   }
   data << "],\"triangles\":[";
@@ -952,17 +986,17 @@ void write_report_page(std::ostream& out, const ReportPage& page) {
     for (std::size_t t = 0; t < values.size(); ++t) data << (t ? "," : "") << json_number(values[t], digits);
     data << "]";
   };
-  write_values("min-angle", min_angles, 6);
+  write_values("min-angle", m.min_angles, 6);
   data << ",";
-  write_values("radius-edge", ratios, 6);
+  write_values("radius-edge", m.ratios, 6);
   data << ",";
-  write_values("area", areas, 4);
+  write_values("area", m.areas, 4);
   data << "},\"ranges\":{";
   const std::array<std::pair<const ColorRange*, std::string>, 3> ranges{
-      {{&angle_range, (angle_range.lo > 0 ? "Darkest at " + number(angle_range.lo, 3) + "° and below" : std::string("Darkest at 0°")) +
+      {{&m.angle_range, (m.angle_range.lo > 0 ? "Darkest at " + number(m.angle_range.lo, 3) + "° and below" : std::string("Darkest at 0°")) +
                          "; yellow at 60°, the equilateral triangle."},
-       {&ratio_range, "Yellow at 1/√3 ≈ 0.577, the equilateral triangle; darkest at " + number(ratio_range.hi, 3) + " and above."},
-       {&area_range, "Relative to the mean triangle area."}}};
+       {&m.ratio_range, "Yellow at 1/√3 ≈ 0.577, the equilateral triangle; darkest at " + number(m.ratio_range.hi, 3) + " and above."},
+       {&m.area_range, "Relative to the mean triangle area."}}};
   for (std::size_t i = 0; i < ranges.size(); ++i) {
     const ColorRange& r = *ranges[i].first;
     data << (i ? "," : "") << "\"" << r.key << "\":{\"label\":" << json_string(r.label) << ",\"lo\":" << json_number(r.lo, 17)
@@ -975,7 +1009,36 @@ void write_report_page(std::ostream& out, const ReportPage& page) {
   data << "]}";
   out << "<script type=\"application/json\" id=\"mesh-data\">" << script_safe(data.str()) << "</script>\n";
   out << "<script type=\"text/plain\" id=\"three-js\">" << page.three_js << "</script>\n";
-  out << "<script type=\"module\">" << script << "</script>\n</body>\n</html>\n";
+  out << "<script type=\"module\">" << script << "</script>\n</body>\n</html>\n";}
+
+}  // namespace
+
+void write_report_page(std::ostream& out, const ReportPage& page) {
+  const Bounds box = bounds_of(*page.soup);
+  const PageMeasures measures = measure_triangles(*page.soup, box);
+  const Json* stats = page.statistics ? &*page.statistics : nullptr;
+  const StatisticsBounds bounds = bounds_in(stats);
+  const std::size_t nt = page.soup->triangles.size();
+
+  write_head(out, page, nt, bounds.status);
+  write_panel(out, page, stats, bounds, nt);
+  write_histograms(out, page, measures, bounds);
+  write_mesh_card(out, page, box);
+  if (stats) {
+    write_run_card(out, page, *stats, bounds);
+    write_certificate_card(out, *stats);
+    write_all_statistics(out, *stats);
+  } else {
+    out << "<div class=\"card\"><h2>Run</h2><p class=\"muted\">No statistics given. <code>delmesh report MESH --stats "
+           "STATS.json</code> adds the run, the certificate and every statistic of <code>delmesh mesh</code>.</p></div>\n";
+  }
+  out << "</section>\n";
+  out << "<footer>Written by " << escape(page.program_version) << " (<code>delmesh report</code>) with three.js "
+      << escape(page.three_js_version)
+      << " (MIT license), embedded: this file needs no network. Coordinates are shown centred and scaled to unit "
+         "half-diagonal; measures are computed on the original coordinates.</footer>\n";
+
+  write_mesh_data(out, page, box, measures);
 }
 
 }  // namespace delmesh::app

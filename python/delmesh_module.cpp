@@ -348,17 +348,20 @@ nlohmann::json certificate_of(const DelMeshResult& r, const SurfaceInput& input,
   return nlohmann::json(c.to_json());
 }
 
-MeshResult mesh(const py::object& expr, const py::object& box, const py::object& surface,
-                const py::object& input_mesh, const py::object& lam, const py::object& size_bound,
-                const std::string& phase, const py::object& seed, const py::object& max_points,
-                const py::object& time_limit, const py::object& threads, const py::object& progress,
-                const std::string& solver, const py::object& max_distance, bool certify) {
+//! mesh()'s input_mesh given as (vertices, triangles) arrays instead of a path.
+using InputSoup = std::optional<std::pair<std::vector<Point3>, std::vector<std::vector<std::size_t>>>>;
+
+//! mesh()'s arguments as the command's request (the values checked as its flags are), and
+//! `input_soup` set when input_mesh is a pair of arrays.
+MeshRequest mesh_request(const py::object& expr, const py::object& box, const py::object& surface,
+                         const py::object& input_mesh, const py::object& lam, const py::object& size_bound,
+                         const std::string& phase, const py::object& seed, const py::object& max_points,
+                         const py::object& time_limit, const py::object& threads, const std::string& solver,
+                         const py::object& max_distance, InputSoup& input_soup) {
   MeshRequest request;
   if (!surface.is_none()) request.surface.surface = surface.cast<std::string>();
   if (!expr.is_none()) request.surface.expr = expr_text(expr);
   if (!box.is_none()) request.surface.box = list_option(box);
-  // input_mesh: a path, or (vertices, triangles) arrays.
-  std::optional<std::pair<std::vector<Point3>, std::vector<std::vector<std::size_t>>>> input_soup;
   if (!input_mesh.is_none() && (py::isinstance<py::tuple>(input_mesh) || py::isinstance<py::list>(input_mesh))) {
     const py::sequence pair = input_mesh;
     if (pair.size() != 2) throw InvalidInput("input_mesh: expected a path or a pair (vertices, triangles)");
@@ -378,6 +381,43 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
   if (!max_points.is_none()) request.max_points = whole_option("--max-points", max_points, 1, max_count);
   if (!time_limit.is_none()) request.time_limit = finite_option("--time-limit", time_limit);
   if (!threads.is_none()) request.threads = static_cast<int>(whole_option("--threads", threads, 0, max_threads));
+  return request;
+}
+
+//! The run of mesh() on the worker: planning (parsing and compiling E, or reading and validating
+//! the mesh) under the call's limits, then the run; its statistics (as JSON text) and warnings go
+//! to the caller, who issues the warnings once it has the GIL again.
+DelMeshResult run_mesh_request(const MeshRequest& request, const InputSoup& input_soup, bool certify,
+                               const CallControls& controls, std::string& statistics,
+                               std::vector<std::string>& warnings) {
+  if (request.input_mesh || input_soup) {
+    // A triangle mesh, remeshed through its MeshOracle as `delmesh mesh --input-mesh` does.
+    const MeshInputPlan plan =
+        input_soup ? plan_mesh_input(request, validate_input_mesh(input_soup->first, input_soup->second, "input_mesh"),
+                                     "input_mesh")
+                   : plan_mesh_input(request);
+    warnings = plan.warnings;
+    DelMeshResult r = remesh(plan, controls.applied_to(plan.options));
+    statistics = run_statistics(r, request.seed, std::nullopt).dump();
+    return r;
+  }
+  const MeshPlan plan = plan_mesh(request);
+  warnings = plan.warnings;
+  DelMeshResult r = del_mesh(plan.input.surface, plan.input.box, controls.applied_to(plan.options));
+  nlohmann::json stats = mesh_statistics(r, plan.input, request.seed, std::nullopt);
+  if (certify) stats["certificate"] = certificate_of(r, plan.input, request.seed, controls);
+  statistics = stats.dump();
+  return r;
+}
+
+MeshResult mesh(const py::object& expr, const py::object& box, const py::object& surface,
+                const py::object& input_mesh, const py::object& lam, const py::object& size_bound,
+                const std::string& phase, const py::object& seed, const py::object& max_points,
+                const py::object& time_limit, const py::object& threads, const py::object& progress,
+                const std::string& solver, const py::object& max_distance, bool certify) {
+  InputSoup input_soup;
+  const MeshRequest request = mesh_request(expr, box, surface, input_mesh, lam, size_bound, phase, seed, max_points,
+                                           time_limit, threads, solver, max_distance, input_soup);
   if (!progress.is_none() && !PyCallable_Check(progress.ptr())) throw py::type_error("progress must be callable");
   if (certify && (request.input_mesh || input_soup))
     throw InvalidInput("certify needs expr or surface (the certificate is proved on an implicit surface)");
@@ -389,32 +429,12 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
   std::optional<py::error_already_set> stopped;
   {
     LibraryCall call;
-    // Planning (parsing and compiling E, or reading and validating the mesh) runs on the worker
-    // too, under the call's limits; its warnings are issued once the call has the GIL again.
     std::optional<DelMeshResult> result;
     try {
       result = run_on_worker<DelMeshResult>(
           request.time_limit, progress,
           [&](const CallControls& controls) {
-            if (request.input_mesh || input_soup) {
-              // A triangle mesh, remeshed through its MeshOracle as `delmesh mesh --input-mesh` does.
-              const MeshInputPlan plan =
-                  input_soup ? plan_mesh_input(request, validate_input_mesh(input_soup->first, input_soup->second,
-                                                                            "input_mesh"),
-                                               "input_mesh")
-                             : plan_mesh_input(request);
-              warnings = plan.warnings;
-              DelMeshResult r = remesh(plan, controls.applied_to(plan.options));
-              statistics = run_statistics(r, request.seed, std::nullopt).dump();
-              return r;
-            }
-            const MeshPlan plan = plan_mesh(request);
-            warnings = plan.warnings;
-            DelMeshResult r = del_mesh(plan.input.surface, plan.input.box, controls.applied_to(plan.options));
-            nlohmann::json stats = mesh_statistics(r, plan.input, request.seed, std::nullopt);
-            if (certify) stats["certificate"] = certificate_of(r, plan.input, request.seed, controls);
-            statistics = stats.dump();
-            return r;
+            return run_mesh_request(request, input_soup, certify, controls, statistics, warnings);
           },
           &result);
     } catch (py::error_already_set& e) {

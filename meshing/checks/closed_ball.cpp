@@ -139,26 +139,20 @@ CellShape cell_shape(const std::vector<RvdPolygon>& polygons) {
   return shape;
 }
 
-}  // namespace
+//! Per pair p < q, the polygon edges of V_p on B(p, q), as vertex pairs, with the vertices' points.
+struct FacetEdges {
+  std::vector<std::pair<RvdVertex, RvdVertex>> edges;
+  std::vector<std::array<double, 3>> points;
+};
+using FacetMap = std::map<std::pair<std::size_t, std::size_t>, FacetEdges>;
+//! Per Voronoi edge (site triple), the faces of Σ where it crosses Σ, with the crossing points.
+using CrossingMap = std::map<std::array<std::size_t, 3>, std::map<std::size_t, std::array<double, 3>>>;
 
-ClosedBallResult closed_ball_check(const RestrictedVoronoiMesh& diagram, const std::vector<Point3>& samples) {
-  const auto start = std::chrono::steady_clock::now();
-  ClosedBallResult result;
-  result.contacts = diagram.contacts;
-  result.sign_tests = diagram.sign_tests;
-  result.exact_evaluations = diagram.exact_evaluations;
-
-  // Facets: per pair p < q, the polygon edges of V_p on B(p, q), as vertex pairs, with the
-  // vertices' points.
-  struct FacetEdges {
-    std::vector<std::pair<RvdVertex, RvdVertex>> edges;
-    std::vector<std::array<double, 3>> points;
-  };
-  std::map<std::pair<std::size_t, std::size_t>, FacetEdges> facets;
-  // Voronoi edges: per site triple, the faces where it crosses Σ, with the crossing points.
-  std::map<std::array<std::size_t, 3>, std::map<std::size_t, std::array<double, 3>>> crossings;
-  std::vector<ClosedBallViolation> cells, facet_violations, edge_violations;
-
+//! The cells: each restricted cell must be a closed disk.  Collects, on the way, the restricted
+//! facets' edges and the Voronoi edges' crossings that the next steps check.
+std::vector<ClosedBallViolation> check_cells(const RestrictedVoronoiMesh& diagram, const std::vector<Point3>& samples,
+                                             ClosedBallResult& result, FacetMap& facets, CrossingMap& crossings) {
+  std::vector<ClosedBallViolation> cells;
   for (std::size_t p = 0; p < diagram.cells.size(); ++p) {
     const auto& polygons = diagram.cells[p];
     if (polygons.empty()) continue;
@@ -198,8 +192,12 @@ ClosedBallResult closed_ball_check(const RestrictedVoronoiMesh& diagram, const s
     v.witness_distance = far.distance;
     cells.push_back(std::move(v));
   }
+  return cells;
+}
 
-  result.facets_checked = facets.size();
+//! The facets: each restricted facet must be one simple arc.
+std::vector<ClosedBallViolation> check_facets(const FacetMap& facets, const std::vector<Point3>& samples) {
+  std::vector<ClosedBallViolation> facet_violations;
   for (const auto& [pq, facet] : facets) {
     std::map<RvdVertex, std::size_t> index;
     for (const auto& [a, b] : facet.edges) {
@@ -233,8 +231,13 @@ ClosedBallResult closed_ball_check(const RestrictedVoronoiMesh& diagram, const s
     v.witness_distance = far.distance;
     facet_violations.push_back(std::move(v));
   }
+  return facet_violations;
+}
 
-  result.edges_checked = crossings.size();
+//! The Voronoi edges: each meets Σ at most once; those that meet it are Del S|Σ's triangles.
+std::vector<ClosedBallViolation> check_edges(const CrossingMap& crossings, const std::vector<Point3>& samples,
+                                             ClosedBallResult& result) {
+  std::vector<ClosedBallViolation> edge_violations;
   for (const auto& [pqr, where] : crossings) {
     result.restricted_delaunay.push_back(pqr);
     if (where.size() <= 1) continue;
@@ -250,8 +253,25 @@ ClosedBallResult closed_ball_check(const RestrictedVoronoiMesh& diagram, const s
     v.witness_distance = far.distance;
     edge_violations.push_back(std::move(v));
   }
+  return edge_violations;
+}
 
-  result.violations = std::move(cells);
+}  // namespace
+
+ClosedBallResult closed_ball_check(const RestrictedVoronoiMesh& diagram, const std::vector<Point3>& samples) {
+  const auto start = std::chrono::steady_clock::now();
+  ClosedBallResult result;
+  result.contacts = diagram.contacts;
+  result.sign_tests = diagram.sign_tests;
+  result.exact_evaluations = diagram.exact_evaluations;
+
+  FacetMap facets;
+  CrossingMap crossings;
+  result.violations = check_cells(diagram, samples, result, facets, crossings);
+  result.facets_checked = facets.size();
+  const std::vector<ClosedBallViolation> facet_violations = check_facets(facets, samples);
+  result.edges_checked = crossings.size();
+  const std::vector<ClosedBallViolation> edge_violations = check_edges(crossings, samples, result);
   result.violations.insert(result.violations.end(), facet_violations.begin(), facet_violations.end());
   result.violations.insert(result.violations.end(), edge_violations.begin(), edge_violations.end());
   result.status = !result.contacts.empty()    ? ClosedBallStatus::non_generic

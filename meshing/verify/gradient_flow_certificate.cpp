@@ -795,6 +795,63 @@ void record(const Verdict& v, FlowCertificate& c) {
 
 }  // namespace
 
+namespace {
+
+//! Steps 2–5 again with the normalised function F = E/sqrt(|∇E|² + η²), after E's flow failed with
+//! `with_e` (file comment): rethrows with_e if it does not depend on the function (or η = 0), then
+//! tries F's flow with the tube ±ε′ and, if that fails on a condition that depends on the tube,
+//! with the one-sided tube.  Throws the last Verdict, its reason naming every attempt.
+void prove_with_normalized(const Verdict& with_e, const FlowProof& proof, const FlowInput& in,
+                           std::optional<SolveResult>& solved, FlowCertificate& c) {
+  const Surface& surface = in.surface;
+  const Box3& box = in.box;
+  const FlowCertificateOptions& options = in.options;
+  const double eta = normalization_eta(proof.system(), in.points);
+  if (with_e.status != FlowCertificateStatus::undecided || !with_e.depends_on_function || eta == 0) throw with_e;
+  std::optional<Surface> F;
+  try {
+    F.emplace(normalized_function(surface, eta));
+  } catch (const InvalidInput& too_large) {
+    throw Verdict{with_e.status, with_e.reason + " (the normalised function was not tried: " + too_large.what() + ")",
+                  with_e.location};
+  }
+  c.reason_with_E = with_e.reason;
+  c.function = FlowFunction::normalized;
+  c.eta = eta;
+  // F's flow with the tube ±ε′, then, if a condition that depends on the function and the tube
+  // fails, with the one-sided tube.
+  const auto attempt = [&](bool one_sided) {
+    FlowProof normalized(*F, box, options, c, tolerances::flow_normalized_box_budget,
+                         tolerances::flow_normalized_box_rounds);
+    normalized.compose_from(proof.system(), eta, F->normalization_exponent());
+    if (one_sided) normalized.make_one_sided();
+    try {
+      prove_with(normalized, in, solved, c);
+      c.box_rounds = normalized.rounds();
+    } catch (const Verdict&) {
+      c.box_rounds = normalized.rounds();
+      throw;
+    }
+  };
+  const std::string with_e_text = "with E: " + with_e.reason + "; with E/sqrt(|grad E|^2+eta^2): ";
+  try {
+    attempt(false);
+  } catch (const Verdict& with_f) {
+    const std::optional<P3> at = with_f.location ? with_f.location : with_e.location;
+    if (with_f.status != FlowCertificateStatus::undecided || !with_f.depends_on_function || !with_f.depends_on_tube)
+      throw Verdict{with_f.status, with_e_text + with_f.reason, at};
+    try {
+      attempt(true);
+    } catch (const Verdict& one_sided) {
+      throw Verdict{one_sided.status,
+                    with_e_text + with_f.reason + "; with it and a one-sided tube: " + one_sided.reason,
+                    one_sided.location ? one_sided.location : at};
+    }
+  }
+}
+
+}  // namespace
+
 FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
                                       const std::vector<std::array<std::size_t, 3>>& triangles,
                                       const Surface& surface, const Box3& box, const FlowCertificateOptions& options) {
@@ -828,48 +885,7 @@ FlowCertificate certify_gradient_flow(const std::vector<Point3>& points,
     try {
       prove_with(proof, in, solved, c);
     } catch (const Verdict& with_e) {
-      const double eta = normalization_eta(proof.system(), points);
-      if (with_e.status != FlowCertificateStatus::undecided || !with_e.depends_on_function || eta == 0) throw;
-      std::optional<Surface> F;
-      try {
-        F.emplace(normalized_function(surface, eta));
-      } catch (const InvalidInput& too_large) {
-        throw Verdict{with_e.status, with_e.reason + " (the normalised function was not tried: " + too_large.what() + ")",
-                      with_e.location};
-      }
-      c.reason_with_E = with_e.reason;
-      c.function = FlowFunction::normalized;
-      c.eta = eta;
-      // F's flow with the tube ±ε′, then, if a condition that depends on the function and the tube
-      // fails, with the one-sided tube.
-      const auto attempt = [&](bool one_sided) {
-        FlowProof normalized(*F, box, options, c, tolerances::flow_normalized_box_budget,
-                             tolerances::flow_normalized_box_rounds);
-        normalized.compose_from(proof.system(), eta, F->normalization_exponent());
-        if (one_sided) normalized.make_one_sided();
-        try {
-          prove_with(normalized, in, solved, c);
-          c.box_rounds = normalized.rounds();
-        } catch (const Verdict&) {
-          c.box_rounds = normalized.rounds();
-          throw;
-        }
-      };
-      const std::string with_e_text = "with E: " + with_e.reason + "; with E/sqrt(|grad E|^2+eta^2): ";
-      try {
-        attempt(false);
-      } catch (const Verdict& with_f) {
-        const std::optional<P3> at = with_f.location ? with_f.location : with_e.location;
-        if (with_f.status != FlowCertificateStatus::undecided || !with_f.depends_on_function || !with_f.depends_on_tube)
-          throw Verdict{with_f.status, with_e_text + with_f.reason, at};
-        try {
-          attempt(true);
-        } catch (const Verdict& one_sided) {
-          throw Verdict{one_sided.status,
-                        with_e_text + with_f.reason + "; with it and a one-sided tube: " + one_sided.reason,
-                        one_sided.location ? one_sided.location : at};
-        }
-      }
+      prove_with_normalized(with_e, proof, in, solved, c);
     }
   } catch (const Verdict& v) {
     record(v, c);

@@ -658,17 +658,22 @@ const SolveResult& critical_points(const FlowInput& in, std::optional<SolveResul
   return *solved;
 }
 
-//! Steps 2–5 of the file comment with the flow of proof's function: fills c (status certified)
-//! or throws Verdict or Stopped.
-void prove_with(FlowProof& proof, const FlowInput& in, std::optional<SolveResult>& solved, FlowCertificate& c) {
+//! Step 2's per-triangle results: the bound of |E|, the flux sign (in the orientation of
+//! Orientation), and bounds of min E and max E on M.
+struct TriangleBounds {
+  std::vector<double> e_bound;
+  std::vector<int> sign;
+  double lower = 0, upper = 0;
+};
+
+//! 2. ε and the transversality of every triangle.
+TriangleBounds prove_triangles(FlowProof& proof, const FlowInput& in, FlowCertificate& c) {
   const auto& points = in.points;
   const auto& triangles = in.triangles;
-  const Orientation& orientation = in.orientation;
-  // 2. ε and the transversality of every triangle.
+  TriangleBounds b;
+  b.e_bound.resize(triangles.size());
+  b.sign.resize(triangles.size());
   c.epsilon = 0;
-  double lower = 0, upper = 0;  // bounds of min E and max E on M
-  std::vector<double> e_bound(triangles.size());
-  std::vector<int> sign(triangles.size());
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const auto& tri = triangles[t];
     const TriangleProof tp = prove_triangle(proof, points[tri[0]], points[tri[1]], points[tri[2]], c.triangle_pieces);
@@ -676,19 +681,26 @@ void prove_with(FlowProof& proof, const FlowInput& in, std::optional<SolveResult
       throw Verdict{FlowCertificateStatus::undecided,
                     "triangle " + std::to_string(t) + " is not proved transverse to the gradient of E", tp.undecided_at,
                     true, false};
-    e_bound[t] = tp.e_bound;
-    sign[t] = tp.sign * orientation.flip[t];
+    b.e_bound[t] = tp.e_bound;
+    b.sign[t] = tp.sign * in.orientation.flip[t];
     c.epsilon = std::max(c.epsilon, tp.e_bound);
-    lower = std::min(lower, tp.lower);
-    upper = std::max(upper, tp.upper);
+    b.lower = std::min(b.lower, tp.lower);
+    b.upper = std::max(b.upper, tp.upper);
   }
-  // One direction of the flux per component.
+  return b;
+}
+
+//! One direction of the flux per component, or undecided; returns the triangles oriented so that
+//! the flux crosses every one of them the same way.
+std::vector<std::array<std::size_t, 3>> orient_by_flux(const FlowInput& in, const std::vector<int>& sign) {
+  const auto& triangles = in.triangles;
+  const Orientation& orientation = in.orientation;
   std::vector<int> component_sign(orientation.components, 0);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     int& s = component_sign[orientation.component[t]];
     if (s == 0) s = sign[t];
     if (s != sign[t]) {
-      const Point3& a = points[triangles[t][0]];
+      const Point3& a = in.points[triangles[t][0]];
       throw Verdict{FlowCertificateStatus::undecided,
                     "the gradient of E crosses the triangles of one component of the mesh in both directions "
                     "(at triangle " + std::to_string(t) + ")",
@@ -698,22 +710,30 @@ void prove_with(FlowProof& proof, const FlowInput& in, std::optional<SolveResult
   std::vector<std::array<std::size_t, 3>> oriented = triangles;
   for (std::size_t t = 0; t < triangles.size(); ++t)
     if (orientation.flip[t] * component_sign[orientation.component[t]] < 0) std::swap(oriented[t][1], oriented[t][2]);
+  return oriented;
+}
+
+//! T's bounds: ±ε′, or with a one-sided proof the factor times the bounds of E on M (file comment).
+Tube choose_tube(const FlowProof& proof, const TriangleBounds& b, FlowCertificate& c) {
   if (!std::isfinite(c.epsilon))
     throw Verdict{FlowCertificateStatus::undecided, "|E| on the mesh could not be bounded", std::nullopt};
   c.tube = std::max(tolerances::flow_tube_factor * c.epsilon, std::numeric_limits<double>::min());
   Tube tube{-c.tube, c.tube};
   if (proof.one_sided()) {
-    if (!(std::isfinite(lower) && std::isfinite(upper)))
+    if (!(std::isfinite(b.lower) && std::isfinite(b.upper)))
       throw Verdict{FlowCertificateStatus::undecided, "E on the mesh could not be bounded", std::nullopt};
-    tube.lower = std::min(tolerances::flow_tube_factor * lower, -std::numeric_limits<double>::min());
-    tube.upper = std::max(tolerances::flow_tube_factor * upper, std::numeric_limits<double>::min());
+    tube.lower = std::min(tolerances::flow_tube_factor * b.lower, -std::numeric_limits<double>::min());
+    tube.upper = std::max(tolerances::flow_tube_factor * b.upper, std::numeric_limits<double>::min());
   }
   c.tube_lower = tube.lower;
   c.tube_upper = tube.upper;
   c.one_sided_tube = proof.one_sided();
+  return tube;
+}
 
-  // 3. (a) and (b).
-  proof.prove_faces(tube);
+//! The least |∇| at the mesh's vertices (points of T): the gradient proof need not cut a box for a
+//! bound above it.
+double least_gradient_at_vertices(FlowProof& proof, const std::vector<Point3>& points) {
   double reference = std::numeric_limits<double>::infinity();
   for (const Point3& p : points) {
     const double at[3] = {p.x(), p.y(), p.z()};
@@ -722,16 +742,19 @@ void prove_with(FlowProof& proof, const FlowInput& in, std::optional<SolveResult
     const double length = std::sqrt(values[1] * values[1] + values[2] * values[2] + values[3] * values[3]);
     if (length > 0 && std::isfinite(length)) reference = std::min(reference, length);
   }
-  c.min_gradient = proof.prove_gradient(tube, reference);
-  if (!(c.min_gradient > 0))
-    throw Verdict{FlowCertificateStatus::undecided, "no lower bound of the gradient of E was proved", std::nullopt};
+  return reference;
+}
 
-  // 4. (e): the critical points of a generic height function and one path through each.
+//! 4. (e): the critical points of a generic height function and one path through each, which must
+//! cross the mesh once (with sign).
+void count_critical_paths(FlowProof& proof, const FlowInput& in, std::optional<SolveResult>& solved,
+                          FlowCertificate& c, const Tube& tube, const std::vector<std::array<std::size_t, 3>>& oriented) {
   std::size_t index = 0;
   c.critical_points = 0;
   for (const CertifiedRoot& root : critical_points(in, solved, c).roots) {
     if (!root.inside_domain) continue;
-    const int count = count_through(proof, root.world, root.box.bounds, tube, points, oriented, in.options.seed, index++);
+    const int count =
+        count_through(proof, root.world, root.box.bounds, tube, in.points, oriented, in.options.seed, index++);
     if (count != 1)
       throw Verdict{FlowCertificateStatus::undecided,
                     "a path across the tube through a critical point of the surface meets the mesh " +
@@ -745,16 +768,32 @@ void prove_with(FlowProof& proof, const FlowInput& in, std::optional<SolveResult
                   "the surface is empty in the box (a generic height function has no critical point on it, "
                   "certified) but the mesh is not",
                   std::nullopt, false};
+}
+
+//! Steps 2–5 of the file comment with the flow of proof's function: fills c (status certified)
+//! or throws Verdict or Stopped.
+void prove_with(FlowProof& proof, const FlowInput& in, std::optional<SolveResult>& solved, FlowCertificate& c) {
+  const TriangleBounds bounds = prove_triangles(proof, in, c);
+  const std::vector<std::array<std::size_t, 3>> oriented = orient_by_flux(in, bounds.sign);
+  const Tube tube = choose_tube(proof, bounds, c);
+
+  // 3. (a) and (b).
+  proof.prove_faces(tube);
+  c.min_gradient = proof.prove_gradient(tube, least_gradient_at_vertices(proof, in.points));
+  if (!(c.min_gradient > 0))
+    throw Verdict{FlowCertificateStatus::undecided, "no lower bound of the gradient of E was proved", std::nullopt};
+
+  count_critical_paths(proof, in, solved, c, tube, oriented);
 
   // 5. Certified: the Hausdorff bounds, rounded up.
   c.status = FlowCertificateStatus::certified;
   RoundingGuard guard;
-  c.triangle_distance_bounds.resize(triangles.size());
+  c.triangle_distance_bounds.resize(in.triangles.size());
   c.hausdorff_upper_bound = 0;
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
+  for (std::size_t t = 0; t < in.triangles.size(); ++t) {
     proof.poll();
-    c.triangle_distance_bounds[t] = local_distance_bound(proof.distance(), points, triangles[t], e_bound[t],
-                                                         c.min_gradient, in.options.distance_radius);
+    c.triangle_distance_bounds[t] = local_distance_bound(proof.distance(), in.points, in.triangles[t],
+                                                         bounds.e_bound[t], c.min_gradient, in.options.distance_radius);
     c.hausdorff_upper_bound = std::max(c.hausdorff_upper_bound, c.triangle_distance_bounds[t]);
   }
 }

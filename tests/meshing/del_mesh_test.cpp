@@ -191,8 +191,9 @@ BOOST_AUTO_TEST_CASE(max_distance_bounds_the_hausdorff_distance_both_ways) {
 }
 
 // The chair's gradient is small near (0, 0, −0.866), inside the thin tube of a fine mesh too: the
-// flow certificate stays undecided, so --max-distance cannot end complete, and the statistics
-// list why under "unsettled".
+// flow certificate does not prove a bound within δ there (it proves a larger one along the
+// normalised function's flow, or none), so --max-distance cannot end complete, and the
+// statistics list why under "unsettled".
 BOOST_AUTO_TEST_CASE(max_distance_not_certified_is_unsettled, *boost::unit_test::label("slow")) {
   const auto& entry = catalog_entry("chair");
   DelMeshOptions options;
@@ -201,10 +202,12 @@ BOOST_AUTO_TEST_CASE(max_distance_not_certified_is_unsettled, *boost::unit_test:
   BOOST_TEST(result.status == MeshStatus::uncertified);
   const auto& j = result.statistics;
   BOOST_TEST(j["status"] == "uncertified");
-  BOOST_TEST(j["distance"]["status"] != "certified");
+  const bool certified = j["distance"]["status"] == "certified";
+  if (certified) BOOST_TEST(j["distance"]["hausdorff_upper_bound"].get<double>() > *options.max_distance);
   BOOST_TEST(j["unsettled"]["by_reason"]["distance_not_certified"].get<int>() == 1);
   BOOST_TEST(j["unsettled"]["regions"].back()["check"] == "distance");
-  BOOST_TEST(j["unsettled"]["regions"].back()["reason"] == j["distance"]["reason"]);
+  BOOST_TEST(j["unsettled"]["regions"].back()["reason"] ==
+             (certified ? nlohmann::json("the certified Hausdorff bound exceeds max_distance") : j["distance"]["reason"]));
 }
 
 // With --max-distance the bound is part of the run's end: the interrupt flag, raised once the

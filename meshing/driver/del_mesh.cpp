@@ -337,35 +337,27 @@ void certify_distance(DelMeshResult& result, const Surface& surface, const Box3&
 
 namespace {
 
+// The options and what they ask of the oracle: max_distance needs its flow_distance().
+void check_run(const SurfaceOracle& oracle, const DelMeshOptions& options) {
+  check_options(oracle.box(), options);
+  if (options.max_distance && !oracle.flow_distance())
+    throw InvalidInput("max_distance needs a surface given by E (this input has no gradient field to bound distances by)");
+}
+
 // del_mesh on a prepared input, its clock (time limit, seconds) started at `start`.
 DelMeshResult mesh_prepared(PreparedInput& input, const DelMeshOptions& options,
                             std::chrono::steady_clock::time_point start) {
-  check_options(input.oracle->box(), options);
+  check_run(*input.oracle, options);
   const int k = input.scale_exponent;
   // A triangle mesh's Σ at the oracle's scale (times 2^-k, exactly) for the closed-ball check.
   std::optional<SurfaceMesh> sigma;
   if (const auto* triangles = std::get_if<TriangleMeshInput>(&input.input); triangles && triangles->mesh) {
     sigma = triangles->mesh->mesh;
-    for (const auto v : sigma->vertices()) {
-      const Point3& x = sigma->point(v);
-      sigma->point(v) = Point3(std::ldexp(x.x(), -k), std::ldexp(x.y(), -k), std::ldexp(x.z(), -k));
-    }
+    scale_mesh(*sigma, -k);
   }
   DelMeshResult result = run(*input.oracle, unit_scale_options(options, k), input.seconds_validation, start,
                              sigma ? &*sigma : nullptr);
   restore_scale(result, k);
-  if (result.statistics.contains("closed_ball")) {
-    // Its witnesses and locations back at the input's scale.
-    auto& c = result.statistics["closed_ball"];
-    if (c.contains("violations"))
-      for (auto& entry : c["violations"]["first"]) {
-        for (auto& x : entry["witness"]) x = std::ldexp(x.get<double>(), k);
-        entry["witness_distance"] = std::ldexp(entry["witness_distance"].get<double>(), k);
-      }
-    if (c.contains("non_generic"))
-      for (auto& entry : c["non_generic"]["first"])
-        for (auto& x : entry["location"]) x = std::ldexp(x.get<double>(), k);
-  }
   result.statistics[input.statistics_key] = input.statistics;
   if (const ImplicitInput* implicit = input.implicit_input())
     if (options.distance_certificate || options.max_distance)
@@ -388,9 +380,7 @@ DelMeshResult del_mesh(PreparedInput& input, const DelMeshOptions& options) {
 
 DelMeshResult del_mesh(SurfaceOracle& oracle, const DelMeshOptions& options, double seconds_validation) {
   const auto start = std::chrono::steady_clock::now();
-  check_options(oracle.box(), options);
-  if (options.max_distance && !oracle.flow_distance())
-    throw InvalidInput("max_distance needs a surface given by E (this input has no gradient field to bound distances by)");
+  check_run(oracle, options);
   return run(oracle, options, seconds_validation, start);
 }
 

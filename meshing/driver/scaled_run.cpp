@@ -43,6 +43,16 @@ void restore_scale(DelMeshResult& result, int k) {
   if (j.contains("min_spacing")) scale_floor(j["min_spacing"], k);
   if (j.contains("topology_phase") && j["topology_phase"].contains("min_spacing"))
     scale_floor(j["topology_phase"]["min_spacing"], k);
+  if (j.contains("closed_ball")) {
+    auto& c = j["closed_ball"];
+    if (c.contains("violations"))
+      for (auto& entry : c["violations"]["first"]) {
+        scale_numbers(entry["witness"], k);
+        scale_numbers(entry["witness_distance"], k);
+      }
+    if (c.contains("non_generic"))
+      for (auto& entry : c["non_generic"]["first"]) scale_numbers(entry["location"], k);
+  }
 }
 
 }  // namespace delmesh

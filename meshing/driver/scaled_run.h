@@ -13,7 +13,8 @@ DelMeshOptions unit_scale_options(DelMeshOptions options, int k);
 
 //! A run at unit scale brought back to the input's scale: the output mesh's vertices and the
 //! statistics' clip_box, unsettled.regions[].location, min_spacing and topology_phase.min_spacing
-//! (value, topology_value, locations) times 2^k; the statistics get "unit_scale_exponent": k.
+//! (value, topology_value, locations), and closed_ball's listed witnesses, witness distances and
+//! non-generic locations, times 2^k; the statistics get "unit_scale_exponent": k.
 void restore_scale(DelMeshResult& result, int k);
 
 }  // namespace delmesh

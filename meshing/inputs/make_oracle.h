@@ -30,8 +30,9 @@ struct ImplicitInput {
   SolverBackend solver = SolverBackend::subdivision;
 };
 
-//! A closed triangle mesh to remesh (§7).  `mesh` must outlive make_oracle(); the oracle keeps a
-//! scaled copy of it.
+//! A closed triangle mesh to remesh (§7).  The oracle keeps a scaled copy of `mesh`; the
+//! PreparedInput keeps the pointer, which del_mesh() reads for the closed-ball check, so the mesh
+//! must outlive the run.
 struct TriangleMeshInput {
   std::string file;                  //!< where it was read from, for the statistics
   const InputMesh* mesh = nullptr;   //!< read and validated (read_input_mesh, validate_input_mesh)

@@ -85,6 +85,8 @@ std::pair<std::string, std::string> flag_and_value(MeshOption option, const DelM
     case MeshOption::time_limit: return {"--time-limit", format_number(options.time_limit_seconds)};
     case MeshOption::threads: return {"--threads", std::to_string(options.threads)};
     case MeshOption::min_spacing: return {"--min-spacing", format_number(options.min_spacing)};
+    case MeshOption::feature_angle:
+      return {"--feature-angle", options.feature_angle_deg ? format_number(*options.feature_angle_deg) : "none"};
   }
   return {"--unknown-option", ""};
 }

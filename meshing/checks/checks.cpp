@@ -107,13 +107,7 @@ const std::vector<CheckInfo>& builtin_checks() {
     CheckInfo smooth{"smooth", "Smooth (§6.2): the roughness of each edge of the restricted triangle is ≤ 2β(λ)",
                      FaceKind::triangle, Dirtied::restricted_triangles, CheckPhase::geometry,
                      [](const CheckContext& c, const DelaunayFace& f) {
-                       const TriangleKey t = as_triangle(f);
-                       if (!c.restricted.voronoi_edge_record(t).restricted) return CheckResult{};
-                       const double threshold = 2 * beta(c.lambda);
-                       for (const auto& e : {make_edge_key(t[0], t[1]), make_edge_key(t[0], t[2]),
-                                             make_edge_key(t[1], t[2])})
-                         if (auto w = smooth_witness(c.restricted, e, threshold)) return from_optional(w);
-                       return CheckResult{};
+                       return smooth_check(c.restricted, as_triangle(f), 2 * beta(c.lambda));
                      }};
     smooth.runs_at = [](double lambda) { return lambda < beta_lambda_bound; };
     smooth.kind = CheckKind::smooth;

@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <vector>
 
 #include "meshing/checks/detail/candidates.h"
 #include "meshing/core/detail/vec3.h"
+#include "meshing/inputs/mesh_oracle.h"
 
 namespace delmesh {
 
@@ -62,6 +64,32 @@ std::optional<Witness> smooth_witness(RestrictedDelaunay& restricted, const Edge
   auto witnesses = collector.take().witnesses;
   if (witnesses.empty()) return std::nullopt;  // restricted triangles have crossings: not reached
   return witnesses.front();
+}
+
+bool smooth_exempt_edge(RestrictedDelaunay& restricted, const EdgeKey& pq) {
+  const auto* mesh = dynamic_cast<const MeshOracle*>(&restricted.oracle());
+  if (!mesh || mesh->feature_edges().empty()) return false;
+  const auto& del = restricted.delaunay();
+  const auto point = [&](VertexId v) {
+    const auto& x = del.point(v);
+    return Point3(x[0], x[1], x[2]);
+  };
+  std::vector<Point3> others;
+  for (VertexId s : del.neighbours(pq[0]))
+    if (s != pq[1]) others.push_back(point(s));
+  return mesh->feature_edges().facet_meets_feature_edge(point(pq[0]), point(pq[1]), others);
+}
+
+CheckResult smooth_check(RestrictedDelaunay& restricted, const TriangleKey& t, double threshold) {
+  CheckResult result;
+  if (!restricted.voronoi_edge_record(t).restricted) return result;
+  for (const auto& e : {make_edge_key(t[0], t[1]), make_edge_key(t[0], t[2]), make_edge_key(t[1], t[2])}) {
+    const auto w = smooth_witness(restricted, e, threshold);
+    if (!w) continue;
+    if (!smooth_exempt_edge(restricted, e)) return CheckResult{{*w}, {}};
+    result.unsettled.push_back({CheckKind::smooth, UnsettledReason::no_witness, w->point});
+  }
+  return result;
 }
 
 }  // namespace delmesh

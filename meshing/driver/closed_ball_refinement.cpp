@@ -11,7 +11,6 @@
 #include "meshing/checks/check_registry.h"
 #include "meshing/checks/smooth.h"
 #include "meshing/core/theorem_bounds.h"
-#include "meshing/inputs/sharp_features.h"
 #include "meshing/core/detail/vec3.h"
 #include "meshing/voronoi/restricted_voronoi_mesh.h"
 #include "meshing/voronoi/voronoi_geometry.h"
@@ -25,8 +24,7 @@ using namespace detail;
 using Seconds = std::chrono::duration<double>;
 
 // The check on the current samples (ascending ids); record.sample_ids maps back.
-void check_now(Refinement& refinement, const SurfaceMesh& sigma, ClosedBallRefinement& record,
-               RestrictedVoronoiMesh* diagram_out) {
+void check_now(Refinement& refinement, const SurfaceMesh& sigma, ClosedBallRefinement& record) {
   const auto& del = refinement.delaunay();
   record.sample_ids = del.vertices();
   std::vector<Point3> samples;
@@ -35,11 +33,9 @@ void check_now(Refinement& refinement, const SurfaceMesh& sigma, ClosedBallRefin
     const auto& p = del.point(v);
     samples.emplace_back(p[0], p[1], p[2]);
   }
-  RestrictedVoronoiMesh diagram = restricted_voronoi_mesh(samples, sigma);
-  record.last = closed_ball_check(diagram, samples);
+  record.last = closed_ball_check(samples, sigma);
   record.last_is_current = true;
   ++record.checks;
-  if (diagram_out) *diagram_out = std::move(diagram);
 }
 
 // The row whose floor and counts a closed-ball witness takes: the topology row of the face's
@@ -60,27 +56,6 @@ bool is_topology_row(CheckKind kind) {
     default:
       return false;
   }
-}
-
-using IdPair = std::pair<VertexId, VertexId>;
-
-// The pairs {p, q} (ids, p < q) whose restricted facet has a point on a sharp input edge: an
-// edge cut of B(p, q) on that edge is a vertex of one of the diagram's polygons.
-std::set<IdPair> crease_facets(const RestrictedVoronoiMesh& diagram, const SurfaceMesh& sigma,
-                               const std::vector<VertexId>& ids) {
-  const FeatureSet features = detect_features(sigma);
-  std::set<IdPair> pairs;
-  for (const auto& cell : diagram.cells)
-    for (const auto& polygon : cell)
-      for (const auto& v : polygon.vertices) {
-        if (v.kind != RvdVertexKind::edge_cut) continue;
-        const auto h = sigma.halfedge(SurfaceMesh::Vertex_index(static_cast<SurfaceMesh::size_type>(v.input[0])),
-                                      SurfaceMesh::Vertex_index(static_cast<SurfaceMesh::size_type>(v.input[1])));
-        if (h == SurfaceMesh::null_halfedge() || !features.is_feature_edge(sigma.edge(h))) continue;
-        const VertexId p = ids[v.sites[0]], q = ids[v.sites[1]];
-        pairs.insert({std::min(p, q), std::max(p, q)});
-      }
-  return pairs;
 }
 
 // Where Tri S|Σ and Del S|Σ differ at t (PlStatusDecision's mismatch counts).
@@ -114,7 +89,7 @@ MeshStatus refine_closed_ball(Refinement& refinement, const SurfaceMesh& sigma, 
   const auto start = std::chrono::steady_clock::now();
   while (status == MeshStatus::complete) {
     if (refinement.limit_passed()) break;
-    check_now(refinement, sigma, record, nullptr);
+    check_now(refinement, sigma, record);
     if (record.last.status != ClosedBallStatus::violated) break;
     std::size_t inserted = 0;
     for (const auto& v : record.last.violations) {
@@ -136,8 +111,7 @@ MeshStatus refine_closed_ball(Refinement& refinement, const SurfaceMesh& sigma, 
   return status;
 }
 
-PlStatusDecision decide_pl_status(Refinement& refinement, const SurfaceMesh& sigma,
-                                  const ClosedBallRefinement& record, MeshStatus run_status,
+PlStatusDecision decide_pl_status(Refinement& refinement, const ClosedBallRefinement& record, MeshStatus run_status,
                                   const Certification& certification, bool output_defective,
                                   bool solver_certified, double lambda, bool geometry) {
   PlStatusDecision d;
@@ -176,9 +150,9 @@ PlStatusDecision decide_pl_status(Refinement& refinement, const SurfaceMesh& sig
     return d;
   }
 
-  // Smooth findings: the edges giving each location, and whether their facets meet a crease.
-  std::map<std::array<double, 3>, std::vector<EdgeKey>> smooth_edges;
-  std::set<IdPair> creases;
+  // Smooth findings: the edges giving each location, each with whether it is a crease edge
+  // (smooth_exempt_edge, the rule the Smooth check applied during the refinement).
+  std::map<std::array<double, 3>, std::vector<bool>> smooth_edges;
   const bool any_smooth = std::any_of(certification.unsettled.begin(), certification.unsettled.end(),
                                       [](const Unsettled& u) { return u.check == CheckKind::smooth; });
   if (any_smooth && geometry && lambda < beta_lambda_bound) {
@@ -188,18 +162,14 @@ PlStatusDecision decide_pl_status(Refinement& refinement, const SurfaceMesh& sig
       for (const auto& e : {make_edge_key(t[0], t[1]), make_edge_key(t[0], t[2]), make_edge_key(t[1], t[2])})
         edges.insert(e);
     for (const auto& e : edges)
-      if (auto w = smooth_witness(refinement.restricted(), e, threshold)) smooth_edges[w->point].push_back(e);
-    ClosedBallRefinement again;
-    RestrictedVoronoiMesh diagram;
-    check_now(refinement, sigma, again, &diagram);
-    creases = crease_facets(diagram, sigma, again.sample_ids);
+      if (auto w = smooth_witness(refinement.restricted(), e, threshold))
+        smooth_edges[w->point].push_back(smooth_exempt_edge(refinement.restricted(), e));
   }
   const auto crease_smooth = [&](const Unsettled& u) {
     if (u.check != CheckKind::smooth) return false;
     const auto it = smooth_edges.find(u.location);
     if (it == smooth_edges.end()) return false;
-    return std::all_of(it->second.begin(), it->second.end(),
-                       [&](const EdgeKey& e) { return creases.count({e[0], e[1]}) > 0; });
+    return std::all_of(it->second.begin(), it->second.end(), [](bool crease) { return crease; });
   };
   for (const auto& u : certification.unsettled) {
     const bool integrity = u.reason == UnsettledReason::record_count_mismatch;
@@ -240,7 +210,8 @@ nlohmann::json closed_ball_refinement_json(const ClosedBallRefinement& record, c
                  {"blocking", decision.blocking},
                  {"rule",
                   "closed-ball property holds and Tri S|Σ = Del S|Σ (Edelsbrunner-Shah): topology-row findings, "
-                  "and Smooth findings on edges whose Voronoi facet meets a sharp input edge, do not block complete"}};
+                  "and Smooth findings on edges whose Voronoi facet meets a sharp input edge at the run's feature "
+                  "angle (input_mesh.features), do not block complete"}};
   return j;
 }
 

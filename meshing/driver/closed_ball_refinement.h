@@ -29,13 +29,16 @@
 //! where their smoothness premises fail) are then not needed for the claim and do not block
 //! `complete`: they are counted as exempt with the reason, never dropped.
 //! Geometry findings keep blocking (Quality, size, distance, a registered geometry row, and the
-//! floor on them), except a Smooth finding whose edge pq has a restricted Voronoi facet
-//! V_p ∩ V_q ∩ Σ containing a point of a sharp input edge (detect_features at the default angle;
-//! decided exactly: an edge cut of B(p, q) on that input edge is a vertex of the facet's curve):
+//! floor on them), except a Smooth finding on a crease edge: an edge pq of Tri S|Σ whose
+//! Voronoi facet V_p ∩ V_q meets a feature edge of Σ at the run's feature angle
+//! (smooth_exempt_edge, meshing/checks/smooth.h; decided exactly: an edge cut of B(p, q) on a
+//! feature edge lies in the closed cell V_p, i.e. is a vertex of the facet's curve in Vor S|Σ):
 //! the roughness bound 2β(λ) rests on Σ being C² near pq and cannot hold across a crease.  The
-//! edge of a Smooth finding is found exactly: the finding's location is smooth_witness()'s point,
+//! refinement does not refine such an edge (the Smooth check reports it unsettled instead of
+//! inserting a witness), so without (a) and (b) the run cannot end complete.  The edge of a
+//! Smooth finding is found exactly: the finding's location is smooth_witness()'s point,
 //! recomputed on the final Tri S|Σ for every edge; the finding is exempt when every edge giving
-//! that point is such a crease edge.
+//! that point is a crease edge.  With features off (--no-features) no edge is a crease edge.
 //! Everything else of the old rule stays: the run must have ended complete (every queue empty),
 //! the output must have no defect (closed, manifold, consistently oriented), the solver's answers
 //! certified.  When (a) or (b) fails — violated, non_generic, or Tri S|Σ ≠ Del S|Σ — nothing is
@@ -106,8 +109,7 @@ struct PlStatusDecision {
 //! del_mesh; `lambda` the run's λ (Smooth's threshold 2β(λ)), `geometry` whether the geometry rows
 //! ran.  Unless record.last was computed on the final samples (the Delaunay vertices are still
 //! record.sample_ids), nothing is exempt and the status is certification.status's.
-PlStatusDecision decide_pl_status(Refinement& refinement, const SurfaceMesh& sigma,
-                                  const ClosedBallRefinement& record, MeshStatus run_status,
+PlStatusDecision decide_pl_status(Refinement& refinement, const ClosedBallRefinement& record, MeshStatus run_status,
                                   const Certification& certification, bool output_defective,
                                   bool solver_certified, double lambda, bool geometry);
 

@@ -27,6 +27,8 @@
 #include "meshing/driver/sample_topology.h"
 #include "meshing/driver/scaled_run.h"
 #include "meshing/inputs/make_oracle.h"
+#include "meshing/inputs/mesh_oracle.h"
+#include "meshing/inputs/sharp_features.h"
 #include "meshing/verify/gradient_flow_certificate.h"
 
 namespace delmesh {
@@ -252,7 +254,7 @@ DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double s
   if (sigma) {
     const bool geometry = status == MeshStatus::complete && options.phase == MeshPhase::all;
     const PlStatusDecision decision =
-        decide_pl_status(refinement, *sigma, closed_ball, status, certification, !defects.empty(), solver_certified,
+        decide_pl_status(refinement, closed_ball, status, certification, !defects.empty(), solver_certified,
                          options.lambda, geometry);
     result.status = decision.status;
     closed_ball_statistics = closed_ball_refinement_json(closed_ball, decision);
@@ -344,6 +346,23 @@ void check_run(const SurfaceOracle& oracle, const DelMeshOptions& options) {
     throw InvalidInput("max_distance needs a surface given by E (this input has no gradient field to bound distances by)");
 }
 
+// The Smooth check's feature edges (meshing/checks/smooth.h) on the MeshOracle of a triangle-mesh
+// input: those of `sigma` (at the oracle's scale) at the feature angle, none without one; and the
+// statistics' input_mesh.features at that angle.
+void set_feature_edges(PreparedInput& input, const SurfaceMesh& sigma, std::optional<double> angle_deg) {
+  auto* oracle = dynamic_cast<MeshOracle*>(input.oracle.get());
+  if (!oracle) return;
+  if (!angle_deg) {
+    oracle->set_feature_edges(FeatureEdges{});
+    input.statistics["features"] = {{"angle_deg", nullptr}, {"detected", false}};
+    return;
+  }
+  const auto* triangles = std::get_if<TriangleMeshInput>(&input.input);
+  const FeatureSet features = detect_features(sigma, *angle_deg, triangles->mesh->folded_vertices);
+  oracle->set_feature_edges(FeatureEdges(sigma, features));
+  input.statistics["features"] = features_json(features);
+}
+
 // del_mesh on a prepared input, its clock (time limit, seconds) started at `start`.
 DelMeshResult mesh_prepared(PreparedInput& input, const DelMeshOptions& options,
                             std::chrono::steady_clock::time_point start) {
@@ -354,6 +373,7 @@ DelMeshResult mesh_prepared(PreparedInput& input, const DelMeshOptions& options,
   if (const auto* triangles = std::get_if<TriangleMeshInput>(&input.input); triangles && triangles->mesh) {
     sigma = triangles->mesh->mesh;
     scale_mesh(*sigma, -k);
+    set_feature_edges(input, *sigma, options.feature_angle_deg);
   }
   DelMeshResult result = run(*input.oracle, unit_scale_options(options, k), input.seconds_validation, start,
                              sigma ? &*sigma : nullptr);

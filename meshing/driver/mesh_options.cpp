@@ -31,6 +31,10 @@ std::optional<std::string> violated_range(MeshOption option, const DelMeshOption
     case MeshOption::min_spacing:
       if (!(std::isfinite(options.min_spacing) && options.min_spacing >= 0)) return "be a length >= 0 (0: no floor)";
       break;
+    case MeshOption::feature_angle:
+      if (options.feature_angle_deg && !(*options.feature_angle_deg > 0 && *options.feature_angle_deg < 180))
+        return "lie in (0, 180) degrees";
+      break;
   }
   return std::nullopt;
 }

@@ -43,6 +43,11 @@ struct DelMeshOptions {
   //! not inserted but recorded (statistics "min_spacing"), and the run is then uncertified.
   //! 0: no floor.  Meant for surfaces that are not C² (Lemma 5.1's spacing argument needs C²).
   double min_spacing = 0;
+  //! A triangle-mesh input only: the feature angle θ (degrees, 0 < θ < 180) at which its sharp
+  //! edges are detected (meshing/inputs/sharp_features.h; the default is default_feature_angle_deg),
+  //! whose Voronoi facets the Smooth check exempts (meshing/checks/smooth.h); empty: no features,
+  //! Smooth exempts nothing.  An implicit surface does not read it.
+  std::optional<double> feature_angle_deg = 60.0;
   std::size_t max_points = 200000;
   double time_limit_seconds = 0;         //!< 0: none
   std::uint64_t seed = 1;                //!< generic directions; same seed → same mesh
@@ -71,7 +76,7 @@ struct DelMeshOptions {
 inline constexpr double max_time_limit_seconds = 1e9;
 
 //! The options of DelMeshOptions that have a range, in the order validate() checks them.
-enum class MeshOption { lambda, size_bound, max_distance, max_points, time_limit, threads, min_spacing };
+enum class MeshOption { lambda, size_bound, max_distance, max_points, time_limit, threads, min_spacing, feature_angle };
 constexpr auto enum_names(MeshOption) {
   return name_table<MeshOption>("MeshOption", {{MeshOption::lambda, "lambda"},
                                                {MeshOption::size_bound, "size_bound"},
@@ -79,19 +84,21 @@ constexpr auto enum_names(MeshOption) {
                                                {MeshOption::max_points, "max_points"},
                                                {MeshOption::time_limit, "time_limit_seconds"},
                                                {MeshOption::threads, "threads"},
-                                               {MeshOption::min_spacing, "min_spacing"}});
+                                               {MeshOption::min_spacing, "min_spacing"},
+                                               {MeshOption::feature_angle, "feature_angle_deg"}});
 }
 inline std::ostream& operator<<(std::ostream& out, MeshOption option) { return write_enum(out, option); }
 inline constexpr MeshOption all_mesh_options[] = {MeshOption::lambda,       MeshOption::size_bound,
                                                   MeshOption::max_distance, MeshOption::max_points,
                                                   MeshOption::time_limit,   MeshOption::threads,
-                                                  MeshOption::min_spacing};
+                                                  MeshOption::min_spacing,  MeshOption::feature_angle};
 
 //! The range of `option` that `options` violates, in words that follow "must" ("satisfy 0 <
 //! lambda < 1/3"), or nothing if the option lies in its range: 0 < lambda < 1/3 (Theorem 6.1
 //! covers lambda ≤ 0.06); size_bound and max_distance, when set, positive finite lengths;
 //! max_points ≥ 1;
-//! 0 ≤ time_limit_seconds ≤ max_time_limit_seconds; threads ≥ 0; min_spacing finite and ≥ 0.
+//! 0 ≤ time_limit_seconds ≤ max_time_limit_seconds; threads ≥ 0; min_spacing finite and ≥ 0;
+//! feature_angle_deg, when set, in (0, 180).
 //! The one statement of these ranges: DelMeshOptions::validate() reads them, and the programs
 //! map each option to their own flag.
 std::optional<std::string> violated_range(MeshOption option, const DelMeshOptions& options);

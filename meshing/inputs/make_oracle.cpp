@@ -25,15 +25,10 @@ nlohmann::json folded_vertices_json(const InputMesh& m) {
   return {{"count", m.folded_vertices.size()}, {"locations", locations}};
 }
 
-//! The input's sharp features at the default feature angle: counts only.
+//! The input's sharp features at the default feature angle: counts only (a run replaces them by
+//! those at its own feature angle).
 nlohmann::json features_json(const InputMesh& m) {
-  const FeatureSet f = detect_features(m.mesh, default_feature_angle_deg, m.folded_vertices);
-  return {{"angle_deg", f.angle_deg},
-          {"sharp_edges", f.sharp_edges},
-          {"curves", f.curves.size()},
-          {"closed_curves", f.closed_curves},
-          {"corners", f.corners.size()},
-          {"folded_corners", f.folded_corners}};
+  return features_json(detect_features(m.mesh, default_feature_angle_deg, m.folded_vertices));
 }
 
 void prepare(PreparedInput& p, const ImplicitInput& in) {

@@ -97,10 +97,12 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "meshing/core/surface_mesh.h"
 #include "meshing/core/surface_oracle.h"
+#include "meshing/inputs/sharp_features.h"
 
 namespace delmesh {
 
@@ -148,6 +150,11 @@ class MeshOracle final : public SurfaceOracle {
   Vec3 normal(const Vec3& x) const override;
   std::optional<Vec3> project(const Vec3& x) const override;
 
+  //! The feature edges (at the oracle's scale) whose Voronoi facets the Smooth check exempts
+  //! (meshing/checks/smooth.h); none unless set.  The run sets them from its feature angle.
+  void set_feature_edges(FeatureEdges edges) { feature_edges_ = std::move(edges); }
+  const FeatureEdges& feature_edges() const { return feature_edges_; }
+
   //! A polyline of a plane section; closed: its last point joins its first.
   struct Polyline {
     std::vector<Vec3> points;
@@ -178,6 +185,7 @@ class MeshOracle final : public SurfaceOracle {
   std::vector<Counts> stats_;
   std::size_t cone_attempts_ = 0, cone_proved_ = 0;
   int scale_exponent_ = 0;
+  FeatureEdges feature_edges_;
   mutable std::mutex statistics_mutex_;
 };
 

@@ -99,6 +99,67 @@ bool normals_differ_by_more_than(const Point3& a, const Point3& b, const Point3&
   return s == 2 || s < 0;
 }
 
+namespace {
+
+//! |x − p|² − |x − q|² = 2⟨x, q − p⟩ − (|q|² − |p|²), every intermediate an NT: < 0 nearer to p.
+template <class NT>
+NT bisector_value(const Point3& x, const Point3& p, const Point3& q) {
+  const NT dx = NT(q.x()) - NT(p.x()), dy = NT(q.y()) - NT(p.y()), dz = NT(q.z()) - NT(p.z());
+  const NT qq = NT(q.x()) * NT(q.x()) + NT(q.y()) * NT(q.y()) + NT(q.z()) * NT(q.z());
+  const NT pp = NT(p.x()) * NT(p.x()) + NT(p.y()) * NT(p.y()) + NT(p.z()) * NT(p.z());
+  return NT(2) * (NT(x.x()) * dx + NT(x.y()) * dy + NT(x.z()) * dz) - (qq - pp);
+}
+
+//! For the point x where the segment uw crosses B(p, q): |x − p|² − |x − s|² times W², where x =
+//! X / W in homogeneous coordinates (X = u·b + a·(w − u), W = b, a = −f(u), b = f(w) − f(u) for
+//! f = bisector_value of p, q); so its sign is that of |x − p|² − |x − s|².
+template <class NT>
+NT cut_value(const Point3& u, const Point3& w, const Point3& p, const Point3& q, const Point3& s) {
+  const NT fu = bisector_value<NT>(u, p, q), fw = bisector_value<NT>(w, p, q);
+  const NT a = -fu, b = fw - fu;
+  const NT ex = NT(w.x()) - NT(u.x()), ey = NT(w.y()) - NT(u.y()), ez = NT(w.z()) - NT(u.z());
+  const NT X = NT(u.x()) * b + a * ex, Y = NT(u.y()) * b + a * ey, Z = NT(u.z()) * b + a * ez;
+  const NT dx = NT(s.x()) - NT(p.x()), dy = NT(s.y()) - NT(p.y()), dz = NT(s.z()) - NT(p.z());
+  const NT ss = NT(s.x()) * NT(s.x()) + NT(s.y()) * NT(s.y()) + NT(s.z()) * NT(s.z());
+  const NT pp = NT(p.x()) * NT(p.x()) + NT(p.y()) * NT(p.y()) + NT(p.z()) * NT(p.z());
+  return (NT(2) * (X * dx + Y * dy + Z * dz) - (ss - pp) * b) * b;
+}
+
+//! The exact sign of value<NT>(): interval arithmetic first, exact rationals if it is not certain.
+template <class Value>
+int exact_sign(const Value& value) {
+  {
+    CGAL::Protect_FPU_rounding<true> guard;
+    const CGAL::Interval_nt_advanced x = value(CGAL::Interval_nt_advanced());
+    if (x.inf() > 0) return 1;
+    if (x.sup() < 0) return -1;
+    if (x.inf() == 0 && x.sup() == 0) return 0;
+  }
+  return static_cast<int>(CGAL::sign(value(CGAL::Exact_rational())));
+}
+
+}  // namespace
+
+FeatureEdges::FeatureEdges(const SurfaceMesh& mesh, const FeatureSet& features) : angle_deg_(features.angle_deg) {
+  segments_.reserve(features.feature_edges.size());
+  for (Edge e : features.feature_edges)
+    segments_.push_back({mesh.point(mesh.vertex(e, 0)), mesh.point(mesh.vertex(e, 1))});
+}
+
+bool FeatureEdges::facet_meets_feature_edge(const Point3& p, const Point3& q, const std::vector<Point3>& others) const {
+  for (const auto& [u, w] : segments_) {
+    const int su = exact_sign([&](auto nt) { return bisector_value<decltype(nt)>(u, p, q); });
+    if (su == 0) continue;
+    const int sw = exact_sign([&](auto nt) { return bisector_value<decltype(nt)>(w, p, q); });
+    if (sw != -su) continue;  // no strict crossing of B(p, q)
+    const bool in_cell = std::all_of(others.begin(), others.end(), [&](const Point3& s) {
+      return exact_sign([&](auto nt) { return cut_value<decltype(nt)>(u, w, p, q, s); }) <= 0;
+    });
+    if (in_cell) return true;
+  }
+  return false;
+}
+
 bool FeatureSet::is_feature_edge(SurfaceMesh::Edge_index e) const {
   return std::binary_search(feature_edges.begin(), feature_edges.end(), e);
 }
@@ -254,6 +315,15 @@ FeatureSet detect_features(const SurfaceMesh& mesh, double angle_deg, const std:
 FeatureSet detect_features(const SurfaceMesh& mesh, double angle_deg) {
   require_angle(angle_deg);
   return detect_features(mesh, angle_deg, folded_vertices(mesh));
+}
+
+nlohmann::json features_json(const FeatureSet& f) {
+  return {{"angle_deg", f.angle_deg},
+          {"sharp_edges", f.sharp_edges},
+          {"curves", f.curves.size()},
+          {"closed_curves", f.closed_curves},
+          {"corners", f.corners.size()},
+          {"folded_corners", f.folded_corners}};
 }
 
 }  // namespace delmesh

@@ -41,8 +41,11 @@
 //! curves without a corner, by their smallest vertex index, each starting at that vertex and going
 //! first to the smaller-indexed of its two neighbours on the curve.
 
+#include <array>
 #include <cstddef>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "meshing/core/surface_mesh.h"
 
@@ -85,6 +88,43 @@ struct FeatureSet {
   bool is_corner(SurfaceMesh::Vertex_index v) const;
 };
 
+//! The feature edges of a mesh as segments, for the question the Smooth check of a
+//! piecewise-linear input asks (meshing/checks/smooth.h): does the Voronoi facet V_p ∩ V_q of two
+//! samples meet a feature edge?
+//!
+//! The criterion (facet_meets_feature_edge).  A feature edge uw *meets the facet of pq* when it
+//! crosses the bisector plane B(p, q) strictly (u and w on opposite sides, neither on it) at a
+//! point x — the edge cut of B(p, q) on uw — that lies in the closed Voronoi cell V_p, i.e.
+//! |x − p|² ≤ |x − s|² for every other sample s (x is then in V_q as well, being on B(p, q)).
+//! These are exactly the edge cuts of B(p, q) on a feature edge that are vertices of the
+//! polygons of the restricted Voronoi diagram Vor S|Σ (meshing/voronoi/restricted_voronoi_mesh.h,
+//! which creates an edge cut for a strict crossing and keeps a vertex on a bisector in the cell
+//! being clipped).  V_p is the intersection of the half-spaces of p's Voronoi neighbours, which
+//! are among its Delaunay neighbours, so `others` need only hold those.  Every decision is exact:
+//! the cut is kept in homogeneous coordinates and each sign is evaluated in interval arithmetic
+//! and, when not certain, in exact rationals, from the input doubles.
+class FeatureEdges {
+ public:
+  //! No feature edges (features off): no facet meets one.
+  FeatureEdges() = default;
+  //! The feature edges of `features` (detect_features of `mesh`) as segments, copied.
+  FeatureEdges(const SurfaceMesh& mesh, const FeatureSet& features);
+
+  bool empty() const { return segments_.empty(); }
+  std::size_t size() const { return segments_.size(); }
+  //! The feature angle of the FeatureSet they came from (degrees; 0 for none).
+  double angle_deg() const { return angle_deg_; }
+
+  //! Whether some feature edge meets the facet of the samples p and q (the criterion above);
+  //! `others` holds the other samples that bound V_p (at least p's Voronoi neighbours other than
+  //! q; more are allowed).  Precondition: p ≠ q.  Time: linear in the feature edges.
+  bool facet_meets_feature_edge(const Point3& p, const Point3& q, const std::vector<Point3>& others) const;
+
+ private:
+  std::vector<std::array<Point3, 2>> segments_;
+  double angle_deg_ = 0;
+};
+
 //! The exact decision of the file comment for the normals (b − a) × (c − a) and (e − d) × (f − d)
 //! of the triangles (a, b, c) and (d, e, f) at the feature angle angle_deg: true when the angle
 //! between the normals exceeds it, or a normal is zero.
@@ -103,5 +143,9 @@ FeatureSet detect_features(const SurfaceMesh& mesh, double angle_deg,
 //! The same with the folded vertices computed (folded_vertices(mesh); tests the command's limits
 //! as that does).
 FeatureSet detect_features(const SurfaceMesh& mesh, double angle_deg = default_feature_angle_deg);
+
+//! The counts of a feature set for the statistics: {angle_deg, sharp_edges, curves, closed_curves,
+//! corners, folded_corners}.
+nlohmann::json features_json(const FeatureSet& features);
 
 }  // namespace delmesh

@@ -1,5 +1,6 @@
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>
@@ -13,11 +14,15 @@ using namespace delmesh::test;
 namespace {
 
 // `delmesh mesh --input-mesh` on CGAL's data mesh `name` at the default λ; its statistics.
-nlohmann::json remesh_statistics(const std::string& name, int expected_exit_code, const std::string& phase = "all") {
+// `extra` is appended to the command line.
+nlohmann::json remesh_statistics(const std::string& name, int expected_exit_code, const std::string& phase = "all",
+                                 const std::vector<std::string>& extra = {}) {
   TempDir dir;
   const std::string input = cgal_data_mesh(name, dir);
-  const RunResult r = run_delmesh(
-      {"mesh", "--input-mesh", input, "--phase", phase, "--out", "out.off", "--stats", "out.json", "--quiet"}, dir.path);
+  std::vector<std::string> args{"mesh", "--input-mesh", input, "--phase", phase, "--out", "out.off", "--stats",
+                                "out.json", "--quiet"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const RunResult r = run_delmesh(args, dir.path);
   BOOST_TEST(r.exit_code == expected_exit_code, r.err);
   return nlohmann::json::parse(read_text(dir.path / "out.json"));
 }
@@ -42,18 +47,26 @@ BOOST_AUTO_TEST_CASE(eight_is_proved_homeomorphic) {
   BOOST_TEST(c["seconds"].get<double>() >= 0);
 }
 
-// CGAL's cube (12 triangles), whole run: the closed-ball check proves the output homeomorphic to
-// it, but Smooth findings on edges whose Voronoi facets miss the creases (their triangles bend
-// over a crease through a third vertex) are geometry findings that keep blocking: uncertified
-// (exit code 5), with the crease ones counted as exempt.
-BOOST_AUTO_TEST_CASE(cube_is_uncertified_but_proved) {
-  const nlohmann::json stats = remesh_statistics("cube", 5);
-  BOOST_TEST(stats["status"] == "uncertified");
+// CGAL's cube (12 triangles), whole run at the default feature angle: Smooth does not refine the
+// edges whose Voronoi facets meet the cube's edges (its normal jumps by 90° there), the closed-ball
+// check proves the output homeomorphic to the input, and those Smooth findings are then exempt:
+// complete (exit code 0), one sphere, with the exemptions counted and nothing blocking.
+BOOST_AUTO_TEST_CASE(cube_is_complete_with_smooth_exempt_at_its_creases) {
+  const nlohmann::json stats = remesh_statistics("cube", 0);
+  BOOST_TEST(stats["status"] == "complete");
+  BOOST_TEST(stats["components"] == 1);
+  BOOST_TEST(stats["genus_per_component"] == nlohmann::json::array({0}));
+  BOOST_TEST(stats["input_mesh"]["features"]["angle_deg"] == 60.0);
+  BOOST_TEST(stats["input_mesh"]["features"]["sharp_edges"] == 12);
   const nlohmann::json& c = stats["closed_ball"];
   BOOST_TEST(c["status"] == "holds");
   BOOST_TEST(c["proves_homeomorphism"] == true);
-  BOOST_TEST(c["exempt"]["by_kind"].contains("smooth"));
-  BOOST_TEST(c["exempt"]["blocking"].get<std::size_t>() > 0u);
+  BOOST_TEST(c["exempt"]["blocking"] == 0);
+  const nlohmann::json& smooth = c["exempt"]["by_kind"]["smooth"];
+  BOOST_TEST(smooth.value("no_witness (crease)", 0) > 0);
+  BOOST_TEST(c["exempt"]["count"].get<std::size_t>() >= smooth.value("no_witness (crease)", std::size_t{0}));
+  // Every exempt Smooth finding is listed under "unsettled" too, as check smooth, no_witness.
+  BOOST_TEST(stats["unsettled"]["by_reason"].value("no_witness", 0) == smooth.value("no_witness (crease)", 0));
 }
 
 // The cube's topology phase: the closed-ball property holds and the output is Del S|Σ, so the run

@@ -78,7 +78,7 @@ BOOST_AUTO_TEST_CASE(ring_sample_of_a_torus_is_refined_to_a_torus) {
 
   const Certification certification = refinement.certify(status, false);
   const PlStatusDecision decision =
-      decide_pl_status(refinement, sigma, record, status, certification, false, true, 0.06, false);
+      decide_pl_status(refinement, record, status, certification, false, true, 0.06, false);
   BOOST_TEST(decision.output_equals_restricted_delaunay);
   BOOST_TEST(decision.proves_homeomorphism);
   BOOST_TEST(decision.blocking == 0u);
@@ -93,7 +93,7 @@ BOOST_AUTO_TEST_CASE(ring_sample_of_a_torus_is_refined_to_a_torus) {
   BOOST_TEST_REQUIRE(refinement.insert(Witness{{x.x(), x.y(), x.z()}, CheckKind::quality, -1, false}).has_value());
   const MeshStatus again = refinement.run();
   const Certification later = refinement.certify(again, false);
-  const PlStatusDecision stale = decide_pl_status(refinement, sigma, record, again, later, false, true, 0.06, false);
+  const PlStatusDecision stale = decide_pl_status(refinement, record, again, later, false, true, 0.06, false);
   BOOST_TEST(!stale.check_current);
   BOOST_TEST(!stale.proves_homeomorphism);
   BOOST_TEST(stale.exempt_count == 0u);

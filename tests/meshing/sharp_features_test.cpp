@@ -7,6 +7,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include "common/errors.h"
+#include "meshing/driver/mesh_options.h"
 #include "meshing/inputs/folded_vertices.h"
 #include "tests/meshing/feature_meshes.h"
 #include "tests/meshing/known_meshes.h"
@@ -171,6 +172,44 @@ BOOST_AUTO_TEST_CASE(smooth_closed_meshes_have_no_features) {
   BOOST_TEST(tet.sharp_edges == 6u);
   BOOST_TEST(tet.corners.size() == 4u);
   BOOST_TEST(tet.curves.size() == 6u);
+}
+
+// The unit cube's feature edges (its 12 edges) against the facet of p and q, whose bisector is the
+// plane z = 1/2: it crosses the four vertical edges at (x, y, 1/2), x, y ∈ {0, 1}, and no other
+// edge (the horizontal ones lie in z = 0 and z = 1).
+BOOST_AUTO_TEST_CASE(a_facet_meets_a_feature_edge_exactly_when_a_cut_lies_in_its_cell) {
+  const SurfaceMesh cube = test::grid_cube(1).to_surface_mesh();
+  const FeatureEdges edges(cube, detect_features(cube));
+  BOOST_TEST(edges.size() == 12u);
+  BOOST_TEST(edges.angle_deg() == default_feature_angle_deg);
+  const Point3 p(0.5, 0.5, 0.7), q(0.5, 0.5, 0.3);
+  // Alone, V_p is the half-space z ≥ 1/2: all four cuts lie in it.
+  BOOST_TEST(edges.facet_meets_feature_edge(p, q, {}));
+  BOOST_TEST(edges.facet_meets_feature_edge(q, p, {}));
+  // A sample at each cut takes it out of V_p; three of them leave the fourth cut in.
+  const std::vector<Point3> at_cuts{Point3(0, 0, 0.5), Point3(1, 0, 0.5), Point3(0, 1, 0.5), Point3(1, 1, 0.5)};
+  BOOST_TEST(!edges.facet_meets_feature_edge(p, q, at_cuts));
+  BOOST_TEST(edges.facet_meets_feature_edge(p, q, {at_cuts[0], at_cuts[1], at_cuts[2]}));
+  // The cell is closed: with p2 = (½, 0, 1) and q2 = (½, 0, 0), the cut (0, 0, ½) is at squared
+  // distance ½ from p2 and from s = (−½, 0, 0), a tie that keeps it (the other three cuts are
+  // taken out by samples on them); moving s nearer to the cut takes it out.
+  const Point3 p2(0.5, 0, 1), q2(0.5, 0, 0);
+  const std::vector<Point3> tie{Point3(-0.5, 0, 0), at_cuts[1], at_cuts[2], at_cuts[3]};
+  BOOST_TEST(edges.facet_meets_feature_edge(p2, q2, tie));
+  const std::vector<Point3> nearer{Point3(-0.5, 0, 0.25), at_cuts[1], at_cuts[2], at_cuts[3]};
+  BOOST_TEST(!edges.facet_meets_feature_edge(p2, q2, nearer));
+  // An endpoint on the bisector is not a strict crossing: B(p3, q3) is the plane z = 1, which
+  // holds the top face's edges and the vertical edges' upper ends.
+  BOOST_TEST(!edges.facet_meets_feature_edge(Point3(0.5, 0.5, 1.5), Point3(0.5, 0.5, 0.5), {}));
+  // No feature edges (features off, or a cube at a feature angle above 90°): no facet meets one.
+  BOOST_TEST(!FeatureEdges().facet_meets_feature_edge(p, q, {}));
+  BOOST_TEST(FeatureEdges(cube, detect_features(cube, 91)).empty());
+}
+
+// A run's feature angle defaults to the one stated here.
+BOOST_AUTO_TEST_CASE(the_run_options_default_to_the_default_feature_angle) {
+  BOOST_TEST(DelMeshOptions{}.feature_angle_deg.has_value());
+  BOOST_TEST(*DelMeshOptions{}.feature_angle_deg == default_feature_angle_deg);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -37,19 +37,14 @@ namespace delmesh::app {
 struct MeshRequest {
   SurfaceArguments surface;               //!< --surface | --expr with --box
   std::optional<std::string> input_mesh;  //!< --input-mesh
-  double lambda = lambda0;                //!< --lambda
-  std::string phase = "all";              //!< --phase: topology or all
-  std::string solver = "subdivision";     //!< --solver: subdivision or homotopy
-  std::optional<double> size_bound;       //!< --size-bound
-  std::optional<double> max_distance;     //!< --max-distance (an implicit surface and phase all only)
-  std::size_t max_points = DelMeshOptions{}.max_points;  //!< --max-points
-  double time_limit = 0;                  //!< --time-limit (0: none)
-  std::uint64_t seed = 1;                 //!< --seed
-  int threads = 0;                        //!< --threads (0: every hardware thread)
-  //! --min-spacing: the termination floor (DelMeshOptions::min_spacing); default 0 (none) for an
-  //! implicit surface, tolerances::min_spacing_median_edge_fraction times the median edge length
-  //! for --input-mesh.
-  std::optional<double> min_spacing;
+  //! The run's options, each field bound to its flag: --lambda, --phase, --solver, --size-bound,
+  //! --max-distance, --max-points, --time-limit (time_limit_seconds), --seed, --threads,
+  //! --min-spacing.  progress and interrupt are the caller's.
+  DelMeshOptions options;
+  //! --min-spacing was given.  Otherwise options.min_spacing is replaced by the input's default:
+  //! 0 (no floor) for an implicit surface, tolerances::min_spacing_median_edge_fraction times the
+  //! median edge length for --input-mesh.
+  bool min_spacing_given = false;
 };
 
 //! A validated request: the surface and the options of del_mesh (without progress and
@@ -61,11 +56,11 @@ struct MeshPlan {
   std::vector<std::string> warnings;  //!< e.g. λ > 0.06 is not covered by Theorem 6.1
 };
 
-//! Validates a request in the program's order (λ, --input-mesh, the surface's presence, phase,
-//! solver, size bound, limits, threads, minimum spacing, then the surface itself).  Throws
-//! InvalidInput with the program's message on the first invalid option.  A request with
-//! --input-mesh is validated as plan_mesh_input() does and then refused: its plan is a
-//! MeshInputPlan.
+//! Validates a request in the program's order: the options' ranges (DelMeshOptions::validate(),
+//! a violation given as "FLAG must RANGE, got VALUE"), --input-mesh, the surface's presence,
+//! --max-distance with --phase, then the surface itself.  Throws InvalidInput with the program's
+//! message on the first invalid option.  A request with --input-mesh is validated as
+//! plan_mesh_input() does and then refused: its plan is a MeshInputPlan.
 MeshPlan plan_mesh(const MeshRequest& request);
 
 //! A validated --input-mesh request: the mesh to remesh (meshing/inputs/input_mesh.h) and the options.
@@ -77,9 +72,10 @@ struct MeshInputPlan {
   std::vector<std::string> warnings;
 };
 
-//! Validates an --input-mesh request in plan_mesh()'s order; reads and validates the mesh
-//! (read_input_mesh: one InvalidInput naming the defect).  --solver is not read.  The minimum
-//! spacing defaults to tolerances::min_spacing_median_edge_fraction times the mesh's median edge.
+//! Validates an --input-mesh request in plan_mesh()'s order, then reads and validates the mesh
+//! (read_input_mesh: one InvalidInput naming the defect).  options.solver is not used.  The
+//! minimum spacing defaults to tolerances::min_spacing_median_edge_fraction times the mesh's
+//! median edge.
 MeshInputPlan plan_mesh_input(const MeshRequest& request);
 //! The same for a mesh already read and validated (validate_input_mesh), named `name` (the
 //! plan's name, and its path when the request has no --input-mesh); request.input_mesh is not

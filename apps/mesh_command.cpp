@@ -41,26 +41,16 @@ namespace delmesh::app {
 
 namespace {
 
+//! The command line of `delmesh mesh`: the run's options are bound to the fields of `run`.
 struct MeshOptions {
   SurfaceOptions surface;
   std::string input_mesh;
-  double lambda = lambda0;
-  std::string phase = "all";
-  std::string solver = "subdivision";
-  double size_bound = 0;
-  double max_distance = 0;
-  double min_spacing = 0;
+  DelMeshOptions run;
   std::string out, stats;
-  std::size_t max_points = DelMeshOptions{}.max_points;
-  double time_limit = 0;
-  std::uint64_t seed = 1;
-  int threads = 0;
   bool quiet = false;
   bool certify = false;
   bool repair = false;
   CLI::Option* input_mesh_option = nullptr;
-  CLI::Option* size_bound_option = nullptr;
-  CLI::Option* max_distance_option = nullptr;
   CLI::Option* min_spacing_option = nullptr;
   CLI::Option* out_option = nullptr;
   CLI::Option* stats_option = nullptr;
@@ -91,78 +81,36 @@ std::pair<std::string, std::string> flag_and_value(MeshOption option, const DelM
   return {"--unknown-option", ""};
 }
 
-//! Throws InvalidInput naming the flag and its value if `option` of `options` is out of the range
-//! del_mesh checks (violated_range): a bad option is refused before the input is read.
-void require_in_range(MeshOption option, const DelMeshOptions& options) {
-  if (const auto range = violated_range(option, options)) {
-    const auto [flag, value] = flag_and_value(option, options);
-    throw InvalidInput(flag + " must " + *range + ", got " + value);
-  }
-}
-
-//! Throws InvalidInput unless 0 < λ < 1/3; returns whether Theorem 6.1 covers λ (λ ≤ 0.06).
-bool check_lambda(double lambda) {
-  DelMeshOptions options;
-  options.lambda = lambda;
-  require_in_range(MeshOption::lambda, options);
-  return lambda <= lambda0;
-}
-
 //! The run's options as values.
 MeshRequest request_of(const MeshOptions& o) {
   MeshRequest r;
   r.surface = o.surface.arguments();
   if (o.input_mesh_option->count() > 0) r.input_mesh = o.input_mesh;
-  r.lambda = o.lambda;
-  r.phase = o.phase;
-  r.solver = o.solver;
-  if (o.size_bound_option->count() > 0) r.size_bound = o.size_bound;
-  if (o.max_distance_option->count() > 0) r.max_distance = o.max_distance;
-  if (o.min_spacing_option->count() > 0) r.min_spacing = o.min_spacing;
-  r.max_points = o.max_points;
-  r.time_limit = o.time_limit;
-  r.seed = o.seed;
-  r.threads = o.threads;
+  r.options = o.run;
+  r.min_spacing_given = o.min_spacing_option->count() > 0;
   return r;
 }
 
-}  // namespace
-
-namespace {
-
-//! The options of a request that do not depend on the kind of input, checked in the program's
-//! order (phase, size bound, limits, threads, minimum spacing); the solver is the caller's.
-DelMeshOptions common_options(const MeshRequest& r) {
-  DelMeshOptions options;
-  options.lambda = r.lambda;
-  options.phase = parse_enum<MeshPhase>(r.phase, "--phase");
-  return options;
+//! The warning for a λ that Theorem 6.1 does not cover (λ > 0.06), if it is one.
+void warn_lambda(double lambda, std::vector<std::string>& warnings) {
+  if (lambda > lambda0)
+    warnings.push_back("lambda = " + format_number(lambda) +
+                       " > 0.06: Theorem 6.1 does not cover it (no guarantee of topology or quality)");
 }
 
-void limit_options(const MeshRequest& r, DelMeshOptions& options) {
-  options.size_bound = r.size_bound;
-  options.max_distance = r.max_distance;
-  options.max_points = r.max_points;
-  options.time_limit_seconds = r.time_limit;
-  options.seed = r.seed;
-  options.threads = r.threads;
-  if (r.min_spacing) options.min_spacing = *r.min_spacing;
-  for (MeshOption option : all_mesh_options) {
-    if (option == MeshOption::lambda) continue;  // check_lambda(), before the input is read
-    // A default floor (from an input mesh's edges) is left to del_mesh: it is not the flag's value.
-    if (option == MeshOption::min_spacing && !r.min_spacing) continue;
-    require_in_range(option, options);
+//! Throws InvalidInput "FLAG must RANGE, got VALUE" for the first option out of its range
+//! (DelMeshOptions::validate(), the one statement of the ranges).
+void require_valid_options(const DelMeshOptions& options) {
+  if (const std::optional<OptionViolation> violation = options.validate()) {
+    const auto [flag, value] = flag_and_value(violation->option, options);
+    throw InvalidInput(flag + " must " + violation->requirement + ", got " + value);
   }
-}
-
-std::string lambda_warning(double lambda) {
-  return "lambda = " + format_number(lambda) + " > 0.06: Theorem 6.1 does not cover it (no guarantee of topology or quality)";
 }
 
 }  // namespace
 
 MeshPlan plan_mesh(const MeshRequest& r) {
-  const bool covered = check_lambda(r.lambda);
+  require_valid_options(r.options);
   if (r.input_mesh) {
     (void)plan_mesh_input(r);  // a missing, corrupt or invalid mesh, or a bad option, is reported as such first
     throw InvalidInput("--input-mesh: a triangle mesh is remeshed through plan_mesh_input() and remesh()");
@@ -171,35 +119,34 @@ MeshPlan plan_mesh(const MeshRequest& r) {
     throw InvalidInput("give one of --surface NAME, --expr E --box B, --input-mesh FILE");
   }
 
-  DelMeshOptions options = common_options(r);
-  options.solver = parse_enum<SolverBackend>(r.solver, "--solver");
-  limit_options(r, options);
-  if (options.max_distance && options.phase != MeshPhase::all)
+  if (r.options.max_distance && r.options.phase != MeshPhase::all)
     throw InvalidInput("--max-distance needs --phase all (the distance is refined with Quality and Smooth)");
 
-  MeshPlan plan{r.surface.resolve(), options, {}};
-  if (!covered) plan.warnings.push_back(lambda_warning(r.lambda));
+  MeshPlan plan{r.surface.resolve(), r.options, {}};
+  if (!r.min_spacing_given) plan.options.min_spacing = 0;
+  warn_lambda(r.options.lambda, plan.warnings);
   return plan;
 }
 
 MeshInputPlan plan_mesh_input(const MeshRequest& r) {
   if (!r.input_mesh) throw PreconditionViolation("plan_mesh_input: the request has no --input-mesh");
+  require_valid_options(r.options);  // a bad option is refused before the input is read
   // The default outputs <stem>_remeshed.off and .json never replace the input.
   return plan_mesh_input(r, read_input_mesh(*r.input_mesh),
                          std::filesystem::path(*r.input_mesh).stem().string() + "_remeshed");
 }
 
 MeshInputPlan plan_mesh_input(const MeshRequest& r, InputMesh mesh, const std::string& name) {
-  const bool covered = check_lambda(r.lambda);
+  require_valid_options(r.options);
   if (r.surface.surface || r.surface.expr || r.surface.box)
     throw InvalidInput("--input-mesh excludes --surface, --expr and --box");
-  if (r.max_distance)
+  if (r.options.max_distance)
     throw InvalidInput("--max-distance needs --surface or --expr: an input mesh has no E whose gradient bounds "
                        "the distance");
-  MeshInputPlan plan{name, r.input_mesh.value_or(name), std::move(mesh), common_options(r), {}};
-  plan.options.min_spacing = tolerances::min_spacing_median_edge_fraction * plan.mesh.median_edge_length;
-  limit_options(r, plan.options);
-  if (!covered) plan.warnings.push_back(lambda_warning(r.lambda));
+  MeshInputPlan plan{name, r.input_mesh.value_or(name), std::move(mesh), r.options, {}};
+  if (!r.min_spacing_given)
+    plan.options.min_spacing = tolerances::min_spacing_median_edge_fraction * plan.mesh.median_edge_length;
+  warn_lambda(r.options.lambda, plan.warnings);
   if (const auto& folded = plan.mesh.folded_vertices; !folded.empty()) {
     const Point3& x = plan.mesh.mesh.point(folded.front());
     std::ostringstream warning;
@@ -303,7 +250,7 @@ std::shared_ptr<ProgressLine> report_progress(const MeshOptions& o, MeshRun& run
                : run.mesh_plan->path + " (" + std::to_string(run.mesh_plan->mesh.report.triangles) + " triangles) in " +
                      format_box(run.mesh_plan->mesh.box) + ", min spacing " + format_number(options.min_spacing);
   auto line = std::make_shared<ProgressLine>(
-      std::cerr, "delmesh: meshing " + what + ", lambda " + format_number(o.lambda) + ", phase " + o.phase,
+      std::cerr, "delmesh: meshing " + what + ", lambda " + format_number(o.run.lambda) + ", phase " + to_text(o.run.phase),
       ::isatty(STDERR_FILENO) == 1);
   options.progress = [line](const ProgressReport& report) { line->report(report); };
   return line;
@@ -327,7 +274,7 @@ std::optional<MeshStatus> certify_result(const MeshOptions& o, const MeshPlan& p
   }
   if (!o.quiet) std::cerr << "delmesh: certifying the mesh from scratch" << std::endl;
   CertificateOptions certificate_options;
-  certificate_options.seed = o.seed;
+  certificate_options.seed = o.run.seed;
   certificate_options.interrupt = &interrupt_flag();
   certificate_options.deadline = limits.deadline();
   const Certificate certificate = certify_mesh(points, triangles, plan.input.surface, plan.input.box, certificate_options);
@@ -437,7 +384,7 @@ ExitCode run_mesh(const MeshOptions& o) {
   // to test it between (parsing and compiling E, reading and validating the input, building the
   // oracle) are held to it by the watchdog.
   const RunLimits limits =
-      RunLimits::after(std::min(o.time_limit, max_time_limit_seconds), &interrupt_flag());
+      RunLimits::after(std::min(o.run.time_limit_seconds, max_time_limit_seconds), &interrupt_flag());
   const RunLimits::Scope limits_scope(limits);
   PhaseWatchdog watchdog(limits);
   std::optional<PhaseWatchdog::Phase> preparing;
@@ -461,7 +408,7 @@ ExitCode run_mesh(const MeshOptions& o) {
   if (progress) progress->finish();
 
   nlohmann::json statistics =
-      run.plan ? mesh_statistics(result, run.plan->input, o.seed, out) : run_statistics(result, o.seed, out);
+      run.plan ? mesh_statistics(result, run.plan->input, o.run.seed, out) : run_statistics(result, o.run.seed, out);
   if (run.repair && statistics.contains("input_mesh")) {
     const RepairReport& r = *run.repair;
     statistics["input_mesh"]["repair"] = {{"method", r.method},
@@ -534,25 +481,32 @@ Command add_mesh_command(CLI::App& parent) {
       "input_mesh.repair. Refused (exit code 2) if the result still intersects itself or is not a closed "
       "manifold; other defects are refused as without --repair");
   o->min_spacing_option = sub->add_option(
-      "--min-spacing", o->min_spacing,
+      "--min-spacing", o->run.min_spacing,
       "Termination floor H >= 0: a witness closer than H to the sample is recorded, not inserted, and the run "
       "ends uncertified (exit code 5). Default: none for --surface/--expr, 0.1 times the median edge length "
       "for --input-mesh (a triangle mesh is not smooth, so refinement need not stop at creases without it)")
       ->type_name("H")
       ->check(finite_number());
-  sub->add_option("--lambda", o->lambda,
+  sub->add_option("--lambda", o->run.lambda,
                   "lambda in (0, 1/3); Theorem 6.1 covers (0, 0.06], larger values run with a warning")->type_name("L")
       ->check(finite_number())
       ->capture_default_str();
-  sub->add_option("--phase", o->phase, "topology (SampleTopology only, Sec. 5) or all (DelMesh, Sec. 6.2)")->type_name("PHASE")
-      ->capture_default_str();
-  sub->add_option("--solver", o->solver, "subdivision or homotopy (polynomial E only)")->type_name("SOLVER")->capture_default_str();
-  o->size_bound_option = sub->add_option(
-      "--size-bound", o->size_bound,
+  sub->add_option_function<std::string>(
+         "--phase", [o](const std::string& text) { o->run.phase = parse_enum<MeshPhase>(text, "--phase"); },
+         "topology (SampleTopology only, Sec. 5) or all (DelMesh, Sec. 6.2)")
+      ->type_name("PHASE")
+      ->default_str(to_text(o->run.phase));
+  sub->add_option_function<std::string>(
+         "--solver", [o](const std::string& text) { o->run.solver = parse_enum<SolverBackend>(text, "--solver"); },
+         "subdivision or homotopy (polynomial E only)")
+      ->type_name("SOLVER")
+      ->default_str(to_text(o->run.solver));
+  sub->add_option(
+      "--size-bound", o->run.size_bound,
       "H > 0 (length units of E): also refine triangles whose surface Delaunay ball radius exceeds H")->type_name("H")
       ->check(finite_number());
-  o->max_distance_option = sub->add_option(
-      "--max-distance", o->max_distance,
+  sub->add_option(
+      "--max-distance", o->run.max_distance,
       "delta > 0 (length units of E; --surface/--expr only): also refine until every triangle is proved within "
       "delta of the surface along the gradient flow; the run is complete only if the gradient-flow certificate "
       "then proves the two-sided Hausdorff distance <= delta (statistics \"distance\")")->type_name("DELTA")
@@ -565,20 +519,20 @@ Command add_mesh_command(CLI::App& parent) {
                                   "<name>.off, <name> = the catalog name or 'surface' for --expr)")->type_name("FILE");
   o->stats_option =
       sub->add_option("--stats", o->stats, "Statistics JSON file, or - for stdout (default: <name>.json)")->type_name("FILE|-");
-  sub->add_option("--max-points", o->max_points,
+  sub->add_option("--max-points", o->run.max_points,
                   "Stop (exit code 3) once the sample holds N points, 1 <= N <= 1e9. The seeds (critical points of a "
                   "height function, at least two per component) are always inserted first, so the sample may exceed "
                   "a small N and its partial mesh may have few or no triangles")
       ->type_name("N")
       ->check(whole_number(1, max_count))
       ->capture_default_str();
-  sub->add_option("--time-limit", o->time_limit, "Stop (exit code 3) after this many seconds (at most 1e9); 0 means none")->type_name("S")
+  sub->add_option("--time-limit", o->run.time_limit_seconds, "Stop (exit code 3) after this many seconds (at most 1e9); 0 means none")->type_name("S")
       ->check(finite_number())
       ->capture_default_str();
-  sub->add_option("--seed", o->seed, "Seed of the generic directions, 0 <= N < 2^64; same input and seed give the same mesh")->type_name("N")
+  sub->add_option("--seed", o->run.seed, "Seed of the generic directions, 0 <= N < 2^64; same input and seed give the same mesh")->type_name("N")
       ->check(whole_number(0, std::numeric_limits<std::uint64_t>::max()))
       ->capture_default_str();
-  sub->add_option("--threads", o->threads,
+  sub->add_option("--threads", o->run.threads,
                   "Threads for the work of an insertion: the new Voronoi cell's certificate beside the records of "
                   "the changed Voronoi edges (two threads), and those records and the new facets on all threads "
                   "when there are enough of them to pay for the hand-off (smaller batches run on one thread); 0 means "

@@ -372,15 +372,16 @@ MeshRequest mesh_request(const py::object& expr, const py::object& box, const py
   } else if (!input_mesh.is_none()) {
     request.input_mesh = path_option(input_mesh);
   }
-  request.lambda = finite_option("--lambda", lam);
-  if (!size_bound.is_none()) request.size_bound = finite_option("--size-bound", size_bound);
-  if (!max_distance.is_none()) request.max_distance = finite_option("--max-distance", max_distance);
-  request.phase = phase;
-  request.solver = solver;
-  request.seed = whole_option("--seed", seed, 0, std::numeric_limits<std::uint64_t>::max());
-  if (!max_points.is_none()) request.max_points = whole_option("--max-points", max_points, 1, max_count);
-  if (!time_limit.is_none()) request.time_limit = finite_option("--time-limit", time_limit);
-  if (!threads.is_none()) request.threads = static_cast<int>(whole_option("--threads", threads, 0, max_threads));
+  DelMeshOptions& options = request.options;
+  options.lambda = finite_option("--lambda", lam);
+  if (!size_bound.is_none()) options.size_bound = finite_option("--size-bound", size_bound);
+  if (!max_distance.is_none()) options.max_distance = finite_option("--max-distance", max_distance);
+  options.phase = parse_enum<MeshPhase>(phase, "--phase");
+  options.solver = parse_enum<SolverBackend>(solver, "--solver");
+  options.seed = whole_option("--seed", seed, 0, std::numeric_limits<std::uint64_t>::max());
+  if (!max_points.is_none()) options.max_points = whole_option("--max-points", max_points, 1, max_count);
+  if (!time_limit.is_none()) options.time_limit_seconds = finite_option("--time-limit", time_limit);
+  if (!threads.is_none()) options.threads = static_cast<int>(whole_option("--threads", threads, 0, max_threads));
   return request;
 }
 
@@ -398,14 +399,14 @@ DelMeshResult run_mesh_request(const MeshRequest& request, const InputSoup& inpu
                    : plan_mesh_input(request);
     warnings = plan.warnings;
     DelMeshResult r = remesh(plan, controls.applied_to(plan.options));
-    statistics = run_statistics(r, request.seed, std::nullopt).dump();
+    statistics = run_statistics(r, request.options.seed, std::nullopt).dump();
     return r;
   }
   const MeshPlan plan = plan_mesh(request);
   warnings = plan.warnings;
   DelMeshResult r = del_mesh(plan.input.surface, plan.input.box, controls.applied_to(plan.options));
-  nlohmann::json stats = mesh_statistics(r, plan.input, request.seed, std::nullopt);
-  if (certify) stats["certificate"] = certificate_of(r, plan.input, request.seed, controls);
+  nlohmann::json stats = mesh_statistics(r, plan.input, request.options.seed, std::nullopt);
+  if (certify) stats["certificate"] = certificate_of(r, plan.input, request.options.seed, controls);
   statistics = stats.dump();
   return r;
 }
@@ -432,7 +433,7 @@ MeshResult mesh(const py::object& expr, const py::object& box, const py::object&
     std::optional<DelMeshResult> result;
     try {
       result = run_on_worker<DelMeshResult>(
-          request.time_limit, progress,
+          request.options.time_limit_seconds, progress,
           [&](const CallControls& controls) {
             return run_mesh_request(request, input_soup, certify, controls, statistics, warnings);
           },

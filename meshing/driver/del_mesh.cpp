@@ -23,6 +23,7 @@
 #include "meshing/core/mesh_checker.h"
 #include "meshing/core/theorem_bounds.h"
 #include "meshing/driver/closed_ball_refinement.h"
+#include "meshing/driver/detail/run_knobs.h"
 #include "meshing/driver/refinement.h"
 #include "meshing/driver/sample_topology.h"
 #include "meshing/driver/scaled_run.h"
@@ -219,11 +220,12 @@ void add_run_statistics(nlohmann::json& j, Refinement& refinement, const Surface
 // statistics.  With `sigma` (a triangle-mesh input at the oracle's scale), each phase ends with
 // the closed-ball refinement and the status follows decide_pl_status (closed_ball_refinement.h).
 DelMeshResult run(SurfaceOracle& oracle, const DelMeshOptions& options, double seconds_validation,
-                  std::chrono::steady_clock::time_point start, const SurfaceMesh* sigma = nullptr) {
+                  std::chrono::steady_clock::time_point start, const SurfaceMesh* sigma = nullptr,
+                  const RunKnobs& knobs = {}) {
   const RefinementLimits limits = refinement_limits(options, start);
   oracle.set_run_controls(options.seed, limits.deadline);
   Refinement refinement(oracle, options.seed, limits, RecheckPolicy::new_faces, options.threads,
-                        options.parallel_every_batch);
+                        knobs.parallel_every_batch);
 
   const SampleTopologyResult sampled = sample_topology(refinement);
   const SeedReport& seeds = sampled.seeds;
@@ -365,7 +367,7 @@ void set_feature_edges(PreparedInput& input, const SurfaceMesh& sigma, std::opti
 
 // del_mesh on a prepared input, its clock (time limit, seconds) started at `start`.
 DelMeshResult mesh_prepared(PreparedInput& input, const DelMeshOptions& options,
-                            std::chrono::steady_clock::time_point start) {
+                            std::chrono::steady_clock::time_point start, const RunKnobs& knobs = {}) {
   check_run(*input.oracle, options);
   const int k = input.scale_exponent;
   // A triangle mesh's Σ at the oracle's scale (times 2^-k, exactly) for the closed-ball check.
@@ -376,7 +378,7 @@ DelMeshResult mesh_prepared(PreparedInput& input, const DelMeshOptions& options,
     set_feature_edges(input, *sigma, options.feature_angle_deg);
   }
   DelMeshResult result = run(*input.oracle, unit_scale_options(options, k), input.seconds_validation, start,
-                             sigma ? &*sigma : nullptr);
+                             sigma ? &*sigma : nullptr, knobs);
   restore_scale(result, k);
   result.statistics[input.statistics_key] = input.statistics;
   if (const ImplicitInput* implicit = input.implicit_input())
@@ -388,10 +390,15 @@ DelMeshResult mesh_prepared(PreparedInput& input, const DelMeshOptions& options,
 }  // namespace
 
 DelMeshResult del_mesh(const Surface& surface, const Box3& box, const DelMeshOptions& options) {
+  return del_mesh_with(surface, box, options, RunKnobs{});
+}
+
+DelMeshResult detail::del_mesh_with(const Surface& surface, const Box3& box, const DelMeshOptions& options,
+                                    const RunKnobs& knobs) {
   const auto start = std::chrono::steady_clock::now();
   check_options(box, options);
   PreparedInput input = make_oracle(ImplicitInput{"surface", surface, box, options.solver});
-  return mesh_prepared(input, options, start);
+  return mesh_prepared(input, options, start, knobs);
 }
 
 DelMeshResult del_mesh(PreparedInput& input, const DelMeshOptions& options) {

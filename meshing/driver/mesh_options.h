@@ -53,11 +53,9 @@ struct DelMeshOptions {
   std::uint64_t seed = 1;                //!< generic directions; same seed → same mesh
   //! Threads for each insertion's work: the new cell's certificate runs beside the records of
   //! the changed faces (two threads), and batches of records and facets of at least
-  //! tolerances::parallel_least_* run on all threads (smaller ones on one, unless
-  //! parallel_every_batch, for tests of that independence); 0: every hardware thread.  The mesh
-  //! does not depend on it.
+  //! tolerances::parallel_least_* run on all threads (smaller ones on one); 0: every hardware
+  //! thread.  The mesh does not depend on it.
   int threads = 0;
-  bool parallel_every_batch = false;
   //! If given, the run stops (status interrupted) at the first check after it becomes true; it
   //! is read between checks, so a signal handler may set it.
   const std::atomic<bool>* interrupt = nullptr;

@@ -10,6 +10,7 @@
 #include "meshing/core/mesh_checker.h"
 #include "meshing/core/theorem_bounds.h"
 #include "meshing/driver/del_mesh.h"
+#include "meshing/driver/detail/run_knobs.h"
 #include "meshing/driver/refinement.h"
 #include "meshing/driver/sample_topology.h"
 #include "meshing/inputs/implicit_oracle.h"
@@ -28,8 +29,7 @@ DelMeshResult run(const std::string& name, double lambda, std::uint64_t seed = 1
   options.lambda = lambda;
   options.seed = seed;
   options.threads = threads;
-  options.parallel_every_batch = parallel_every_batch;
-  return del_mesh(entry.surface(), entry.box, options);
+  return detail::del_mesh_with(entry.surface(), entry.box, options, detail::RunKnobs{parallel_every_batch});
 }
 
 // Theorem 6.1 checked on the output by the independent checker.

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <unordered_set>
@@ -852,6 +853,19 @@ void write_mesh_card(std::ostream& out, const ReportPage& page, const Bounds& bo
 
 }
 
+//! The statistics' peak_memory_bytes (the process's peak resident set) in MiB, and per output
+//! vertex when the statistics count the vertices: "512.3 MiB (4321 B per vertex)".  Nothing if
+//! the statistics have no such number.
+std::optional<std::string> peak_memory_text(const Json& stats) {
+  const Json* bytes = find(stats, "/peak_memory_bytes");
+  if (!bytes || !bytes->is_number()) return std::nullopt;
+  const double b = bytes->get<double>();
+  std::string text = number(b / (1024.0 * 1024.0), 4) + " MiB";
+  if (const Json* v = find(stats, "/vertices"); v && v->is_number_unsigned() && v->get<std::uint64_t>() > 0)
+    text += " (" + std::to_string(std::llround(b / v->get<double>())) + " B per vertex)";
+  return text;
+}
+
 //! The card of the run's settings and results, with Theorem 6.1's bounds checked on the file.
 void write_run_card(std::ostream& out, const ReportPage& page, const Json& stats, const StatisticsBounds& bounds) {
   const MeshReport& c = page.check;
@@ -876,6 +890,7 @@ void write_run_card(std::ostream& out, const ReportPage& page, const Json& stats
   add_if(rows, stats, "unsettled findings", "/unsettled/count");
   add_if(rows, stats, "seconds", "/seconds");
   add_if(rows, stats, "threads", "/threads");
+  if (const std::optional<std::string> memory = peak_memory_text(stats)) rows.emplace_back("peak memory", *memory);
   out << "<div class=\"card\"><h2>Run (" << escape(page.statistics_name) << ")</h2>\n";
   write_table(out, rows);
   if (bounds.angle || bounds.ratio || bounds.roughness) {

@@ -171,7 +171,8 @@ BOOST_AUTO_TEST_CASE(torus_with_statistics) {
   const std::string html = read_text(dir / "t.html");
   for (const char* text : {"Hausdorff distance", "<span class=\"badge good\">certified</span>",
                            "<span class=\"badge good\">complete</span>", "Theorem 6.1's bounds, on this file", "(x^2+y^2+z^2+0.84)^2",
-                           "<summary>solver (", "<summary>insertions (", "<summary>general ("})
+                           "<summary>solver (", "<summary>insertions (", "<summary>general (", "<th>peak memory</th>",
+                           " B per vertex)"})
     BOOST_TEST(html.find(text) != std::string::npos, text);
   BOOST_TEST(html.find("badge bad") == std::string::npos);  // every bound passes
   BOOST_TEST(page_data(html).at("color").get<std::string>() == "min-angle");

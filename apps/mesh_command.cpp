@@ -35,6 +35,7 @@
 #include "meshing/inputs/make_oracle.h"
 #include "meshing/inputs/mesh_io.h"
 #include "meshing/inputs/self_intersection_repair.h"
+#include "meshing/inputs/sharp_features.h"
 #include "meshing/verify/certificate.h"
 
 namespace delmesh::app {
@@ -52,6 +53,8 @@ struct MeshOptions {
   bool repair = false;
   CLI::Option* input_mesh_option = nullptr;
   CLI::Option* min_spacing_option = nullptr;
+  CLI::Option* feature_angle_option = nullptr;
+  CLI::Option* no_features_option = nullptr;
   CLI::Option* out_option = nullptr;
   CLI::Option* stats_option = nullptr;
 };
@@ -206,6 +209,9 @@ MeshRun plan_run(const MeshOptions& o) {
   const MeshRequest request = request_of(o);
   MeshRun run;
   if (o.repair && !request.input_mesh) throw InvalidInput("--repair needs --input-mesh");
+  if (!request.input_mesh && (o.feature_angle_option->count() > 0 || o.no_features_option->count() > 0))
+    throw InvalidInput(std::string(o.feature_angle_option->count() > 0 ? "--feature-angle" : "--no-features") +
+                       " needs --input-mesh (an implicit surface is smooth: it has no sharp edges)");
   if (request.input_mesh && o.repair) {
     RepairedInput repaired = read_and_repair_input_mesh(*request.input_mesh);
     run.repair = repaired.report;
@@ -487,6 +493,22 @@ Command add_mesh_command(CLI::App& parent) {
       "for --input-mesh (a triangle mesh is not smooth, so refinement need not stop at creases without it)")
       ->type_name("H")
       ->check(finite_number());
+  o->feature_angle_option =
+      sub->add_option_function<double>(
+             "--feature-angle", [o](double degrees) { o->run.feature_angle_deg = degrees; },
+             "With --input-mesh: an input edge is sharp when the normals of its two faces differ by more than DEG "
+             "degrees, 0 < DEG < 180. Smooth does not refine an edge whose Voronoi facet meets a sharp edge (the "
+             "normal jumps there, so the roughness bound cannot hold); such findings do not block complete when the "
+             "closed-ball property is proved (docs/certificates.md)")
+          ->type_name("DEG")
+          ->check(finite_number())
+          ->default_str(to_text(default_feature_angle_deg));
+  o->no_features_option =
+      sub->add_flag_callback(
+             "--no-features", [o] { o->run.feature_angle_deg = std::nullopt; },
+             "With --input-mesh: detect no sharp edges; Smooth then refines every edge whose roughness exceeds its "
+             "bound, creases included")
+          ->excludes(o->feature_angle_option);
   sub->add_option("--lambda", o->run.lambda,
                   "lambda in (0, 1/3); Theorem 6.1 covers (0, 0.06], larger values run with a warning")->type_name("L")
       ->check(finite_number())

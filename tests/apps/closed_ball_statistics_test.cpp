@@ -69,6 +69,42 @@ BOOST_AUTO_TEST_CASE(cube_is_complete_with_smooth_exempt_at_its_creases) {
   BOOST_TEST(stats["unsettled"]["by_reason"].value("no_witness", 0) == smooth.value("no_witness (crease)", 0));
 }
 
+// The same cube with --no-features: Smooth refines at the creases into the termination floor, so
+// the run ends uncertified (exit code 5) although the closed-ball check still proves the topology;
+// nothing is exempt by the crease rule.
+BOOST_AUTO_TEST_CASE(cube_without_features_is_uncertified) {
+  const nlohmann::json stats = remesh_statistics("cube", 5, "all", {"--no-features"});
+  BOOST_TEST(stats["status"] == "uncertified");
+  BOOST_TEST(stats["input_mesh"]["features"]["detected"] == false);
+  BOOST_TEST(stats["min_spacing"]["reached"] == true);
+  const nlohmann::json& c = stats["closed_ball"];
+  BOOST_TEST(c["proves_homeomorphism"] == true);
+  BOOST_TEST(!c["exempt"]["by_kind"].contains("smooth"));
+  BOOST_TEST(c["exempt"]["blocking"].get<std::size_t>() > 0u);
+}
+
+// --feature-angle outside (0, 180), with --no-features, or for an implicit surface: one `error:`
+// line and exit code 2, before anything is meshed.
+BOOST_AUTO_TEST_CASE(bad_feature_options_are_refused) {
+  TempDir dir;
+  const std::string input = cgal_data_mesh("cube", dir);
+  const std::vector<std::vector<std::string>> refused{
+      {"mesh", "--input-mesh", input, "--feature-angle", "0"},
+      {"mesh", "--input-mesh", input, "--feature-angle", "180"},
+      {"mesh", "--input-mesh", input, "--feature-angle", "-30"},
+      {"mesh", "--input-mesh", input, "--feature-angle", "nan"},
+      {"mesh", "--input-mesh", input, "--feature-angle", "45", "--no-features"},
+      {"mesh", "--surface", "torus", "--feature-angle", "45"},
+      {"mesh", "--surface", "torus", "--no-features"}};
+  for (const auto& args : refused) {
+    const RunResult r = run_delmesh(args, dir.path);
+    BOOST_TEST(r.exit_code == 2, args[3] << " " << args[4] << ": " << r.err);
+    BOOST_TEST(r.single_error_line(), r.err);
+  }
+  BOOST_TEST(!std::filesystem::exists(dir.path / "cube_remeshed.off"));
+  BOOST_TEST(!std::filesystem::exists(dir.path / "torus.off"));
+}
+
 // The cube's topology phase: the closed-ball property holds and the output is Del S|Σ, so the run
 // ends complete (exit code 0) with the input's topology (one sphere).
 BOOST_AUTO_TEST_CASE(cube_topology_phase_is_complete) {

@@ -83,6 +83,23 @@ BOOST_AUTO_TEST_CASE(numeric_options_are_range_checked) {
   require_invalid_input(run_delmesh({"check", "octahedron.off", "--lambda", "nan"}, dir.path), "--lambda: expected a finite number");
 }
 
+// The run's options are checked (DelMeshOptions::validate(), named by flag) before an input mesh
+// is read: a missing file with a bad option is refused for the option.
+BOOST_AUTO_TEST_CASE(options_are_checked_before_the_input_mesh_is_read) {
+  TempDir dir;
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--lambda", "0.5"}, "--lambda must satisfy 0 < lambda < 1/3, got 0.5"},
+      {{"--min-spacing", "-1"}, "--min-spacing must be a length >= 0 (0: no floor), got -1"},
+      {{"--time-limit", "2e9"}, "--time-limit must be >= 0 and <= 1e9 seconds (0: none), got 2e+09"},
+  };
+  for (const auto& [extra, message] : cases) {
+    std::vector<std::string> args{"mesh", "--input-mesh", "missing.off", "--quiet"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    require_invalid_input(run_delmesh(args, dir.path), message);
+  }
+  require_invalid_input(run_delmesh({"mesh", "--input-mesh", "missing.off", "--quiet"}, dir.path), "missing.off");
+}
+
 // Expressions: depth (20 000 nested parentheses used to overflow the stack: SIGSEGV), length,
 // degree, expanded size, division by zero; the box: overflow.
 BOOST_AUTO_TEST_CASE(expressions_and_boxes_beyond_the_limits) {

@@ -96,10 +96,11 @@ struct FeatureSet {
 //! crosses the bisector plane B(p, q) strictly (u and w on opposite sides, neither on it) at a
 //! point x — the edge cut of B(p, q) on uw — that lies in the closed Voronoi cell V_p, i.e.
 //! |x − p|² ≤ |x − s|² for every other sample s (x is then in V_q as well, being on B(p, q)).
-//! These are exactly the edge cuts of B(p, q) on a feature edge that are vertices of the
-//! polygons of the restricted Voronoi diagram Vor S|Σ (meshing/voronoi/restricted_voronoi_mesh.h,
-//! which creates an edge cut for a strict crossing and keeps a vertex on a bisector in the cell
-//! being clipped).  V_p is the intersection of the half-spaces of p's Voronoi neighbours, which
+//! When Vor S and Σ are in general position (no input vertex on a bisector, no Voronoi edge
+//! through an input edge), these are exactly the edge cuts of B(p, q) on a feature edge that are
+//! vertices of the polygons of the restricted Voronoi diagram Vor S|Σ
+//! (meshing/voronoi/restricted_voronoi_mesh.h, which creates an edge cut for a strict crossing);
+//! at a tie the cut is counted here, in the closed cell, whatever label the diagram gives it.  V_p is the intersection of the half-spaces of p's Voronoi neighbours, which
 //! are among its Delaunay neighbours, so `others` need only hold those.  Every decision is exact:
 //! the cut is kept in homogeneous coordinates and each sign is evaluated in interval arithmetic
 //! and, when not certain, in exact rationals, from the input doubles.

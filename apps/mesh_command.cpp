@@ -315,7 +315,7 @@ ExitCode exit_code(MeshStatus status, const nlohmann::json& statistics, double m
                       std::to_string(statistics["min_spacing"]["witnesses_below"].get<std::size_t>()) +
                       " times (statistics: \"min_spacing\")");
       if (!statistics["solver_certified"].get<bool>())
-        print_warning("--solver homotopy: its path tracking is not certified, so the run cannot be complete "
+        print_warning("the oracle gave answers that are not certified, so the run cannot be complete "
                       "(statistics: \"solver_certified\")");
       print_warning("uncertified: the run ended, but " + unsettled_summary(statistics["unsettled"]) +
                     "; the mesh carries no guarantee");

@@ -137,6 +137,20 @@ inline constexpr double homotopy_near_real_box_ratio = 4;
 //! valuation estimates) may have taken a path to a finite root there for a diverging one.
 inline constexpr double homotopy_diverging_near_domain = 1;
 
+//! Certificate of a homotopy solve (solvers/homotopy_certificate.h).  The barrier is proved for
+//! t_e = homotopy_barrier_t.  Each piece of the domain's box gets the barrier box that extends it
+//! by μ = m · (its widest side) for the first m of homotopy_barrier_margins whose boundary stays
+//! homotopy_barrier_clearance · μ (∞-norm on R^{2n}) away from every proposed zero of f (else the
+//! m of largest clearance); its faces are bisected until proved or homotopy_barrier_piece_budget
+//! boxes were evaluated; a piece not proved is bisected, up to homotopy_barrier_max_pieces pieces
+//! and homotopy_barrier_box_budget face boxes in all.
+inline constexpr double homotopy_barrier_t = 1e-3;
+inline constexpr std::array<double, 7> homotopy_barrier_margins = {0.25, 0.125, 0.5, 0.0625, 1.0, 0.03125, 0.015625};
+inline constexpr double homotopy_barrier_clearance = 0.25;
+inline constexpr std::size_t homotopy_barrier_piece_budget = 1000;
+inline constexpr std::size_t homotopy_barrier_max_pieces = 256;
+inline constexpr std::size_t homotopy_barrier_box_budget = 30000;
+
 //! Homotopy: the most predictor–corrector steps one path may take before it is declared failed.
 inline constexpr std::size_t homotopy_max_steps_per_path = 20000;
 

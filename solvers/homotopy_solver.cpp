@@ -120,8 +120,13 @@ struct Certified {
 //! Newton polish over the reals and Krawczyk certification of real endpoints.
 class EndpointCertifier {
  public:
-  EndpointCertifier(const CompiledSystem& system, const std::vector<double>& parameters)
-      : system_(system), parameters_(parameters), n_(system.n_unknowns()) {}
+  EndpointCertifier(const CompiledSystem& system, const std::vector<double>& parameters,
+                    const std::vector<int>& degrees)
+      : system_(system), parameters_(parameters), degrees_(degrees), n_(system.n_unknowns()) {}
+
+  const CompiledSystem& system() const { return system_; }
+  const std::vector<double>& parameters() const { return parameters_; }
+  const std::vector<int>& degrees() const { return degrees_; }
 
   //! Newton in double from x; returns the size of the last correction (∞ if it broke down).
   double polish(std::vector<double>& x) const {
@@ -216,6 +221,7 @@ class EndpointCertifier {
  private:
   const CompiledSystem& system_;
   const std::vector<double>& parameters_;
+  const std::vector<int>& degrees_;
   std::size_t n_;
 };
 
@@ -279,8 +285,8 @@ class EndpointSorter {
         near_distance_(tol::homotopy_diverging_near_domain * domain.scale()) {}
 
   //! One endpoint, counted in `statistics`; certified roots go to `certified`, undecided boxes to
-  //! `undecided`.  True for a diverging path near the domain (the solve is then undecided).
-  bool sort(const PathEndpoint& end, HomotopyStatistics& statistics, std::vector<Certified>& certified,
+  //! `undecided`; a diverging path near the domain is counted (statistics.diverging_near_domain).
+  void sort(const PathEndpoint& end, HomotopyStatistics& statistics, std::vector<Certified>& certified,
             std::vector<UndecidedBox>& undecided) const {
     switch (end.outcome) {
       case PathOutcome::finite: ++statistics.finite; break;
@@ -288,11 +294,11 @@ class EndpointSorter {
       case PathOutcome::diverging: ++statistics.diverging; break;
       case PathOutcome::failed: ++statistics.failed; break;
     }
-    if (end.outcome == PathOutcome::failed) return false;
+    if (end.outcome == PathOutcome::failed) return;
     if (end.outcome == PathOutcome::diverging) {
-      if (!diverging_near_domain(end.point)) return false;
+      if (!diverging_near_domain(end.point)) return;
       ++statistics.diverging_near_domain;
-      return true;
+      return;
     }
     const double scale = 1 + max_abs(end.point);
     const double imag = max_imag(end.point);
@@ -302,17 +308,17 @@ class EndpointSorter {
       const double radius =
           std::max(tol::homotopy_singular_box_radius * scale,
                    tol::homotopy_correction_box_factor * (std::isfinite(end.last_correction) ? end.last_correction : 0));
-      if (imag > std::max(radius, tol::homotopy_near_real * scale)) return false;  // certainly not real
+      if (imag > std::max(radius, tol::homotopy_near_real * scale)) return;  // certainly not real
       const double box_radius = std::max(radius, tol::homotopy_near_real_box_ratio * imag);
-      if (!near_domain(x, box_radius)) return false;
+      if (!near_domain(x, box_radius)) return;
       if (imag > std::max(radius, tol::homotopy_real_candidate * scale)) ++statistics.near_real;
       add_undecided(undecided, box_around(x, box_radius), UndecidedReason::singular_root, certifier_);
-      return false;
+      return;
     }
     // finite, regular endpoint
-    if (imag > tol::homotopy_near_real * scale) return false;  // certainly not real
+    if (imag > tol::homotopy_near_real * scale) return;  // certainly not real
     if (imag <= tol::homotopy_real_candidate * scale) {
-      if (!near_domain(x, 0)) return false;
+      if (!near_domain(x, 0)) return;
       Certified root;
       std::vector<Interval> tried;
       if (certifier_.certify(x, root, tried)) {
@@ -320,13 +326,13 @@ class EndpointSorter {
       } else if (place(tried, domain_) != DomainSide::outside) {
         add_undecided(undecided, tried, UndecidedReason::precision, certifier_);
       }
-      return false;
+      return;
     }
     // Near-real: the real root this endpoint may approximate lies about ‖Im u‖∞ from Re u.  The
     // box there is settled by a root certified in it, or by a proof that it holds none; else it
     // is undecided.  (A root certified elsewhere is a root all the same, and is kept.)
     const double box_radius = std::max(tol::homotopy_certify_radius * scale, tol::homotopy_near_real_box_ratio * imag);
-    if (!near_domain(x, box_radius)) return false;
+    if (!near_domain(x, box_radius)) return;
     ++statistics.near_real;
     const std::vector<Interval> box = box_around(x, box_radius);
     Certified root;
@@ -338,7 +344,6 @@ class EndpointSorter {
     }
     if (!settled && !certifier_.excludes(box) && place(box, domain_) != DomainSide::outside)
       add_undecided(undecided, box, UndecidedReason::precision, certifier_);
-    return false;
   }
 
  private:
@@ -509,6 +514,57 @@ void place_roots(const std::vector<Certified>& distinct, const Domain& domain, c
   }
 }
 
+//! Runs certify_homotopy() on the tracked paths and rebuilds the result from what it proved: on
+//! the proved pieces, the certificate's real zeros placed against the domain; each unproved piece
+//! undecided (precision), with the roots of rules 1–5 outside the proved pieces kept.  Nothing is
+//! changed when the deadline passed (the caller reports time_limit).
+void certify_completeness(const detail::HomotopyTracker& tracker, const detail::TrackerSettings& settings,
+                          Complex gamma, const std::vector<PathEndpoint>& ends, const Domain& domain,
+                          const EndpointCertifier& certifier, HomotopySolveResult& result) {
+  const std::vector<std::vector<Complex>> starts = total_degree_start_solutions(certifier.degrees());
+  std::vector<std::vector<Complex>> proposed;
+  for (const auto& end : ends)
+    if (end.outcome == PathOutcome::finite || end.outcome == PathOutcome::singular) proposed.push_back(end.point);
+  const HomotopyProblem problem{certifier.system(), certifier.parameters(), certifier.degrees(), gamma, domain};
+  result.certificate = certify_homotopy(
+      problem, starts.size(),
+      [&](std::size_t j, double t) { return tracker.point_at(starts[j], t, settings); }, proposed, settings.deadline);
+  const HomotopyCertificate& certificate = result.certificate;
+  if (certificate.status == HomotopyCertificateStatus::out_of_time) return;
+  const auto in_proved_piece = [&](const std::vector<double>& x) {
+    return std::any_of(certificate.pieces.begin(), certificate.pieces.end(), [&](const BarrierPiece& piece) {
+      for (std::size_t i = 0; i < x.size(); ++i)
+        if (x[i] < piece.box[i][0] || x[i] > piece.box[i][1]) return false;
+      return true;
+    });
+  };
+  std::vector<CertifiedRoot> kept;
+  for (auto& root : result.roots)
+    if (!in_proved_piece(root.midpoint)) kept.push_back(std::move(root));
+  std::vector<Certified> zeros;
+  for (const auto& box : certificate.real_zeros) {
+    Certified zero;
+    zero.box = box;
+    std::vector<double> x;
+    for (const auto& side : box) x.push_back(0.5 * (side.inf() + side.sup()));
+    certifier.polish(x);
+    for (std::size_t i = 0; i < box.size(); ++i)  // the polished point if it stayed in the box
+      if (!(x[i] >= box[i].inf() && x[i] <= box[i].sup())) x[i] = 0.5 * (box[i].inf() + box[i].sup());
+    zero.midpoint = std::move(x);
+    zeros.push_back(std::move(zero));
+  }
+  result.roots = std::move(kept);
+  result.undecided.clear();
+  result.counters.roots_outside = 0;
+  place_roots(zeros, domain, certifier, result);
+  result.counters.krawczyk_successes = result.roots.size();
+  for (const auto& piece : certificate.unproved) {
+    std::vector<Interval> box;
+    for (const auto& [lo, hi] : piece) box.emplace_back(lo, hi);
+    add_undecided(result.undecided, std::move(box), UndecidedReason::precision, certifier);
+  }
+}
+
 }  // namespace
 
 HomotopySolveResult solve_homotopy(const CompiledSystem& system, const std::vector<int>& degrees,
@@ -542,25 +598,22 @@ HomotopySolveResult solve_homotopy(const CompiledSystem& system, const std::vect
   Paths paths(tracker, settings, total_degree_start_solutions(degrees), result, statistics);
   paths.track_all();
   paths.find_coincidences(true);
-  const bool jumped = paths.find_coincidences(false);
+  paths.find_coincidences(false);  // a jump left: the certificate decides (it trusts no path)
   const std::vector<PathEndpoint>& ends = paths.ends;
   const bool out_of_time = paths.out_of_time;
 
-  const EndpointCertifier certifier(system, parameters);
+  const EndpointCertifier certifier(system, parameters, degrees);
   const EndpointSorter sorter(domain, certifier, n);
-  bool diverging_undecided = false;
   std::vector<Certified> certified;
   for (const auto& end : ends)
-    if (sorter.sort(end, statistics, certified, result.undecided)) diverging_undecided = true;
+    sorter.sort(end, statistics, certified, result.undecided);
 
   place_roots(distinct_roots(std::move(certified), certifier, result.undecided), domain, certifier, result);
+  if (!out_of_time) certify_completeness(tracker, settings, gamma, ends, domain, certifier, result);
 
-  if (out_of_time) {
+  if (out_of_time || result.certificate.status == HomotopyCertificateStatus::out_of_time) {
     add_undecided(result.undecided, domain_box(domain), UndecidedReason::budget, certifier);
     result.status = SolveStatus::time_limit;
-  } else if (statistics.failed > 0 || jumped || diverging_undecided) {
-    add_undecided(result.undecided, domain_box(domain), UndecidedReason::precision, certifier);
-    result.status = SolveStatus::undecided;
   } else {
     result.status = result.undecided.empty() ? SolveStatus::complete : SolveStatus::undecided;
   }

@@ -26,6 +26,7 @@
 
 #include "common/tolerances.h"
 #include "solvers/domain.h"
+#include "solvers/homotopy_certificate.h"
 #include "solvers/solve_result.h"
 #include "symbolic/compiled_system.h"
 #include "symbolic/primitive_system.h"
@@ -62,9 +63,13 @@ struct HomotopyOptions {
   std::size_t max_steps_per_path = tolerances::homotopy_max_steps_per_path;
 };
 
-//! What solve_homotopy() returns: its roots and undecided regions, and the statistics of its paths.
+//! What solve_homotopy() returns: its roots and undecided regions, the statistics of its paths,
+//! and the certificate of completeness (homotopy_certificate.h).
 struct HomotopySolveResult : SolveResult {
   HomotopyStatistics statistics;
+  HomotopyCertificate certificate;
+  //! The roots and undecided boxes are proved to account for every root in the domain.
+  bool completeness_certified() const { return certificate.status == HomotopyCertificateStatus::proved; }
 };
 
 
@@ -102,11 +107,10 @@ std::vector<std::vector<Complex>> total_degree_start_solutions(const std::vector
 //!     unless its box meets B, B is dropped only if the Krawczyk test proves that f has no zero in
 //!     B or B is certainly outside the domain, and is undecided (precision) else;
 //!  4. diverging path with x near the domain with extra δ = homotopy_diverging_near_domain ·
-//!     domain.scale() and ι ≤ δ (u finite): the whole domain box undecided (precision), status
-//!     undecided (the path may end at an unknown finite root there); any other diverging path is
-//!     dropped (it ends at infinity);
+//!     domain.scale() and ι ≤ δ (u finite): counted (statistics.diverging_near_domain); the
+//!     certificate below decides whether a root can hide there;
 //!  5. a failed path, or two paths at the same regular root after re-tracking with smaller steps
-//!     (one jumped): the whole domain box undecided (precision), status undecided;
+//!     (one jumped): counted; the certificate below trusts no path;
 //!  6. the deadline (options.deadline, or options.time_limit_seconds from the call) reached while
 //!     tracking: the path being tracked is abandoned (not counted as failed), no further path or
 //!     re-track is started, the endpoints already tracked are classified as above, and the whole
@@ -117,15 +121,23 @@ std::vector<std::vector<Complex>> total_degree_start_solutions(const std::vector
 //!  - roots: certified roots inside the domain (one per root; inside_domain = true), sorted;
 //!    certified roots whose box straddles a face are undecided (boundary_root), certified boxes
 //!    that meet without one unique root in their hull undecided (cluster);
-//!  - undecided: as in rules 1–6;
+//!  - undecided: as in "Certificate" below (rules 1–3 only propose);
 //!  - statistics: how the paths ended (HomotopyStatistics);
 //!  - counters.paths (paths tracked, re-tracks included) and counters.seconds.
-//! Status complete iff nothing is undecided.  Fixed options.seed → identical output (unless the
-//! deadline cuts the solve).
-//! Not a proof of completeness: path tracking and the endgame are not certified (a path jump that
-//! lands on a different root is detected only when two paths end at the same regular root; the
-//! endgame's loop-closure and agreement tests are numerical).  What is certified is each root
-//! returned: its box holds exactly one root of f (Krawczyk, in interval arithmetic).
+//! Fixed options.seed → identical output (unless the deadline cuts the solve).
+//! Certificate.  Unless the deadline cut the tracking, the solve then proves what it can of its
+//! completeness (certify_homotopy(), homotopy_certificate.h: barrier boxes around pieces of the
+//! domain, the Bézout count at an intermediate t_e with every zero there Krawczyk-certified, and
+//! Krawczyk certificates of f's zeros; the path tracking is never trusted), and the result is
+//! rebuilt from it: on the pieces proved, the certificate's real zeros placed against the domain
+//! (inside: a root; on its boundary: undecided, boundary_root; outside: counted); each piece not
+//! proved undecided (precision), with the roots of rules 1–5 that lie in no proved piece kept; the
+//! undecided boxes of rules 1–5 are replaced (a proved piece has no other zero, an unproved one is
+//! undecided whole).  Status complete iff nothing is undecided, so a complete status is a proof,
+//! as for the subdivision solver; completeness_certified() says every piece was proved.  The
+//! deadline reached while tracking or certifying: the whole domain box undecided (budget), status
+//! time_limit.  Each root returned is certified either way: its box holds exactly one root of f
+//! (Krawczyk, in interval arithmetic).
 //! Preconditions (PreconditionViolation otherwise): system square with n = domain.dimension()
 //! unknowns, degrees.size() == n, parameters.size() == system.n_parameters(), domain valid
 //! (Domain::validate).  Throws InvalidInput if some d_i < 1 (d_i is the total degree of equation

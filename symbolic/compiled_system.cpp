@@ -7,6 +7,7 @@
 #include "common/errors.h"
 #include "common/run_limits.h"
 #include "symbolic/detail/straight_line_program.h"
+#include "symbolic/complex_interval.h"
 #include "symbolic/monomial_basis.h"
 #include "symbolic/polynomial_form.h"
 #include "symbolic/scalar_traits.h"
@@ -221,5 +222,9 @@ DELMESH_DEFINE_COMPILED_SYSTEM(MpfrReal)
 DELMESH_DEFINE_COMPILED_SYSTEM(MpfiInterval)
 DELMESH_DEFINE_COMPILED_SYSTEM(Complex)
 #undef DELMESH_DEFINE_COMPILED_SYSTEM
+template void CompiledSystem::values<ComplexInterval>(const ComplexInterval*, const ComplexInterval*,
+                                                      ComplexInterval*) const;
+template void CompiledSystem::values_and_jacobian<ComplexInterval>(const ComplexInterval*, const ComplexInterval*,
+                                                                   ComplexInterval*, ComplexInterval*) const;
 
 }  // namespace delmesh

@@ -142,6 +142,7 @@ SolveResult ImplicitOracle::solve_square(std::size_t primitive, const std::vecto
     s.homotopy_paths += result.counters.paths;
     s.homotopy_near_real += result.statistics.near_real;
     s.homotopy_diverging_near_domain += result.statistics.diverging_near_domain;
+    ++(result.completeness_certified() ? s.homotopy_certified : s.homotopy_uncertified);
     return std::move(result);  // the SolveResult part
   }
   count_fallback(primitive);
@@ -318,13 +319,6 @@ const PrimitiveStatistics& ImplicitOracle::statistics(const std::string& primiti
   return stats_[static_cast<std::size_t>(&find_primitive(primitive) - primitive_registry().data())];
 }
 
-bool ImplicitOracle::gave_uncertified_answers() const {
-  const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
-  for (const auto& s : stats_)
-    if (s.homotopy_paths > 0) return true;
-  return false;
-}
-
 nlohmann::json ImplicitOracle::statistics_json() const {
   const auto counts = [](const PrimitiveStatistics& s) {
     return nlohmann::json{{"calls", s.calls},
@@ -336,7 +330,9 @@ nlohmann::json ImplicitOracle::statistics_json() const {
                           {"time_limited", s.time_limited},
                           {"homotopy_paths", s.homotopy_paths},
                           {"homotopy_near_real", s.homotopy_near_real},
-                          {"homotopy_diverging_near_domain", s.homotopy_diverging_near_domain}};
+                          {"homotopy_diverging_near_domain", s.homotopy_diverging_near_domain},
+                          {"homotopy_certified", s.homotopy_certified},
+                          {"homotopy_uncertified", s.homotopy_uncertified}};
   };
   nlohmann::json per = nlohmann::json::object();
   PrimitiveStatistics total;
@@ -354,6 +350,8 @@ nlohmann::json ImplicitOracle::statistics_json() const {
     total.homotopy_paths += s.homotopy_paths;
     total.homotopy_near_real += s.homotopy_near_real;
     total.homotopy_diverging_near_domain += s.homotopy_diverging_near_domain;
+    total.homotopy_certified += s.homotopy_certified;
+    total.homotopy_uncertified += s.homotopy_uncertified;
   }
   nlohmann::json j = counts(total);
   j.erase("calls");

@@ -55,6 +55,9 @@ struct PrimitiveStatistics {
   //! Homotopy solves: paths tracked, near-real endpoints and diverging paths near the domain
   //! (solve_homotopy(), rules 2–4).
   std::size_t homotopy_paths = 0, homotopy_near_real = 0, homotopy_diverging_near_domain = 0;
+  //! Homotopy solves whose completeness was not proved (solvers/homotopy_certificate.h; the solve
+  //! then returns its whole domain undecided), and those proved.
+  std::size_t homotopy_uncertified = 0, homotopy_certified = 0;
   double seconds = 0;
 };
 
@@ -145,14 +148,11 @@ class ImplicitOracle final : public SurfaceOracle {
   //! The statistics of the primitive called `primitive`; throws InvalidInput for an unknown name.
   const PrimitiveStatistics& statistics(const std::string& primitive) const;
   //! {systems, certified_roots, undecided, boxes, seconds, homotopy_fallbacks, time_limited,
-  //!  homotopy_paths, homotopy_near_real, homotopy_diverging_near_domain, per_primitive: {name:
+  //!  homotopy_paths, homotopy_near_real, homotopy_diverging_near_domain, homotopy_certified,
+  //!  homotopy_uncertified, per_primitive: {name:
   //!  {the same counts for that primitive}}, cone_certificates: {attempts, proved, boxes, seconds},
   //!  backend: "subdivision" or "homotopy"}
   nlohmann::json statistics_json() const override;
-  //! True once a homotopy solve has tracked a path (backend homotopy, not a fallback): the
-  //! endpoints are Krawczyk-certified, but path tracking is not, so a path that jumps can leave a
-  //! root of the domain unreported.
-  bool gave_uncertified_answers() const override;
 
  private:
   //! Keeps the roots inside the domain that no side condition disproves, and counts the call: its

@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include "common/errors.h"
 #include "common/tolerances.h"
 
 namespace delmesh::detail {
@@ -102,6 +103,27 @@ class PathTracker {
     }
     cauchy_endgame(X, end);
     return end;
+  }
+
+  //! HomotopyTracker::point_at().
+  std::optional<std::vector<Complex>> point_at(const std::vector<Complex>& start, double t_stop) {
+    PathEndpoint end;
+    Vec X(n_ + 1);
+    X[0] = 1;
+    for (int i = 0; i < n_; ++i) X[i + 1] = start[i];
+    Complex on_patch = 0;
+    for (int j = 0; j <= n_; ++j) on_patch += patch_[j] * X[j];
+    X /= on_patch;
+    // linear in t down to t_0 = 1 − endgame_start (or t_stop if larger), then t = t_0 e^{−τ}
+    const double t0 = std::max(t_stop, 1 - settings_.endgame_start);
+    double h = settings_.initial_step;
+    if (!run(TPath{1.0, -1.0, false}, 1 - t0, settings_.max_step, X, h, end)) return std::nullopt;
+    if (t_stop < t0) {
+      h = settings_.initial_step;
+      if (!run(TPath{t0, -1.0, true}, std::log(t0 / t_stop), settings_.max_step, X, h, end)) return std::nullopt;
+    }
+    if (!finite(X) || std::abs(X[0]) == 0) return std::nullopt;
+    return affine(X);
   }
 
  private:
@@ -626,6 +648,14 @@ class PathTracker {
 };
 
 }  // namespace
+
+std::optional<std::vector<Complex>> HomotopyTracker::point_at(const std::vector<Complex>& start, double t_stop,
+                                                               const TrackerSettings& settings) const {
+  if (!(t_stop > 0 && t_stop < 1)) throw PreconditionViolation("HomotopyTracker::point_at: t_stop must lie in (0, 1)");
+  if (degrees_.size() <= 3)
+    return PathTracker<3>(f_, degrees_, parameters_, gamma_, patch_, settings).point_at(start, t_stop);
+  return PathTracker<Eigen::Dynamic>(f_, degrees_, parameters_, gamma_, patch_, settings).point_at(start, t_stop);
+}
 
 PathEndpoint HomotopyTracker::track(const std::vector<Complex>& start, const TrackerSettings& settings) const {
   // The built-in primitives have at most three unknowns: one stack-sized tracker serves

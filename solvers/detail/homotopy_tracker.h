@@ -148,6 +148,14 @@ class HomotopyTracker {
   //! Tracks the path starting at the start solution `start` (g(start) = 0) and runs the endgame.
   PathEndpoint track(const std::vector<Complex>& start, const TrackerSettings& settings) const;
 
+  //! Tracks the path starting at `start` from t = 1 down the real axis to t = t_stop (no endgame)
+  //! and returns its point u there, in affine coordinates.  Nothing if the tracking failed (step
+  //! budget, step underflow, settings.deadline passed) or the point is at infinity to working
+  //! precision (X_0 = 0).  Not certified: the caller certifies the point (homotopy_certificate.h).
+  //! Throws PreconditionViolation unless 0 < t_stop < 1.
+  std::optional<std::vector<Complex>> point_at(const std::vector<Complex>& start, double t_stop,
+                                               const TrackerSettings& settings) const;
+
  private:
   const CompiledSystem& f_;
   std::vector<int> degrees_;

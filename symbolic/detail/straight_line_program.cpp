@@ -15,6 +15,7 @@
 
 #include "common/errors.h"
 #include "common/run_limits.h"
+#include "symbolic/complex_interval.h"
 
 namespace delmesh::detail {
 
@@ -728,6 +729,7 @@ DELMESH_DEFINE_SLP_EVALUATE(Interval)
 DELMESH_DEFINE_SLP_EVALUATE(MpfrReal)
 DELMESH_DEFINE_SLP_EVALUATE(MpfiInterval)
 DELMESH_DEFINE_SLP_EVALUATE(Complex)
+DELMESH_DEFINE_SLP_EVALUATE(ComplexInterval)
 #undef DELMESH_DEFINE_SLP_EVALUATE
 
 }  // namespace delmesh::detail

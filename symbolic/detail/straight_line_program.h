@@ -1,7 +1,8 @@
 #pragma once
 //! \file straight_line_program.h
 //! Internal: a vector of GiNaC expressions compiled once into a straight-line program (SLP) and
-//! evaluated without GiNaC over the five scalar types of scalar_types.h (via ScalarTraits).
+//! evaluated without GiNaC over the five scalar types of scalar_types.h and ComplexInterval
+//! (complex_interval.h), via ScalarTraits.
 //!
 //! Compilation walks each expression tree as given (nothing is expanded).  With sharing on (the
 //! default), equal sub-expressions (GiNaC structural equality) and equal instructions (same

@@ -73,13 +73,11 @@ inline std::vector<double> component_signed_volumes(const SurfaceMesh& mesh) {
   return component_signed_volumes(points, triangles);
 }
 
-//! Asserts that the statistics report a fully certified run: status "complete" and nothing left
-//! unsettled (no unsettled region, no defect of the output).
-//! With status "uncertified": the same for a run whose only shortfall is an oracle that gave
-//! uncertified answers (homotopy path tracking), which keeps it from "complete".
-inline void check_complete(const nlohmann::json& statistics, const std::string& status = "complete") {
-  BOOST_TEST(statistics.at("status").get<std::string>() == status);
-  BOOST_TEST(statistics.at("solver_certified").get<bool>() == (status == "complete"));
+//! Asserts that the statistics report a fully certified run: status "complete", every answer of
+//! the oracle certified, and nothing left unsettled (no unsettled region, no defect of the output).
+inline void check_complete(const nlohmann::json& statistics) {
+  BOOST_TEST(statistics.at("status").get<std::string>() == "complete");
+  BOOST_TEST(statistics.at("solver_certified").get<bool>());
   const auto& unsettled = statistics.at("unsettled");
   BOOST_TEST(unsettled.at("count").get<std::size_t>() == 0u, unsettled.dump());
   BOOST_TEST(unsettled.at("output_defects").empty(), unsettled.dump());
@@ -116,9 +114,8 @@ inline void check_oriented_output(const nlohmann::json& statistics, const Surfac
 //! Theorem 6.1 on a DelMesh run of a catalog surface at λ ≤ 0.06, checked on the output by the
 //! independent checker: a certified, outward-oriented closed manifold with the catalog's
 //! components and genera, and the angle, radius-edge and roughness bounds.
-inline void check_theorem_6_1(const CatalogEntry& entry, const DelMeshResult& result, double lambda,
-                              const std::string& status = "complete") {
-  check_complete(result.statistics, status);
+inline void check_theorem_6_1(const CatalogEntry& entry, const DelMeshResult& result, double lambda) {
+  check_complete(result.statistics);
   check_oriented_output(result.statistics, result.mesh);
   const auto r = check_mesh(result.mesh);
   const auto b = theorem_bounds(lambda);

@@ -13,6 +13,7 @@
 #include "solvers/detail/homotopy_tracker.h"
 #include "solvers/kostlan_system.h"
 #include "solvers/krawczyk.h"
+#include "solvers/subdivision_solver.h"
 
 namespace delmesh {
 
@@ -514,13 +515,47 @@ void place_roots(const std::vector<Certified>& distinct, const Domain& domain, c
   }
 }
 
+//! Answers an unproved piece by the subdivision solver: its roots that lie in no proved piece
+//! (the certificate has those) and its undecided boxes go to `result`, and the roots of rules 1–5
+//! in the piece are dropped (the subdivision's are certified the same way).  False, leaving
+//! `result` alone, if the deadline has passed.
+template <class InProvedPiece>
+bool solve_piece_by_subdivision(const std::vector<std::array<double, 2>>& piece, const Domain& domain,
+                                const EndpointCertifier& certifier, std::size_t budget,
+                                const std::optional<Clock::time_point>& deadline, const InProvedPiece& in_proved_piece,
+                                HomotopySolveResult& result) {
+  SubdivisionOptions options;
+  options.box_budget = budget;
+  if (deadline) {
+    const double left = std::chrono::duration<double>(*deadline - Clock::now()).count();
+    if (!(left > 0)) return false;
+    options.time_limit_seconds = left;
+  }
+  Domain part = domain;
+  part.box.bounds = piece;
+  SolveResult answer = solve_subdivision(certifier.system(), certifier.parameters(), part, options);
+  const auto in_piece = [&](const std::vector<double>& x) {
+    for (std::size_t i = 0; i < x.size(); ++i)
+      if (x[i] < piece[i][0] || x[i] > piece[i][1]) return false;
+    return true;
+  };
+  result.roots.erase(std::remove_if(result.roots.begin(), result.roots.end(),
+                                    [&](const CertifiedRoot& r) { return in_piece(r.midpoint); }),
+                     result.roots.end());
+  for (auto& root : answer.roots)
+    if (root.inside_domain && !in_proved_piece(root.midpoint)) result.roots.push_back(std::move(root));
+  for (auto& box : answer.undecided) result.undecided.push_back(std::move(box));
+  return true;
+}
+
 //! Runs certify_homotopy() on the tracked paths and rebuilds the result from what it proved: on
 //! the proved pieces, the certificate's real zeros placed against the domain; each unproved piece
 //! undecided (precision), with the roots of rules 1–5 outside the proved pieces kept.  Nothing is
 //! changed when the deadline passed (the caller reports time_limit).
 void certify_completeness(const detail::HomotopyTracker& tracker, const detail::TrackerSettings& settings,
                           Complex gamma, const std::vector<PathEndpoint>& ends, const Domain& domain,
-                          const EndpointCertifier& certifier, HomotopySolveResult& result) {
+                          const EndpointCertifier& certifier, std::size_t subdivision_budget,
+                          HomotopySolveResult& result) {
   const std::vector<std::vector<Complex>> starts = total_degree_start_solutions(certifier.degrees());
   std::vector<std::vector<Complex>> proposed;
   for (const auto& end : ends)
@@ -559,10 +594,17 @@ void certify_completeness(const detail::HomotopyTracker& tracker, const detail::
   place_roots(zeros, domain, certifier, result);
   result.counters.krawczyk_successes = result.roots.size();
   for (const auto& piece : certificate.unproved) {
+    if (subdivision_budget > 0 && solve_piece_by_subdivision(piece, domain, certifier, subdivision_budget,
+                                                             settings.deadline, in_proved_piece, result)) {
+      ++result.statistics.pieces_by_subdivision;
+      continue;
+    }
     std::vector<Interval> box;
     for (const auto& [lo, hi] : piece) box.emplace_back(lo, hi);
     add_undecided(result.undecided, std::move(box), UndecidedReason::precision, certifier);
   }
+  std::sort(result.roots.begin(), result.roots.end(),
+            [](const CertifiedRoot& a, const CertifiedRoot& b) { return a.midpoint < b.midpoint; });
 }
 
 }  // namespace
@@ -609,7 +651,9 @@ HomotopySolveResult solve_homotopy(const CompiledSystem& system, const std::vect
     sorter.sort(end, statistics, certified, result.undecided);
 
   place_roots(distinct_roots(std::move(certified), certifier, result.undecided), domain, certifier, result);
-  if (!out_of_time) certify_completeness(tracker, settings, gamma, ends, domain, certifier, result);
+  if (!out_of_time)
+    certify_completeness(tracker, settings, gamma, ends, domain, certifier, options.subdivision_budget_for_unproved,
+                         result);
 
   if (out_of_time || result.certificate.status == HomotopyCertificateStatus::out_of_time) {
     add_undecided(result.undecided, domain_box(domain), UndecidedReason::budget, certifier);

@@ -49,6 +49,8 @@ struct HomotopyStatistics {
   std::size_t near_real = 0;
   //! Diverging paths whose last point was near the domain (solve_homotopy(), rule 4).
   std::size_t diverging_near_domain = 0;
+  //! Unproved pieces answered by the subdivision solver (HomotopyOptions::subdivision_budget_for_unproved).
+  std::size_t pieces_by_subdivision = 0;
 };
 
 struct HomotopyOptions {
@@ -61,6 +63,11 @@ struct HomotopyOptions {
   //! Predictor–corrector steps one path may take before it is declared failed (a failed path
   //! makes the solve undecided: the whole domain box is returned as undecided).
   std::size_t max_steps_per_path = tolerances::homotopy_max_steps_per_path;
+  //! When set, each piece of the domain that the certificate leaves unproved is solved by the
+  //! subdivision solver (solve_subdivision() on the piece, with the domain's half-spaces and this
+  //! box budget) and takes its answer, certified roots and undecided boxes; when 0 the piece stays
+  //! undecided, so the answer rests on the homotopy alone (the cross-check of the two solvers).
+  std::size_t subdivision_budget_for_unproved = 0;
 };
 
 //! What solve_homotopy() returns: its roots and undecided regions, the statistics of its paths,
@@ -131,7 +138,9 @@ std::vector<std::vector<Complex>> total_degree_start_solutions(const std::vector
 //! Krawczyk certificates of f's zeros; the path tracking is never trusted), and the result is
 //! rebuilt from it: on the pieces proved, the certificate's real zeros placed against the domain
 //! (inside: a root; on its boundary: undecided, boundary_root; outside: counted); each piece not
-//! proved undecided (precision), with the roots of rules 1–5 that lie in no proved piece kept; the
+//! proved answered by the subdivision solver if options.subdivision_budget_for_unproved > 0 (its
+//! roots outside the proved pieces, and its undecided boxes), else undecided (precision), with
+//! the roots of rules 1–5 that lie in no proved piece kept; the
 //! undecided boxes of rules 1–5 are replaced (a proved piece has no other zero, an unproved one is
 //! undecided whole).  Status complete iff nothing is undecided, so a complete status is a proof,
 //! as for the subdivision solver; completeness_certified() says every piece was proved.  The

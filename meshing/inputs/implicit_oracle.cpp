@@ -136,6 +136,7 @@ SolveResult ImplicitOracle::solve_square(std::size_t primitive, const std::vecto
     HomotopyOptions options;
     options.seed = seed_;
     options.deadline = deadline_;
+    options.subdivision_budget_for_unproved = box_budget;
     HomotopySolveResult result = solve_homotopy(sys, impl_->degrees[index], parameters, domain, options);
     const std::lock_guard<std::mutex> lock(impl_->statistics_mutex);
     auto& s = stats_[index];
@@ -143,6 +144,7 @@ SolveResult ImplicitOracle::solve_square(std::size_t primitive, const std::vecto
     s.homotopy_near_real += result.statistics.near_real;
     s.homotopy_diverging_near_domain += result.statistics.diverging_near_domain;
     ++(result.completeness_certified() ? s.homotopy_certified : s.homotopy_uncertified);
+    s.homotopy_pieces_by_subdivision += result.statistics.pieces_by_subdivision;
     return std::move(result);  // the SolveResult part
   }
   count_fallback(primitive);
@@ -332,7 +334,8 @@ nlohmann::json ImplicitOracle::statistics_json() const {
                           {"homotopy_near_real", s.homotopy_near_real},
                           {"homotopy_diverging_near_domain", s.homotopy_diverging_near_domain},
                           {"homotopy_certified", s.homotopy_certified},
-                          {"homotopy_uncertified", s.homotopy_uncertified}};
+                          {"homotopy_uncertified", s.homotopy_uncertified},
+                          {"homotopy_pieces_by_subdivision", s.homotopy_pieces_by_subdivision}};
   };
   nlohmann::json per = nlohmann::json::object();
   PrimitiveStatistics total;
@@ -352,6 +355,7 @@ nlohmann::json ImplicitOracle::statistics_json() const {
     total.homotopy_diverging_near_domain += s.homotopy_diverging_near_domain;
     total.homotopy_certified += s.homotopy_certified;
     total.homotopy_uncertified += s.homotopy_uncertified;
+    total.homotopy_pieces_by_subdivision += s.homotopy_pieces_by_subdivision;
   }
   nlohmann::json j = counts(total);
   j.erase("calls");

@@ -16,7 +16,9 @@
 //! and every such call counts one homotopy fallback of its primitive.  surface_plane_contact (an
 //! over-determined system, exclusion mode) is always solved by subdivision, and counts one
 //! fallback per call under this backend too.  surface_line always uses the univariate isolator
-//! (certified, under either backend) and counts none.
+//! (certified, under either backend) and counts none.  A homotopy solve's pieces of the domain
+//! that its certificate of completeness leaves unproved are answered by subdivision with the
+//! call's box budget (HomotopyOptions::subdivision_budget_for_unproved; counted).
 //!
 //! The primitives and the certificate may be called from several threads at once: the compiled
 //! systems keep their scratch per thread, and the statistics are updated under a lock.
@@ -55,9 +57,10 @@ struct PrimitiveStatistics {
   //! Homotopy solves: paths tracked, near-real endpoints and diverging paths near the domain
   //! (solve_homotopy(), rules 2–4).
   std::size_t homotopy_paths = 0, homotopy_near_real = 0, homotopy_diverging_near_domain = 0;
-  //! Homotopy solves whose completeness was not proved (solvers/homotopy_certificate.h; the solve
-  //! then returns its whole domain undecided), and those proved.
-  std::size_t homotopy_uncertified = 0, homotopy_certified = 0;
+  //! Homotopy solves whose certificate of completeness (solvers/homotopy_certificate.h) was not
+  //! proved on every piece of the domain, and those proved; the unproved pieces, answered by the
+  //! subdivision solver with the call's box budget.
+  std::size_t homotopy_uncertified = 0, homotopy_certified = 0, homotopy_pieces_by_subdivision = 0;
   double seconds = 0;
 };
 
@@ -149,7 +152,7 @@ class ImplicitOracle final : public SurfaceOracle {
   const PrimitiveStatistics& statistics(const std::string& primitive) const;
   //! {systems, certified_roots, undecided, boxes, seconds, homotopy_fallbacks, time_limited,
   //!  homotopy_paths, homotopy_near_real, homotopy_diverging_near_domain, homotopy_certified,
-  //!  homotopy_uncertified, per_primitive: {name:
+  //!  homotopy_uncertified, homotopy_pieces_by_subdivision, per_primitive: {name:
   //!  {the same counts for that primitive}}, cone_certificates: {attempts, proved, boxes, seconds},
   //!  backend: "subdivision" or "homotopy"}
   nlohmann::json statistics_json() const override;

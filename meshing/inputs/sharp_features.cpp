@@ -147,7 +147,9 @@ FeatureEdges::FeatureEdges(const SurfaceMesh& mesh, const FeatureSet& features) 
 }
 
 bool FeatureEdges::facet_meets_feature_edge(const Point3& p, const Point3& q, const std::vector<Point3>& others) const {
-  for (const auto& [u, w] : segments_) {
+  for (const auto& segment : segments_) {
+    const Point3& u = segment[0];
+    const Point3& w = segment[1];
     const int su = exact_sign([&](auto nt) { return bisector_value<decltype(nt)>(u, p, q); });
     if (su == 0) continue;
     const int sw = exact_sign([&](auto nt) { return bisector_value<decltype(nt)>(w, p, q); });

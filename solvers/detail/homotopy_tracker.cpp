@@ -86,14 +86,19 @@ class PathTracker {
       : f_(f), degrees_(degrees), parameters_(parameters), gamma_(gamma), patch_(patch), settings_(settings),
         n_(static_cast<int>(degrees.size())), values_(n_), jacobian_(static_cast<std::size_t>(n_) * n_) {}
 
-  PathEndpoint track(const std::vector<Complex>& start) {
-    PathEndpoint end;
+  //! The start solution in homogeneous coordinates (1, start), scaled onto the patch.
+  Vec on_patch(const std::vector<Complex>& start) const {
     Vec X(n_ + 1);
     X[0] = 1;
     for (int i = 0; i < n_; ++i) X[i + 1] = start[i];
-    Complex on_patch = 0;
-    for (int j = 0; j <= n_; ++j) on_patch += patch_[j] * X[j];
-    X /= on_patch;
+    Complex dot = 0;
+    for (int j = 0; j <= n_; ++j) dot += patch_[j] * X[j];
+    return X / dot;
+  }
+
+  PathEndpoint track(const std::vector<Complex>& start) {
+    PathEndpoint end;
+    Vec X = on_patch(start);
     // main phase: t = 1 − s, s from 0 to endgame_start
     double h = settings_.initial_step;
     if (!run(TPath{1.0, -1.0, false}, settings_.endgame_start, settings_.max_step, X, h, end, &end.s)) {
@@ -108,12 +113,7 @@ class PathTracker {
   //! HomotopyTracker::point_at().
   std::optional<std::vector<Complex>> point_at(const std::vector<Complex>& start, double t_stop) {
     PathEndpoint end;
-    Vec X(n_ + 1);
-    X[0] = 1;
-    for (int i = 0; i < n_; ++i) X[i + 1] = start[i];
-    Complex on_patch = 0;
-    for (int j = 0; j <= n_; ++j) on_patch += patch_[j] * X[j];
-    X /= on_patch;
+    Vec X = on_patch(start);
     // linear in t down to t_0 = 1 − endgame_start (or t_stop if larger), then t = t_0 e^{−τ}
     const double t0 = std::max(t_stop, 1 - settings_.endgame_start);
     double h = settings_.initial_step;

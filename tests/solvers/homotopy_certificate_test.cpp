@@ -8,6 +8,7 @@
 #include "solvers/detail/homotopy_tracker.h"
 #include "solvers/homotopy_certificate.h"
 #include "solvers/homotopy_solver.h"
+#include "system_fixture.h"
 #include "symbolic/catalog.h"
 #include "symbolic/complex_interval.h"
 
@@ -17,20 +18,9 @@ using GiNaC::symbol;
 
 namespace {
 
-const symbol& X() { return coordinate_x(); }
-const symbol& Y() { return coordinate_y(); }
-
-PrimitiveSystem make_system(std::vector<ex> equations, std::vector<symbol> unknowns) {
-  PrimitiveSystem s;
-  s.name = "test";
-  s.unknowns = std::move(unknowns);
-  s.equations = std::move(equations);
-  s.jacobian = GiNaC::matrix(s.equations.size(), s.unknowns.size());
-  for (std::size_t i = 0; i < s.equations.size(); ++i)
-    for (std::size_t j = 0; j < s.unknowns.size(); ++j) s.jacobian(i, j) = s.equations[i].diff(s.unknowns[j]);
-  for (std::size_t k = 0; k < 3; ++k) s.world_point[k] = k < s.unknowns.size() ? ex(s.unknowns[k]) : ex(0);
-  return s;
-}
+using test::make_system;
+using test::X;
+using test::Y;
 
 HomotopySolveResult solve(const PrimitiveSystem& system, const Domain& domain, std::uint64_t seed = 1) {
   const CompiledSystem compiled(system);
